@@ -1,0 +1,39 @@
+# kinbook: two commands for a fresh machine that has python3 and make.
+#   make lab   - create .venv, install kinbook with its extras, register the 'kinbook' kernel, open JupyterLab
+#   make test  - create .venv if missing, install, run the unit tests, doctests and nbval on every notebook
+
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.kinbook-installed
+PIN    := requirements/constraints.txt
+
+.PHONY: lab test install kernel lock clean
+
+install: $(STAMP)
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+
+$(STAMP): pyproject.toml $(PIN) | $(BIN)/python
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c $(PIN) -e '.[lab,test]'
+	$(BIN)/python -m ipykernel install --sys-prefix --name kinbook --display-name "Python (kinbook)" >/dev/null
+	touch $@
+
+kernel: $(STAMP)
+
+lab: $(STAMP)
+	MPLBACKEND=module://matplotlib_inline.backend_inline $(BIN)/jupyter lab --notebook-dir=chapters
+
+test: $(STAMP)
+	$(BIN)/python -m pytest
+
+# Re-pin the environment after a dependency change (run on the reference machine class: Python 3.11, Linux).
+lock:
+	rm -rf .lock-venv && $(PYTHON) -m venv .lock-venv
+	.lock-venv/bin/python -m pip install --quiet -e '.[lab,test]'
+	{ head -n 3 $(PIN); .lock-venv/bin/python -m pip freeze --exclude-editable | grep -iv '^kinbook'; } > $(PIN).new
+	mv $(PIN).new $(PIN) && rm -rf .lock-venv
+
+clean:
+	rm -rf $(VENV) build *.egg-info

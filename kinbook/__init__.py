@@ -1,0 +1,45 @@
+"""kinbook: computational kinematics of mechanisms in body coordinates, for teaching.
+
+Planar kinematics (textbook chapter 13) lives in :mod:`kinbook.planar`; mechanism files are read by
+:func:`kinbook.load`, and the book's example mechanisms by :func:`kinbook.examples.load`.
+"""
+
+from . import examples, planar
+from .errors import (
+    AnalysisError,
+    AssemblyError,
+    ConvergenceError,
+    DeadPointError,
+    DriverCountError,
+    InputError,
+    KinbookError,
+    MechanismFileError,
+    ModelError,
+    RedundantConstraintsError,
+    SingularJacobianError,
+    UnknownBodyError,
+    UnknownPointError,
+)
+from .io import load, loads
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "load",
+    "loads",
+    "examples",
+    "planar",
+    "KinbookError",
+    "ModelError",
+    "UnknownBodyError",
+    "UnknownPointError",
+    "MechanismFileError",
+    "InputError",
+    "DriverCountError",
+    "AnalysisError",
+    "ConvergenceError",
+    "SingularJacobianError",
+    "RedundantConstraintsError",
+    "DeadPointError",
+    "AssemblyError",
+]

@@ -1,0 +1,148 @@
+"""Exceptions raised by kinbook.
+
+Every error kinbook raises on purpose is a :class:`KinbookError`. Messages name the body, point, constraint
+or equation row concerned, so that a student reading a traceback in a notebook knows where to look.
+
+The hierarchy::
+
+    KinbookError
+    ├── ModelError                 a mechanism that cannot be built as described
+    │   ├── UnknownBodyError
+    │   ├── UnknownPointError
+    │   └── MechanismFileError     a mechanism file (TOML) that cannot be read; names the key
+    ├── InputError                 wrong shapes, NaN/inf, values out of their domain
+    ├── DriverCountError           more or fewer drivers than degrees of freedom
+    └── AnalysisError              the numbers went wrong during an analysis
+        ├── ConvergenceError       Newton-Raphson did not converge
+        ├── SingularJacobianError  Φ_q is rank deficient at the configuration
+        │   ├── RedundantConstraintsError   ...because geometric constraints repeat each other
+        │   └── DeadPointError              ...because a driver cannot move the mechanism any further
+        └── AssemblyError          a sweep reached a time at which the mechanism does not assemble
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "KinbookError",
+    "ModelError",
+    "UnknownBodyError",
+    "UnknownPointError",
+    "MechanismFileError",
+    "InputError",
+    "DriverCountError",
+    "AnalysisError",
+    "ConvergenceError",
+    "SingularJacobianError",
+    "RedundantConstraintsError",
+    "DeadPointError",
+    "AssemblyError",
+]
+
+
+class KinbookError(Exception):
+    """Base class of every error kinbook raises on purpose."""
+
+
+class ModelError(KinbookError, ValueError):
+    """A mechanism (bodies, points, constraints) that cannot be built as described."""
+
+
+class UnknownBodyError(ModelError, KeyError):
+    """A constraint or a query names a body the mechanism does not have."""
+
+    def __str__(self):  # KeyError would quote the message
+        return str(self.args[0]) if self.args else ""
+
+
+class UnknownPointError(ModelError, KeyError):
+    """A constraint or a query names a point its body does not have."""
+
+    def __str__(self):
+        return str(self.args[0]) if self.args else ""
+
+
+class MechanismFileError(ModelError):
+    """A mechanism file that cannot be read. The message names the file and the offending key."""
+
+
+class InputError(KinbookError, ValueError):
+    """An argument of the wrong shape, with NaN or inf, or outside its domain."""
+
+
+class DriverCountError(KinbookError):
+    """The number of driving constraints differs from the number of degrees of freedom."""
+
+
+class AnalysisError(KinbookError):
+    """An analysis (position, velocity, acceleration, sweep) could not produce a trustworthy answer."""
+
+
+class ConvergenceError(AnalysisError):
+    """Newton-Raphson stopped without reaching the tolerance.
+
+    Attributes
+    ----------
+    iterations : int
+    residual : float
+        Infinity norm of Φ at the last iterate.
+    q : ndarray
+        The last iterate.
+    """
+
+    def __init__(self, message, *, iterations=None, residual=None, q=None):
+        super().__init__(message)
+        self.iterations = iterations
+        self.residual = residual
+        self.q = q
+
+
+class SingularJacobianError(AnalysisError):
+    """Φ_q is singular or rank deficient at the configuration.
+
+    Attributes
+    ----------
+    rows : list of int
+        1-based rows of Φ that take part in the dependency.
+    constraints : list of str
+        Names of the constraints owning those rows.
+    rank, size : int
+        Numerical rank of Φ_q and its number of rows.
+    """
+
+    def __init__(self, message, *, rows=(), constraints=(), rank=None, size=None, q=None, t=None):
+        super().__init__(message)
+        self.rows = list(rows)
+        self.constraints = list(constraints)
+        self.rank = rank
+        self.size = size
+        self.q = q
+        self.t = t
+
+
+class RedundantConstraintsError(SingularJacobianError):
+    """The geometric constraints are linearly dependent: some of them repeat what others impose."""
+
+
+class DeadPointError(SingularJacobianError):
+    """The geometric constraints are independent but a driver cannot move the mechanism further."""
+
+
+class AssemblyError(AnalysisError):
+    """A sweep reached an instant at which the mechanism cannot be assembled.
+
+    Attributes
+    ----------
+    t : float
+        First instant that failed.
+    drivers : dict
+        Value of each driver's prescribed function at ``t``.
+    partial : SimulationResult or None
+        The instants solved before the failure.
+    """
+
+    def __init__(self, message, *, t=None, drivers=None, partial=None, cause=None):
+        super().__init__(message)
+        self.t = t
+        self.drivers = dict(drivers or {})
+        self.partial = partial
+        self.cause = cause

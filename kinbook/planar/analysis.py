@@ -1,0 +1,504 @@
+"""Kinematic analysis (textbook §13.6–13.8): position by Newton–Raphson, velocity, acceleration, sweeps and
+the diagnosis of singular configurations.
+
+The functions take a mechanism (anything with the numeric interface of :class:`kinbook.planar.Mechanism`:
+``evaluate``, ``n``, ``m``, ``constraints`` …) so the spatial half reuses them.
+"""
+
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse.linalg as spla
+
+from ..errors import (
+    AssemblyError,
+    ConvergenceError,
+    DeadPointError,
+    DriverCountError,
+    InputError,
+    RedundantConstraintsError,
+)
+
+__all__ = [
+    "check_drivers",
+    "solve_position",
+    "solve_velocity",
+    "solve_acceleration",
+    "simulate",
+    "diagnose",
+    "Diagnosis",
+    "SimulationResult",
+]
+
+SPARSE_ABOVE = 150
+"""Systems with more coordinates than this are assembled and factorized as sparse matrices."""
+
+
+# --------------------------------------------------------------------------------------------- helpers
+def _row_owner(mech, row):
+    for c in mech.constraints:
+        if c.rows.start <= row < c.rows.stop:
+            return c
+    return None
+
+
+def describe_rows(mech, rows, limit=8):
+    """'revolute joint '3' (rows 8-9 of Φ), driver 'driver 1' (row 12 of Φ)' for 0-based ``rows``."""
+    seen = []
+    for r in rows:
+        c = _row_owner(mech, r)
+        if c is not None and c not in seen:
+            seen.append(c)
+    text = ", ".join(c.describe() for c in seen[:limit])
+    if len(seen) > limit:
+        text += f" and {len(seen) - limit} more"
+    return text
+
+
+def check_drivers(mech):
+    """Raise :class:`DriverCountError` unless Φ is square: as many driver equations as degrees of freedom."""
+    n, m_geo = mech.n, mech.m_geometric
+    k = mech.m - m_geo
+    if mech.m == n:
+        return
+    dof = n - m_geo
+    names = ", ".join(f"'{c.name}'" for c in mech.drivers) or "none"
+    if dof < 0:
+        raise DriverCountError(
+            f"mechanism '{mech.name}' has {m_geo} geometric constraint equations for only n = {n} coordinates: "
+            f"it is overconstrained by {-dof} equation(s) before any driver (drivers: {names})"
+        )
+    raise DriverCountError(
+        f"mechanism '{mech.name}' has n = {n} coordinates and {m_geo} geometric constraint equations, so "
+        f"{dof} degree(s) of freedom, but {k} driver equation(s) ({names}): "
+        + ("add" if k < dof else "remove") + f" {abs(dof - k)} driver(s) so that Φ has as many rows as q"
+    )
+
+
+def _t(t):
+    try:
+        t = float(t)
+    except (TypeError, ValueError):
+        raise InputError(f"`t` must be a number, got {t!r}") from None
+    if not np.isfinite(t):
+        raise InputError(f"`t` must be finite, got {t}")
+    return t
+
+
+def _solve(J, b):
+    """Solve J x = b for one square system, dense or sparse. Returns None when J is singular."""
+    try:
+        if hasattr(J, "tocsc"):
+            with np.errstate(all="ignore"):
+                lu = spla.splu(J.tocsc())
+                x = lu.solve(b)
+        else:
+            lu, piv = sla.lu_factor(J, check_finite=False)
+            if np.min(np.abs(np.diag(lu))) <= 1e-13 * max(1.0, np.max(np.abs(np.diag(lu)))):
+                return None
+            x = sla.lu_solve((lu, piv), b, check_finite=False)
+    except (np.linalg.LinAlgError, RuntimeError, ValueError):
+        return None
+    return x if np.all(np.isfinite(x)) else None
+
+
+def _jacobian(mech, q, t):
+    return mech.evaluate(q, t, sparse=mech.n > SPARSE_ABOVE)
+
+
+# --------------------------------------------------------------------------------------------- diagnosis
+@dataclass(frozen=True)
+class Diagnosis:
+    """Rank analysis of Φ_q at one configuration.
+
+    Attributes
+    ----------
+    kind : {"regular", "redundant", "dead-point"}
+        "redundant": the geometric (non-driver) rows of Φ_q are dependent — some constraints repeat others.
+        "dead-point": the geometric rows are independent but a driver row depends on them — the driver cannot
+        move the mechanism any further in this configuration.
+    rank, size : int
+        Numerical rank of Φ_q and its number of rows.
+    cond : float
+        2-norm condition number of Φ_q (inf when singular, nan when not square).
+    rows : list of int
+        1-based rows of Φ in the dependency.
+    constraints : list of str
+        Their constraints' names.
+    message : str
+    """
+
+    kind: str
+    rank: int
+    size: int
+    cond: float
+    rows: list = field(default_factory=list)
+    constraints: list = field(default_factory=list)
+    message: str = ""
+
+    @property
+    def singular(self):
+        return self.kind != "regular"
+
+    def __repr__(self):
+        return f"Diagnosis({self.kind}: rank {self.rank} of {self.size}, cond {self.cond:.3g})"
+
+    def _repr_html_(self):
+        colour = "#2e7d32" if not self.singular else "#c62828"
+        return f'<p style="color:{colour}"><b>{html.escape(self.kind)}</b>: {html.escape(self.message)}</p>'
+
+
+def _left_null_rows(J, rank, rtol=1e-6):
+    U, s, _ = np.linalg.svd(J, full_matrices=True)
+    null = U[:, rank:]
+    weight = np.linalg.norm(null, axis=1)
+    return [int(r) for r in np.nonzero(weight > rtol)[0]]
+
+
+def _rank(s, shape, rtol=1e-9):
+    if s.size == 0:
+        return 0
+    return int(np.sum(s > rtol * max(s[0], 1e-300) * max(shape) ** 0.5))
+
+
+def diagnose(mech, q, t=0.0, rtol=1e-9):
+    """Rank analysis of Φ_q(q, t): regular, redundant constraints, or a dead point. Returns a :class:`Diagnosis`."""
+    t = _t(t)
+    J = np.asarray(mech.evaluate(q, t)["Phi_q"])
+    m, n = J.shape
+    s = np.linalg.svd(J, compute_uv=False)
+    rank = _rank(s, J.shape, rtol)
+    cond = float(s[0] / s[-1]) if (m == n and s[-1] > 0) else (np.inf if m == n else np.nan)
+    geo = [r for c in mech.constraints if c.kind != "driver" for r in range(c.rows.start, c.rows.stop)]
+    Jg = J[geo]
+    sg = np.linalg.svd(Jg, compute_uv=False) if len(geo) else np.zeros(0)
+    rank_g = _rank(sg, Jg.shape, rtol)
+    where = f"at t = {t:.6g}"
+    if rank_g < len(geo):
+        rows = [geo[r] for r in _left_null_rows(Jg, rank_g)]
+        msg = (f"Φ_q is rank deficient {where} (rank {rank} of {m}): the geometric constraints are redundant — "
+               f"{len(geo) - rank_g} equation(s) among rows {_fmt_rows(rows)} repeat what the others impose: "
+               f"{describe_rows(mech, rows)}")
+        kind = "redundant"
+    elif rank < min(m, n) or (m == n and rank < m):
+        rows = _left_null_rows(J, rank)
+        drivers = [c for c in mech.constraints if c.kind == "driver" and any(c.rows.start <= r < c.rows.stop for r in rows)]
+        who = ", ".join(f"'{c.name}'" for c in drivers) or "the drivers"
+        msg = (f"Φ_q is singular {where} (rank {rank} of {m}): dead point — the geometric constraints are "
+               f"independent but driver {who} cannot move the mechanism further from this configuration; "
+               f"dependent rows {_fmt_rows(rows)}: {describe_rows(mech, rows)}")
+        kind = "dead-point"
+    else:
+        rows = []
+        msg = f"Φ_q is regular {where}: rank {rank} of {m}, condition number {cond:.4g}"
+        kind = "regular"
+    names = []
+    for r in rows:
+        c = _row_owner(mech, r)
+        if c is not None and c.name not in names:
+            names.append(c.name)
+    return Diagnosis(kind, rank, m, cond, [r + 1 for r in rows], names, msg)
+
+
+def _fmt_rows(rows):
+    return ", ".join(str(r + 1) for r in rows[:20]) + (" …" if len(rows) > 20 else "")
+
+
+def _raise_singular(mech, q, t, context):
+    d = diagnose(mech, q, t)
+    if d.kind == "regular":  # numerically singular for the LU but not by the SVD's tolerance
+        d = Diagnosis("dead-point", d.rank, d.size, d.cond, [], [],
+                      f"Φ_q is numerically singular at t = {t:.6g} (condition number {d.cond:.3g})")
+    cls = RedundantConstraintsError if d.kind == "redundant" else DeadPointError
+    raise cls(f"{context}: {d.message}", rows=d.rows, constraints=d.constraints, rank=d.rank, size=d.size,
+              q=np.array(q, dtype=float), t=t)
+
+
+# --------------------------------------------------------------------------------------------- solvers
+def solve_position(mech, t=0.0, q0=None, tol=1e-10, max_iter=50):
+    """Solve Φ(q, t) = 0 by Newton–Raphson.
+
+    Parameters
+    ----------
+    t : float
+    q0 : array_like, shape (n,), optional
+        Initial guess; default: the bodies' q0.
+    tol : float
+        Convergence when max |Φ_k| ≤ tol.
+    max_iter : int
+
+    Returns
+    -------
+    q : ndarray, shape (n,)
+
+    Raises
+    ------
+    DriverCountError
+        Φ is not square.
+    ConvergenceError
+        No convergence within ``max_iter`` iterations; the message gives the residual and the worst rows.
+    RedundantConstraintsError, DeadPointError
+        Φ_q is singular at an iterate.
+    """
+    check_drivers(mech)
+    t = _t(t)
+    q = mech.q0 if q0 is None else np.array(mech._check_q(q0, "q0"), dtype=float)
+    if q.ndim != 1:
+        raise InputError(f"`q0` must have shape ({mech.n},), got {q.shape}")
+    res = np.inf
+    for it in range(max_iter + 1):
+        ev = _jacobian(mech, q, t)
+        Phi = ev["Phi"]
+        res = float(np.max(np.abs(Phi))) if Phi.size else 0.0
+        if res <= tol:
+            return q
+        if it == max_iter or not np.isfinite(res) or res > 1e12:
+            break
+        dq = _solve(ev["Phi_q"], -Phi)
+        if dq is None:
+            _raise_singular(mech, q, t, f"Newton–Raphson iteration {it + 1} for mechanism '{mech.name}'")
+        q = q + dq
+    worst = np.argsort(-np.abs(Phi))[:3] if np.all(np.isfinite(Phi)) else np.nonzero(~np.isfinite(Phi))[0][:3]
+    detail = "; ".join(f"row {r + 1} = {Phi[r]:.3g} ({_row_owner(mech, r).describe()})" for r in worst)
+    raise ConvergenceError(
+        f"Newton–Raphson did not converge for mechanism '{mech.name}' at t = {t:.6g}: after {it} iterations "
+        f"max |Φ| = {res:.3g} > tol = {tol:g}. Largest residuals: {detail}. The mechanism may not assemble "
+        f"there, or q0 is too far from a solution.",
+        iterations=it, residual=res, q=q,
+    )
+
+
+def solve_velocity(mech, q, t=0.0):
+    """Solve the velocity equations Φ_q q̇ = ν (§13.7). Returns q̇, shape (n,)."""
+    check_drivers(mech)
+    t = _t(t)
+    ev = _jacobian(mech, q, t)
+    qd = _solve(ev["Phi_q"], ev["nu"])
+    if qd is None:
+        _raise_singular(mech, q, t, f"velocity analysis of mechanism '{mech.name}'")
+    return qd
+
+
+def solve_acceleration(mech, q, qd, t=0.0):
+    """Solve the acceleration equations Φ_q q̈ = γ (§13.8). Returns q̈, shape (n,)."""
+    check_drivers(mech)
+    t = _t(t)
+    ev = mech.evaluate(q, t, qd, sparse=mech.n > SPARSE_ABOVE)
+    qdd = _solve(ev["Phi_q"], ev["gamma"])
+    if qdd is None:
+        _raise_singular(mech, q, t, f"acceleration analysis of mechanism '{mech.name}'")
+    return qdd
+
+
+# --------------------------------------------------------------------------------------------- sweeps
+@dataclass
+class SimulationResult:
+    """Positions, velocities and accelerations over a sweep of instants.
+
+    Attributes
+    ----------
+    mechanism
+    t : ndarray, shape (N,)
+    q, qd, qdd : ndarray, shape (N, n)
+    failure : AssemblyError or None
+        Set when the sweep stopped early (``on_failure="truncate"``); ``t`` then holds the solved instants only.
+    """
+
+    mechanism: object
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    failure: AssemblyError | None = None
+
+    def __len__(self):
+        return len(self.t)
+
+    def coordinate(self, name, derivative=0):
+        """Time history of one coordinate ('phi3' or (body, 'phi')) or of its first or second derivative."""
+        k = self.mechanism.index(name)
+        return (self.q, self.qd, self.qdd)[derivative][:, k]
+
+    def position(self, body, point):
+        """Global positions of a body point at every instant, shape (N, 2)."""
+        return self.mechanism.point_position(self.q, body, point)
+
+    def velocity(self, body, point):
+        """Global velocities of a body point, shape (N, 2)."""
+        return self.mechanism.point_velocity(self.q, self.qd, body, point)
+
+    def acceleration(self, body, point):
+        """Global accelerations of a body point, shape (N, 2)."""
+        return self.mechanism.point_acceleration(self.q, self.qd, self.qdd, body, point)
+
+    def _summary(self):
+        mech = self.mechanism
+        if len(self.t):
+            text = (f"sweep of '{mech.name}': {len(self.t)} instants, t from {self.t[0]:.6g} to {self.t[-1]:.6g}; "
+                    f"max |Φ| = {np.max(np.abs(mech.Phi(self.q, self.t))):.2g}")
+        else:
+            text = f"sweep of '{mech.name}': no instant solved"
+        if self.failure is not None:
+            text += f". Stopped early: {self.failure}"
+        return text
+
+    def __repr__(self):
+        return f"<SimulationResult: {self._summary()}>"
+
+    def _repr_html_(self):
+        return f"<p>{html.escape(self._summary())}</p>"
+
+
+def _newton_batch(mech, q, T, tol, max_iter=8):
+    """Batched Newton–Raphson over many instants at once (numpy's stacked solve). Returns (q, converged)."""
+    q = q.copy()
+    conv = np.zeros(len(T), dtype=bool)
+    active = np.arange(len(T))
+    for _ in range(max_iter + 1):
+        ev = mech.evaluate(q[active], T[active])
+        res = np.max(np.abs(ev["Phi"]), axis=1)
+        ok = res <= tol
+        conv[active[ok]] = True
+        keep = ~ok & np.isfinite(res) & (res < 1e6)
+        active, J, Phi = active[keep], ev["Phi_q"][keep], ev["Phi"][keep]
+        if active.size == 0:
+            break
+        try:
+            dq = np.linalg.solve(J, -Phi[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            break
+        q[active] += dq
+    return q, conv
+
+
+def _driver_values(mech, t):
+    return {c.name: float(c.f.subs(mech.t, t)) for c in mech.drivers}
+
+
+def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=16):
+    """Kinematic sweep: position, velocity and acceleration at every instant of ``times``.
+
+    Every ``anchor_every``-th instant is solved in sequence (Newton from a Taylor prediction q + q̇ Δt + ½ q̈ Δt²
+    of the previous anchor); the instants in between are then solved all at once by a batched Newton–Raphson
+    from the same kind of prediction, and velocities and accelerations by stacked linear solves. An instant the
+    batch cannot solve is retried in sequence.
+
+    Parameters
+    ----------
+    times : array_like, shape (N,)
+        Instants, in the order the mechanism should move through them.
+    q0 : array_like, optional
+        Initial guess at ``times[0]``.
+    on_failure : {"raise", "truncate"}
+        What to do when the mechanism cannot be assembled at some instant (for example when a crank is driven
+        past a dead point): raise :class:`AssemblyError` (its ``partial`` attribute holds the instants solved
+        before) or return the solved instants with ``result.failure`` set.
+
+    Returns
+    -------
+    SimulationResult
+    """
+    if on_failure not in ("raise", "truncate"):
+        raise InputError(f"`on_failure` must be 'raise' or 'truncate', got {on_failure!r}")
+    check_drivers(mech)
+    T = np.asarray(times, dtype=float)
+    if T.ndim != 1 or T.size == 0:
+        raise InputError(f"`times` must be a non-empty 1-D array, got shape {T.shape}")
+    if not np.all(np.isfinite(T)):
+        raise InputError("`times` must be finite")
+    N, n = len(T), mech.n
+    Q, QD, QDD = np.zeros((N, n)), np.zeros((N, n)), np.zeros((N, n))
+    solved = np.zeros(N, dtype=bool)
+
+    def solve_one(k, guesses):
+        last = None
+        for g in guesses:
+            try:
+                q = solve_position(mech, T[k], q0=g, tol=tol, max_iter=25)
+                qd = solve_velocity(mech, q, T[k])
+                qdd = solve_acceleration(mech, q, qd, T[k])
+            except (ConvergenceError, DeadPointError, RedundantConstraintsError) as exc:
+                last = exc
+                continue
+            Q[k], QD[k], QDD[k] = q, qd, qdd
+            solved[k] = True
+            return None
+        return last
+
+    def predict(j, k):
+        dt = T[k] - T[j]
+        return Q[j] + QD[j] * dt + 0.5 * QDD[j] * dt * dt
+
+    def fail(k, cause):
+        partial = SimulationResult(mech, T[:k].copy(), Q[:k].copy(), QD[:k].copy(), QDD[:k].copy())
+        drivers = _driver_values(mech, T[k])
+        dv = ", ".join(f"'{name}' = {v:.6g}" for name, v in drivers.items())
+        last = f"; last assembled instant t = {T[k - 1]:.6g}" if k else ""
+        reason = str(cause).split(": ", 1)[-1] if cause is not None else ""
+        err = AssemblyError(
+            f"mechanism '{mech.name}' cannot be assembled at t = {T[k]:.6g} (driver value {dv}){last}. "
+            f"{reason}",
+            t=float(T[k]), drivers=drivers, partial=partial, cause=cause,
+        )
+        if on_failure == "raise":
+            raise err
+        partial.failure = err
+        return partial
+
+    def fill(upto):
+        """Solve every unsolved instant before ``upto``: batched Newton, then stragglers in sequence."""
+        rest = np.nonzero(~solved[:upto])[0]
+        if rest.size == 0:
+            return None
+        done = np.nonzero(solved)[0]
+        base = done[np.searchsorted(done, rest) - 1]
+        dt = (T[rest] - T[base])[:, None]
+        guess = Q[base] + QD[base] * dt + 0.5 * QDD[base] * dt * dt
+        qb, conv = _newton_batch(mech, guess, T[rest], tol)
+        good = rest[conv]
+        Q[good] = qb[conv]
+        try:  # velocities and accelerations by stacked solves
+            ev = mech.evaluate(Q[good], T[good])
+            QD[good] = np.linalg.solve(ev["Phi_q"], ev["nu"][..., None])[..., 0]
+            ev = mech.evaluate(Q[good], T[good], QD[good])
+            QDD[good] = np.linalg.solve(ev["Phi_q"], ev["gamma"][..., None])[..., 0]
+            solved[good] = True
+        except np.linalg.LinAlgError:
+            pass
+        for k in np.nonzero(~solved[:upto])[0]:  # stragglers, in sequence
+            e = solve_one(k, [predict(k - 1, k), Q[k - 1]])
+            if e is not None:
+                return fail(k, e)
+        return None
+
+    # 1. anchors in sequence; 2. the instants between them all at once
+    step = 1 if n > SPARSE_ABOVE else max(1, int(anchor_every))
+    anchors = list(range(0, N, step))
+    if anchors[-1] != N - 1:
+        anchors.append(N - 1)
+    prev = None
+    for a in anchors:
+        if prev is None:
+            guesses = [None if q0 is None else np.asarray(q0, dtype=float)]
+        else:
+            guesses = [predict(prev, a), Q[prev]]
+        err = solve_one(a, guesses)
+        if err is not None:
+            if prev is None:
+                return fail(0, err)
+            stopped = fill(prev)
+            if stopped is not None:
+                return stopped
+            for k in range(prev + 1, a + 1):  # locate the first instant that fails
+                e = solve_one(k, [predict(k - 1, k), Q[k - 1]])
+                if e is not None:
+                    return fail(k, e)
+        prev = a
+    stopped = fill(N)
+    if stopped is not None:
+        return stopped
+    return SimulationResult(mech, T.copy(), Q, QD, QDD)

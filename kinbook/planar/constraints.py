@@ -1,0 +1,692 @@
+"""Planar constraints (textbook §13.5): one class per joint type on a common base.
+
+Each constraint writes its Φ once, symbolically, in :meth:`Constraint.phi`; Φ_q, ν and γ are derived from it by
+:mod:`kinbook.symbolic`. For speed each type also has a *kernel*: closed-form numpy code that evaluates Φ, Φ_q
+and γ for every constraint of that type at once and for many instants at once. The tests check every kernel
+against the symbolic derivation at seeded random configurations.
+
+Kernels evaluate the geometric part g(q) of Φ = g(q) − f(t); the prescribed function f(t) of a driver is
+applied by the mechanism, so for every constraint here Φ_q = g_q, ν = f'(t) and γ = −(g_q q̇)_q q̇ + f''(t).
+
+Coordinates of the bodies a constraint connects arrive in the kernels as ``Q`` of shape (B, k, nb, 3): B
+instants, k constraints of the type, nb bodies per constraint, and (x, y, φ).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from ..errors import ModelError, UnknownPointError
+from ..symbolic import t as t_symbol
+from .transforms import A as A_matrix
+
+__all__ = [
+    "Constraint",
+    "Simple",
+    "Ground",
+    "Revolute",
+    "Translational",
+    "RevoluteRevolute",
+    "RevoluteTranslational",
+    "Gear",
+    "RackPinion",
+    "Driver",
+    "RelativeAngleDriver",
+    "DistanceDriver",
+    "CONSTRAINT_TYPES",
+]
+
+_COORDS = ("x", "y", "phi")
+
+
+# ----------------------------------------------------------------------------------------------- numeric helpers
+def _point(Qb, s):
+    """Global position of local points ``s`` (k, 2) on bodies ``Qb`` (B, k, 3): returns r^P and A s'."""
+    c, sn = np.cos(Qb[..., 2]), np.sin(Qb[..., 2])
+    As = np.stack([s[:, 0] * c - s[:, 1] * sn, s[:, 0] * sn + s[:, 1] * c], -1)
+    return Qb[..., :2] + As, As
+
+
+def _rot(v):
+    """Rotate vectors by +90°: B s' = rot(A s')."""
+    return np.stack([-v[..., 1], v[..., 0]], -1)
+
+
+def _cross(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _dot(a, b):
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+
+
+def _sq(w):
+    return (w * w)[..., None]
+
+
+# --------------------------------------------------------------------------------------------------------- base
+class Constraint:
+    """Base class of planar constraints.
+
+    A subclass sets the class attributes below, implements :meth:`phi` (the symbolic Φ: the single source of
+    truth) and :meth:`params` + a ``kernel`` (the fast numeric path).
+
+    Attributes
+    ----------
+    type_name : str
+        Name used in mechanism files and messages ("revolute").
+    label : str
+        The book's abbreviation (r, t, r-r, r-t ...).
+    n_eq : int
+        Number of equations (rows of Φ).
+    kind : {"joint", "simple", "driver"}
+        Joints are numbered as the book numbers them in its joint tables.
+    """
+
+    type_name = "constraint"
+    label = "?"
+    n_eq = 0
+    kind = "joint"
+    roles = ("i", "j")
+    kernel = None
+
+    def __init__(self, bodies, name=None, f=None):
+        self.body_names = tuple(bodies)
+        self.name = name
+        self.f = None if f is None else _time_function(f, self)
+        self.rows = None  # slice into Φ, set by the mechanism
+        self.bodies = None  # Body objects, set by bind()
+
+    # --------------------------------------------------------------------- description
+    def describe(self):
+        """Short English description: "revolute joint 'A' (rows 8-9 of Φ)"."""
+        what = f"{self.type_name} {self.kind if self.kind != 'joint' else 'joint'} '{self.name}'"
+        if self.rows is not None:
+            a, b = self.rows.start + 1, self.rows.stop
+            what += f" (row {a} of Φ)" if a == b else f" (rows {a}-{b} of Φ)"
+        return what
+
+    def __repr__(self):
+        bodies = ", ".join(repr(b) for b in self.body_names)
+        return f"{type(self).__name__}({bodies}, name={self.name!r})"
+
+    # --------------------------------------------------------------------- binding to a mechanism
+    def bind(self, mechanism):
+        """Resolve body and point names against ``mechanism`` (called when the constraint is added)."""
+        bodies = [mechanism.body(b, context=self) for b in self.body_names]
+        if len({b.name for b in bodies}) != len(bodies):
+            raise ModelError(f"{self.describe()} connects body '{bodies[0].name}' to itself")
+        self.bodies = bodies
+        self._bind_points()
+
+    def _bind_points(self):
+        """Hook: look up named points; subclasses with points override it."""
+
+    def _local(self, role_index, point):
+        """Local coordinates (sympy numbers) of ``point`` on the body in ``role_index``.
+
+        ``point`` is a point name or a pair (ξ, η).
+        """
+        body = self.bodies[role_index]
+        if isinstance(point, str):
+            if point not in body.points:
+                known = ", ".join(sorted(body.points)) or "none"
+                raise UnknownPointError(
+                    f"{self.describe()}: body '{body.name}' has no point '{point}' (its points: {known})"
+                )
+            return body.points[point]
+        try:
+            xi, eta = (sp.sympify(v) for v in point)
+        except (TypeError, ValueError, sp.SympifyError):
+            raise ModelError(
+                f"{self.describe()}: a point on body '{body.name}' must be a point name or a pair (ξ, η), "
+                f"got {point!r}"
+            ) from None
+        return (xi, eta)
+
+    # --------------------------------------------------------------------- the source of truth
+    def phi(self, Q, t=t_symbol):
+        """Symbolic Φ of this constraint.
+
+        Parameters
+        ----------
+        Q : list of sympy column matrices (x, y, φ), one per body in ``self.bodies`` order.
+        t : sympy Symbol
+
+        Returns
+        -------
+        list of sympy expressions, length ``n_eq``.
+        """
+        raise NotImplementedError
+
+    def params(self):
+        """Numeric parameters of this constraint for its kernel: a dict of float arrays."""
+        return {}
+
+    # helpers for the symbolic hooks
+    @staticmethod
+    def _r(Qb, s):
+        """Symbolic global position r + A(φ) s' of a local point s' on body coordinates Qb."""
+        return sp.Matrix(Qb[:2]) + A_matrix(Qb[2]) * sp.Matrix(s)
+
+    def _f_expr(self, t):
+        return sp.Integer(0) if self.f is None else self.f.subs(t_symbol, t)
+
+
+def _time_function(f, owner):
+    try:
+        expr = sp.sympify(f, locals={"t": t_symbol})
+    except (sp.SympifyError, TypeError, SyntaxError):
+        raise ModelError(f"{type(owner).__name__}: cannot read the function of time {f!r}") from None
+    extra = expr.free_symbols - {t_symbol}
+    if extra:
+        names = ", ".join(sorted(str(s) for s in extra))
+        raise ModelError(f"{type(owner).__name__}: the function of time {f!r} uses unknown symbols {names}")
+    return expr
+
+
+def _angle_default(value, body, coord="phi"):
+    """An initial value given explicitly, or taken from the body's q0."""
+    if value is not None:
+        return sp.sympify(value)
+    return body.q0[_COORDS.index(coord)]
+
+
+def _f(v):
+    return np.array([float(x) for x in v], dtype=float)
+
+
+# ----------------------------------------------------------------------------------------------- linear family
+def _linear_kernel(Q, P, Qd=None):
+    """Φ = C q_sub + c0 for constraints linear in the coordinates (simple, ground, gears, racks, drivers)."""
+    Bn, k, nb, _ = Q.shape
+    C = P["C"]  # (k, r, 3nb)
+    flat = Q.reshape(Bn, k, 3 * nb)
+    phi = np.einsum("krc,bkc->bkr", C, flat) + P["c0"]
+    jac = np.broadcast_to(C, (Bn,) + C.shape)
+    gamma = None if Qd is None else np.zeros((Bn, k, C.shape[1]))
+    return phi, jac, gamma
+
+
+class _Linear(Constraint):
+    """Constraints whose Φ is linear in q: the kernel coefficients are read off the symbolic Φ."""
+
+    kernel = staticmethod(_linear_kernel)
+
+    def params(self):
+        Q = [sp.Matrix(sp.symbols(f"_x{b} _y{b} _p{b}")) for b in range(len(self.bodies))]
+        syms = [s for Qb in Q for s in Qb]
+        # Φ = g(q) − f(t): the kernel evaluates g; the mechanism applies f(t)
+        exprs = [sp.expand(e + self._f_expr(t_symbol)) for e in self.phi(Q)]
+        C = np.array([[float(sp.diff(e, s)) for s in syms] for e in exprs])
+        c0 = np.array([float(e.subs({s: 0 for s in syms})) for e in exprs])
+        return {"C": C, "c0": c0}
+
+
+class Simple(_Linear):
+    """A simple constraint fixing one coordinate of a body: x_i = c, y_i = c or φ_i = c."""
+
+    type_name = "simple"
+    label = "s"
+    n_eq = 1
+    kind = "simple"
+    roles = ("i",)
+
+    def __init__(self, body, coordinate, value=None, name=None):
+        if coordinate not in _COORDS:
+            raise ModelError(f"simple constraint on body '{body}': coordinate must be one of x, y, phi, "
+                             f"got {coordinate!r}")
+        super().__init__((body,), name=name)
+        self.coordinate = coordinate
+        self.value = None if value is None else sp.sympify(value)
+
+    def _bind_points(self):
+        if self.value is None:
+            self.value = _angle_default(None, self.bodies[0], self.coordinate)
+
+    def phi(self, Q, t=t_symbol):
+        return [Q[0][_COORDS.index(self.coordinate)] - self.value]
+
+
+class Ground(_Linear):
+    """The three simple constraints of a fixed body: x_i = c1, y_i = c2, φ_i = c3 (the book's Φ_1..Φ_3)."""
+
+    type_name = "ground"
+    label = "simple"
+    n_eq = 3
+    kind = "simple"
+    roles = ("i",)
+
+    def __init__(self, body, q=None, name=None):
+        super().__init__((body,), name=name)
+        self.value = None if q is None else tuple(sp.sympify(v) for v in q)
+
+    def _bind_points(self):
+        if self.value is None:
+            self.value = tuple(self.bodies[0].q0)
+        if len(self.value) != 3:
+            raise ModelError(f"{self.describe()}: needs three values (x, y, phi), got {len(self.value)}")
+
+    def phi(self, Q, t=t_symbol):
+        return [Q[0][k] - self.value[k] for k in range(3)]
+
+
+class Gear(_Linear):
+    """Cylindrical gear pair i, j on carrier k, eq. 38.
+
+    [(φ_i − φ_i⁰) − (φ_k − φ_k⁰)] ρ_i + [(φ_j − φ_j⁰) − (φ_k − φ_k⁰)] ρ_j = 0
+
+    External gears turn in opposite senses relative to the carrier; for an internal (ring) gear give its
+    pitch radius a negative sign. Initial angles default to the bodies' q0.
+    """
+
+    type_name = "gear"
+    label = "g"
+    n_eq = 1
+    roles = ("i", "j", "k")
+
+    def __init__(self, i, j, k, radius_i, radius_j, phi0=None, name=None):
+        super().__init__((i, j, k), name=name)
+        self.radius_i, self.radius_j = sp.sympify(radius_i), sp.sympify(radius_j)
+        self.phi0 = phi0
+
+    def _bind_points(self):
+        given = self.phi0 if self.phi0 is not None else (None, None, None)
+        self.phi0 = tuple(_angle_default(v, b) for v, b in zip(given, self.bodies))
+        if self.radius_i == 0 or self.radius_j == 0:
+            raise ModelError(f"{self.describe()}: pitch radii must be nonzero")
+
+    def phi(self, Q, t=t_symbol):
+        pi0, pj0, pk0 = self.phi0
+        dk = Q[2][2] - pk0
+        return [((Q[0][2] - pi0) - dk) * self.radius_i + ((Q[1][2] - pj0) - dk) * self.radius_j]
+
+
+class RackPinion(_Linear):
+    """Rack and pinion: pinion i, rack j sliding along the global x axis.
+
+    Fixed pinion (eq. 40):    (φ_i − φ_i⁰) ρ_i − (x_j − x_j⁰) = 0
+    Sliding pinion (eq. 42):  (x_i − x_i⁰) + (φ_i − φ_i⁰) ρ_i − (x_j − x_j⁰) = 0
+
+    Initial values default to the bodies' q0.
+    """
+
+    type_name = "rack-pinion"
+    label = "rp"
+    n_eq = 1
+
+    def __init__(self, i, j, radius, sliding=False, initial=None, name=None):
+        super().__init__((i, j), name=name)
+        self.radius = sp.sympify(radius)
+        self.sliding = bool(sliding)
+        self.initial = initial
+
+    def _bind_points(self):
+        bi, bj = self.bodies
+        given = dict(self.initial or {})
+        self.initial = {
+            "x_i": _angle_default(given.get("x_i"), bi, "x"),
+            "phi_i": _angle_default(given.get("phi_i"), bi, "phi"),
+            "x_j": _angle_default(given.get("x_j"), bj, "x"),
+        }
+
+    def phi(self, Q, t=t_symbol):
+        e = (Q[0][2] - self.initial["phi_i"]) * self.radius - (Q[1][0] - self.initial["x_j"])
+        if self.sliding:
+            e = (Q[0][0] - self.initial["x_i"]) + e
+        return [e]
+
+
+class Driver(_Linear):
+    """Driving constraint on one coordinate: q_k − f(t) = 0, e.g. φ_2 − (3π/4 + 100 t) = 0."""
+
+    type_name = "driver"
+    label = "d"
+    n_eq = 1
+    kind = "driver"
+    roles = ("i",)
+
+    def __init__(self, body, coordinate, f, name=None):
+        if coordinate not in _COORDS:
+            raise ModelError(f"driver on body '{body}': coordinate must be one of x, y, phi, got {coordinate!r}")
+        super().__init__((body,), name=name, f=f)
+        self.coordinate = coordinate
+
+    def phi(self, Q, t=t_symbol):
+        return [Q[0][_COORDS.index(self.coordinate)] - self._f_expr(t)]
+
+
+class RelativeAngleDriver(_Linear):
+    """Relative rotation driver: φ_j − φ_i − f(t) = 0."""
+
+    type_name = "relative-driver"
+    label = "d"
+    n_eq = 1
+    kind = "driver"
+
+    def __init__(self, i, j, f, name=None):
+        super().__init__((i, j), name=name, f=f)
+
+    def phi(self, Q, t=t_symbol):
+        return [Q[1][2] - Q[0][2] - self._f_expr(t)]
+
+
+# ---------------------------------------------------------------------------------------------- revolute (r,2)
+def _revolute_kernel(Q, P, Qd=None):
+    rPi, Ai = _point(Q[:, :, 0], P["si"])
+    rPj, Aj = _point(Q[:, :, 1], P["sj"])
+    phi = rPi - rPj
+    Bn, k = phi.shape[:2]
+    jac = np.zeros((Bn, k, 2, 6))
+    jac[:, :, 0, 0] = jac[:, :, 1, 1] = 1.0
+    jac[:, :, 0, 3] = jac[:, :, 1, 4] = -1.0
+    jac[:, :, :, 2] = _rot(Ai)
+    jac[:, :, :, 5] = -_rot(Aj)
+    gamma = None
+    if Qd is not None:
+        gamma = Ai * _sq(Qd[:, :, 0, 2]) - Aj * _sq(Qd[:, :, 1, 2])
+    return phi, jac, gamma
+
+
+class Revolute(Constraint):
+    """Revolute joint (r,2), eqs. 17–18: r_i + A_i s'_i^P − r_j − A_j s'_j^P = 0.
+
+    Parameters
+    ----------
+    i, j : str
+        Body names.
+    point : str, optional
+        Name of the joint point when both bodies call it the same.
+    point_i, point_j : str or (ξ, η), optional
+        The joint point on each body.
+    """
+
+    type_name = "revolute"
+    label = "r"
+    n_eq = 2
+    kernel = staticmethod(_revolute_kernel)
+
+    def __init__(self, i, j, point=None, point_i=None, point_j=None, name=None):
+        super().__init__((i, j), name=name)
+        self.point_i = point_i if point_i is not None else point
+        self.point_j = point_j if point_j is not None else point
+        if self.point_i is None or self.point_j is None:
+            raise ModelError(f"revolute joint between '{i}' and '{j}': give `point` or both `point_i` and `point_j`")
+
+    def _bind_points(self):
+        self.s_i = self._local(0, self.point_i)
+        self.s_j = self._local(1, self.point_j)
+
+    def phi(self, Q, t=t_symbol):
+        return list(self._r(Q[0], self.s_i) - self._r(Q[1], self.s_j))
+
+    def params(self):
+        return {"si": _f(self.s_i), "sj": _f(self.s_j)}
+
+
+# ------------------------------------------------------------------------------------------ translational (t,2)
+def _translational_kernel(Q, P, Qd=None):
+    Qi, Qj = Q[:, :, 0], Q[:, :, 1]
+    rPi, Api = _point(Qi, P["sPi"])
+    rQi, _ = _point(Qi, P["sQi"])
+    rPj, Apj = _point(Qj, P["sPj"])
+    s = rQi - rPi
+    d = rPj - rPi
+    Bn, k = s.shape[:2]
+    phi = np.stack([_cross(s, d), Qi[..., 2] - Qj[..., 2] - P["c"]], -1)
+    jac = np.zeros((Bn, k, 2, 6))
+    jac[:, :, 0, 0], jac[:, :, 0, 1] = s[..., 1], -s[..., 0]
+    jac[:, :, 0, 2] = -_dot(s, rPj - Qi[..., :2])
+    jac[:, :, 0, 3], jac[:, :, 0, 4] = -s[..., 1], s[..., 0]
+    jac[:, :, 0, 5] = _dot(s, Apj)
+    jac[:, :, 1, 2], jac[:, :, 1, 5] = 1.0, -1.0
+    gamma = None
+    if Qd is not None:
+        wi, wj = Qd[:, :, 0, 2], Qd[:, :, 1, 2]
+        s_dot = _rot(s) * wi[..., None]
+        d_dot = Qd[:, :, 1, :2] + _rot(Apj) * wj[..., None] - Qd[:, :, 0, :2] - _rot(Api) * wi[..., None]
+        d_dd = -Apj * _sq(wj) + Api * _sq(wi)
+        g1 = -(_cross(-s * _sq(wi), d) + 2 * _cross(s_dot, d_dot) + _cross(s, d_dd))
+        gamma = np.stack([g1, np.zeros_like(g1)], -1)
+    return phi, jac, gamma
+
+
+class Translational(Constraint):
+    """Translational joint (t,2), eq. 26.
+
+    Two points P_i, Q_i of body i on the line of translation and a point P_j of body j on the same line stay
+    aligned, and the bodies keep their relative angle::
+
+        Φ_1 = (r_i^Q − r_i^P) × (r_j^P − r_i^P) = 0
+        Φ_2 = φ_i − φ_j − (φ_i⁰ − φ_j⁰) = 0
+
+    Parameters
+    ----------
+    i, j : str
+    axis : (point, point)
+        P_i and Q_i on body i.
+    point_j : str or (ξ, η)
+        P_j on body j.
+    phi0 : float, optional
+        φ_i⁰ − φ_j⁰; defaults to the bodies' q0.
+    """
+
+    type_name = "translational"
+    label = "t"
+    n_eq = 2
+    kernel = staticmethod(_translational_kernel)
+
+    def __init__(self, i, j, axis, point_j, phi0=None, name=None):
+        super().__init__((i, j), name=name)
+        self.axis = tuple(axis)
+        self.point_j = point_j
+        self.phi0 = None if phi0 is None else sp.sympify(phi0)
+
+    def _bind_points(self):
+        if len(self.axis) != 2:
+            raise ModelError(f"{self.describe()}: `axis` needs two points of body '{self.bodies[0].name}'")
+        self.s_Pi, self.s_Qi = (self._local(0, p) for p in self.axis)
+        self.s_Pj = self._local(1, self.point_j)
+        if self.s_Pi == self.s_Qi:
+            raise ModelError(f"{self.describe()}: the two axis points on body '{self.bodies[0].name}' coincide")
+        if self.phi0 is None:
+            self.phi0 = self.bodies[0].q0[2] - self.bodies[1].q0[2]
+
+    def phi(self, Q, t=t_symbol):
+        s = self._r(Q[0], self.s_Qi) - self._r(Q[0], self.s_Pi)
+        d = self._r(Q[1], self.s_Pj) - self._r(Q[0], self.s_Pi)
+        return [s[0] * d[1] - s[1] * d[0], Q[0][2] - Q[1][2] - self.phi0]
+
+    def params(self):
+        return {"sPi": _f(self.s_Pi), "sQi": _f(self.s_Qi), "sPj": _f(self.s_Pj), "c": float(self.phi0)}
+
+
+# ------------------------------------------------------------------------------------ revolute-revolute (r-r,1)
+def _rr_kernel(Q, P, Qd=None):
+    rPi, Ai = _point(Q[:, :, 0], P["si"])
+    rPj, Aj = _point(Q[:, :, 1], P["sj"])
+    d = rPi - rPj
+    phi = (_dot(d, d) - P["l"] ** 2)[..., None]
+    Bn, k = d.shape[:2]
+    jac = np.zeros((Bn, k, 1, 6))
+    jac[:, :, 0, 0:2] = 2 * d
+    jac[:, :, 0, 2] = 2 * _dot(d, _rot(Ai))
+    jac[:, :, 0, 3:5] = -2 * d
+    jac[:, :, 0, 5] = -2 * _dot(d, _rot(Aj))
+    gamma = None
+    if Qd is not None:
+        wi, wj = Qd[:, :, 0, 2], Qd[:, :, 1, 2]
+        d_dot = Qd[:, :, 0, :2] + _rot(Ai) * wi[..., None] - Qd[:, :, 1, :2] - _rot(Aj) * wj[..., None]
+        d_dd = -Ai * _sq(wi) + Aj * _sq(wj)
+        gamma = (-2 * _dot(d_dot, d_dot) - 2 * _dot(d, d_dd))[..., None]
+    return phi, jac, gamma
+
+
+class RevoluteRevolute(Constraint):
+    """Revolute–revolute composite joint (r-r,1), eq. 32: (x_i^P − x_j^P)² + (y_i^P − y_j^P)² − l² = 0.
+
+    The link between P_i and P_j (length l) is not modelled as a body.
+    """
+
+    type_name = "revolute-revolute"
+    label = "r-r"
+    n_eq = 1
+    kernel = staticmethod(_rr_kernel)
+
+    def __init__(self, i, j, point_i, point_j, length, name=None):
+        super().__init__((i, j), name=name)
+        self.point_i, self.point_j = point_i, point_j
+        self.length = sp.sympify(length)
+
+    def _bind_points(self):
+        self.s_i = self._local(0, self.point_i)
+        self.s_j = self._local(1, self.point_j)
+        if not (self.length.is_real and self.length > 0):
+            raise ModelError(f"{self.describe()}: length must be a positive number, got {self.length}")
+
+    def phi(self, Q, t=t_symbol):
+        d = self._r(Q[0], self.s_i) - self._r(Q[1], self.s_j)
+        return [d[0] ** 2 + d[1] ** 2 - self.length**2]
+
+    def params(self):
+        return {"si": _f(self.s_i), "sj": _f(self.s_j), "l": float(self.length)}
+
+
+# -------------------------------------------------------------------------------- revolute-translational (r-t,1)
+def _rt_kernel(Q, P, Qd=None):
+    Qi, Qj = Q[:, :, 0], Q[:, :, 1]
+    rPi, Api = _point(Qi, P["sPi"])
+    rPj, _ = _point(Qj, P["sPj"])
+    rQj, Aqj = _point(Qj, P["sQj"])
+    d = rPi - rQj
+    s = rPj - rQj
+    Bn, k = d.shape[:2]
+    phi = _cross(d, s)[..., None]
+    jac = np.zeros((Bn, k, 1, 6))
+    jac[:, :, 0, 0], jac[:, :, 0, 1] = s[..., 1], -s[..., 0]
+    jac[:, :, 0, 2] = -_dot(Api, s)
+    jac[:, :, 0, 3], jac[:, :, 0, 4] = -s[..., 1], s[..., 0]
+    jac[:, :, 0, 5] = _dot(s, rPi - Qj[..., :2])
+    gamma = None
+    if Qd is not None:
+        wi, wj = Qd[:, :, 0, 2], Qd[:, :, 1, 2]
+        d_dot = Qd[:, :, 0, :2] + _rot(Api) * wi[..., None] - Qd[:, :, 1, :2] - _rot(Aqj) * wj[..., None]
+        s_dot = _rot(s) * wj[..., None]
+        d_dd = -Api * _sq(wi) + Aqj * _sq(wj)
+        gamma = (-(_cross(d_dd, s) + 2 * _cross(d_dot, s_dot) + _cross(d, -s * _sq(wj))))[..., None]
+    return phi, jac, gamma
+
+
+class RevoluteTranslational(Constraint):
+    """Revolute–translational composite joint (r-t,1), eq. 33.
+
+    P_i (the revolute axis, on body i) stays on the line through P_j and Q_j of body j::
+
+        (r_i^P − r_j^Q) × (r_j^P − r_j^Q) = 0
+    """
+
+    type_name = "revolute-translational"
+    label = "r-t"
+    n_eq = 1
+    kernel = staticmethod(_rt_kernel)
+
+    def __init__(self, i, j, point_i, axis, name=None):
+        super().__init__((i, j), name=name)
+        self.point_i = point_i
+        self.axis = tuple(axis)
+
+    def _bind_points(self):
+        if len(self.axis) != 2:
+            raise ModelError(f"{self.describe()}: `axis` needs two points of body '{self.bodies[1].name}'")
+        self.s_Pi = self._local(0, self.point_i)
+        self.s_Pj, self.s_Qj = (self._local(1, p) for p in self.axis)
+        if self.s_Pj == self.s_Qj:
+            raise ModelError(f"{self.describe()}: the two axis points on body '{self.bodies[1].name}' coincide")
+
+    def phi(self, Q, t=t_symbol):
+        d = self._r(Q[0], self.s_Pi) - self._r(Q[1], self.s_Qj)
+        s = self._r(Q[1], self.s_Pj) - self._r(Q[1], self.s_Qj)
+        return [d[0] * s[1] - d[1] * s[0]]
+
+    def params(self):
+        return {"sPi": _f(self.s_Pi), "sPj": _f(self.s_Pj), "sQj": _f(self.s_Qj)}
+
+
+# --------------------------------------------------------------------------------- distance along a slide axis
+def _distance_kernel(Q, P, Qd=None):
+    Qi, Qj = Q[:, :, 0], Q[:, :, 1]
+    rPi, Api = _point(Qi, P["sPi"])
+    rQi, _ = _point(Qi, P["sQi"])
+    rPj, Apj = _point(Qj, P["sPj"])
+    u = (rQi - rPi) / P["len"][:, None]
+    d = rPj - rPi
+    Bn, k = d.shape[:2]
+    phi = _dot(u, d)[..., None]
+    jac = np.zeros((Bn, k, 1, 6))
+    jac[:, :, 0, 0:2] = -u
+    jac[:, :, 0, 2] = _dot(_rot(u), d) - _dot(u, _rot(Api))
+    jac[:, :, 0, 3:5] = u
+    jac[:, :, 0, 5] = _dot(u, _rot(Apj))
+    gamma = None
+    if Qd is not None:
+        wi, wj = Qd[:, :, 0, 2], Qd[:, :, 1, 2]
+        u_dot = _rot(u) * wi[..., None]
+        d_dot = Qd[:, :, 1, :2] + _rot(Apj) * wj[..., None] - Qd[:, :, 0, :2] - _rot(Api) * wi[..., None]
+        d_dd = -Apj * _sq(wj) + Api * _sq(wi)
+        gamma = (-(_dot(-u * _sq(wi), d) + 2 * _dot(u_dot, d_dot) + _dot(u, d_dd)))[..., None]
+    return phi, jac, gamma
+
+
+class DistanceDriver(Constraint):
+    """Driver of a translational joint: the distance of P_j from P_i along the axis P_i→Q_i equals f(t).
+
+    Φ = u_i · (r_j^P − r_i^P) − f(t), with u_i the unit vector from P_i to Q_i.
+    """
+
+    type_name = "distance-driver"
+    label = "d"
+    n_eq = 1
+    kind = "driver"
+    kernel = staticmethod(_distance_kernel)
+
+    def __init__(self, i, j, axis, point_j, f, name=None):
+        super().__init__((i, j), name=name, f=f)
+        self.axis = tuple(axis)
+        self.point_j = point_j
+
+    def _bind_points(self):
+        if len(self.axis) != 2:
+            raise ModelError(f"{self.describe()}: `axis` needs two points of body '{self.bodies[0].name}'")
+        self.s_Pi, self.s_Qi = (self._local(0, p) for p in self.axis)
+        self.s_Pj = self._local(1, self.point_j)
+        self.axis_length = sp.sqrt((self.s_Qi[0] - self.s_Pi[0]) ** 2 + (self.s_Qi[1] - self.s_Pi[1]) ** 2)
+        if self.axis_length == 0:
+            raise ModelError(f"{self.describe()}: the two axis points on body '{self.bodies[0].name}' coincide")
+
+    def phi(self, Q, t=t_symbol):
+        u = (self._r(Q[0], self.s_Qi) - self._r(Q[0], self.s_Pi)) / self.axis_length
+        d = self._r(Q[1], self.s_Pj) - self._r(Q[0], self.s_Pi)
+        return [u.dot(d) - self._f_expr(t)]
+
+    def params(self):
+        return {"sPi": _f(self.s_Pi), "sQi": _f(self.s_Qi), "sPj": _f(self.s_Pj), "len": float(self.axis_length)}
+
+
+CONSTRAINT_TYPES = {
+    cls.type_name: cls
+    for cls in (
+        Simple,
+        Ground,
+        Revolute,
+        Translational,
+        RevoluteRevolute,
+        RevoluteTranslational,
+        Gear,
+        RackPinion,
+        Driver,
+        RelativeAngleDriver,
+        DistanceDriver,
+    )
+}
+"""Constraint classes by the ``type`` name used in mechanism files."""
