@@ -26,7 +26,7 @@ lab: $(STAMP)
 	MPLBACKEND=module://matplotlib_inline.backend_inline $(BIN)/jupyter lab --notebook-dir=chapters
 
 test: $(STAMP)
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=120
 
 # Re-pin the environment after a dependency change (run on the reference machine class: Python 3.11, Linux).
 lock:

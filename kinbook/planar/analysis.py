@@ -8,6 +8,7 @@ The functions take a mechanism (anything with the numeric interface of :class:`k
 from __future__ import annotations
 
 import html
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -91,18 +92,20 @@ def _t(t):
 
 def _solve(J, b):
     """Solve J x = b for one square system, dense or sparse. Returns None when J is singular."""
-    try:
-        if hasattr(J, "tocsc"):
-            with np.errstate(all="ignore"):
-                lu = spla.splu(J.tocsc())
-                x = lu.solve(b)
-        else:
-            lu, piv = sla.lu_factor(J, check_finite=False)
-            if np.min(np.abs(np.diag(lu))) <= 1e-13 * max(1.0, np.max(np.abs(np.diag(lu)))):
-                return None
-            x = sla.lu_solve((lu, piv), b, check_finite=False)
-    except (np.linalg.LinAlgError, RuntimeError, ValueError):
-        return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sla.LinAlgWarning)
+        try:
+            if hasattr(J, "tocsc"):
+                with np.errstate(all="ignore"):
+                    x = spla.splu(J.tocsc()).solve(b)
+            else:
+                lu, piv = sla.lu_factor(J, check_finite=False)
+                pivots = np.abs(np.diag(lu))
+                if pivots.min() <= 1e-13 * max(1.0, pivots.max()):
+                    return None
+                x = sla.lu_solve((lu, piv), b, check_finite=False)
+        except (np.linalg.LinAlgError, RuntimeError, ValueError):
+            return None
     return x if np.all(np.isfinite(x)) else None
 
 
@@ -375,6 +378,12 @@ def _newton_batch(mech, q, T, tol, max_iter=8):
     return q, conv
 
 
+def _driver_text(mech, name, value):
+    c = mech.constraint(name)
+    angle = getattr(c, "coordinate", None) == "phi" or c.type_name == "relative-driver"
+    return f"driver '{name}' = {value:.6g}" + (f" rad = {np.degrees(value):.2f}°" if angle else "")
+
+
 def _driver_values(mech, t):
     return {c.name: float(c.f.subs(mech.t, t)) for c in mech.drivers}
 
@@ -436,14 +445,20 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=1
     def fail(k, cause):
         partial = SimulationResult(mech, T[:k].copy(), Q[:k].copy(), QD[:k].copy(), QDD[:k].copy())
         drivers = _driver_values(mech, T[k])
-        dv = ", ".join(f"'{name}' = {v:.6g}" for name, v in drivers.items())
-        last = f"; last assembled instant t = {T[k - 1]:.6g}" if k else ""
-        reason = str(cause).split(": ", 1)[-1] if cause is not None else ""
-        err = AssemblyError(
-            f"mechanism '{mech.name}' cannot be assembled at t = {T[k]:.6g} (driver value {dv}){last}. "
-            f"{reason}",
-            t=float(T[k]), drivers=drivers, partial=partial, cause=cause,
-        )
+        dv = ", ".join(_driver_text(mech, name, v) for name, v in drivers.items())
+        text = f"mechanism '{mech.name}' cannot be assembled at t = {T[k]:.6g} ({dv})"
+        if isinstance(cause, ConvergenceError):
+            text += f": Newton–Raphson finds no configuration there (max |Φ| = {cause.residual:.3g} after " \
+                    f"{cause.iterations} iterations)"
+        elif cause is not None:
+            text += f": {str(cause).split(': ', 1)[-1]}"
+        if k:
+            first, last = diagnose(mech, Q[0], T[0]), diagnose(mech, Q[k - 1], T[k - 1])
+            text += f". The last assembled instant is t = {T[k - 1]:.6g}, where cond(Φ_q) = {last.cond:.3g}"
+            if last.cond > 5 * first.cond:
+                text += (f" (it was {first.cond:.3g} at t = {T[0]:.6g}): the driver has reached a dead point, a "
+                         "limit position beyond which the mechanism does not assemble")
+        err = AssemblyError(text, t=float(T[k]), drivers=drivers, partial=partial, cause=cause)
         if on_failure == "raise":
             raise err
         partial.failure = err

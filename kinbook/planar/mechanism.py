@@ -37,6 +37,8 @@ class Body:
     number: int = 0
 
     def __post_init__(self):
+        if not isinstance(self.points, dict):
+            raise ModelError(f"body '{self.name}': `points` must be a table of name = [ξ, η], got {self.points!r}")
         self.points = {str(k): _pair(v, f"point '{k}' of body '{self.name}'") for k, v in dict(self.points).items()}
         q0 = tuple(self.q0)
         if len(q0) != 3:
@@ -44,11 +46,15 @@ class Body:
         self.q0 = tuple(_number(v, f"q0 of body '{self.name}'") for v in q0)
 
 
-def _number(v, what):
+def _number(v, what, symbols=False):
+    """A finite real number as a sympy number; with ``symbols``, a symbolic parameter such as ξ_i is accepted
+    too (for symbolic derivations; numeric evaluation then refuses the mechanism)."""
     try:
         e = sp.sympify(v)
     except (sp.SympifyError, TypeError, SyntaxError):
         raise ModelError(f"{what}: cannot read {v!r} as a number") from None
+    if symbols and e.free_symbols and isinstance(e, sp.Expr):
+        return e
     if e.free_symbols or not e.is_number or not e.is_finite or not e.is_real:
         raise ModelError(f"{what}: expected a finite real number, got {v!r}")
     return e
@@ -59,7 +65,7 @@ def _pair(v, what):
         a, b = v
     except (TypeError, ValueError):
         raise ModelError(f"{what}: expected a pair (ξ, η), got {v!r}") from None
-    return (_number(a, what), _number(b, what))
+    return (_number(a, what, symbols=True), _number(b, what, symbols=True))
 
 
 class _Group:
@@ -116,7 +122,11 @@ class Mechanism:
         name = str(name)
         if name in self._by_name:
             raise ModelError(f"mechanism '{self.name}' already has a body named '{name}'")
-        body = Body(name, dict(points or {}), tuple(q0), number=len(self.bodies) + 1)
+        try:
+            q0 = tuple(q0)
+        except TypeError:
+            raise ModelError(f"body '{name}': q0 must be a list (x, y, phi), got {q0!r}") from None
+        body = Body(name, points if points is not None else {}, q0, number=len(self.bodies) + 1)
         self.bodies.append(body)
         self._by_name[name] = body
         self._invalidate()
@@ -260,6 +270,12 @@ class Mechanism:
             groups = {}
             for c in self.constraints:
                 groups.setdefault((c.kernel, len(c.bodies), c.n_eq), []).append(c)
+            for c in self.constraints:
+                params = {s for b in c.bodies for p in b.points.values() for v in p for s in v.free_symbols}
+                if params:
+                    names = ", ".join(sorted(map(str, params)))
+                    raise ModelError(f"{c.describe()} has symbolic parameters ({names}): substitute numbers "
+                                     "before a numeric evaluation")
             drivers = [(c.rows.stop - 1, *time_derivatives(c.f)) for c in self.constraints if c.f is not None]
             self.__dict__["_compiled"] = ([_Group(g, self.n) for g in groups.values()], drivers)
         return self.__dict__["_compiled"]
@@ -424,10 +440,10 @@ class Mechanism:
         """Solve Φ_q q̈ = γ for q̈."""
         return analysis.solve_acceleration(self, q, qd, t)
 
-    def simulate(self, times, q0=None, tol=1e-10, on_failure="raise"):
+    def simulate(self, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=16):
         """Position, velocity and acceleration at every instant of ``times``: a
-        :class:`~kinbook.planar.analysis.SimulationResult`."""
-        return analysis.simulate(self, times, q0=q0, tol=tol, on_failure=on_failure)
+        :class:`~kinbook.planar.analysis.SimulationResult`. See :func:`kinbook.planar.analysis.simulate`."""
+        return analysis.simulate(self, times, q0=q0, tol=tol, on_failure=on_failure, anchor_every=anchor_every)
 
     def diagnose(self, q, t=0.0):
         """Rank of Φ_q at ``q`` and, when singular, which constraints are dependent: see

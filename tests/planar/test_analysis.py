@@ -1,0 +1,131 @@
+import numpy as np
+import pytest
+
+from kinbook import (
+    AssemblyError,
+    ConvergenceError,
+    DeadPointError,
+    DriverCountError,
+    RedundantConstraintsError,
+    examples,
+)
+from kinbook.planar import Simple
+
+THETA_LIMIT = np.arccos(1 / 3)  # |A − O_B| = coupler − rocker = 3 when 13 − 12 cos θ = 9
+
+
+def example1_at_limit():
+    """Example 1 in its limit position, built from geometry alone: O_B lies between A and B on one line."""
+    m = examples.load("ch13_example1")
+    th = 2 * np.pi - THETA_LIMIT  # the limit reached when turning counter-clockwise from 135°
+    A = 2 * np.array([np.cos(th), np.sin(th)])
+    OB = np.array([3.0, 0.0])
+    B = OB + 3 * (OB - A) / np.linalg.norm(OB - A)
+    ang = lambda v: np.arctan2(v[1], v[0])
+    q = np.concatenate([[0, 0, 0], A / 2, [th], (A + B) / 2, [ang(B - A)], (B + OB) / 2, [ang(OB - B)]])
+    t = (th - 3 * np.pi / 4) / 100
+    return m, q, t
+
+
+def test_sweep_of_example_1_stops_at_the_dead_point():
+    m = examples.load("ch13_example1")
+    times = np.linspace(0, 2 * np.pi / 100, 400)  # one crank turn at ω = 100
+    with pytest.raises(AssemblyError, match=r"cannot be assembled at t = 0\.027.*driver 'driver 1' = .*dead point") as exc:
+        m.simulate(times)
+    err = exc.value
+    reached = err.partial.coordinate("phi2")
+    assert reached[-1] < 2 * np.pi - THETA_LIMIT < err.drivers["driver 1"]
+    assert len(err.partial) == np.searchsorted(times, err.t)
+    # every instant solved before the failure satisfies Φ = 0
+    assert np.abs(m.Phi(err.partial.q, err.partial.t)).max() < 1e-9
+
+
+def test_truncated_sweep_returns_the_reachable_range():
+    m = examples.load("ch13_example1")
+    r = m.simulate(np.linspace(0, 2 * np.pi / 100, 400), on_failure="truncate")
+    assert r.failure is not None and len(r) < 400
+    A = r.position("crank", "A")
+    B = r.position("rocker", "B")
+    np.testing.assert_allclose(np.linalg.norm(A - B, axis=1), 6, atol=1e-9)
+
+
+def test_dead_point_is_diagnosed():
+    m, q, t = example1_at_limit()
+    assert np.abs(m.Phi(q, t)).max() < 1e-12
+    d = m.diagnose(q, t)
+    assert d.kind == "dead-point"
+    assert d.rank == 11 and "driver 1" in d.constraints
+    with pytest.raises(DeadPointError, match=r"dead point — .*driver 'driver 1'") as exc:
+        m.solve_velocity(q, t)
+    assert 12 in exc.value.rows
+
+
+def test_redundant_constraints_are_named():
+    m = examples.load("ch13_example1")
+    m.constraints.pop()  # drop the driver ...
+    m.__dict__.pop("_compiled", None)
+    m.add(Simple("ground", "x", 0))  # ... and fix x1 a second time
+    with pytest.raises(RedundantConstraintsError, match=r"redundant .* rows 1, 12 .*ground.*simple") as exc:
+        m.solve_position(0.0)
+    assert exc.value.rows == [1, 12]
+
+
+def test_driver_count_is_checked():
+    m = examples.load("ch13_example3")
+    m.constraints.pop()
+    m.__dict__.pop("_compiled", None)
+    with pytest.raises(DriverCountError, match=r"n = 9 coordinates and 8 geometric .* 1 degree\(s\) of freedom, but 0 driver"):
+        m.solve_position(0.0)
+
+
+def test_non_convergence_names_rows():
+    m = examples.load("ch13_example1")
+    with pytest.raises(ConvergenceError, match=r"did not converge .* after 2 iterations .* row \d+ = ") as exc:
+        m.solve_position(0.0, max_iter=2)
+    assert exc.value.iterations == 2 and exc.value.residual > 1e-10
+
+
+def test_batched_sweep_equals_sequential_solutions():
+    m = examples.load("ch13_example2")
+    times = np.linspace(0, 0.05, 101)
+    r = m.simulate(times, anchor_every=16)
+    q = m.solve_position(0.0)
+    for k in (0, 7, 33, 100):
+        qk = m.solve_position(times[k], q0=r.q[k] + 1e-3)
+        np.testing.assert_allclose(r.q[k], qk, atol=1e-9)
+        qd = m.solve_velocity(qk, times[k])
+        np.testing.assert_allclose(r.qd[k], qd, rtol=1e-8, atol=1e-8)
+        np.testing.assert_allclose(r.qdd[k], m.solve_acceleration(qk, qd, times[k]), rtol=1e-7, atol=1e-6)
+
+
+def test_full_crank_turn_of_the_slider_crank():
+    m = examples.load("ch13_example2")
+    times = np.linspace(0, 2 * np.pi / 100, 361)
+    r = m.simulate(times)
+    x_B = r.position("slider", "B")[:, 0]
+    # stroke of a slider-crank = 2 × crank length: extreme positions 6 ± 2 from O_A
+    assert x_B.max() == pytest.approx(8, abs=1e-3) and x_B.min() == pytest.approx(4, abs=1e-3)
+    # velocity of the slider is the time derivative of its position
+    v = r.velocity("slider", "B")[:, 0]
+    np.testing.assert_allclose(np.gradient(x_B, times)[1:-1], v[1:-1], rtol=2e-2, atol=20)
+
+
+def test_sparse_solve_of_a_long_chain_matches_dense():
+    from kinbook.planar import Driver, Ground, Mechanism, Revolute
+
+    m = Mechanism("chain")
+    m.add_body("ground", points={"O": (0, 0)})
+    N = 60  # 183 coordinates: above the sparse threshold
+    for k in range(N):
+        m.add_body(f"b{k}", points={"L": (-0.5, 0), "R": (0.5, 0)}, q0=(k + 0.5, 0, 0))
+    m.add(Ground("ground"))
+    m.add(Revolute("ground", "b0", point_i="O", point_j="L"))
+    for k in range(1, N):
+        m.add(Revolute(f"b{k-1}", f"b{k}", point_i="R", point_j="L"))
+    for k in range(N):
+        m.add(Driver(f"b{k}", "phi", f"{0.01 * (k + 1)}*t"))
+    q = m.solve_position(1.0)
+    tip = m.point_position(q, f"b{N-1}", "R")
+    angles = 0.01 * np.arange(1, N + 1)
+    np.testing.assert_allclose(tip, [np.cos(angles).sum(), np.sin(angles).sum()], atol=1e-10)
+    np.testing.assert_allclose(m.Phi_q(q, 1.0, sparse=True).toarray(), m.Phi_q(q, 1.0))
