@@ -356,26 +356,51 @@ class SimulationResult:
         return f"<p>{html.escape(self._summary())}</p>"
 
 
-def _newton_batch(mech, q, T, tol, max_iter=8):
-    """Batched Newton–Raphson over many instants at once (numpy's stacked solve). Returns (q, converged)."""
-    q = q.copy()
-    conv = np.zeros(len(T), dtype=bool)
-    active = np.arange(len(T))
-    for _ in range(max_iter + 1):
-        ev = mech.evaluate(q[active], T[active])
-        res = np.max(np.abs(ev["Phi"]), axis=1)
-        ok = res <= tol
-        conv[active[ok]] = True
-        keep = ~ok & np.isfinite(res) & (res < 1e6)
-        active, J, Phi = active[keep], ev["Phi_q"][keep], ev["Phi"][keep]
-        if active.size == 0:
-            break
+def _batch_solve(mech, guess, T, tol, max_iter=8):
+    """Solve position, velocity and acceleration at many instants at once.
+
+    A chord Newton iteration (Φ_q inverted once, at the guesses) brings Φ below ``tol``; then Φ_q is inverted
+    once more at the solutions and that inverse serves both q̇ = Φ_q⁻¹ ν and q̈ = Φ_q⁻¹ γ. With Taylor guesses
+    from a nearby solved instant the iteration converges in one or two steps.
+
+    Returns (q, qd, qdd, converged); rows that did not converge hold garbage.
+    """
+    q = guess.copy()
+    Bn = len(T)
+    conv = np.zeros(Bn, dtype=bool)
+    with np.errstate(all="ignore"):
+        ev = mech.evaluate(q, T)
         try:
-            dq = np.linalg.solve(J, -Phi[..., None])[..., 0]
+            Jinv = np.linalg.inv(ev["Phi_q"])
         except np.linalg.LinAlgError:
-            break
-        q[active] += dq
-    return q, conv
+            return q, q, q, conv
+        Phi = ev["Phi"]
+        for _ in range(max_iter):
+            res = np.max(np.abs(Phi), axis=1)
+            if np.all((res <= tol) | ~np.isfinite(res)):
+                break
+            q -= np.einsum("bij,bj->bi", Jinv, Phi)
+            q[~np.isfinite(q)] = 0.0
+            Phi = mech.evaluate(q, T, jacobian=False)["Phi"]
+        res = np.max(np.abs(Phi), axis=1)
+        conv = res <= tol
+        qd, qdd = np.zeros_like(q), np.zeros_like(q)
+        if conv.any():
+            # the chord inverse is within O(|q − guess|) of Φ_q⁻¹ at the solution: one refinement step
+            # against the true Φ_q makes it exact to rounding
+            qc, tc, Jinv = q[conv], T[conv], Jinv[conv]
+            ev = mech.evaluate(qc, tc)
+            J = ev["Phi_q"]
+
+            def solve(b):
+                x = np.einsum("bij,bj->bi", Jinv, b)
+                return x + np.einsum("bij,bj->bi", Jinv, b - np.einsum("bij,bj->bi", J, x))
+
+            v = solve(ev["nu"])
+            a = solve(mech.evaluate(qc, tc, v, jacobian=False)["gamma"])
+            qd[conv], qdd[conv] = v, a
+            conv[conv] = np.all(np.isfinite(v), axis=1) & np.all(np.isfinite(a), axis=1)
+    return q, qd, qdd, conv
 
 
 def _driver_text(mech, name, value):
@@ -388,13 +413,15 @@ def _driver_values(mech, t):
     return {c.name: float(c.f.subs(mech.t, t)) for c in mech.drivers}
 
 
-def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=16):
+def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=512):
     """Kinematic sweep: position, velocity and acceleration at every instant of ``times``.
 
-    Every ``anchor_every``-th instant is solved in sequence (Newton from a Taylor prediction q + q̇ Δt + ½ q̈ Δt²
-    of the previous anchor); the instants in between are then solved all at once by a batched Newton–Raphson
-    from the same kind of prediction, and velocities and accelerations by stacked linear solves. An instant the
-    batch cannot solve is retried in sequence.
+    How: a few *anchor* instants are solved one after the other, each from a Taylor prediction
+    q + q̇ Δt + ½ q̈ Δt² of the previous one, with anchors close enough that the predicted motion stays small;
+    the instants between anchors are then solved in batches (every 64th, every 8th, then all), each batch by
+    a vectorized Newton–Raphson over all its instants at once from Taylor predictions of the nearest solved
+    instant. A batched solution is accepted only if it lies where the prediction said (so the mechanism
+    cannot jump to another assembly branch); anything not accepted is solved one instant at a time.
 
     Parameters
     ----------
@@ -402,10 +429,14 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=1
         Instants, in the order the mechanism should move through them.
     q0 : array_like, optional
         Initial guess at ``times[0]``.
+    tol : float
+        Newton–Raphson tolerance on max |Φ_k|.
     on_failure : {"raise", "truncate"}
         What to do when the mechanism cannot be assembled at some instant (for example when a crank is driven
         past a dead point): raise :class:`AssemblyError` (its ``partial`` attribute holds the instants solved
         before) or return the solved instants with ``result.failure`` set.
+    anchor_every : int
+        Most instants between two anchors. ``anchor_every=1`` solves every instant in sequence.
 
     Returns
     -------
@@ -442,6 +473,12 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=1
         dt = T[k] - T[j]
         return Q[j] + QD[j] * dt + 0.5 * QDD[j] * dt * dt
 
+    def plausible(q, guess, base):
+        """The solution is where the Taylor prediction put it, relative to the motion from the base."""
+        err = np.max(np.abs(q - guess), axis=-1)
+        step = np.max(np.abs(q - base), axis=-1)
+        return err <= 0.1 * step + 1e-7 * (1 + np.max(np.abs(q), axis=-1))
+
     def fail(k, cause):
         partial = SimulationResult(mech, T[:k].copy(), Q[:k].copy(), QD[:k].copy(), QDD[:k].copy())
         drivers = _driver_values(mech, T[k])
@@ -464,55 +501,61 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=1
         partial.failure = err
         return partial
 
-    def fill(upto):
-        """Solve every unsolved instant before ``upto``: batched Newton, then stragglers in sequence."""
-        rest = np.nonzero(~solved[:upto])[0]
-        if rest.size == 0:
-            return None
+    def batch(indices):
+        """Solve the given unsolved instants at once, each from its nearest solved predecessor."""
+        indices = indices[~solved[indices]]
+        if indices.size == 0:
+            return
         done = np.nonzero(solved)[0]
-        base = done[np.searchsorted(done, rest) - 1]
-        dt = (T[rest] - T[base])[:, None]
+        pos = np.searchsorted(done, indices) - 1
+        ok = pos >= 0
+        indices, base = indices[ok], done[pos[ok]]
+        dt = (T[indices] - T[base])[:, None]
         guess = Q[base] + QD[base] * dt + 0.5 * QDD[base] * dt * dt
-        qb, conv = _newton_batch(mech, guess, T[rest], tol)
-        good = rest[conv]
-        Q[good] = qb[conv]
-        try:  # velocities and accelerations by stacked solves
-            ev = mech.evaluate(Q[good], T[good])
-            QD[good] = np.linalg.solve(ev["Phi_q"], ev["nu"][..., None])[..., 0]
-            ev = mech.evaluate(Q[good], T[good], QD[good])
-            QDD[good] = np.linalg.solve(ev["Phi_q"], ev["gamma"][..., None])[..., 0]
-            solved[good] = True
-        except np.linalg.LinAlgError:
-            pass
-        for k in np.nonzero(~solved[:upto])[0]:  # stragglers, in sequence
+        q, qd, qdd, conv = _batch_solve(mech, guess, T[indices], tol)
+        conv &= plausible(q, guess, Q[base])
+        good = indices[conv]
+        Q[good], QD[good], QDD[good] = q[conv], qd[conv], qdd[conv]
+        solved[good] = True
+
+    def fill(upto):
+        """Solve every instant before ``upto``: batches of decreasing stride, then stragglers in sequence."""
+        for stride in (64, 8, 1):
+            idx = np.arange(0, upto, stride)
+            if idx.size:
+                batch(idx)
+        for k in np.nonzero(~solved[:upto])[0]:
             e = solve_one(k, [predict(k - 1, k), Q[k - 1]])
             if e is not None:
                 return fail(k, e)
         return None
 
-    # 1. anchors in sequence; 2. the instants between them all at once
-    step = 1 if n > SPARSE_ABOVE else max(1, int(anchor_every))
-    anchors = list(range(0, N, step))
-    if anchors[-1] != N - 1:
-        anchors.append(N - 1)
-    prev = None
-    for a in anchors:
-        if prev is None:
-            guesses = [None if q0 is None else np.asarray(q0, dtype=float)]
-        else:
-            guesses = [predict(prev, a), Q[prev]]
-        err = solve_one(a, guesses)
-        if err is not None:
-            if prev is None:
-                return fail(0, err)
-            stopped = fill(prev)
-            if stopped is not None:
-                return stopped
-            for k in range(prev + 1, a + 1):  # locate the first instant that fails
-                e = solve_one(k, [predict(k - 1, k), Q[k - 1]])
-                if e is not None:
-                    return fail(k, e)
-        prev = a
+    # 1. anchors, in sequence, spaced so that the predicted motion between two stays small
+    err = solve_one(0, [None if q0 is None else np.asarray(q0, dtype=float)])
+    if err is not None:
+        return fail(0, err)
+    p = 0
+    limit = max(1, int(anchor_every))
+    while p < N - 1:
+        speed = np.max(np.abs(QD[p])) + 1e-300
+        scale = 1.0 + np.max(np.abs(Q[p]))
+        reach = np.searchsorted(T, T[p] + 0.05 * scale / speed, side="right") - 1 if np.all(np.diff(T) > 0) else p + 1
+        a = int(min(N - 1, p + limit, max(p + 1, reach)))
+        guess = predict(p, a)
+        if solve_one(a, [guess]) is None and (a == p + 1 or plausible(Q[a], guess, Q[p])):
+            p = a
+            continue
+        solved[a] = False
+        stopped = fill(p + 1)
+        if stopped is not None:
+            return stopped
+        for k in range(p + 1, a + 1):  # step one instant at a time to the next anchor
+            e = solve_one(k, [predict(k - 1, k), Q[k - 1]])
+            if e is not None:
+                stopped = fill(k)
+                return stopped if stopped is not None else fail(k, e)
+        p = a
+    # 2. everything between anchors, in batches
     stopped = fill(N)
     if stopped is not None:
         return stopped

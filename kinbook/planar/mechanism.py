@@ -149,6 +149,18 @@ class Mechanism:
         self.constraints.append(constraint)
         self._invalidate()
 
+    def remove(self, name):
+        """Remove the constraint called ``name``; the rows of the constraints after it move up. Returns it."""
+        c = self.constraint(name)
+        self.constraints.remove(c)
+        c.rows = None
+        start = 0
+        for k in self.constraints:
+            k.rows = slice(start, start + k.n_eq)
+            start += k.n_eq
+        self._invalidate()
+        return c
+
     def _default_name(self, c):
         if c.kind == "joint":
             return str(sum(1 for k in self.constraints if k.kind == "joint") + 1)
@@ -178,7 +190,7 @@ class Mechanism:
         raise ModelError(f"mechanism '{self.name}' has no constraint '{name}' (its constraints: {known})")
 
     def _invalidate(self):
-        for attr in ("_compiled", "_symbolic", "q", "qd"):
+        for attr in ("_compiled", "_symbolic", "q", "qd", "_q0", "_sizes"):
             self.__dict__.pop(attr, None)
 
     # ------------------------------------------------------------------------------------------- sizes
@@ -188,9 +200,16 @@ class Mechanism:
         return 3 * len(self.bodies)
 
     @property
+    def _counts(self):
+        if "_sizes" not in self.__dict__:
+            self._sizes = (sum(c.n_eq for c in self.constraints),
+                           sum(c.n_eq for c in self.constraints if c.kind != "driver"))
+        return self._sizes
+
+    @property
     def m(self):
         """Number of constraint equations, drivers included."""
-        return sum(c.n_eq for c in self.constraints)
+        return self._counts[0]
 
     @property
     def drivers(self):
@@ -199,7 +218,7 @@ class Mechanism:
     @property
     def m_geometric(self):
         """Number of constraint equations that are not drivers."""
-        return sum(c.n_eq for c in self.constraints if c.kind != "driver")
+        return self._counts[1]
 
     @property
     def dof(self):
@@ -224,8 +243,10 @@ class Mechanism:
 
     @property
     def q0(self):
-        """The initial guess: the bodies' q0 stacked, as floats."""
-        return np.array([float(v) for b in self.bodies for v in b.q0])
+        """The initial guess: the bodies' q0 stacked, as floats (a fresh copy)."""
+        if "_q0" not in self.__dict__:
+            self._q0 = np.array([float(v) for b in self.bodies for v in b.q0])
+        return self._q0.copy()
 
     # ------------------------------------------------------------------------------------------- symbols
     @cached_property
@@ -440,7 +461,7 @@ class Mechanism:
         """Solve Φ_q q̈ = γ for q̈."""
         return analysis.solve_acceleration(self, q, qd, t)
 
-    def simulate(self, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=16):
+    def simulate(self, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=512):
         """Position, velocity and acceleration at every instant of ``times``: a
         :class:`~kinbook.planar.analysis.SimulationResult`. See :func:`kinbook.planar.analysis.simulate`."""
         return analysis.simulate(self, times, q0=q0, tol=tol, on_failure=on_failure, anchor_every=anchor_every)

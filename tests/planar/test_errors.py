@@ -139,3 +139,14 @@ def test_every_shipped_example_loads_and_is_square():
     for name in examples.names():
         m = examples.load(name)
         assert m.m == m.n, name
+
+
+def test_remove_renumbers_rows():
+    m = examples.load("ch13_example1")
+    phi_before = m.symbolic().Phi
+    removed = m.remove("2")
+    assert removed.rows is None and m.m == 10
+    assert [c.rows.start for c in m.constraints] == [0, 3, 5, 7, 9]
+    assert list(m.symbolic().Phi) == list(phi_before[:5]) + list(phi_before[7:])
+    with pytest.raises(ModelError, match="has no constraint '2'"):
+        m.remove("2")
