@@ -22,8 +22,10 @@ $(STAMP): pyproject.toml $(PIN) | $(BIN)/python
 
 kernel: $(STAMP)
 
+# root (a container, a CI box) needs --allow-root; everyone else gets the plain command
 lab: $(STAMP)
-	MPLBACKEND=module://matplotlib_inline.backend_inline $(BIN)/jupyter lab --notebook-dir=chapters
+	mkdir -p chapters
+	$(BIN)/jupyter lab --notebook-dir=chapters $(if $(filter 0,$(shell id -u)),--allow-root)
 
 test: $(STAMP)
 	$(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=120
