@@ -127,3 +127,14 @@ def test_sparse_solve_of_a_long_chain_matches_dense():
     angles = 0.01 * np.arange(1, N + 1)
     np.testing.assert_allclose(tip, [np.cos(angles).sum(), np.sin(angles).sum()], atol=1e-10)
     np.testing.assert_allclose(m.Phi_q(q, 1.0, sparse=True).toarray(), m.Phi_q(q, 1.0))
+
+
+def test_sweep_starting_near_a_limit_stays_on_the_branch_of_q0():
+    """The bodies' q0 describe the book's branch at t = 0 (rocker at about 241°); a sweep that starts near the
+    other limit position must follow that branch, not jump to the mirror assembly."""
+    m = examples.load("ch13_example3")
+    t_start = (2 * np.pi - THETA_LIMIT - 0.05 - 3 * np.pi / 4) / 100  # crank 3° short of its upper limit
+    r = m.simulate(np.linspace(t_start, 0.0, 50))
+    phi3_at_0 = m.solve_position(0.0)[m.index("phi3")]
+    assert r.coordinate("phi3")[-1] == pytest.approx(phi3_at_0, abs=1e-9)
+    assert np.all(np.abs(np.diff(r.coordinate("phi3"))) < 0.2)  # continuous: no jump between branches
