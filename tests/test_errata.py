@@ -1,0 +1,30 @@
+"""Every erratum must stand: the book's version disagrees with kinbook, the corrected one agrees."""
+
+import pytest
+
+from kinbook import errata
+
+COMPUTED = [e for e in errata.ERRATA if e.evidence is not None]
+
+
+@pytest.mark.parametrize("erratum", COMPUTED, ids=[e.id for e in COMPUTED])
+def test_evidence_holds(erratum):
+    ev = erratum.check()
+    assert ev.printed_error > 1e-2, f"{erratum.id}: the book's version agrees with kinbook after all"
+    # formulas agree to rounding; printed numbers carry 4-5 digits
+    assert ev.corrected_error < (1e-9 if erratum.kind == "formula" else 1e-4)
+
+
+def test_ids_are_unique_and_every_entry_is_complete():
+    ids = [e.id for e in errata.ERRATA]
+    assert len(ids) == len(set(ids))
+    for e in errata.ERRATA:
+        assert e.where and e.printed and e.correct and e.kind in {"number", "formula", "wording"}
+        assert e.kind == "wording" or e.evidence is not None
+
+
+def test_table_renders_every_entry():
+    t = errata.table("13")
+    html = t._repr_html_()
+    assert html.count("border-left") == len([e for e in errata.ERRATA if e.id.startswith("13")])
+    assert "|AB| = 6.092" in repr(t)
