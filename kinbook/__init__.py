@@ -1,10 +1,11 @@
 """kinbook: computational kinematics of mechanisms in body coordinates, for teaching.
 
-Planar kinematics (textbook chapter 13) lives in :mod:`kinbook.planar`; mechanism files are read by
+Planar kinematics (textbook chapter 13) lives in :mod:`kinbook.planar`, spatial kinematics with Euler
+parameters (chapter 14) in :mod:`kinbook.spatial`; mechanism files are read by
 :func:`kinbook.load`, and the book's example mechanisms by :func:`kinbook.examples.load`.
 """
 
-from . import examples, planar
+from . import examples, planar, spatial
 from .errors import (
     AnalysisError,
     AssemblyError,
@@ -29,6 +30,7 @@ __all__ = [
     "loads",
     "examples",
     "planar",
+    "spatial",
     "KinbookError",
     "ModelError",
     "UnknownBodyError",

@@ -18,6 +18,12 @@ The hierarchy::
         │   ├── RedundantConstraintsError   ...because geometric constraints repeat each other
         │   └── DeadPointError              ...because a driver cannot move the mechanism any further
         └── AssemblyError          a sweep reached a time at which the mechanism does not assemble
+    GradingError                   an exercise notebook or a submission batch that cannot be processed
+
+Warnings::
+
+    KinbookWarning (UserWarning)
+    └── SingularityWarning         a result is not unique, e.g. z-x-z Euler angles at sin θ = 0
 """
 
 from __future__ import annotations
@@ -36,6 +42,9 @@ __all__ = [
     "RedundantConstraintsError",
     "DeadPointError",
     "AssemblyError",
+    "GradingError",
+    "KinbookWarning",
+    "SingularityWarning",
 ]
 
 
@@ -146,3 +155,17 @@ class AssemblyError(AnalysisError):
         self.drivers = dict(drivers or {})
         self.partial = partial
         self.cause = cause
+
+
+class GradingError(KinbookError):
+    """An exercise notebook (source, release, variant) or a grading run that cannot be processed as asked.
+    A bad *submission* is never an exception: it gets a status in the gradebook."""
+
+
+class KinbookWarning(UserWarning):
+    """Base class of the warnings kinbook issues."""
+
+
+class SingularityWarning(KinbookWarning):
+    """A result at a singular configuration is one documented choice among many (e.g. Euler angles at
+    sin θ = 0, where only ψ ± φ is determined)."""

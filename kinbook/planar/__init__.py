@@ -1,6 +1,6 @@
 """Planar kinematics in body coordinates (textbook chapter 13)."""
 
-from .analysis import Diagnosis, SimulationResult
+from ..analysis import Diagnosis, SimulationResult
 from .constraints import (
     CONSTRAINT_TYPES,
     Constraint,

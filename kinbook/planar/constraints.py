@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import ModelError, UnknownPointError
+from ..model import ConstraintBase
 from ..symbolic import t as t_symbol
 from .transforms import A as A_matrix
 
@@ -66,62 +67,16 @@ def _sq(w):
 
 
 # --------------------------------------------------------------------------------------------------------- base
-class Constraint:
-    """Base class of planar constraints.
+class Constraint(ConstraintBase):
+    """Base class of planar constraints (see :class:`kinbook.model.ConstraintBase` for naming, rows and
+    binding).
 
-    A subclass sets the class attributes below, implements :meth:`phi` (the symbolic Φ: the single source of
-    truth) and :meth:`params` + a ``kernel`` (the fast numeric path).
-
-    Attributes
-    ----------
-    type_name : str
-        Name used in mechanism files and messages ("revolute").
-    label : str
-        The book's abbreviation (r, t, r-r, r-t ...).
-    n_eq : int
-        Number of equations (rows of Φ).
-    kind : {"joint", "simple", "driver"}
-        Joints are numbered as the book numbers them in its joint tables.
+    A subclass sets ``type_name``, ``label``, ``n_eq``, ``kind`` and ``roles``, implements :meth:`phi` (the
+    symbolic Φ in the bodies' (x, y, φ): the single source of truth) and, for the fast numeric path, a
+    ``kernel`` with the :meth:`params` it needs.
     """
 
-    type_name = "constraint"
-    label = "?"
-    n_eq = 0
-    kind = "joint"
     roles = ("i", "j")
-    kernel = None
-
-    def __init__(self, bodies, name=None, f=None):
-        self.body_names = tuple(bodies)
-        self.name = name
-        self.f = None if f is None else _time_function(f, self)
-        self.rows = None  # slice into Φ, set by the mechanism
-        self.bodies = None  # Body objects, set by bind()
-
-    # --------------------------------------------------------------------- description
-    def describe(self):
-        """Short English description: "revolute joint 'A' (rows 8-9 of Φ)"."""
-        what = f"{self.type_name} {self.kind if self.kind != 'joint' else 'joint'} '{self.name}'"
-        if self.rows is not None:
-            a, b = self.rows.start + 1, self.rows.stop
-            what += f" (row {a} of Φ)" if a == b else f" (rows {a}-{b} of Φ)"
-        return what
-
-    def __repr__(self):
-        bodies = ", ".join(repr(b) for b in self.body_names)
-        return f"{type(self).__name__}({bodies}, name={self.name!r})"
-
-    # --------------------------------------------------------------------- binding to a mechanism
-    def bind(self, mechanism):
-        """Resolve body and point names against ``mechanism`` (called when the constraint is added)."""
-        bodies = [mechanism.body(b, context=self) for b in self.body_names]
-        if len({b.name for b in bodies}) != len(bodies):
-            raise ModelError(f"{self.describe()} connects body '{bodies[0].name}' to itself")
-        self.bodies = bodies
-        self._bind_points()
-
-    def _bind_points(self):
-        """Hook: look up named points; subclasses with points override it."""
 
     def _local(self, role_index, point):
         """Local coordinates (sympy numbers) of ``point`` on the body in ``role_index``.
@@ -145,45 +100,11 @@ class Constraint:
             ) from None
         return (xi, eta)
 
-    # --------------------------------------------------------------------- the source of truth
-    def phi(self, Q, t=t_symbol):
-        """Symbolic Φ of this constraint.
-
-        Parameters
-        ----------
-        Q : list of sympy column matrices (x, y, φ), one per body in ``self.bodies`` order.
-        t : sympy Symbol
-
-        Returns
-        -------
-        list of sympy expressions, length ``n_eq``.
-        """
-        raise NotImplementedError
-
-    def params(self):
-        """Numeric parameters of this constraint for its kernel: a dict of float arrays."""
-        return {}
-
     # helpers for the symbolic hooks
     @staticmethod
     def _r(Qb, s):
         """Symbolic global position r + A(φ) s' of a local point s' on body coordinates Qb."""
         return sp.Matrix(Qb[:2]) + A_matrix(Qb[2]) * sp.Matrix(s)
-
-    def _f_expr(self, t):
-        return sp.Integer(0) if self.f is None else self.f.subs(t_symbol, t)
-
-
-def _time_function(f, owner):
-    try:
-        expr = sp.sympify(f, locals={"t": t_symbol})
-    except (sp.SympifyError, TypeError, SyntaxError):
-        raise ModelError(f"{type(owner).__name__}: cannot read the function of time {f!r}") from None
-    extra = expr.free_symbols - {t_symbol}
-    if extra:
-        names = ", ".join(sorted(str(s) for s in extra))
-        raise ModelError(f"{type(owner).__name__}: the function of time {f!r} uses unknown symbols {names}")
-    return expr
 
 
 def _angle_default(value, body, coord="phi"):

@@ -1,8 +1,8 @@
-"""Kinematic analysis (textbook §13.6–13.8): position by Newton–Raphson, velocity, acceleration, sweeps and
-the diagnosis of singular configurations.
+"""Kinematic analysis (textbook §13.6–13.8, §14.5): position by Newton–Raphson, velocity, acceleration,
+sweeps and the diagnosis of singular configurations.
 
-The functions take a mechanism (anything with the numeric interface of :class:`kinbook.planar.Mechanism`:
-``evaluate``, ``n``, ``m``, ``constraints`` …) so the spatial half reuses them.
+The functions take any mechanism built on :class:`kinbook.model.MechanismBase` (planar or spatial): they use
+only its numeric interface (``evaluate``, ``n``, ``m``, ``constraints`` …).
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse.linalg as spla
 
-from ..errors import (
+from .errors import (
     AssemblyError,
     ConvergenceError,
     DeadPointError,

@@ -1,0 +1,105 @@
+"""Spatial kinematics in body coordinates with Euler parameters (textbook chapter 14).
+
+- :mod:`~kinbook.spatial.rotations` — direction cosines, z-x-z Euler angles, Euler parameters, E and G (§14.1–14.3)
+- :mod:`~kinbook.spatial.transforms` — point position, velocity and acceleration from r, p and their rates
+- :mod:`~kinbook.spatial.constraints` — n1, n2, p1, p2, spherical, universal, revolute, cylindrical,
+  translational, ground and drivers, each with a symbolic Φ and a fast kernel (§14.4, Table 14.1)
+- :mod:`~kinbook.spatial.mechanism` — bodies q_i = [x, y, z, e0, e1, e2, e3], normalization rows, analysis (§14.5)
+- :mod:`~kinbook.spatial.plotting` — 3D drawings and animations
+
+Conventions (frames, active rotations, z-x-z, radians, unit p): docs/conventions.md.
+"""
+
+from .constraints import (
+    CONSTRAINT_TYPES,
+    Constraint,
+    Cylindrical,
+    DistanceDriver,
+    Ground,
+    Normal1,
+    Normal2,
+    Normalization,
+    Parallel1,
+    Parallel2,
+    Revolute,
+    RevoluteDriver,
+    Spherical,
+    SphericalSpherical,
+    Translational,
+    Universal,
+)
+from . import plotting
+from .transforms import point_acceleration, point_position, point_velocity
+from .mechanism import Body, ConstraintTable, Mechanism
+from .rotations import (
+    A_ddot,
+    A_dot,
+    A_from_axes,
+    A_from_euler,
+    A_from_p,
+    E,
+    G,
+    a_bar,
+    alpha_from_p,
+    axis_angle_from_p,
+    check_rotation,
+    dAa_dp,
+    euler_from_A,
+    euler_rates_from_omega,
+    normalization,
+    normalize_p,
+    omega_from_euler_rates,
+    omega_from_p_dot,
+    p_dot_from_omega,
+    p_from_A,
+    p_from_axis_angle,
+    skew,
+)
+
+__all__ = [
+    "plotting",
+    "point_position",
+    "point_velocity",
+    "point_acceleration",
+    "Body",
+    "Mechanism",
+    "ConstraintTable",
+    "Constraint",
+    "Normalization",
+    "Ground",
+    "Normal1",
+    "Normal2",
+    "Parallel1",
+    "Parallel2",
+    "Spherical",
+    "Universal",
+    "Revolute",
+    "Cylindrical",
+    "Translational",
+    "SphericalSpherical",
+    "RevoluteDriver",
+    "DistanceDriver",
+    "CONSTRAINT_TYPES",
+    "skew",
+    "check_rotation",
+    "A_from_axes",
+    "A_from_euler",
+    "euler_from_A",
+    "omega_from_euler_rates",
+    "euler_rates_from_omega",
+    "p_from_axis_angle",
+    "axis_angle_from_p",
+    "normalize_p",
+    "normalization",
+    "A_from_p",
+    "p_from_A",
+    "E",
+    "G",
+    "a_bar",
+    "A_dot",
+    "A_ddot",
+    "omega_from_p_dot",
+    "p_dot_from_omega",
+    "alpha_from_p",
+    "dAa_dp",
+]

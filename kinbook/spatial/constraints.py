@@ -1,0 +1,937 @@
+"""Spatial constraints (textbook §14.4–14.5): one class per joint type on a common base.
+
+Each constraint writes its Φ once, symbolically, in :meth:`Constraint.phi` — the single source of truth;
+Φ_q, ν and γ are derived from it by :func:`kinbook.symbolic.derive`. For speed each type also has a
+*kernel*: closed-form numpy code evaluating Φ, Φ_q and γ for every constraint of that type and many
+instants at once, built from the Jacobian blocks of Table 14.1. The tests check every kernel against the
+symbolic derivation at seeded random configurations.
+
+Coordinates of the bodies a constraint connects arrive in the kernels as ``Q`` of shape (B, k, nb, 7): B
+instants, k constraints of the type, nb bodies per constraint, and (x, y, z, e0, e1, e2, e3).
+
+Every A here is :func:`~kinbook.spatial.rotations.A_from_p`, A = 2[(e0² − ½)I + eeᵀ + e0ẽ], so the
+p-blocks of the Jacobian are exactly the book's B_k = 2(E_k s̄'ᴾ_k + s'ᴾ_k p_kᵀ) for points and
+C_k = 2(E_k s̄'_k + s'_k p_kᵀ) for vectors (:func:`~kinbook.spatial.rotations.dAa_dp`).
+
+Table 14.1 (the book prints it empty), with s_k = A_k s'_k, d = r_j + A_j s'ᴾ_j − r_i − A_i s'ᴾ_i,
+B_k = ∂(A_k s'ᴾ_k)/∂p_k for points and C_k = ∂(A_k s'_k)/∂p_k for vectors::
+
+    Φ                            ∂/∂r_i     ∂/∂p_i                 ∂/∂r_j     ∂/∂p_j
+    (n1,1)  s_iᵀ s_j             0ᵀ         s_jᵀ C_i               0ᵀ         s_iᵀ C_j
+    (n2,1)  s_iᵀ d               −s_iᵀ      dᵀ C_i − s_iᵀ B_i      s_iᵀ       s_iᵀ B_j
+    (s,3)   r_i^P − r_j^P        I          B_i                    −I         −B_j
+    (p1,2)  s̃_i s_j  (book)     0          −s̃_j C_i               0          s̃_i C_j
+    (p2,2)  s̃_i d    (book)     −s̃_i       −d̃ C_i − s̃_i B_i       s̃_i        s̃_i B_j
+    (p1,2)  h_kᵀ s_j (kinbook)   0ᵀ         s_jᵀ C_i(h_k)          0ᵀ         h_kᵀ C_j      (k = 1, 2)
+    (p2,2)  h_kᵀ d   (kinbook)   −h_kᵀ      dᵀ C_i(h_k) − h_kᵀ B_i  h_kᵀ      h_kᵀ B_j      (h_k = A_i h'_k)
+
+:meth:`Constraint.blocks` returns these blocks for any constraint; the tests compare them with sympy.
+
+Parallel vectors. The book writes p1 and p2 as "two of the three" rows of s̃_i s_j = 0 without saying
+which; any fixed choice of two rows loses rank when s_i lies along one global axis (rows 1-2: X, rows 1-3:
+Y, rows 2-3: Z, where the other row is identically zero). kinbook instead uses two
+unit vectors h_1, h_2 fixed in body i, perpendicular to s'_i and to each other (h_1 from the coordinate axis
+least aligned with s'_i, h_2 = s'_i × h_1 / |s'_i|): s_j ∥ s_i ⇔ h_1ᵀs_j = h_2ᵀs_j = 0. Both rows are
+(n1,1) constraints (p2: (n2,1)), well-conditioned in every orientation (their gradients are orthogonal when
+s_j ∥ s_i). Like the cross product, they also accept antiparallel vectors.
+
+Drivers: a :class:`RevoluteDriver` prescribes the rotation angle θ of body j relative to body i about a
+revolute axis, Φ = θ(q) − f(t) with θ = atan2(g_iᵀ f_j, f_iᵀ f_j); its value is wrapped into (−π, π] by the
+mechanism. A :class:`DistanceDriver` prescribes the distance along a translational or cylindrical axis.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from ..errors import ModelError, UnknownPointError
+from ..model import ConstraintBase
+from ..symbolic import t as t_symbol
+from .rotations import A_from_p as _A_sym, E as _E_sym
+
+__all__ = [
+    "Constraint",
+    "Normalization",
+    "Ground",
+    "Normal1",
+    "Normal2",
+    "Parallel1",
+    "Parallel2",
+    "Spherical",
+    "Universal",
+    "Revolute",
+    "Cylindrical",
+    "Translational",
+    "SphericalSpherical",
+    "RevoluteDriver",
+    "DistanceDriver",
+    "CONSTRAINT_TYPES",
+]
+
+NCOORD = 7
+_COORDS = ("x", "y", "z", "e0", "e1", "e2", "e3")
+
+
+# ======================================================================================= numeric building blocks
+# E(p) and ā(a) by fancy indexing: E = [[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]],
+# ā = [[0, -a1, -a2, -a3], [a1, 0, a3, -a2], [a2, -a3, 0, a1], [a3, a2, -a1, 0]] (rotations.E, rotations.a_bar)
+_E_IDX = np.array([1, 0, 3, 2, 2, 3, 0, 1, 3, 2, 1, 0])
+_E_SIGN = np.array([-1.0, 1, -1, 1, -1, 1, 1, -1, -1, -1, 1, 1])
+_ABAR_IDX = np.array([0, 1, 2, 3, 1, 0, 3, 2, 2, 3, 0, 1, 3, 2, 1, 0])
+_ABAR_SIGN = np.array([0.0, -1, -1, -1, 1, 0, 1, -1, 1, -1, 0, 1, 1, 1, -1, 0])
+
+
+def _E_np(p):
+    return (p[..., _E_IDX] * _E_SIGN).reshape(p.shape[:-1] + (3, 4))
+
+
+def _abar_np(a):
+    a4 = np.concatenate([np.zeros(a.shape[:-1] + (1,)), a], -1)
+    return (a4[..., _ABAR_IDX] * _ABAR_SIGN).reshape(a.shape[:-1] + (4, 4))
+
+
+def _C_np(p, a, abar=None):
+    """∂(A a)/∂p = 2(E ā + a pᵀ) for p (B, k, 4) and a (k, 3): shape (B, k, 3, 4)."""
+    if abar is None:
+        abar = _abar_np(a)
+    return 2 * ((_E_np(p) @ abar) + a[None, :, :, None] * p[..., None, :])
+
+
+def _mv(M, v):
+    """Batched matrix-vector product (…, m, n) @ (…, n) -> (…, m)."""
+    return (M @ v[..., None])[..., 0]
+
+
+def _vtm(v, M):
+    """Batched vector-matrix product (…, m) @ (…, m, n) -> (…, n)."""
+    return (v[..., None, :] @ M)[..., 0, :]
+
+
+def _vdot(u, v):
+    return (u * v).sum(-1)
+
+
+class _V:
+    """A 3-vector quantity of a constraint: value, Jacobian (w.r.t. the constraint's 7·nb coordinates),
+    velocity and the velocity-quadratic part of its second derivative (both None without Qd)."""
+
+    __slots__ = ("val", "jac", "vel", "quad")
+
+    def __init__(self, val, jac, vel, quad):
+        self.val, self.jac, self.vel, self.quad = val, jac, vel, quad
+
+    def __sub__(self, other):
+        vel = None if self.vel is None else self.vel - other.vel
+        quad = None if self.quad is None else self.quad - other.quad
+        return _V(self.val - other.val, self.jac - other.jac, vel, quad)
+
+
+def _body_vec(Q, Qd, b, a, point):
+    """A s' (``point`` False) or r + A s' (True) for local components ``a`` (k, 3) on body ``b``.
+
+    With C = ∂(A a)/∂p = 2(Eā + a pᵀ) (Table 14.1's B_k, C_k): A a = ½ C p − a (Euler's theorem for the
+    quadratic A(p), whose constant part is −I), (A a)˙ = C ṗ and the velocity-quadratic part of (A a)¨ is
+    C(ṗ) ṗ = 2(E(ṗ) ā ṗ + a ṗᵀṗ).
+    """
+    Bn, k, nb, _ = Q.shape
+    p = Q[:, :, b, 3:7]
+    abar = _abar_np(a)
+    C = _C_np(p, a, abar)
+    val = 0.5 * _mv(C, p) - a
+    jac = np.zeros((Bn, k, 3, NCOORD * nb))
+    jac[..., NCOORD * b + 3 : NCOORD * b + 7] = C
+    vel = quad = None
+    if point:
+        val = val + Q[:, :, b, :3]
+        jac[..., NCOORD * b : NCOORD * b + 3] = np.eye(3)
+    if Qd is not None:
+        pd = Qd[:, :, b, 3:7]
+        vel = _mv(C, pd)
+        if point:
+            vel = vel + Qd[:, :, b, :3]
+        quad = _mv(_C_np(pd, a, abar), pd)
+    return _V(val, jac, vel, quad)
+
+
+def _dot(u, v):
+    """One row Φ = uᵀv: returns (phi (B,k), jac (B,k,7nb), gamma (B,k) or None)."""
+    phi = _vdot(u.val, v.val)
+    jac = _vtm(v.val, u.jac) + _vtm(u.val, v.jac)
+    gam = None
+    if u.vel is not None:
+        gam = -(_vdot(u.quad, v.val) + _vdot(u.val, v.quad)
+                + 2 * _vdot(u.vel, v.vel))
+    return phi, jac, gam
+
+
+def _vector_rows(v):
+    """Three rows Φ = v (a vector equation)."""
+    return [(v.val[..., r], v.jac[..., r, :], None if v.quad is None else -v.quad[..., r]) for r in range(3)]
+
+
+def _stack_rows(rows):
+    phi = np.stack([r[0] for r in rows], -1)
+    jac = np.stack([r[1] for r in rows], -2)
+    gam = None if rows[0][2] is None else np.stack([r[2] for r in rows], -1)
+    return phi, jac, gam
+
+
+# row builders: (Q, Qd, P) -> list of rows
+def _rows_s(Q, Qd, P):
+    return _vector_rows(_body_vec(Q, Qd, 0, P["Pi"], True) - _body_vec(Q, Qd, 1, P["Pj"], True))
+
+
+def _rows_n1(Q, Qd, P):
+    return [_dot(_body_vec(Q, Qd, 0, P["ai"], False), _body_vec(Q, Qd, 1, P["aj"], False))]
+
+
+def _d(Q, Qd, P):
+    return _body_vec(Q, Qd, 1, P["Pj"], True) - _body_vec(Q, Qd, 0, P["Pi"], True)
+
+
+def _rows_n2(Q, Qd, P):
+    return [_dot(_body_vec(Q, Qd, 0, P["ai"], False), _d(Q, Qd, P))]
+
+
+def _rows_p1(Q, Qd, P):
+    sj = _body_vec(Q, Qd, 1, P["sj"], False)
+    return [_dot(_body_vec(Q, Qd, 0, P[h], False), sj) for h in ("h1", "h2")]
+
+
+def _rows_p2(Q, Qd, P):
+    d = _d(Q, Qd, P)
+    return [_dot(_body_vec(Q, Qd, 0, P[h], False), d) for h in ("h1", "h2")]
+
+
+def _rows_ss(Q, Qd, P):
+    d = _d(Q, Qd, P)
+    phi, jac, gam = _dot(d, d)
+    return [(phi - P["l"] ** 2, jac, gam)]
+
+
+def _rows_distance(Q, Qd, P):
+    return [_dot(_body_vec(Q, Qd, 0, P["u"], False), _d(Q, Qd, P))]
+
+
+def _rows_norm(Q, Qd, P):
+    p = Q[:, :, 0, 3:7]
+    Bn, k = p.shape[:2]
+    jac = np.zeros((Bn, k, NCOORD))
+    jac[..., 3:7] = 2 * p
+    gam = None if Qd is None else -2 * np.einsum("bki,bki->bk", Qd[:, :, 0, 3:7], Qd[:, :, 0, 3:7])
+    return [(np.einsum("bki,bki->bk", p, p) - 1.0, jac, gam)]
+
+
+def _rows_ground(Q, Qd, P):
+    """r − r0 (3 rows) and E(p0) p (3 rows): linear in q."""
+    q = Q[:, :, 0, :]
+    Bn, k = q.shape[:2]
+    C = P["C"]  # (k, 6, 7)
+    phi = np.einsum("krc,bkc->bkr", C, q) + P["c0"]
+    jac = np.broadcast_to(C, (Bn,) + C.shape)
+    gam = None if Qd is None else np.zeros((Bn, k, 6))
+    return [(phi[..., r], jac[..., r, :], None if gam is None else gam[..., r]) for r in range(6)]
+
+
+def _rows_angle(Q, Qd, P):
+    fj = _body_vec(Q, Qd, 1, P["fj"], False)
+    c, cq, cg = _dot(_body_vec(Q, Qd, 0, P["fi"], False), fj)
+    s, sq, sg = _dot(_body_vec(Q, Qd, 0, P["gi"], False), fj)
+    rho = c * c + s * s
+    phi = np.arctan2(s, c)
+    jac = (c[..., None] * sq - s[..., None] * cq) / rho[..., None]
+    gam = None
+    if Qd is not None:
+        Bn, k, nb, _ = Qd.shape
+        qd = Qd.reshape(Bn, k, nb * NCOORD)
+        cd = _vdot(cq, qd)
+        sd = _vdot(sq, qd)
+        # θ̈ = θ_q q̈ + (c s̈_quad − s c̈_quad)/ρ − (c ṡ − s ċ)·2(c ċ + s ṡ)/ρ², with s̈_quad = −γ_s
+        quad = (-c * sg + s * cg) / rho - (c * sd - s * cd) * 2 * (c * cd + s * sd) / rho**2
+        gam = -quad
+    return [(phi, jac, gam)]
+
+
+def _kernel(*builders):
+    def kernel(Q, P, Qd=None):
+        rows = []
+        for build in builders:
+            rows.extend(build(Q, Qd, P))
+        return _stack_rows(rows)
+
+    kernel.builders = builders
+    return kernel
+
+
+# ======================================================================================= symbolic building blocks
+def _sym_r(Qb):
+    return sp.Matrix(Qb[0:3])
+
+
+def _sym_A(Qb):
+    return _A_sym(list(Qb[3:7]))
+
+
+def _sym_vec(Qb, a):
+    return _sym_A(Qb) * sp.Matrix(a)
+
+
+def _sym_point(Qb, a):
+    return _sym_r(Qb) + _sym_A(Qb) * sp.Matrix(a)
+
+
+def _sym_d(Q, Pi, Pj):
+    return _sym_point(Q[1], Pj) - _sym_point(Q[0], Pi)
+
+
+def _sym_dot(u, v):
+    return (u.T * v)[0]
+
+
+# ======================================================================================= helpers for parameters
+def _floats(v):
+    return np.array([float(x) for x in v], dtype=float)
+
+
+def _perpendiculars(a):
+    """Two unit vectors h1, h2 ⊥ a, with (h1, h2, a/|a|) right-handed: h1 from the coordinate axis least
+    aligned with a."""
+    a = np.asarray(a, dtype=float)
+    u = a / np.linalg.norm(a)
+    k = int(np.argmin(np.abs(u)))
+    e = np.zeros(3)
+    e[k] = 1.0
+    h1 = np.cross(u, e)
+    h1 /= np.linalg.norm(h1)
+    h2 = np.cross(u, h1)
+    return h1, h2
+
+
+def _num(v):
+    return sp.Float(float(v), 17)
+
+
+def _sym3(v):
+    return [_num(x) for x in v]
+
+
+# ======================================================================================= base class
+class Constraint(ConstraintBase):
+    """Base class of spatial constraints (see :class:`kinbook.model.ConstraintBase` for the class attributes,
+    naming, rows and binding).
+
+    A subclass resolves its points and vectors in :meth:`_bind_points` and implements :meth:`phi` (the
+    symbolic Φ in the bodies' (x, y, z, e0, e1, e2, e3): the single source of truth) and :meth:`params` + a
+    ``kernel`` (the fast numeric path, built from the row builders of this module). Its ``label`` is the
+    book's notation: "s,3", "p1,2", "s,3 + p1,2" …
+    """
+
+    def _point(self, role, spec, what="point"):
+        """Local coordinates (floats, shape (3,)) of a point: a point name or a triple (ξ, η, ζ)."""
+        body = self.bodies[role]
+        if isinstance(spec, str):
+            if spec not in body.points:
+                known = ", ".join(sorted(body.points)) or "none"
+                raise UnknownPointError(
+                    f"{self.describe()}: body '{body.name}' has no point '{spec}' (its points: {known})"
+                )
+            return _floats(body.points[spec])
+        return _triple(spec, f"{self.describe()}: {what} on body '{body.name}' must be a point name or a "
+                             f"triple (ξ, η, ζ)")
+
+    def _vector(self, role, spec, what="vector"):
+        """Local components (floats, shape (3,)) of a body-fixed vector: a vector name, a pair of point
+        names [P, Q] (the vector from P to Q) or a triple of components. Must be nonzero."""
+        body = self.bodies[role]
+        if isinstance(spec, str):
+            if spec not in body.vectors:
+                known = ", ".join(sorted(body.vectors)) or "none"
+                raise UnknownPointError(
+                    f"{self.describe()}: body '{body.name}' has no vector '{spec}' (its vectors: {known}; "
+                    f"a vector can also be given as two point names [P, Q] or as three components)"
+                )
+            v = _floats(body.vectors[spec])
+        elif isinstance(spec, (list, tuple)) and len(spec) == 2 and all(isinstance(s, str) for s in spec):
+            v = self._point(role, spec[1], what) - self._point(role, spec[0], what)
+        else:
+            v = _triple(spec, f"{self.describe()}: {what} on body '{body.name}' must be a vector name, two "
+                              f"point names or three components")
+        if np.linalg.norm(v) < 1e-12:
+            raise ModelError(f"{self.describe()}: {what} on body '{body.name}' is zero ({spec!r})")
+        return v
+
+    def blocks(self, q):
+        """Jacobian blocks of this constraint in the layout of Table 14.1, from the fast kernel.
+
+        Parameters
+        ----------
+        q : array_like, shape (7·nb,)
+            Coordinates of this constraint's bodies, in ``self.bodies`` order.
+
+        Returns
+        -------
+        dict
+            ``{"r_i": (n_eq, 3), "p_i": (n_eq, 4), "r_j": …, "p_j": …}`` (one pair per body role).
+        """
+        nb = len(self.body_names)
+        q = np.asarray(q, dtype=float).reshape(1, 1, nb, NCOORD)
+        P = {k: np.asarray(v, dtype=float)[None] for k, v in self.params().items()}
+        _, jac, _ = self.kernel(q, P)
+        jac = jac[0, 0]
+        out = {}
+        for b, role in enumerate("ijk"[:nb]):
+            out[f"r_{role}"] = jac[:, NCOORD * b : NCOORD * b + 3]
+            out[f"p_{role}"] = jac[:, NCOORD * b + 3 : NCOORD * b + 7]
+        return out
+
+
+def _triple(v, message):
+    try:
+        a = np.array([float(sp.sympify(x)) for x in v], dtype=float)
+    except (TypeError, ValueError, sp.SympifyError):
+        raise ModelError(f"{message}, got {v!r}") from None
+    if a.shape != (3,) or not np.all(np.isfinite(a)):
+        raise ModelError(f"{message}, got {v!r}")
+    return a
+
+
+def _two_points(cls_name, i, j, point, point_i, point_j):
+    point_i = point_i if point_i is not None else point
+    point_j = point_j if point_j is not None else point
+    if point_i is None or point_j is None:
+        raise ModelError(f"{cls_name} between '{i}' and '{j}': give `point` or both `point_i` and `point_j`")
+    return point_i, point_j
+
+
+# ======================================================================================= one-body constraints
+class Normalization(Constraint):
+    """Euler parameter normalization of one body: pᵀp − 1 = 0 (textbook §14.5).
+
+    The mechanism adds one per body when the body is added; it counts as a geometric equation.
+    """
+
+    type_name = "normalization"
+    label = "pᵀp−1"
+    n_eq = 1
+    kind = "normalization"
+    kernel = staticmethod(_kernel(_rows_norm))
+
+    def __init__(self, body, name=None):
+        super().__init__((body,), name=name)
+
+    def phi(self, Q, t=t_symbol):
+        p = sp.Matrix(Q[0][3:7])
+        return [(p.T * p)[0] - 1]
+
+
+class Ground(Constraint):
+    """A fixed body: r_i = r⁰ (3 rows) and E(p⁰) p_i = 0 (3 rows).
+
+    E(p⁰) p = 0 together with the body's normalization pᵀp = 1 leaves p = ±p⁰. Unlike fixing three of the
+    four Euler parameters (singular when the free one is zero), these rows are orthonormal for every p⁰.
+    For p⁰ = [1, 0, 0, 0] they read e1 = e2 = e3 = 0.
+
+    Parameters
+    ----------
+    body : str
+    q : sequence of 7 numbers, optional
+        The fixed (x, y, z, e0, e1, e2, e3); default: the body's q0.
+    """
+
+    type_name = "ground"
+    label = "ground"
+    n_eq = 6
+    kind = "simple"
+    kernel = staticmethod(_kernel(_rows_ground))
+
+    def __init__(self, body, q=None, name=None):
+        super().__init__((body,), name=name)
+        self.value = None if q is None else list(q)
+
+    def _bind_points(self):
+        body = self.bodies[0]
+        if self.value is None:
+            value = np.array([float(v) for v in body.q0])
+        else:
+            if len(self.value) != NCOORD:
+                raise ModelError(f"{self.describe()}: `q` needs 7 values (x, y, z, e0, e1, e2, e3), "
+                                 f"got {len(self.value)}")
+            value = _floats([sp.sympify(v) for v in self.value])
+            n = np.linalg.norm(value[3:])
+            if n < 1e-12:
+                raise ModelError(f"{self.describe()}: the Euler parameters of `q` are zero")
+            value[3:] /= n
+        self.r0, self.p0 = value[:3], value[3:]
+
+    def phi(self, Q, t=t_symbol):
+        r = sp.Matrix(Q[0][0:3]) - sp.Matrix(_sym3(self.r0))
+        e = _E_sym(_sym3(self.p0)) * sp.Matrix(Q[0][3:7])
+        return list(r) + list(e)
+
+    def params(self):
+        C = np.zeros((6, 7))
+        C[:3, :3] = np.eye(3)
+        e0, e1, e2, e3 = self.p0
+        C[3:, 3:] = [[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]]
+        return {"C": C, "c0": np.concatenate([-self.r0, np.zeros(3)])}
+
+
+# ======================================================================================= two-body primitives
+class Normal1(Constraint):
+    """Normal-1 (n1,1): two body-fixed vectors stay perpendicular, s_iᵀ s_j = 0 (textbook §14.4).
+
+    Parameters
+    ----------
+    i, j : str
+    vector_i, vector_j : str, [str, str] or 3 numbers
+        s'_i on body i and s'_j on body j: a vector name, two point names [P, Q] (from P to Q), or local
+        components.
+    """
+
+    type_name = "normal-1"
+    label = "n1,1"
+    n_eq = 1
+    kernel = staticmethod(_kernel(_rows_n1))
+
+    def __init__(self, i, j, vector_i, vector_j, name=None):
+        super().__init__((i, j), name=name)
+        self.vector_i, self.vector_j = vector_i, vector_j
+
+    def _bind_points(self):
+        self.a_i = self._vector(0, self.vector_i, "vector_i")
+        self.a_j = self._vector(1, self.vector_j, "vector_j")
+
+    def phi(self, Q, t=t_symbol):
+        return [_sym_dot(_sym_vec(Q[0], _sym3(self.a_i)), _sym_vec(Q[1], _sym3(self.a_j)))]
+
+    def params(self):
+        return {"ai": self.a_i, "aj": self.a_j}
+
+
+class Normal2(Constraint):
+    """Normal-2 (n2,1): a vector of body i stays perpendicular to d = r_j^P − r_i^P, s_iᵀ d = 0 (§14.4).
+
+    Parameters
+    ----------
+    i, j : str
+    vector_i : vector spec on body i (see :class:`Normal1`)
+    point_i, point_j : str or 3 numbers
+        The ends of d: P_i on body i, P_j on body j.
+    """
+
+    type_name = "normal-2"
+    label = "n2,1"
+    n_eq = 1
+    kernel = staticmethod(_kernel(_rows_n2))
+
+    def __init__(self, i, j, vector_i, point_i, point_j, name=None):
+        super().__init__((i, j), name=name)
+        self.vector_i, self.point_i, self.point_j = vector_i, point_i, point_j
+
+    def _bind_points(self):
+        self.a_i = self._vector(0, self.vector_i, "vector_i")
+        self.P_i = self._point(0, self.point_i, "point_i")
+        self.P_j = self._point(1, self.point_j, "point_j")
+
+    def phi(self, Q, t=t_symbol):
+        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
+        return [_sym_dot(_sym_vec(Q[0], _sym3(self.a_i)), d)]
+
+    def params(self):
+        return {"ai": self.a_i, "Pi": self.P_i, "Pj": self.P_j}
+
+
+class _ParallelMixin:
+    def _bind_axis(self, spec, what="vector_i"):
+        self.a_i = self._vector(0, spec, what)
+        self.h1, self.h2 = _perpendiculars(self.a_i)
+
+    def _phi_p1(self, Q):
+        sj = _sym_vec(Q[1], _sym3(self.a_j))
+        return [_sym_dot(_sym_vec(Q[0], _sym3(h)), sj) for h in (self.h1, self.h2)]
+
+    def _phi_p2(self, Q):
+        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
+        return [_sym_dot(_sym_vec(Q[0], _sym3(h)), d) for h in (self.h1, self.h2)]
+
+
+class Parallel1(_ParallelMixin, Constraint):
+    """Parallel-1 (p1,2): two body-fixed vectors stay parallel, s_i × s_j = 0 (textbook §14.4).
+
+    Written as h_1ᵀ s_j = h_2ᵀ s_j = 0 with h_1, h_2 ⊥ s_i fixed in body i (see the module notes): two
+    independent rows in every orientation.
+
+    Parameters
+    ----------
+    i, j : str
+    vector_i, vector_j : vector specs (see :class:`Normal1`)
+    """
+
+    type_name = "parallel-1"
+    label = "p1,2"
+    n_eq = 2
+    kernel = staticmethod(_kernel(_rows_p1))
+
+    def __init__(self, i, j, vector_i, vector_j, name=None):
+        super().__init__((i, j), name=name)
+        self.vector_i, self.vector_j = vector_i, vector_j
+
+    def _bind_points(self):
+        self._bind_axis(self.vector_i)
+        self.a_j = self._vector(1, self.vector_j, "vector_j")
+
+    def phi(self, Q, t=t_symbol):
+        return self._phi_p1(Q)
+
+    def params(self):
+        return {"h1": self.h1, "h2": self.h2, "sj": self.a_j}
+
+
+class Parallel2(_ParallelMixin, Constraint):
+    """Parallel-2 (p2,2): a vector of body i stays parallel to d = r_j^P − r_i^P, s_i × d = 0 (§14.4).
+
+    Written as h_1ᵀ d = h_2ᵀ d = 0 with h_1, h_2 ⊥ s_i fixed in body i.
+    """
+
+    type_name = "parallel-2"
+    label = "p2,2"
+    n_eq = 2
+    kernel = staticmethod(_kernel(_rows_p2))
+
+    def __init__(self, i, j, vector_i, point_i, point_j, name=None):
+        super().__init__((i, j), name=name)
+        self.vector_i, self.point_i, self.point_j = vector_i, point_i, point_j
+
+    def _bind_points(self):
+        self._bind_axis(self.vector_i)
+        self.P_i = self._point(0, self.point_i, "point_i")
+        self.P_j = self._point(1, self.point_j, "point_j")
+
+    def phi(self, Q, t=t_symbol):
+        return self._phi_p2(Q)
+
+    def params(self):
+        return {"h1": self.h1, "h2": self.h2, "Pi": self.P_i, "Pj": self.P_j}
+
+
+# ======================================================================================= joints
+class Spherical(Constraint):
+    """Spherical joint (s,3): r_i + A_i s'ᴾ_i − r_j − A_j s'ᴾ_j = 0 (textbook §14.4).
+
+    Parameters
+    ----------
+    i, j : str
+    point : str, optional
+        The joint centre when both bodies call it the same.
+    point_i, point_j : str or 3 numbers, optional
+    """
+
+    type_name = "spherical"
+    label = "s,3"
+    n_eq = 3
+    kernel = staticmethod(_kernel(_rows_s))
+
+    def __init__(self, i, j, point=None, point_i=None, point_j=None, name=None):
+        super().__init__((i, j), name=name)
+        self.point_i, self.point_j = _two_points(f"{self.type_name} joint", i, j, point, point_i, point_j)
+
+    def _bind_points(self):
+        self.P_i = self._point(0, self.point_i, "point_i")
+        self.P_j = self._point(1, self.point_j, "point_j")
+
+    def _phi_s(self, Q):
+        return list(_sym_point(Q[0], _sym3(self.P_i)) - _sym_point(Q[1], _sym3(self.P_j)))
+
+    def phi(self, Q, t=t_symbol):
+        return self._phi_s(Q)
+
+    def params(self):
+        return {"Pi": self.P_i, "Pj": self.P_j}
+
+
+class Universal(Spherical):
+    """Universal (Hooke) joint (s,3 + n1,1): a spherical joint whose cross arms stay perpendicular (§14.4).
+
+    Parameters
+    ----------
+    i, j : str
+    point, point_i, point_j : the centre P of the cross (see :class:`Spherical`)
+    vector_i, vector_j : vector specs
+        The cross arms: s'_i on body i, s'_j on body j; s_iᵀ s_j = 0.
+    """
+
+    type_name = "universal"
+    label = "s,3 + n1,1"
+    n_eq = 4
+    kernel = staticmethod(_kernel(_rows_s, _rows_n1))
+
+    def __init__(self, i, j, vector_i, vector_j, point=None, point_i=None, point_j=None, name=None):
+        super().__init__(i, j, point=point, point_i=point_i, point_j=point_j, name=name)
+        self.vector_i, self.vector_j = vector_i, vector_j
+
+    def _bind_points(self):
+        super()._bind_points()
+        self.a_i = self._vector(0, self.vector_i, "vector_i")
+        self.a_j = self._vector(1, self.vector_j, "vector_j")
+
+    def phi(self, Q, t=t_symbol):
+        return self._phi_s(Q) + [_sym_dot(_sym_vec(Q[0], _sym3(self.a_i)), _sym_vec(Q[1], _sym3(self.a_j)))]
+
+    def params(self):
+        return {"Pi": self.P_i, "Pj": self.P_j, "ai": self.a_i, "aj": self.a_j}
+
+
+class Revolute(_ParallelMixin, Spherical):
+    """Revolute joint (s,3 + p1,2): a point on the axis is shared and the axes stay parallel (§14.4).
+
+    Parameters
+    ----------
+    i, j : str
+    point, point_i, point_j : a point on the joint axis (see :class:`Spherical`)
+    axis_i, axis_j : vector specs
+        The joint axis in body i and in body j.
+    """
+
+    type_name = "revolute"
+    label = "s,3 + p1,2"
+    n_eq = 5
+    kernel = staticmethod(_kernel(_rows_s, _rows_p1))
+
+    def __init__(self, i, j, axis_i, axis_j, point=None, point_i=None, point_j=None, name=None):
+        super().__init__(i, j, point=point, point_i=point_i, point_j=point_j, name=name)
+        self.axis_i, self.axis_j = axis_i, axis_j
+
+    def _bind_points(self):
+        super()._bind_points()
+        self._bind_axis(self.axis_i, "axis_i")
+        self.a_j = self._vector(1, self.axis_j, "axis_j")
+
+    def phi(self, Q, t=t_symbol):
+        return self._phi_s(Q) + self._phi_p1(Q)
+
+    def params(self):
+        return {"Pi": self.P_i, "Pj": self.P_j, "h1": self.h1, "h2": self.h2, "sj": self.a_j}
+
+
+class Cylindrical(_ParallelMixin, Constraint):
+    """Cylindrical joint (p1,2 + p2,2): parallel axes, and P_j stays on the axis of body i (§14.4).
+
+    Parameters
+    ----------
+    i, j : str
+    axis_i, axis_j : vector specs
+    point_i, point_j : points on the axis, P_i on body i and P_j on body j (they may coincide).
+    """
+
+    type_name = "cylindrical"
+    label = "p1,2 + p2,2"
+    n_eq = 4
+    kernel = staticmethod(_kernel(_rows_p1, _rows_p2))
+
+    def __init__(self, i, j, axis_i, axis_j, point=None, point_i=None, point_j=None, name=None):
+        super().__init__((i, j), name=name)
+        self.point_i, self.point_j = _two_points(f"{self.type_name} joint", i, j, point, point_i, point_j)
+        self.axis_i, self.axis_j = axis_i, axis_j
+
+    def _bind_points(self):
+        self._bind_axis(self.axis_i, "axis_i")
+        self.a_j = self._vector(1, self.axis_j, "axis_j")
+        self.P_i = self._point(0, self.point_i, "point_i")
+        self.P_j = self._point(1, self.point_j, "point_j")
+
+    def phi(self, Q, t=t_symbol):
+        return self._phi_p1(Q) + self._phi_p2(Q)
+
+    def params(self):
+        return {"h1": self.h1, "h2": self.h2, "sj": self.a_j, "Pi": self.P_i, "Pj": self.P_j}
+
+
+class Translational(Cylindrical):
+    """Translational (prismatic) joint (p1,2 + p2,2 + n1,1): a cylindrical joint whose relative rotation is
+    locked by two vectors h_i, h_j perpendicular to the axis that stay perpendicular (§14.4).
+
+    Parameters
+    ----------
+    i, j, axis_i, axis_j, point, point_i, point_j : as :class:`Cylindrical`
+    perp_i, perp_j : vector specs, optional
+        h_i on body i and h_j on body j. Default h_i: a vector ⊥ axis_i; default h_j: the vector of body j
+        that is perpendicular to both h_i and the axis at the bodies' q0 (so the joint holds its q0
+        relative orientation).
+    """
+
+    type_name = "translational"
+    label = "p1,2 + p2,2 + n1,1"
+    n_eq = 5
+    kernel = staticmethod(_kernel(_rows_p1, _rows_p2, _rows_n1))
+
+    def __init__(self, i, j, axis_i, axis_j, point=None, point_i=None, point_j=None, perp_i=None, perp_j=None,
+                 name=None):
+        super().__init__(i, j, axis_i, axis_j, point=point, point_i=point_i, point_j=point_j, name=name)
+        self.perp_i, self.perp_j = perp_i, perp_j
+
+    def _bind_points(self):
+        super()._bind_points()
+        self.hp_i = self.h1 if self.perp_i is None else self._vector(0, self.perp_i, "perp_i")
+        u, h = self.a_i / np.linalg.norm(self.a_i), self.hp_i / np.linalg.norm(self.hp_i)
+        if np.linalg.norm(np.cross(u, h)) < 1e-6:
+            raise ModelError(f"{self.describe()}: perp_i is parallel to the axis; it must be perpendicular to it")
+        if self.perp_j is None:
+            Ai, Aj = (_A_q0(b) for b in self.bodies)
+            g = Ai @ np.cross(self.a_i / np.linalg.norm(self.a_i), self.hp_i / np.linalg.norm(self.hp_i))
+            self.hp_j = Aj.T @ g
+        else:
+            self.hp_j = self._vector(1, self.perp_j, "perp_j")
+
+    def phi(self, Q, t=t_symbol):
+        n1 = _sym_dot(_sym_vec(Q[0], _sym3(self.hp_i)), _sym_vec(Q[1], _sym3(self.hp_j)))
+        return self._phi_p1(Q) + self._phi_p2(Q) + [n1]
+
+    def params(self):
+        return dict(super().params(), ai=self.hp_i, aj=self.hp_j)
+
+
+def _A_q0(body):
+    """Rotation matrix of a body at its q0 (whose p the Body has normalized)."""
+    return _A_sym(np.array([float(v) for v in body.q0[3:]]))
+
+
+class SphericalSpherical(Constraint):
+    """Spherical–spherical composite joint (s-s,1): a massless link of length l between P_i and P_j,
+    dᵀd − l² = 0 (the spatial counterpart of the planar revolute–revolute joint)."""
+
+    type_name = "spherical-spherical"
+    label = "s-s,1"
+    n_eq = 1
+    kernel = staticmethod(_kernel(_rows_ss))
+
+    def __init__(self, i, j, point_i, point_j, length, name=None):
+        super().__init__((i, j), name=name)
+        self.point_i, self.point_j = point_i, point_j
+        self.length = length
+
+    def _bind_points(self):
+        self.P_i = self._point(0, self.point_i, "point_i")
+        self.P_j = self._point(1, self.point_j, "point_j")
+        try:
+            self.l = float(sp.sympify(self.length))
+        except (TypeError, ValueError, sp.SympifyError):
+            self.l = float("nan")
+        if not (np.isfinite(self.l) and self.l > 0):
+            raise ModelError(f"{self.describe()}: length must be a positive number, got {self.length!r}")
+
+    def phi(self, Q, t=t_symbol):
+        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
+        return [_sym_dot(d, d) - _num(self.l) ** 2]
+
+    def params(self):
+        return {"Pi": self.P_i, "Pj": self.P_j, "l": self.l}
+
+
+# ======================================================================================= drivers
+class RevoluteDriver(Constraint):
+    """Rotation driver about a revolute axis: θ(q) − f(t) = 0.
+
+    θ is the angle from the reference vector f_i of body i to the reference vector f_j of body j, measured
+    about the axis u_i of body i (right-hand rule): θ = atan2(g_iᵀ f_j, f_iᵀ f_j), with f_i made
+    perpendicular to u_i and g_i = u_i × f_i. The mechanism wraps Φ into (−π, π], so f(t) may grow without
+    bound (a crank turning many times). Φ_q is regular while f_j is not parallel to the axis.
+
+    Parameters
+    ----------
+    i, j : str
+    axis_i : vector spec on body i
+    f : str or number
+        θ as a function of time, radians (e.g. ``"pi/4 + 2*pi*t"``).
+    ref_i, ref_j : vector specs, optional
+        Default ref_i: a vector ⊥ axis_i; default ref_j: the vector of body j that coincides with ref_i at
+        the bodies' q0, so that θ(q0) = 0.
+    """
+
+    type_name = "revolute-driver"
+    label = "d"
+    n_eq = 1
+    kind = "driver"
+    angular = True
+    kernel = staticmethod(_kernel(_rows_angle))
+
+    def __init__(self, i, j, axis_i, f, ref_i=None, ref_j=None, name=None):
+        super().__init__((i, j), name=name, f=f)
+        self.axis_i, self.ref_i, self.ref_j = axis_i, ref_i, ref_j
+
+    def _bind_points(self):
+        u = self._vector(0, self.axis_i, "axis_i")
+        u = u / np.linalg.norm(u)
+        fi = _perpendiculars(u)[0] if self.ref_i is None else self._vector(0, self.ref_i, "ref_i")
+        fi = fi - u * (u @ fi)
+        if np.linalg.norm(fi) < 1e-9:
+            raise ModelError(f"{self.describe()}: ref_i is parallel to the axis")
+        self.f_i = fi / np.linalg.norm(fi)
+        self.g_i = np.cross(u, self.f_i)
+        if self.ref_j is None:
+            Ai, Aj = (_A_q0(b) for b in self.bodies)
+            self.f_j = Aj.T @ (Ai @ self.f_i)
+        else:
+            self.f_j = self._vector(1, self.ref_j, "ref_j")
+
+    def phi(self, Q, t=t_symbol):
+        fj = _sym_vec(Q[1], _sym3(self.f_j))
+        c = _sym_dot(_sym_vec(Q[0], _sym3(self.f_i)), fj)
+        s = _sym_dot(_sym_vec(Q[0], _sym3(self.g_i)), fj)
+        return [sp.atan2(s, c) - self._f_expr(t)]
+
+    def params(self):
+        return {"fi": self.f_i, "gi": self.g_i, "fj": self.f_j}
+
+
+class DistanceDriver(Constraint):
+    """Distance driver along a translational or cylindrical axis: u_iᵀ(r_j^P − r_i^P) − f(t) = 0.
+
+    u_i is the unit vector of ``axis_i`` fixed in body i; the driver prescribes the distance of P_j from
+    P_i measured along it.
+    """
+
+    type_name = "distance-driver"
+    label = "d"
+    n_eq = 1
+    kind = "driver"
+    kernel = staticmethod(_kernel(_rows_distance))
+
+    def __init__(self, i, j, axis_i, point_i, point_j, f, name=None):
+        super().__init__((i, j), name=name, f=f)
+        self.axis_i, self.point_i, self.point_j = axis_i, point_i, point_j
+
+    def _bind_points(self):
+        u = self._vector(0, self.axis_i, "axis_i")
+        self.u = u / np.linalg.norm(u)
+        self.P_i = self._point(0, self.point_i, "point_i")
+        self.P_j = self._point(1, self.point_j, "point_j")
+
+    def phi(self, Q, t=t_symbol):
+        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
+        return [_sym_dot(_sym_vec(Q[0], _sym3(self.u)), d) - self._f_expr(t)]
+
+    def params(self):
+        return {"u": self.u, "Pi": self.P_i, "Pj": self.P_j}
+
+
+CONSTRAINT_TYPES = {
+    cls.type_name: cls
+    for cls in (
+        Ground,
+        Normal1,
+        Normal2,
+        Parallel1,
+        Parallel2,
+        Spherical,
+        Universal,
+        Revolute,
+        Cylindrical,
+        Translational,
+        SphericalSpherical,
+        RevoluteDriver,
+        DistanceDriver,
+    )
+}
+"""Constraint classes by the ``type`` name used in mechanism files (normalization rows are added by the
+mechanism, one per body, and cannot be declared)."""
