@@ -8,7 +8,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinbook-installed
 PIN    := requirements/constraints.txt
 
-.PHONY: lab test install kernel lock clean
+.PHONY: lab test install kernel lock clean notebooks
 
 install: $(STAMP)
 
@@ -29,6 +29,12 @@ lab: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=120
+
+# Re-execute stored notebooks in place after a library change (NB=path to do only some)
+NB ?= chapters/*.ipynb exercises/*.ipynb
+notebooks: $(STAMP)
+	$(BIN)/jupyter nbconvert --to notebook --execute --inplace --ExecutePreprocessor.kernel_name=kinbook \
+		--ExecutePreprocessor.record_timing=False --ExecutePreprocessor.timeout=300 $(wildcard $(NB))
 
 # Re-pin the environment after a dependency change (run on the reference machine class: Python 3.11, Linux).
 lock:
