@@ -22,6 +22,8 @@ from .errors import (
     UnknownPointError,
 )
 from .io import load, loads
+from . import grading  # noqa: E402  (after the modules it grades with)
+from .grading import set_language
 
 __version__ = "0.1.0"
 
@@ -30,6 +32,8 @@ __all__ = [
     "loads",
     "examples",
     "planar",
+    "grading",
+    "set_language",
     "spatial",
     "KinbookError",
     "ModelError",

@@ -1,0 +1,121 @@
+"""Results of a check: :class:`CheckResult` and the per-row :class:`RowResult` it is made of.
+
+Modelled on otter-grader's test results: small frozen dataclasses that render themselves in a notebook
+(``_repr_html_``: a table with one coloured line per row of Φ, Φ_q, ν or γ) and print plainly in a terminal.
+"""
+
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass, field
+
+__all__ = ["CheckResult", "RowResult"]
+
+_COLOURS = {"ok": "#d4edda", "wrong": "#f8d7da", "missing": "#fff3cd", "extra": "#fff3cd", "info": "#e2e3e5"}
+_SYMBOL = {"ok": "✓", "wrong": "✗", "missing": "∅", "extra": "+", "info": "·"}
+
+
+@dataclass(frozen=True)
+class RowResult:
+    """Verdict on one row of the answer (one equation of Φ, one row of Φ_q, one entry of ν or γ).
+
+    Attributes
+    ----------
+    label : str
+        The book's name of the row the answer row was matched to ("Φ_4"), or the answer's own row.
+    status : {"ok", "wrong", "missing", "extra"}
+    message : str
+    mistake : str or None
+        Catalogue code of the mistake found in this row.
+    entries : tuple of str, optional
+        For Φ_q: one status per column ("ok", "wrong" or a mistake code).
+    score : float
+        Credit for this row, in [0, 1].
+    """
+
+    label: str
+    status: str
+    message: str = ""
+    mistake: str | None = None
+    entries: tuple = ()
+    score: float = 0.0
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """The verdict of a checker.
+
+    Attributes
+    ----------
+    passed : bool
+        True when the answer is fully correct (score 1).
+    score : float
+        Partial credit in [0, 1].
+    messages : list of str
+        What is right and wrong, in the current language (:func:`kinbook.set_language`).
+    mistakes : list of str
+        Catalogue codes of the mistakes found, without repetitions, in order of appearance
+        (see :mod:`kinbook.grading.catalogue` and docs/mistakes.md).
+    rows : tuple of RowResult
+        Per-row (and, for Φ_q, per-entry) detail.
+    quantity : str
+        "Φ", "Φ_q", "ν", "γ" or the name of a value.
+    columns : tuple of str
+        Names of the columns of Φ_q (coordinates), when ``rows`` carry entries.
+    """
+
+    passed: bool
+    score: float
+    messages: list = field(default_factory=list)
+    mistakes: list = field(default_factory=list)
+    rows: tuple = ()
+    quantity: str = ""
+    columns: tuple = ()
+
+    def __bool__(self):
+        return bool(self.passed)
+
+    def __repr__(self):
+        head = f"CheckResult({self.quantity}: {'passed' if self.passed else 'failed'}, score={self.score:.2f}"
+        if self.mistakes:
+            head += f", mistakes={self.mistakes}"
+        lines = [head + ")"]
+        lines += [f"  {m}" for m in self.messages]
+        return "\n".join(lines)
+
+    def _repr_html_(self):
+        colour = "#155724" if self.passed else "#721c24"
+        verdict = "✓" if self.passed else "✗"
+        out = [
+            f'<div><p style="color:{colour};font-weight:bold">{verdict} {html.escape(self.quantity)} — '
+            f"score {self.score:.2f}</p>"
+        ]
+        if self.messages:
+            out.append("<ul>" + "".join(f"<li>{html.escape(m)}</li>" for m in self.messages) + "</ul>")
+        if self.rows:
+            with_entries = any(r.entries for r in self.rows) and self.columns
+            head = "<th>row</th>"
+            if with_entries:
+                head += "".join(f"<th>{html.escape(c)}</th>" for c in self.columns)
+            head += "<th>verdict</th>"
+            body = []
+            for r in self.rows:
+                bg = _COLOURS.get(r.status, "#ffffff")
+                cells = f"<td>{html.escape(r.label)}</td>"
+                if with_entries:
+                    for e in (r.entries or ("",) * len(self.columns)):
+                        c = _COLOURS["ok"] if e == "ok" else (_COLOURS["wrong"] if e else "#ffffff")
+                        mark = "✓" if e == "ok" else ("✗" if e else "")
+                        cells += f'<td style="background:{c};text-align:center" title="{html.escape(e)}">{mark}</td>'
+                cells += f"<td>{_SYMBOL.get(r.status, '')} {html.escape(r.message)}</td>"
+                body.append(f'<tr style="background:{bg}">{cells}</tr>')
+            out.append(f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>")
+        if self.mistakes:
+            out.append("<p>mistakes: " + ", ".join(f"<code>{html.escape(m)}</code>" for m in self.mistakes) + "</p>")
+        out.append("</div>")
+        return "".join(out)
+
+
+def failed(quantity, message, mistake, rows=()):
+    """A failed CheckResult with one message and one mistake code (malformed answers)."""
+    return CheckResult(False, 0.0, [message], [mistake] if mistake else [], tuple(rows), quantity)

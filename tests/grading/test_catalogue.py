@@ -1,0 +1,36 @@
+"""The catalogue, its documentation and the corpus agree."""
+
+import re
+from pathlib import Path
+
+from kinbook import grading
+from kinbook.grading import MISTAKES, explain
+
+from .corpus import CASES
+
+DOC = Path(__file__).resolve().parents[2] / "docs" / "mistakes.md"
+
+
+def test_every_code_is_documented_and_bilingual():
+    text = DOC.read_text(encoding="utf-8")
+    documented = set(re.findall(r"^\| `([a-zA-Z_]+)` \|", text, flags=re.M))
+    assert documented == set(MISTAKES)
+    for code, m in MISTAKES.items():
+        assert m.title["en"] and m.title["es"] and m.hint["en"] and m.hint["es"], code
+        assert explain(code, "es")[0] == m.title["es"]
+
+
+def test_corpus_codes_are_catalogued_and_cover_the_planar_catalogue():
+    seen = {code for case in CASES for code in case.mistakes}
+    assert seen <= set(MISTAKES)
+    # covered elsewhere: test_checks (missing_qt_term, wrong_value), test_spatial (missing_normalization),
+    # test_values (scaled, not_orthogonal, not_normalized)
+    elsewhere = {"missing_qt_term", "wrong_value", "missing_normalization", "scaled", "not_orthogonal",
+                 "not_normalized"}
+    assert set(MISTAKES) - seen <= elsewhere, set(MISTAKES) - seen - elsewhere
+
+
+def test_public_api():
+    for name in ("check_phi", "check_jacobian", "check_nu", "check_gamma", "check_value", "check_rotation",
+                 "check_euler_parameters", "CheckResult", "Exercise", "set_language"):
+        assert name in grading.__all__

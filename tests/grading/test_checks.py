@@ -1,0 +1,276 @@
+"""Error carried forward, numeric answers, robustness, language and rendering of the checkers."""
+
+import time
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import kinbook
+from kinbook import grading
+from kinbook.grading import check_gamma, check_jacobian, check_nu, check_phi
+
+from .corpus import EX1_JAC, EX1_PHI_SIMPLE, mechanism, target
+
+JOINT3_SWAPPED_PHI = ["x2 - 3*cos(phi2) - x3 - cos(phi3)", "y2 - 3*sin(phi2) - y3 - sin(phi3)"]
+JOINT3_SWAPPED_JAC = [["1", "0", "3*sin(phi2)", "-1", "0", "sin(phi3)"],
+                      ["0", "1", "-3*cos(phi2)", "0", "-1", "-cos(phi3)"]]
+JOINT3_REORDERED_PHI = ["-(y2 + sin(phi2) - y3 + 3*sin(phi3))", "x2 + cos(phi2) - x3 + 3*cos(phi3)"]
+JOINT3_REORDERED_JAC = [["0", "-1", "-cos(phi2)", "0", "1", "-3*cos(phi3)"],
+                        ["1", "0", "-sin(phi2)", "-1", "0", "-3*sin(phi3)"]]
+
+
+# ------------------------------------------------------------------------------- error carried forward
+def test_jacobian_of_a_wrong_phi_gets_full_credit_when_phi_is_given():
+    joint = target("ch13_example1", "3")
+    assert check_phi(JOINT3_SWAPPED_PHI, joint).mistakes == ["swapped_points"]
+    r = check_jacobian(JOINT3_SWAPPED_JAC, joint, phi=JOINT3_SWAPPED_PHI)
+    assert (r.passed, r.score, r.mistakes) == (True, 1.0, [])
+    assert "consistent with your Φ" in r.messages[0]
+    # without the student's Φ the same answer is the Jacobian of a Φ with swapped points
+    r = check_jacobian(JOINT3_SWAPPED_JAC, joint)
+    assert (r.passed, r.score, r.mistakes) == (False, 0.5, ["swapped_points"])
+
+
+def test_rows_are_matched_to_the_students_own_order_and_scale():
+    joint = target("ch13_example1", "3")
+    r = check_jacobian(JOINT3_REORDERED_JAC, joint, phi=JOINT3_REORDERED_PHI)
+    assert (r.passed, r.score) == (True, 1.0)
+    assert [row.label for row in r.rows] == ["Φ_9", "Φ_8"]
+    assert all(row.message == "consistent with your Φ, and correct" for row in r.rows)
+    # without phi the book's order is expected
+    r = check_jacobian(JOINT3_REORDERED_JAC, joint)
+    assert (r.passed, r.score, r.mistakes) == (False, 0.5, ["row_order"])
+    assert check_jacobian(JOINT3_REORDERED_JAC, joint, order="any").passed
+
+
+def test_phi_given_as_a_function_still_orders_the_rows():
+    joint = target("ch13_example1", "3")
+
+    def phi(q, t):
+        x2, y2, p2, x3, y3, p3 = q[3:9]
+        return [-(y2 + np.sin(p2) - y3 + 3 * np.sin(p3)), x2 + np.cos(p2) - x3 + 3 * np.cos(p3)]
+
+    r = check_jacobian(JOINT3_REORDERED_JAC, joint, phi=phi)
+    assert (r.passed, r.score) == (True, 1.0)
+
+
+def test_derivation_mistake_against_own_phi_is_named():
+    joint = target("ch13_example1", "3")
+    r = check_jacobian([["0", "-1", "0", "0", "1", "0"], ["1", "0", "0", "-1", "0", "0"]], joint,
+                       phi=JOINT3_REORDERED_PHI)
+    assert (r.passed, r.score, r.mistakes) == (False, 0.5, ["missing_chain_rule"])
+
+
+def test_gamma_and_nu_with_a_time_dependent_student_phi():
+    driver = target("pendulum", "driver 1")
+    own = ["phi2 - t*x2"]  # wrong Φ, but γ = −2Φ_qt q̇ = 2 dx2 follows from it
+    assert check_gamma(["2*dx2"], driver, phi=own).passed
+    r = check_gamma(["0"], driver, phi=own)
+    assert (r.passed, r.mistakes) == (False, ["missing_qt_term"])
+    assert check_nu(["x2"], driver, phi=own).passed
+    r = check_nu(["-x2"], driver, phi=own)
+    assert r.mistakes == ["nu_sign"]
+
+
+def test_unusable_phi_falls_back_to_the_book():
+    joint = target("ch13_example1", "3")
+    jac = [["1", "0", "-sin(phi2)", "-1", "0", "-3*sin(phi3)"], ["0", "1", "cos(phi2)", "0", "-1", "3*cos(phi3)"]]
+    r = check_jacobian(jac, joint, phi="x2 +* 1")
+    assert r.passed
+    assert any("could not be used" in m for m in r.messages)
+
+
+# ------------------------------------------------------------------------------- numbers at a configuration
+def test_numeric_answers_at_the_stated_configuration():
+    mech = mechanism("ch13_example1")
+    q = mech.solve_position(0.0)
+    qd = mech.solve_velocity(q, 0.0)
+    at = {"q": q, "qd": qd, "t": 0.0}
+    assert check_jacobian(np.round(mech.Phi_q(q, 0.0), 4), mech, at=at).passed
+    assert check_jacobian(np.round(mech.Phi_q(q, 0.0), 4), mech).passed  # default: assembled at t = 0
+    g = mech.gamma(q, qd, 0.0)
+    assert check_gamma(np.round(g, 2), mech, at=at).passed
+    r = check_gamma(np.round(-g, 2), mech, at=at)
+    assert r.mistakes == ["gamma_sign"]
+    r = check_nu([0] * 11 + [100.0], mech, at=at)
+    assert r.passed
+
+
+# ------------------------------------------------------------------------------- robustness
+def test_pathological_expression_returns_quickly():
+    joint = target("ch13_example1", "1")
+    x1 = sp.Symbol("x1")
+    e = x1
+    for _ in range(40):
+        e = sp.sin(e + x1) ** 2 + sp.cos(e)
+    t0 = time.perf_counter()
+    r = check_phi([e, e], joint)
+    assert time.perf_counter() - t0 < 5.0
+    assert not r.passed and r.mistakes in (["malformed"], ["wrong_value"])
+
+
+def test_huge_string_is_refused():
+    joint = target("ch13_example1", "1")
+    r = check_phi(["+".join(["x1"] * 20000), "y1"], joint)
+    assert (r.passed, r.mistakes) == (False, ["malformed"])
+    assert "too large" in r.messages[0]
+
+
+def test_deeply_nested_string_does_not_crash():
+    joint = target("ch13_example1", "1")
+    t0 = time.perf_counter()
+    r = check_phi(["(" * 3000 + "x1" + ")" * 3000, "y1"], joint)
+    assert time.perf_counter() - t0 < 5.0
+    assert not r.passed
+
+
+@pytest.mark.parametrize("answer", [
+    [object(), "x1"], 3 + 4j, "x1 - x2 + cos(phi2)", [[]], [], [float("inf"), 0.0],
+    lambda q: [1, 2], lambda q, t: "abc", lambda q, t: [[1, 2], [3, 4]],
+])
+def test_malformed_answers_never_raise(answer):
+    for check in (check_phi, check_jacobian, check_nu, check_gamma):
+        r = check(answer, target("ch13_example1", "1"))
+        assert isinstance(r, grading.CheckResult)
+        assert not r.passed and r.messages and r.mistakes
+
+
+def test_target_that_is_not_a_mechanism():
+    r = check_phi(["x1"], "four-bar")
+    assert not r.passed and r.mistakes == ["malformed"]
+
+
+# ------------------------------------------------------------------------------- language and rendering
+def test_spanish_feedback():
+    joint = target("ch13_example1", "3")
+    try:
+        kinbook.set_language("es")
+        r = check_phi(JOINT3_SWAPPED_PHI, joint)
+        assert "filas Φ_8–Φ_9" in r.messages[1]
+        assert "par de revolución 3" in r.messages[1]
+        assert "puntos locales intercambiados" in r.messages[1]
+        assert check_phi(EX1_PHI_SIMPLE, mechanism("ch13_example1")).messages[0].startswith("Φ es correcto")
+    finally:
+        kinbook.set_language("en")
+    with pytest.raises(kinbook.InputError, match="`lang`"):
+        kinbook.set_language("fr")
+
+
+def test_row_names_follow_the_book():
+    r = check_phi(EX1_PHI_SIMPLE[:11], mechanism("ch13_example1"))
+    assert r.rows[11].label == "Φ_12" and r.rows[11].status == "missing"
+    assert "driver 1 (row Φ_12)" in r.messages[1]
+
+
+def test_html_and_repr():
+    r = check_jacobian(EX1_JAC[:11], mechanism("ch13_example1"))
+    html = r._repr_html_()
+    assert "<table>" in html and "φ2" in html and "missing_row" in html
+    text = repr(r)
+    assert text.startswith("CheckResult(Φ_q: failed, score=0.92") and "Φ_12" in text
+    ok = check_phi(EX1_PHI_SIMPLE, mechanism("ch13_example1"))
+    assert "✓" in ok._repr_html_() and bool(ok)
+
+
+def test_result_is_frozen():
+    r = check_phi(EX1_PHI_SIMPLE, mechanism("ch13_example1"))
+    with pytest.raises(Exception):
+        r.passed = False
+
+
+def test_symbols_are_matched_by_name():
+    mech = mechanism("ch13_example1")
+    x1, y1, phi1 = sp.symbols("x1 y1 phi1")  # the student's own, not real=True
+    rows = [x1, y1, phi1] + EX1_PHI_SIMPLE[3:]
+    assert check_phi(rows, mech).passed
+
+
+@pytest.mark.parametrize("answer, code", [
+    ([sp.zoo, 0], "not_finite"), ([sp.I * sp.Symbol("x1"), 0], "not_finite"), (["sqrt(-1 - x1**2)", "y1"], "not_finite"),
+    ([sp.Function("f")(sp.Symbol("x1")), 0], "malformed"), (["x1 < 2", "y1"], "malformed"), ("x1 == 2", "malformed"),
+    ([True, False], "malformed"), (["", "y1"], "malformed"), ([[1, 2], [3]], "wrong_shape"),
+    ([sp.Matrix([1, 2]), "y1"], "wrong_shape"), (["x1**1e10", "y1"], "not_finite"),
+])
+def test_odd_inputs(answer, code):
+    r = check_phi(answer, target("ch13_example1", "1"))
+    assert (r.passed, r.mistakes) == (False, [code]), repr(r)
+
+
+def test_symbolic_confirmation():
+    mech = mechanism("ch13_example1")
+    r = check_phi(EX1_PHI_SIMPLE, mech, symbolic=True)
+    assert r.passed and r.messages[-1] == "sympy confirmed the equivalence symbolically"
+    r = check_jacobian(EX1_JAC, mech, symbolic=True)
+    assert r.passed and r.messages[-1] == "sympy confirmed the equivalence symbolically"
+
+
+def test_checks_work_outside_the_main_thread():
+    import threading
+
+    out = {}
+
+    def work():
+        out["r"] = check_jacobian(EX1_JAC, mechanism("ch13_example1"), symbolic=True)
+
+    th = threading.Thread(target=work)
+    th.start()
+    th.join(60)
+    assert out["r"].passed  # no time limit there: the symbolic confirmation is skipped, not run unbounded
+    assert "could not confirm" in out["r"].messages[-1]
+
+
+def test_entries_of_a_jacobian_row():
+    r = check_jacobian([["1", "0", "sin(phi2)", "-1", "0", "-3*sin(phi3)"],
+                        ["0", "1", "cos(phi2)", "0", "-1", "3*cos(phi3)"]], target("ch13_example1", "3"))
+    assert r.rows[0].entries == ("ok", "ok", "sign_flip", "ok", "ok", "ok")
+    assert r.rows[1].entries == ("ok",) * 6
+    assert r.columns == ("x2", "y2", "φ2", "x3", "y3", "φ3")
+    assert "∂/∂φ2" in r.messages[1]
+
+
+def test_a_function_that_never_returns_is_abandoned():
+    def forever(q, t):
+        while True:
+            pass
+
+    t0 = time.perf_counter()
+    r = check_phi(forever, target("ch13_example1", "1"))
+    assert time.perf_counter() - t0 < 8.0
+    assert (r.passed, r.mistakes) == (False, ["malformed"]) and "longer than" in r.messages[0]
+
+
+@pytest.mark.parametrize("text", ["9**9**9**9", "x1**123456789 + 1", "(2)**(99999)"])
+def test_huge_integer_powers_are_refused(text):
+    t0 = time.perf_counter()
+    r = check_phi([text, "y1"], target("ch13_example1", "1"))
+    assert time.perf_counter() - t0 < 3.0
+    assert not r.passed
+
+
+def test_graded_mechanisms_can_be_freed():
+    import gc
+    import weakref
+
+    mech = kinbook.examples.load("ch13_example1")
+    ref = weakref.ref(mech)
+    assert check_phi(["x1 - x2 + cos(phi2)", "y1 - y2 + sin(phi2)"], mech.constraint("1")).passed
+    del mech
+    gc.collect()
+    assert ref() is None
+
+
+def test_any_order_still_diagnoses_wrong_and_missing_rows():
+    mech = mechanism("ch13_example1")
+    rows = EX1_JAC[::-1]
+    wrong = _with_entry(rows, 4, 5, "(1)*sin(phi2)")  # reversed: answer row 4 is the book's Φ_8
+    r = check_jacobian(wrong, mech, order="any")
+    assert (r.passed, r.mistakes) == (False, ["sign_flip"]) and r.rows[4].label == "Φ_8"
+    r = check_jacobian(rows[1:], mech, order="any")
+    assert (r.passed, r.mistakes) == (False, ["missing_row"]) and r.rows[-1].label == "Φ_12"
+
+
+def _with_entry(rows, k, col, value):
+    out = [list(r) for r in rows]
+    out[k][col] = value
+    return out
