@@ -1,0 +1,27 @@
+"""The instructor's side of kinbook: author, release, grade (issue #7).
+
+* :func:`part` and :func:`parameters` — what an exercise notebook declares (:mod:`.parts`);
+* :func:`release` — students' versions of source notebooks (:mod:`.release`);
+* :func:`variant` — one student's version with their own parameters (:mod:`.variant`);
+* :func:`grade` — run submissions in sandboxes, grade their answers, write the gradebook (:mod:`.grade`).
+
+See docs/instructors.md and the README's "For instructors" section.
+"""
+
+import sys as _sys
+
+# jsonschema (imported by nbformat) spends ~5 s compiling an IRI grammar from the optional package
+# rfc3987_syntax; notebooks never use that format, so the grader's processes skip it.
+if "jsonschema" not in _sys.modules:
+    _sys.modules.setdefault("rfc3987_syntax", None)
+
+from .grade import STATUSES, SubmissionResult, grade, grade_submission  # noqa: E402
+from .parts import Part, parameters, part  # noqa: E402
+from .release import release, write_variant  # noqa: E402
+from .variant import student_parameters, variant  # noqa: E402
+
+# (nbformat and nbclient are imported inside the functions that need them, so that a student's kernel that
+# imports ``part`` stays light)
+
+__all__ = ["part", "parameters", "Part", "release", "write_variant", "variant", "student_parameters", "grade",
+           "grade_submission", "SubmissionResult", "STATUSES"]

@@ -1,0 +1,177 @@
+"""What an exercise notebook declares: graded parts and per-student parameters.
+
+An instructor writes, in a code cell of the source notebook::
+
+    part("phi", points=4, answer="Phi", check="phi", target=mech.constraint("2"))
+
+* ``answer`` names the variable the student assigns (``Phi = ...``);
+* ``check`` names a kinbook checker: ``"phi"``, ``"jacobian"``, ``"nu"``, ``"gamma"`` (``target`` is a
+  mechanism or one of its constraints) or ``"value"``, ``"rotation"``, ``"euler_parameters"`` (``expected``
+  is the reference value, computed with kinbook in the notebook);
+* other keyword arguments go to the checker (``order="book"``, ``rtol=...``, ``angles=True`` …); ``phi="Phi"``
+  on a Jacobian, ν or γ part grades it against the student's own Φ (error carried forward).
+
+Run in a notebook, :func:`part` checks the answer at once and shows the :class:`~kinbook.grading.CheckResult`
+(formative feedback). While grading, the declaration is read by the grader from the instructor's source — the
+student's copy of it is only compared with the released one — and the check runs in the grader's process.
+
+Per-student parameters are one assignment in a cell of their own::
+
+    P = parameters(crank=(1.5, 2.5), omega=[5, 10, 15], defaults={"crank": 2.0, "omega": 10})
+
+The instructor's notebook gets the defaults; ``kinbook variant`` and ``kinbook grade`` replace the call by
+the student's literal values (see :mod:`kinbook.classroom.variant`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+from dataclasses import dataclass, field
+
+from ..errors import GradingError
+
+__all__ = ["Part", "part", "parameters", "CHECKS", "recording"]
+
+#: check name → (function name in kinbook.grading, needs a target (True) or an expected value (False))
+CHECKS = {
+    "phi": ("check_phi", True),
+    "jacobian": ("check_jacobian", True),
+    "nu": ("check_nu", True),
+    "gamma": ("check_gamma", True),
+    "value": ("check_value", False),
+    "rotation": ("check_rotation", False),
+    "euler_parameters": ("check_euler_parameters", False),
+}
+
+
+@dataclass
+class Part:
+    """One graded part of an exercise.
+
+    Attributes
+    ----------
+    name : str
+        Short identifier, the ``part`` column of grades.csv.
+    points : float
+    answer : str
+        Name of the variable the student assigns.
+    check : str
+        Key of :data:`CHECKS`.
+    target : Mechanism or Constraint or None
+    expected : object or None
+    options : dict
+        Keyword arguments of the checker.
+    hidden : bool
+        Declared between ``### BEGIN HIDDEN CHECKS`` and ``### END HIDDEN CHECKS``.
+    """
+
+    name: str
+    points: float
+    answer: str
+    check: str
+    target: object = None
+    expected: object = None
+    options: dict = field(default_factory=dict)
+    hidden: bool = False
+
+    def run(self, value, answers=None):
+        """Grade ``value`` with the declared checker; ``answers`` resolves ``phi="Name"`` options."""
+        import kinbook.grading as grading
+
+        fname, needs_target = CHECKS[self.check]
+        fn = getattr(grading, fname)
+        options = dict(self.options)
+        if isinstance(options.get("phi"), str):
+            own = (answers or {}).get(options["phi"])
+            if own is None:
+                options.pop("phi")
+            else:
+                options["phi"] = own
+        return fn(value, self.target if needs_target else self.expected, **options)
+
+
+_recorder: list | None = None
+
+
+@contextlib.contextmanager
+def recording():
+    """Collect the parts declared while the block runs (the grader's reading of a source notebook);
+    :func:`part` then only records."""
+    global _recorder
+    previous, _recorder = _recorder, []
+    try:
+        yield _recorder
+    finally:
+        _recorder = previous
+
+
+def _validate(name, points, answer, check, target, expected):
+    if not isinstance(name, str) or not name.isidentifier():
+        raise GradingError(f"part name must be an identifier, got {name!r}")
+    if not isinstance(points, (int, float)) or points < 0:
+        raise GradingError(f"part {name!r}: points must be a number ≥ 0, got {points!r}")
+    if not isinstance(answer, str) or not answer.isidentifier():
+        raise GradingError(f"part {name!r}: answer must name a variable, got {answer!r}")
+    if check not in CHECKS:
+        raise GradingError(f"part {name!r}: unknown check {check!r} (one of {', '.join(CHECKS)})")
+    if CHECKS[check][1] and target is None:
+        raise GradingError(f"part {name!r}: check {check!r} needs target= (a mechanism or a constraint)")
+    if not CHECKS[check][1] and expected is None:
+        raise GradingError(f"part {name!r}: check {check!r} needs expected= (computed with kinbook)")
+
+
+def part(name, points, *, answer, check, target=None, expected=None, **options):
+    """Declare a graded part (see the module docstring); in a notebook, check the answer now.
+
+    Returns
+    -------
+    CheckResult or None
+        In a notebook the verdict is displayed (every ``part`` of a cell shows its own) and None is
+        returned; elsewhere the verdict is returned. None while grading or when ``answer`` is not assigned.
+    """
+    _validate(name, points, answer, check, target, expected)
+    p = Part(name, float(points), answer, check, target, expected, dict(options))
+    if _recorder is not None:
+        _recorder.append(p)
+        return None
+    if os.environ.get("KINBOOK_SANDBOX_ROOT"):
+        return None  # grading: the grader checks, from the source, in its own process
+    ns = _user_namespace()
+    if answer not in ns:
+        print(f"part {name!r} ({points:g} points): assign `{answer} = ...` above, then run this cell again")
+        return None
+    answers = {k: ns[k] for k in [options.get("phi")] if isinstance(k, str) and k in ns}
+    result = p.run(ns[answer], answers)
+    shell = _shell()
+    if shell is None:
+        return result
+    from IPython.display import display
+
+    display(result)
+    return None
+
+
+def _shell():
+    ipython = sys.modules.get("IPython")
+    return ipython.get_ipython() if ipython is not None else None
+
+
+def _user_namespace():
+    shell = _shell()
+    return shell.user_ns if shell is not None else vars(sys.modules["__main__"])
+
+
+def parameters(defaults=None, **ranges):
+    """Per-student parameters: ``(low, high)`` draws uniformly (rounded to 2 decimals, or to the number of
+    decimals of ``low``), a list draws one item. In the instructor's notebook: returns ``defaults``.
+
+    >>> parameters(crank=(1.5, 2.5), defaults={"crank": 2.0})
+    {'crank': 2.0}
+    """
+    defaults = dict(defaults or {})
+    missing = [k for k in ranges if k not in defaults]
+    if missing:
+        raise GradingError(f"parameters(): no default for {', '.join(missing)}")
+    return defaults

@@ -1,0 +1,81 @@
+"""Students' versions of source notebooks (``kinbook release`` and ``kinbook variant``)."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+
+from ..errors import GradingError
+from .notebook import load_source, locked_checksums, student_notebook
+from .variant import references, student_parameters
+
+__all__ = ["release", "write_variant", "write_notebook"]
+
+
+def write_notebook(nb, path):
+    """Write a notebook atomically (temporary file + ``os.replace``)."""
+    import nbformat
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            nbformat.write(nb, f)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path
+
+
+def release(sources, outdir="release"):
+    """Write the student version of each source notebook into ``outdir``.
+
+    Solutions become ``# YOUR CODE HERE`` / ``raise NotImplementedError()``, hidden checks are removed,
+    locked cells are marked read-only and their checksums recorded in the notebook's metadata and in
+    ``outdir/manifest.json`` (the grader recomputes them from the source: the manifest is for the record).
+    Parameters keep their defaults; use :func:`write_variant` for per-student versions.
+
+    Returns
+    -------
+    list of Path
+        The notebooks written.
+    """
+    import nbformat
+
+    if isinstance(sources, (str, os.PathLike)):
+        sources = [sources]
+    outdir = Path(outdir)
+    manifest_path = outdir / "manifest.json"
+    manifest = json.loads(manifest_path.read_text()) if manifest_path.exists() else {}
+    written = []
+    for src in sources:
+        source = load_source(src)
+        parts = references(source)  # fails early on an exercise that cannot be graded
+        nb = student_notebook(source)
+        if Path(src).resolve() == (outdir / f"{source.exercise}.ipynb").resolve():
+            raise GradingError(f"release would overwrite its source {src!r}: choose another -o directory")
+        written.append(write_notebook(nb, outdir / f"{source.exercise}.ipynb"))
+        manifest[source.exercise] = {
+            "locked": locked_checksums(nb),
+            "parts": [{"part": p.name, "points": p.points, "answer": p.answer, "check": p.check,
+                       "hidden": p.hidden} for p in parts],
+        }
+    outdir.mkdir(parents=True, exist_ok=True)
+    tmp = manifest_path.with_suffix(".json.tmp")
+    tmp.write_text(json.dumps(manifest, indent=1, sort_keys=True))
+    os.replace(tmp, manifest_path)
+    return written
+
+
+def write_variant(source, student, outdir="."):
+    """Write ``student``'s own version of ``source`` as ``outdir/<exercise>-<student>.ipynb``."""
+    from .notebook import student_notebook as _sn
+
+    source = load_source(source)
+    values = student_parameters(source, student)
+    return write_notebook(_sn(source, values, student), Path(outdir) / f"{source.exercise}-{student}.ipynb")

@@ -1,0 +1,137 @@
+"""Per-student parameters and the grader's references.
+
+:func:`student_parameters` draws a student's values from the ranges of the source's ``parameters(...)``
+cell with a seed derived from (exercise, student), so that the same student always gets the same values;
+a draw is kept only when the instructor's own code runs with it (the mechanism assembles, the analysis
+converges); otherwise the next draw is tried.
+
+:func:`references` is the grader's reading of a source notebook: it runs the source's code — without the
+solutions, with the hidden checks — in the grader's process, and returns the declared
+:class:`~kinbook.classroom.parts.Part` objects with their targets and expected values computed by kinbook.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import warnings
+
+import numpy as np
+
+from ..errors import GradingError, KinbookError
+from .notebook import find_parameters, grader_segments, load_source, student_notebook
+from .parts import parameters, part, recording
+
+__all__ = ["student_parameters", "variant", "references", "MAX_DRAWS"]
+
+MAX_DRAWS = 25
+
+
+def _seed(exercise, student, attempt):
+    # the same derivation as kinbook.grading.exercise (a student id → a reproducible seed), per exercise
+    from ..grading.exercise import seed_from
+
+    return seed_from(f"{exercise}:{student}:{attempt}")
+
+
+def _draw(ranges, defaults, rng):
+    out = dict(defaults)
+    for name, spec in sorted(ranges.items()):
+        if isinstance(spec, tuple) and len(spec) == 2:
+            lo, hi = spec
+            text = repr(float(lo))
+            digits = max(2, len(text.split(".")[1]) if "." in text else 0)
+            out[name] = round(float(rng.uniform(lo, hi)), digits)
+        elif isinstance(spec, list) and spec:
+            out[name] = spec[int(rng.integers(len(spec)))]
+        else:
+            raise GradingError(f"parameters(): {name}= must be (low, high) or a list of values, got {spec!r}")
+    return out
+
+
+def student_parameters(source, student):
+    """The parameter values of ``student`` (a dict), or None when the exercise has no parameters."""
+    source = load_source(source) if not hasattr(source, "nb") else source
+    found = find_parameters(source.nb)
+    if found is None:
+        return None
+    _, _, ranges, defaults = found
+    last = None
+    for attempt in range(MAX_DRAWS):
+        values = _draw(ranges, defaults, np.random.default_rng(_seed(source.exercise, student, attempt)))
+        try:
+            references(source, values)
+            return values
+        except _VariantFails as exc:
+            last = exc
+    raise GradingError(f"{source.exercise}: no parameters for student {student!r} in {MAX_DRAWS} draws make "
+                       f"the exercise work (last failure: {last})")
+
+
+def variant(source, student):
+    """The student's own notebook (solutions removed, their parameters written in)."""
+    source = load_source(source) if not hasattr(source, "nb") else source
+    return student_notebook(source, student_parameters(source, student), student)
+
+
+class _VariantFails(GradingError):
+    """The instructor's code fails with these parameters (a KinbookError: no assembly, no convergence…)."""
+
+
+_cache = {}
+
+
+def references(source, values=None):
+    """The parts a source declares, with their references, for the given parameter values.
+
+    Returns
+    -------
+    list of Part
+        In declaration order; ``hidden`` is set on parts declared in hidden checks.
+    """
+    source = load_source(source) if not hasattr(source, "nb") else source
+    key = (str(source.path), source.path.stat().st_mtime_ns if source.path.exists() else 0,
+           repr(sorted((values or {}).items())))
+    if key in _cache:
+        return _cache[key]
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    ns = {"__name__": "__kinbook_reference__", "part": part, "parameters": parameters,
+          "display": lambda *a, **k: None}
+    parts = []
+    try:
+        with recording() as rec, warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()):
+            warnings.simplefilter("ignore")
+            for index, kind, code in grader_segments(source, values):
+                try:
+                    compiled = compile(code, f"<{source.exercise} cell {index + 1}>", "exec")
+                except SyntaxError:
+                    continue  # code around a solution region that does not stand alone
+                before = len(rec)
+                try:
+                    exec(compiled, ns)  # the instructor's own code (trusted), never the student's
+                except NameError:
+                    pass  # a cell that uses the student's answers: nothing to build from it
+                except KinbookError as exc:
+                    raise _VariantFails(f"cell {index + 1}: {type(exc).__name__}: {exc}") from exc
+                except GradingError:
+                    raise
+                except Exception as exc:
+                    raise GradingError(f"{source.exercise}: cell {index + 1} fails in the grader: "
+                                       f"{type(exc).__name__}: {exc}") from exc
+                for p in rec[before:]:
+                    p.hidden = kind == "hidden"
+            parts = list(rec)
+    finally:
+        plt.close("all")
+    names = [p.name for p in parts]
+    dup = {n for n in names if names.count(n) > 1}
+    if dup:
+        raise GradingError(f"{source.exercise}: parts declared twice: {', '.join(sorted(dup))}")
+    if not parts:
+        raise GradingError(f"{source.exercise}: the notebook declares no part(...)")
+    _cache[key] = parts
+    return parts

@@ -1,0 +1,88 @@
+"""The shipped exercises (exercises/*.ipynb): each one's own solution earns full marks, through the same
+data path as a submission (answers encoded in the notebook's namespace, decoded and checked by the grader)."""
+
+import glob
+import json
+import os
+import shutil
+
+import pytest
+
+from kinbook.classroom import grade, student_parameters, write_variant
+from kinbook.classroom.notebook import find_parameters, load_source, student_notebook
+from kinbook.classroom.release import write_notebook
+from kinbook.classroom.serialize import decode, dumps
+from kinbook.classroom.variant import references
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
+EXERCISES = sorted(glob.glob(os.path.join(ROOT, "exercises", "*.ipynb")))
+
+
+def test_there_are_at_least_twelve_exercises():
+    assert len(EXERCISES) >= 12
+
+
+@pytest.mark.parametrize("path", EXERCISES, ids=[os.path.basename(p)[:4] for p in EXERCISES])
+def test_solution_scores_full_marks(path, monkeypatch, tmp_path):
+    monkeypatch.setenv("KINBOOK_SANDBOX_ROOT", str(tmp_path))  # part() stays quiet, as while grading
+    monkeypatch.chdir(tmp_path)
+    source = load_source(path)
+    values = student_parameters(source, "alice")
+    parts = references(source, values)
+    assert parts and all(p.points > 0 for p in parts)
+    nb = student_notebook(source, values, "alice" if values else None, keep_solutions=True)
+    ns = {"__name__": "__main__"}
+    import matplotlib
+
+    matplotlib.use("Agg")
+    for cell in nb.cells:
+        if cell.cell_type == "code":
+            exec(compile(cell.source, path, "exec"), ns)
+    names = sorted({p.answer for p in parts})
+    answers = {k: decode(v) for k, v in json.loads(dumps(names, ns))["answers"].items()}
+    for p in parts:
+        result = p.run(answers[p.answer], answers)
+        assert result.passed, (p.name, result)
+
+
+@pytest.mark.parametrize("path", EXERCISES, ids=[os.path.basename(p)[:4] for p in EXERCISES])
+def test_release_hides_the_solutions(path):
+    nb = student_notebook(load_source(path))
+    text = "\n".join(c.source for c in nb.cells)
+    assert "### BEGIN" not in text and "### END" not in text
+    assert "raise NotImplementedError()" in text
+
+
+def _exercise(prefix):
+    return next(p for p in EXERCISES if os.path.basename(p).startswith(prefix))
+
+
+def test_variants_are_per_student_and_reproducible(tmp_path):
+    source = load_source(_exercise("ex09"))
+    a1, a2, b = (student_parameters(source, s) for s in ("alice", "alice", "bob"))
+    assert a1 == a2 and a1 != b
+    _, _, ranges, _ = find_parameters(source.nb)
+    assert 60 <= a1["omega"] <= 140 and a1["t"] in ranges["t"]
+    path = write_variant(_exercise("ex09"), "alice", tmp_path)
+    assert path.name == "ex09-point-kinematics-alice.ipynb"
+    import nbformat
+
+    cells = "\n".join(c.source for c in nbformat.read(str(path), 4).cells)
+    assert f"P = {json.dumps(a1, sort_keys=True)}  # parameters of student 'alice'" in cells
+
+
+def test_variant_solutions_are_graded_in_the_sandbox_and_swapped_variants_are_tampered(tmp_path):
+    src = _exercise("ex11")
+    source = load_source(src)
+    subs = tmp_path / "subs"
+    for student in ("alice", "bob"):
+        values = student_parameters(source, student)
+        write_notebook(student_notebook(source, values, student, keep_solutions=True),
+                       subs / student / f"{source.exercise}.ipynb")
+    (subs / "carol").mkdir()
+    shutil.copy(subs / "alice" / f"{source.exercise}.ipynb", subs / "carol" / f"{source.exercise}.ipynb")
+    results = {r.student: r for r in grade(src, [subs], tmp_path / "graded", timeout=30, memory=600, jobs=2)}
+    assert results["alice"].status == results["bob"].status == "ok"
+    assert results["alice"].score == results["alice"].max_score == 10
+    assert results["bob"].score == 10
+    assert results["carol"].status == "tampered"  # alice's parameters in carol's submission

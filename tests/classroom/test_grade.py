@@ -1,0 +1,156 @@
+"""Grading real submitted notebooks (tests/classroom/submissions/, made by make_submissions.py)."""
+
+import csv
+import os
+
+import pytest
+
+from kinbook.classroom import grade
+from kinbook.classroom.gradebook import COLUMNS
+
+from .conftest import CANARY, CANARY_DIR, EVIL, SOURCE, submission
+
+FULL = 6.0
+
+
+def parts(batch, student):
+    return {p.part: p for p in batch["results"][student].parts}
+
+
+def test_good_submission_gets_full_score_among_bad_ones(batch):
+    r = batch["results"]["good"]
+    assert (r.status, r.score, r.max_score) == ("ok", FULL, FULL)
+    assert {p.status for p in r.parts} == {"ok"}
+
+
+@pytest.mark.parametrize("student, status, score", [
+    ("wrong", "ok", 0.0),
+    ("partial", "missing-answer", 4.0),
+    ("loop", "timeout", 0.0),
+    ("memory", "memory", 0.0),
+    ("sys_exit", "missing-answer", 4.0),     # SystemExit is an ordinary error in a kernel: part (a) stands
+    ("os_exit", "error", 0.0),               # the kernel is gone before its answers can be read
+    ("kill_kernel", "error", 0.0),           # os.kill is refused; raise_signal(SIGKILL) kills the kernel
+    ("monkeypatch", "ok", 0.0),              # patched checkers live and die in the student's kernel
+    ("patch_serializer", "error", 0.0),      # a forged answer record: not whitelisted data
+    ("fake_score", "ok", 0.0),               # what the notebook prints is never read
+    ("read_source", "missing-answer", 0.0),  # open() of the instructor's source raises PermissionError
+    ("write_outside", "ok", FULL),           # every attempt refused; the answers themselves are right
+    ("tampered", "tampered", 0.0),
+    ("deleted_cell", "tampered", 0.0),
+    ("corrupt", "corrupt-notebook", 0.0),
+    ("not_a_notebook", "corrupt-notebook", 0.0),
+])
+def test_status_and_score(batch, student, status, score):
+    r = batch["results"][student]
+    assert r.status == status, r
+    assert r.score == score
+    assert r.max_score == FULL
+
+
+def test_wrong_answers_get_the_checkers_messages(batch):
+    p = parts(batch, "wrong")
+    assert p["revolute"].score == 0 and "Φ_4" in p["revolute"].message
+    assert p["angle"].message.startswith("hidden check: not correct")
+    assert "3.356" not in p["angle"].message  # a hidden check does not give its expected value away
+
+
+def test_monkeypatching_the_checkers_in_the_notebook_changes_nothing(batch):
+    p = parts(batch, "monkeypatch")
+    assert p["revolute"].status == "ok" and p["revolute"].score == 0 and "Φ_4" in p["revolute"].message
+    forged = parts(batch, "patch_serializer")
+    assert forged["revolute"].status == "error" and "not allowed" in forged["revolute"].message
+    assert forged["angle"].status == "missing-answer"
+
+
+def test_reading_the_source_is_refused(batch):
+    p = parts(batch, "read_source")
+    assert p["revolute"].status == "missing-answer"
+    assert "code cells" in p["revolute"].message
+
+
+def test_nothing_outside_the_sandbox_was_touched(batch):
+    assert os.path.exists(CANARY) and open(CANARY).read() == "do not delete"
+    assert os.path.isdir(CANARY_DIR)
+    assert not os.path.exists(EVIL)
+    assert not os.path.exists("/tmp/kinbook-moved.txt")
+
+
+def test_submissions_are_never_modified(batch):
+    for f, (data, mtime) in batch["before"].items():
+        assert open(f, "rb").read() == data
+        assert os.stat(f).st_mtime_ns == mtime
+
+
+def test_tampering_is_explained(batch):
+    r = batch["results"]["tampered"]
+    assert "tiny-04" in r.message and "locked" in r.message
+
+
+def test_grades_csv(batch):
+    with open(batch["out"] / "grades.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert list(rows[0]) == COLUMNS
+    assert len(rows) == 2 * len(batch["files"])
+    good = {r["part"]: r for r in rows if r["student"] == "good"}
+    assert good["revolute"]["score"] == "4" and good["angle"]["max_score"] == "2"
+    assert {r["status"] for r in rows} >= {"ok", "timeout", "memory", "error", "tampered", "missing-answer",
+                                             "corrupt-notebook"}
+    assert not [p for p in os.listdir(batch["out"]) if p.endswith(".tmp")]
+
+
+def test_feedback_file_per_student(batch):
+    fb = batch["out"] / "feedback"
+    assert sorted(p[:-5] for p in os.listdir(fb)) == sorted(batch["results"])
+    page = (fb / "wrong.html").read_text()
+    assert "revolute" in page and "<table" in page
+
+
+def test_rerun_skips_graded_submissions_unless_forced(batch, tmp_path):
+    skipped = []
+    again = grade(SOURCE, [submission("good"), submission("corrupt")], batch["out"], timeout=5, memory=400,
+                  progress=skipped.append)
+    assert again == [] and len(skipped) == 2
+    forced = grade(SOURCE, [submission("corrupt")], batch["out"], force=True)
+    assert [r.status for r in forced] == ["corrupt-notebook"]
+
+
+def test_batch_throughput(batch):
+    n = len(batch["files"])
+    print(f"\ngraded {n} submissions in {batch['seconds']:.1f} s with jobs=2")
+    assert batch["seconds"] < 150
+
+
+def test_a_dying_grading_process_loses_nothing_else(tmp_path, monkeypatch):
+    """A grading process killed in the middle of a submission (here: on purpose) is replaced; the submission
+    is retried once, then recorded as `error`; the others are graded and grades.csv is complete."""
+    import sys
+
+    G = sys.modules["kinbook.classroom.grade"]  # (the package attribute `grade` is the function)
+
+    original = G._grade_task
+
+    def dying(args):
+        if args[1].endswith("not_a_notebook.ipynb"):
+            os._exit(1)
+        return original(args)
+
+    dying.__module__, dying.__qualname__ = original.__module__, original.__qualname__
+    monkeypatch.setattr(G, "_grade_task", dying)
+    subs = [submission("good"), submission("not_a_notebook"), submission("corrupt")]
+    results = {r.student: r for r in grade(SOURCE, subs, tmp_path, timeout=5, memory=400, jobs=2)}
+    assert results["good"].score == FULL
+    assert results["corrupt"].status == "corrupt-notebook"
+    assert results["not_a_notebook"].status == "error" and "died" in results["not_a_notebook"].message
+    with open(tmp_path / "grades.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert {r["student"] for r in rows} == {"good", "not_a_notebook", "corrupt"}
+    assert not [p for p in os.listdir(tmp_path) if p.endswith(".tmp")]
+
+
+def test_reveal_hidden_gives_the_full_messages(tmp_path):
+    from kinbook.classroom import grade_submission
+
+    r = grade_submission(SOURCE, submission("wrong"), timeout=10, memory=400, reveal_hidden=True)
+    angle = {p.part: p for p in r.parts}["angle"]
+    assert "3.356" in angle.message and angle.html

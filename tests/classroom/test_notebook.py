@@ -1,0 +1,194 @@
+"""Source notebooks, releases, answers as data, the audit hook — without running submissions."""
+
+import json
+import subprocess
+import sys
+
+import nbformat
+import numpy as np
+import pytest
+import sympy as sp
+
+from kinbook.classroom import part, release
+from kinbook.classroom.notebook import load_source, locked_checksums, student_notebook
+from kinbook.classroom.serialize import DecodeError, decode, dumps, encode
+from kinbook.classroom.variant import references
+from kinbook.cli import main
+from kinbook.errors import GradingError
+
+from .conftest import SOURCE
+
+
+def test_release_replaces_solutions_and_drops_hidden_checks(tmp_path):
+    (path,) = release([SOURCE], tmp_path)
+    nb = nbformat.read(str(path), 4)
+    text = "\n".join(c.source for c in nb.cells)
+    assert "BEGIN SOLUTION" not in text and "sp.cos(phi2)" not in text
+    assert "HIDDEN" not in text and 'part("angle"' not in text and "solve_position" not in text
+    assert text.count("raise NotImplementedError()") == 2
+    locked = [c for c in nb.cells if c.metadata["kinbook"].get("locked")]
+    assert all(c.metadata["editable"] is False for c in locked)
+    manifest = json.loads((tmp_path / "manifest.json").read_text())
+    assert manifest["tiny"]["locked"] == locked_checksums(nb)
+    assert [p["part"] for p in manifest["tiny"]["parts"]] == ["revolute", "angle"]
+    assert [p["hidden"] for p in manifest["tiny"]["parts"]] == [False, True]
+
+
+def test_release_refuses_to_overwrite_its_source(tmp_path):
+    import shutil
+
+    src = tmp_path / "tiny.ipynb"
+    shutil.copy(SOURCE, src)
+    with pytest.raises(GradingError, match="overwrite its source"):
+        release([src], tmp_path)
+
+
+def test_references_come_from_kinbook_in_the_grader():
+    parts = references(load_source(SOURCE))
+    assert [(p.name, p.points, p.check, p.hidden) for p in parts] == [
+        ("revolute", 4.0, "phi", False), ("angle", 2.0, "value", True)]
+    assert parts[1].expected == pytest.approx(3 * np.pi / 4 + 1.0)
+
+
+def test_solution_notebook_has_no_markers():
+    nb = student_notebook(load_source(SOURCE), keep_solutions=True)
+    text = "\n".join(c.source for c in nb.cells)
+    assert "sp.cos(phi2)" in text and "###" not in text
+
+
+def test_unclosed_region_is_an_error(tmp_path):
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell("### BEGIN SOLUTION\nx = 1")])
+    nbformat.write(nb, str(tmp_path / "bad.ipynb"))
+    with pytest.raises(GradingError, match="not closed"):
+        load_source(tmp_path / "bad.ipynb")
+
+
+def test_part_declarations_are_validated():
+    with pytest.raises(GradingError, match="unknown check 'phii'"):
+        part("a", 1, answer="x", check="phii", target=object())
+    with pytest.raises(GradingError, match="needs expected="):
+        part("a", 1, answer="x", check="value")
+
+
+@pytest.mark.parametrize("value", [
+    1.5, 3, np.float64(2.0), np.arange(6.0).reshape(2, 3), [1.0, float("nan")], [[1, 2], [3, 4]],
+])
+def test_numbers_round_trip(value):
+    rec = json.loads(json.dumps(encode(value)))
+    np.testing.assert_array_equal(np.asarray(decode(rec), float), np.asarray(value, float))
+
+
+def test_sympy_round_trip_and_strings_are_parsed_in_the_kernel():
+    x1, phi2 = sp.symbols("x1 phi2")
+    M = sp.Matrix([x1 - sp.cos(phi2) / 2 + sp.pi, sp.atan2(x1, 2) * sp.exp(-phi2) + sp.Rational(1, 3)])
+    back = decode(json.loads(dumps(["M"], {"M": M}))["answers"]["M"])
+    assert sp.simplify(back.subs({"x1": 0.3, "phi2": 0.2}) - M.subs({x1: 0.3, phi2: 0.2})) == sp.zeros(2, 1)
+    rec = encode(["x1 + sin(phi2)^2", 0])
+    assert rec["kind"] == "sympy" and rec["data"][0][0] == "Add"
+
+
+@pytest.mark.parametrize("record, match", [
+    ({"kind": "sympy", "shape": [1, 1], "data": [["eval", ["Symbol", "x"]]]}, "not allowed"),
+    ({"kind": "sympy", "shape": [1, 1], "data": [["Symbol", "__import__('os')"]]}, "bad symbol"),
+    ({"kind": "sympy", "shape": [1, 1], "data": [["Integer", "9" * 500]]}, "bad integer"),
+    ({"kind": "sympy", "shape": [1, 1], "data": [["Pow", ["Symbol", "x"], ["Integer", "100000"]]]}, "exponent"),
+    ({"kind": "array", "shape": [2], "data": [1, "os.system('x')"]}, "numbers"),
+    ({"kind": "array", "shape": [3], "data": [1, 2]}, "entries"),
+    ({"kind": "pickle", "shape": [], "data": ["gASV"]}, "unknown answer kind"),
+    ({"kind": "unsupported", "type": "function"}, "cannot be graded"),
+    ("not a dict", "must be an object"),
+])
+def test_decode_refuses_anything_but_whitelisted_data(record, match):
+    with pytest.raises(DecodeError, match=match):
+        decode(record)
+
+
+def test_decode_caps_depth():
+    t = ["Symbol", "x"]
+    for _ in range(500):
+        t = ["sin", t]
+    with pytest.raises(DecodeError, match="deeper"):
+        decode({"kind": "sympy", "shape": [1, 1], "data": [t]})
+
+
+def test_audit_hook_confines_a_process(tmp_path):
+    """The hook of the sandboxed kernel, installed in a throw-away interpreter."""
+    code = f"""
+import os, sys, builtins, gc
+from kinbook.classroom._kernel import install_audit_hook, _read_roots
+os.chdir({str(tmp_path)!r})
+install_audit_hook({str(tmp_path)!r}, _read_roots())
+def attempt(f):
+    try:
+        f(); return 'allowed'
+    except PermissionError:
+        return 'refused'
+os.path.realpath = lambda p: {str(tmp_path)!r}   # monkeypatching os does not change the hook's decisions
+out = dict(
+    write_inside=attempt(lambda: open('ok.txt', 'w').write('x')),
+    read_inside=attempt(lambda: open('ok.txt').read()),
+    read_stdlib=attempt(lambda: open(os.__file__).read()),
+    read_etc=attempt(lambda: open('/etc/hostname').read()),
+    dotdot=attempt(lambda: open('../' * 10 + 'etc/hostname').read()),
+    write_tmp=attempt(lambda: open('/tmp/kinbook-hook-test', 'w')),
+    os_open=attempt(lambda: os.open('/tmp/kinbook-hook-test', os.O_WRONLY | os.O_CREAT)),
+    remove=attempt(lambda: os.remove('/tmp/kinbook-hook-test')),
+    listdir=attempt(lambda: os.listdir('/')),
+    symlink=attempt(lambda: os.symlink('/etc', 'etc')),
+    system=attempt(lambda: os.system('true')),
+    fork=attempt(lambda: os.fork()),
+    gc=attempt(lambda: gc.get_objects()),
+    chdir=attempt(lambda: os.chdir('/')),
+    dir_fd=attempt(lambda: os.open(os.path.dirname(os.__file__), os.O_RDONLY)),
+    remove_dir_fd=attempt(lambda: os.remove('x', dir_fd=os.open('.', os.O_RDONLY))),
+    fchmod=attempt(lambda: os.chmod(os.open(os.__file__, os.O_RDONLY), 0o777)),
+    mkdir_inside=attempt(lambda: os.mkdir('sub')),
+)
+print(out)
+"""
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    out = eval(res.stdout.strip().splitlines()[-1])  # our own subprocess's dict of words, not student text
+    assert out == dict(write_inside="allowed", read_inside="allowed", read_stdlib="allowed", read_etc="refused",
+                       dotdot="refused", write_tmp="refused", os_open="refused", remove="refused",
+                       listdir="refused", symlink="refused", system="refused", fork="refused", gc="refused",
+                       chdir="refused", dir_fd="refused", remove_dir_fd="refused", fchmod="refused",
+                       mkdir_inside="allowed")
+
+
+def test_cli_variant(tmp_path, capsys):
+    import os
+
+    ex11 = os.path.join(os.path.dirname(SOURCE), "..", "..", "..", "exercises", "ex11-rotations-euler-parameters.ipynb")
+    assert main(["variant", ex11, "--student", "alice", "-o", str(tmp_path)]) == 0
+    out = tmp_path / "ex11-rotations-euler-parameters-alice.ipynb"
+    assert str(out) in capsys.readouterr().out
+    assert "parameters of student 'alice'" in "".join(c.source for c in nbformat.read(str(out), 4).cells)
+
+
+def test_cli_errors_are_reported_not_raised(tmp_path, capsys):
+    assert main(["release", str(tmp_path / "nope.ipynb"), "-o", str(tmp_path)]) == 2
+    assert "does not exist" in capsys.readouterr().err
+
+
+def test_cli_release(tmp_path, capsys):
+    assert main(["release", SOURCE, "-o", str(tmp_path)]) == 0
+    assert (tmp_path / "tiny.ipynb").exists()
+    assert main(["grade", SOURCE, str(tmp_path / "missing.ipynb"), "-o", str(tmp_path / "g")]) == 0
+    assert "corrupt-notebook" in (tmp_path / "g" / "grades.csv").read_text()
+
+
+def test_collected_directories_yield_this_exercise_only(tmp_path):
+    import sys
+
+    G = sys.modules["kinbook.classroom.grade"]
+    for student in ("alice", "bob"):
+        (tmp_path / student).mkdir()
+        (tmp_path / student / "ex01.ipynb").write_text("{}")
+        (tmp_path / student / "ex02.ipynb").write_text("{}")
+    (tmp_path / "ex01-carol.ipynb").write_text("{}")
+    found = G._expand([tmp_path], "ex01")
+    assert sorted(G.student_of(p, "ex01") for p in found) == ["alice", "bob", "carol"]
+    flat = tmp_path / "flat"
+    flat.mkdir()
+    (flat / "dave.ipynb").write_text("{}")
+    assert [G.student_of(p, "ex01") for p in G._expand([flat], "ex01")] == ["dave"]
