@@ -267,6 +267,102 @@ def _ev_ex6_acceleration():
         f"is off by {np.linalg.norm(printed - aB):.1f}.", float(np.linalg.norm(printed - aB)), 0.0)
 
 
+# ------------------------------------------------------------------------------------ chapter 14 evidence
+def _unit_ps(count=20, seed=14):
+    rng = np.random.default_rng(seed)
+    p = rng.normal(size=(count, 4))
+    return p / np.linalg.norm(p, axis=1, keepdims=True)
+
+
+def _ev_elementary_rotation():
+    from .spatial import A_from_euler
+
+    rows = []
+    for psi in np.linspace(0.1, 3.0, 12):
+        c, s_ = np.cos(psi), np.sin(psi)
+        printed = np.array([[c, s_, 0], [s_, c, 0], [0, 0, 1]])
+        corrected = np.array([[c, s_, 0], [-s_, c, 0], [0, 0, 1]])
+        reference = A_from_euler(psi, 0, 0).T  # the book's passive A^ψ
+        rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"The printed A^ψ has det = cos 2ψ (0.5 at ψ = 30°), so it is no rotation; it differs from the "
+                    f"transpose of kinbook's A(ψ, 0, 0) by up to {e_p:.3f}; with −sin ψ in row 2 it agrees to "
+                    f"{e_c:.1e}.", e_p, e_c)
+
+
+def _ev_a21_row3():
+    from .spatial import A_from_euler
+
+    rng = np.random.default_rng(2)
+    rows = []
+    for psi, th, ph in rng.uniform(-3, 3, (20, 3)):
+        ref = A_from_euler(psi, th, ph).T[2]
+        printed = np.array([np.sin(psi) * np.sin(ph), -np.cos(psi) * np.sin(ph), np.cos(th)])
+        corrected = np.array([np.sin(psi) * np.sin(th), -np.cos(psi) * np.sin(th), np.cos(th)])
+        rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"Row 3 of the product A^φ A^θ A^ψ (the transpose of kinbook's A_from_euler) at 20 random "
+                    f"angles: the printed row is off by up to {e_p:.3f}; with sin θ for sin φ it agrees to {e_c:.1e}.",
+                    e_p, e_c)
+
+
+def _printed_A_of_p(p):
+    e0, e1, e2, e3 = p
+    return np.array([
+        [e0**2 + e1**2 - 0.5, e1 * e2 - e0 * e3, e1 * e3 - e0 * e2],
+        [e1 * e2 - e0 * e3, e0**2 + e2**2 - 0.5, e2 * e3 - e0 * e1],
+        [e1 * e3 - e0 * e2, e2 * e3 - e0 * e1, e0**2 + e3**2 - 0.5],
+    ])
+
+
+def _ev_A_of_p():
+    from .spatial import A_from_p
+
+    rows = []
+    for p in _unit_ps():
+        e0, e1, e2, e3 = p
+        printed = _printed_A_of_p(p)
+        corrected = 2 * printed
+        corrected[0, 2] += 4 * e0 * e2
+        corrected[1, 0] += 4 * e0 * e3
+        corrected[2, 1] += 4 * e0 * e1
+        ref = A_from_p(p)
+        rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"At 20 random unit p the printed matrix differs from A(p) by up to {e_p:.3f} (it is symmetric, "
+                    f"so it cannot be a rotation in general); twice it, with + e0 terms at a13, a21, a32, agrees to "
+                    f"{e_c:.1e}.", e_p, e_c)
+
+
+def _ev_G_row2():
+    from .spatial import G
+
+    rows = []
+    for p in _unit_ps():
+        e0, e1, e2, e3 = p
+        printed = G(p).copy()
+        printed[1] = [-e2, e3, e0, e1]
+        rows.append((np.abs(printed @ p).max(), np.abs(G(p) @ p).max(), 0.0))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"With the printed row 2, G p = [0, 2 e1 e3, 0] reaches {e_p:.3f} at random unit p instead of "
+                    f"0; kinbook's G gives |G p| ≤ {e_c:.1e}.", e_p, e_c)
+
+
+def _ev_p_from_A_180():
+    from .spatial import A_from_p, p_from_A, p_from_axis_angle
+
+    A = A_from_p(p_from_axis_angle([1, 2, 2], np.pi))
+    e0 = np.sqrt(max(np.trace(A) + 1, 0.0) / 4)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = np.array([A[2, 1] - A[1, 2], A[0, 2] - A[2, 0], A[1, 0] - A[0, 1]]) / (4 * e0)
+    book_ok = bool(np.all(np.isfinite(e)))
+    rebuilt = np.abs(A_from_p(p_from_A(A)) - A).max()
+    return Evidence(f"For a 180° turn about (1, 2, 2)/3, e0 = {e0:.1e} and the book's recipe divides by it: "
+                    f"e = {np.array2string(e, precision=3)}; kinbook's largest-component branch gives "
+                    f"p = {np.array2string(p_from_A(A), precision=4)} and rebuilds A to {rebuilt:.1e}.",
+                    0.0 if book_ok else np.inf, float(rebuilt))
+
+
 # ----------------------------------------------------------------------------------------------- the list
 ERRATA = [
     Erratum("13.5-s-notation", "§13.5, eq. 5 and the revolute joint (eqs. 14–15)", r"s_i^P",
@@ -341,6 +437,36 @@ ERRATA = [
 ]
 
 
+ERRATA += [
+    Erratum("14.2-elementary-rotations", "§14.2, the three elementary rotations (first set)",
+            r"A^\psi = \begin{bmatrix}\cos\psi & \sin\psi & 0\\ \sin\psi & \cos\psi & 0\\ 0&0&1\end{bmatrix}",
+            r"A^\psi = \begin{bmatrix}\cos\psi & \sin\psi & 0\\ -\sin\psi & \cos\psi & 0\\ 0&0&1\end{bmatrix}",
+            "formula", _ev_elementary_rotation, "The same slip is in A^θ and A^φ; the book's A^ψ, A^θ, A^φ are passive "
+            "(global → local), the transposes of kinbook's active matrices (docs/conventions.md)."),
+    Erratum("14.2-A21-row3", "§14.2, the composed matrix A²¹ (both versions), row 3",
+            r"[\sin\psi\sin\phi,\ -\cos\psi\sin\phi,\ \cos\theta]",
+            r"[\sin\psi\sin\theta,\ -\cos\psi\sin\theta,\ \cos\theta]", "formula", _ev_a21_row3),
+    Erratum("14.2-omega-matrix", "§14.2, the matrix relating ω to the angle rates", r"3 \times 4\ \text{matrix}",
+            r"\omega' = \begin{bmatrix}s\theta s\phi & c\phi & 0\\ s\theta c\phi & -s\phi & 0\\ c\theta & 0 & 1\end{bmatrix}\begin{bmatrix}\dot\psi\\ \dot\theta\\ \dot\phi\end{bmatrix}",
+            "wording", None, "The first version also prints +sin φ where −sin φ belongs in row 2 of the matrix and of "
+            "its inverse; kinbook.spatial.omega_from_euler_rates(frame='body') is the corrected relation."),
+    Erratum("14.3-A-of-p", "§14.3, A in terms of the Euler parameters",
+            r"\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3-e_0e_2\\ e_1e_2-e_0e_3 & \cdots\end{bmatrix}",
+            r"2\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3+e_0e_2\\ e_1e_2+e_0e_3 & e_0^2+e_2^2-\tfrac12 & e_2e_3-e_0e_1\\ e_1e_3-e_0e_2 & e_2e_3+e_0e_1 & e_0^2+e_3^2-\tfrac12\end{bmatrix}",
+            "formula", _ev_A_of_p),
+    Erratum("14.3-p-from-A", "§14.3, the Euler parameters from A",
+            r"e_0^2 = (p+1)/4,\ e_1 = (a_{32}-a_{23})/(4e_0),\ \ldots\ \text{(no critical cases)}",
+            r"e_0^2 = (\operatorname{tr}A+1)/4;\ \text{divide by the largest of } e_0, e_1, e_2, e_3",
+            "number", _ev_p_from_A_180, "Every 180° rotation has e0 = 0."),
+    Erratum("14.3-G-row2", "§14.3, the matrix G, row 2", r"[-e_2,\ e_3,\ e_0,\ e_1]", r"[-e_2,\ -e_3,\ e_0,\ e_1]",
+            "formula", _ev_G_row2),
+    Erratum("14.3-dAa-dp", "§14.3, ∂(Aa)/∂p", r"2(E\bar a + a p^T)\ \text{(form of A not stated)}",
+            r"2(E\bar a + a p^T) \text{ for } A = 2[(e_0^2-\tfrac12)I + ee^T + e_0\tilde e];\ 2E\bar a \text{ for } A = EG^T",
+            "wording", None, "Both forms agree on the unit sphere, not off it; kinbook.spatial.dAa_dp(p, a, form=...) "
+            "gives either."),
+]
+
+
 def get(erratum_id):
     """The erratum with this id."""
     for e in ERRATA:
@@ -381,6 +507,6 @@ class ErrataTable:
         return "".join(cards)
 
 
-def table(prefix="13"):
-    """The errata whose section starts with ``prefix`` (e.g. "13", "13.6"), evidence computed."""
+def table(prefix=""):
+    """The errata whose id starts with ``prefix`` (e.g. "13", "14.3"; all by default), evidence computed."""
     return ErrataTable([e for e in ERRATA if e.id.startswith(prefix)])
