@@ -240,6 +240,28 @@ def _ev_gamma_t():
                     f"to {e_p:.2f}; with −2[…]φ̇_i it agrees to {e_c:.1e}.", e_p, e_c)
 
 
+def _ev_eq37():
+    from .planar import Gear, Mechanism
+
+    rng = np.random.default_rng(37)
+    m = Mechanism("gear pair on a carrier")
+    for b in ("i", "j", "k"):
+        m.add_body(b, q0=(0, 0, float(rng.uniform(-1, 1))))
+    ri, rj = 0.7, 1.9
+    m.add(Gear("i", "j", "k", radius_i=ri, radius_j=rj))
+    pi0, pj0, pk0 = (float(b.q0[2]) for b in m.bodies)
+    rows = []
+    for q in rng.uniform(-3, 3, (20, 9)):
+        pi, pj, pk = q[2], q[5], q[8]
+        printed = ri * ((pi - pk) - pi0) + rj * ((pj - pk) - pj0)  # eq. 37 with φ' = φ − φ_k
+        corrected = ri * ((pi - pk) - (pi0 - pk0)) + rj * ((pj - pk) - (pj0 - pk0))
+        rows.append((printed, corrected, m.Phi(q)[0]))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"With the carrier's initial angle φ_k⁰ = {pk0:.3f}, eq. 37 differs from kinbook's gear row by "
+                    f"(ρ_i + ρ_j) φ_k⁰ = {e_p:.3f}; measuring the initial angles relative to the carrier too (eq. 38) "
+                    f"agrees to {e_c:.1e}.", e_p, e_c)
+
+
 def _ev_ex5_velocity():
     m = _ex("ch13_example3")
     q = m.solve_position(0.0)
@@ -395,6 +417,13 @@ ERRATA = [
             r"\text{eq. (21)}", "wording"),
     Erratum("13.5-eq24", "§13.5, translational joint, before eq. 24", r"\text{multiplying the vectors scalarly}",
             r"\text{the vector (cross) product}", "wording"),
+    Erratum("13.5-eq37", "§13.5, gears: eq. 37", r"\rho_i(\varphi'_i - \varphi_i^0) + \rho_j(\varphi'_j - \varphi_j^0) = 0",
+            r"\rho_i(\varphi'_i - \varphi_i'^0) + \rho_j(\varphi'_j - \varphi_j'^0) = 0,\ \varphi'^0 = \varphi^0 - \varphi_k^0",
+            "formula", _ev_eq37, "Eq. 38, the constraint kinbook uses, is right; eq. 37 only holds when φ_k⁰ = 0."),
+    Erratum("13.5-joint-labels", "§13.5, examples 2 and 4: labels and references",
+            r"\Phi^{(i,2)},\ \Phi^{(r,1)},\ \text{apartado 4.3 / 4.5},\ \text{“as in example 3”}",
+            r"\Phi^{(t,2)},\ \Phi^{(r\text{-}t,1)},\ \text{the translational / r-t subsections of §13.5},\ \text{example 2}",
+            "wording"),
     Erratum("13.6-table-13.1-text", "§13.6, the derivation under Table 13.1",
             r"\partial\Phi_1/\partial\varphi_i = -(y_i^P - y_j^P),\ \ldots",
             r"-(y_i^P - y_i),\ (y_j^P - y_j),\ (x_i^P - x_i),\ -(x_j^P - x_j)", "wording", None,
