@@ -16,10 +16,10 @@ import scipy.sparse as sps
 import sympy as sp
 
 from . import analysis
-from .errors import InputError, ModelError, UnknownBodyError
+from .errors import InputError, ModelError, UnknownBodyError, UnknownPointError
 from .symbolic import derive, t as t_symbol, time_derivatives
 
-__all__ = ["ConstraintBase", "ConstraintGroup", "MechanismBase", "ConstraintTable", "time_function"]
+__all__ = ["ConstraintBase", "ConstraintGroup", "MechanismBase", "ConstraintTable", "time_function", "lookup_point"]
 
 
 def time_function(f, owner):
@@ -33,6 +33,16 @@ def time_function(f, owner):
         names = ", ".join(sorted(str(s) for s in extra))
         raise ModelError(f"{type(owner).__name__}: the function of time {f!r} uses unknown symbols {names}")
     return expr
+
+
+def lookup_point(body, name, context=None):
+    """The stored local coordinates of the point called ``name`` on ``body``; ``context`` (a constraint) is
+    named in the error."""
+    if name not in body.points:
+        known = ", ".join(sorted(body.points)) or "none"
+        where = f"{context.describe()}: " if context is not None else ""
+        raise UnknownPointError(f"{where}body '{body.name}' has no point '{name}' (its points: {known})")
+    return body.points[name]
 
 
 class ConstraintBase:
@@ -145,6 +155,7 @@ class MechanismBase:
     constraint class they accept) and implement ``add_body``."""
 
     COORDS = ()
+    POINT_DIM = 2
     constraint_base = ConstraintBase
     kind = "planar"
 
@@ -462,6 +473,21 @@ class MechanismBase:
     def gamma(self, q, qd, t=0.0):
         """Numeric γ, the right-hand side of the acceleration equations Φ_q q̈ = γ."""
         return self.evaluate(q, t, qd, jacobian=False)["gamma"]
+
+    def point_local(self, body, point):
+        """Local coordinates of a body point, as floats: a point name, or the coordinates themselves
+        (``POINT_DIM`` finite numbers)."""
+        b = self.body(body)
+        if isinstance(point, str):
+            return np.array([float(v) for v in lookup_point(b, point)])
+        try:
+            s = np.asarray(point, dtype=float)
+        except (TypeError, ValueError):
+            s = None
+        if s is None or s.shape != (self.POINT_DIM,) or not np.all(np.isfinite(s)):
+            raise InputError(f"a point on body '{b.name}' must be a point name or {self.POINT_DIM} finite numbers, "
+                             f"got {point!r}")
+        return s
 
     def _body_q(self, arr, body):
         k = len(self.COORDS) * (self.body(body).number - 1)

@@ -17,8 +17,8 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from ..errors import ModelError, UnknownPointError
-from ..model import ConstraintBase
+from ..errors import ModelError
+from ..model import ConstraintBase, lookup_point
 from ..symbolic import t as t_symbol
 from .transforms import A as A_matrix
 
@@ -85,12 +85,7 @@ class Constraint(ConstraintBase):
         """
         body = self.bodies[role_index]
         if isinstance(point, str):
-            if point not in body.points:
-                known = ", ".join(sorted(body.points)) or "none"
-                raise UnknownPointError(
-                    f"{self.describe()}: body '{body.name}' has no point '{point}' (its points: {known})"
-                )
-            return body.points[point]
+            return lookup_point(body, point, self)
         try:
             xi, eta = (sp.sympify(v) for v in point)
         except (TypeError, ValueError, sp.SympifyError):

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from ..errors import ModelError, UnknownPointError
+from ..errors import ModelError
 from ..model import ConstraintTable, MechanismBase
 from . import transforms
 from .constraints import Constraint
@@ -98,16 +98,6 @@ class Mechanism(MechanismBase):
         self._new_body(Body(name, points if points is not None else {}, q0, number=len(self.bodies) + 1))
 
     # ------------------------------------------------------------------------------------------- points
-    def point_local(self, body, point):
-        """Local coordinates (ξ, η) of a named point, as floats."""
-        b = self.body(body)
-        if isinstance(point, str):
-            if point not in b.points:
-                known = ", ".join(sorted(b.points)) or "none"
-                raise UnknownPointError(f"body '{b.name}' has no point '{point}' (its points: {known})")
-            return np.array([float(v) for v in b.points[point]])
-        return np.asarray(point, dtype=float)
-
     def point_position(self, q, body, point):
         """Global position r^P = r + A s'^P of a body point, shape (2,) or (N, 2)."""
         qb = self._body_q(self._check_q(q), body)

@@ -46,7 +46,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import ModelError, UnknownPointError
-from ..model import ConstraintBase
+from ..model import ConstraintBase, lookup_point
 from ..symbolic import t as t_symbol
 from .rotations import A_from_p as _A_sym, E as _E_sym
 
@@ -331,12 +331,7 @@ class Constraint(ConstraintBase):
         """Local coordinates (floats, shape (3,)) of a point: a point name or a triple (ξ, η, ζ)."""
         body = self.bodies[role]
         if isinstance(spec, str):
-            if spec not in body.points:
-                known = ", ".join(sorted(body.points)) or "none"
-                raise UnknownPointError(
-                    f"{self.describe()}: body '{body.name}' has no point '{spec}' (its points: {known})"
-                )
-            return _floats(body.points[spec])
+            return _floats(lookup_point(body, spec, self))
         return _triple(spec, f"{self.describe()}: {what} on body '{body.name}' must be a point name or a "
                              f"triple (ξ, η, ζ)")
 

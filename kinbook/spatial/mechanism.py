@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from ..errors import InputError, ModelError, UnknownPointError
+from ..errors import InputError, ModelError
 from ..model import ConstraintTable, MechanismBase
 from ..symbolic import derive, t as t_symbol
 from . import rotations, transforms
@@ -102,6 +102,7 @@ class Mechanism(MechanismBase):
     """
 
     COORDS = _COORDS
+    POINT_DIM = 3
     constraint_base = Constraint
     kind = "spatial"
 
@@ -168,22 +169,6 @@ class Mechanism(MechanismBase):
         return derive(self.constraint_phi(c), q, self.qd[k, 0], t_symbol)
 
     # ------------------------------------------------------------------------------------------- bodies and points
-    def point_local(self, body, point):
-        """Local coordinates (ξ, η, ζ) of a named point (or a given triple), as floats."""
-        b = self.body(body)
-        if isinstance(point, str):
-            if point not in b.points:
-                known = ", ".join(sorted(b.points)) or "none"
-                raise UnknownPointError(f"body '{b.name}' has no point '{point}' (its points: {known})")
-            return np.array([float(v) for v in b.points[point]])
-        try:
-            s = np.asarray(point, dtype=float)
-        except (TypeError, ValueError):
-            s = None
-        if s is None or s.shape != (3,) or not np.all(np.isfinite(s)):
-            raise InputError(f"a point on body '{b.name}' must be a point name or three finite numbers, got {point!r}")
-        return s
-
     def _pq(self, q, body, name="q", unit=True):
         qb = self._body_q(self._check_q(q, name), body)
         if unit:
