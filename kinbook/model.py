@@ -144,6 +144,17 @@ class ConstraintGroup:
         plist = [c.params() for c in constraints]
         self.params = {key: np.array([p[key] for p in plist], dtype=float) for key in plist[0]}
 
+    def reduced_index(self, rows, cols, m, n):
+        """Where this group's Jacobian entries go in Φ_q restricted to ``rows`` × ``cols``: (mask of the
+        entries kept, or None for all; their flat indices). Cached: a mechanism has one reduction."""
+        if getattr(self, "_reduced", None) is None:
+            rpos, cpos = np.full(m, -1), np.full(n, -1)
+            rpos[rows], cpos[cols] = np.arange(len(rows)), np.arange(len(cols))
+            r, c = rpos[self.jac_rows], cpos[self.jac_cols]
+            keep = (r >= 0) & (c >= 0)
+            self._reduced = (None if keep.all() else keep, (r * len(cols) + c)[keep])
+        return self._reduced
+
     def gather(self, q):
         """The coordinates of each constraint's bodies: (B, n) → (B, k, nb, ncoord)."""
         return q[:, self.cols].reshape(q.shape[0], len(self.constraints), self.nb, self.ncoord)
@@ -247,7 +258,7 @@ class MechanismBase:
         raise ModelError(f"mechanism '{self.name}' has no constraint '{name}' (its constraints: {known})")
 
     def _invalidate(self):
-        for attr in ("_compiled", "_symbolic", "q", "qd", "_q0", "_sizes"):
+        for attr in ("_compiled", "_symbolic", "q", "qd", "_q0", "_sizes", "_reduction"):
             self.__dict__.pop(attr, None)
 
     # ------------------------------------------------------------------------------------------- sizes
@@ -366,6 +377,34 @@ class MechanismBase:
             self.__dict__["_compiled"] = ([ConstraintGroup(g, self.n, ncoord) for g in groups.values()], drivers, wrap)
         return self.__dict__["_compiled"]
 
+    @property
+    def _reduction(self):
+        """(free rows, free columns) of Φ_q once the *fixed* bodies are set aside, or None if there are none.
+
+        A body is fixed when time-independent constraints acting on it alone have as many equations as it has
+        coordinates (a ground constraint, three simple constraints; in space ground plus normalization). Those
+        rows involve only its columns, so Φ_q is block-triangular: the body's coordinates stay at their
+        assembled values, its q̇ and q̈ are zero, and the rest solves the smaller system of the other rows and
+        columns — the same solution at a fraction of the cost of factoring the whole matrix.
+        """
+        if "_reduction" not in self.__dict__:
+            ncoord = len(self.COORDS)
+            own = {}
+            for c in self.constraints:
+                if c.f is None and len(c.bodies) == 1:
+                    own.setdefault(c.bodies[0].name, []).append(c)
+            rows, cols = [], []
+            for b in self.bodies:
+                cs = own.get(b.name, [])
+                if sum(c.n_eq for c in cs) == ncoord:
+                    rows += [r for c in cs for r in range(c.rows.start, c.rows.stop)]
+                    cols += range((b.number - 1) * ncoord, b.number * ncoord)
+            red = None
+            if rows:
+                red = (np.setdiff1d(np.arange(self.m), rows), np.setdiff1d(np.arange(self.n), cols))
+            self.__dict__["_reduction"] = red
+        return self.__dict__["_reduction"]
+
     def _check_q(self, q, name="q"):
         try:
             q = np.asarray(q, dtype=float)
@@ -393,7 +432,7 @@ class MechanismBase:
             raise InputError(f"`t` must be a number or have shape ({batch},), got {t.shape}")
         return np.broadcast_to(t, (batch,))
 
-    def evaluate(self, q, t=0.0, qd=None, *, jacobian=True, sparse=False):
+    def evaluate(self, q, t=0.0, qd=None, *, jacobian=True, sparse=False, reduced=False):
         """Evaluate Φ, Φ_q, ν and (when ``qd`` is given) γ at once, for one or many instants.
 
         This is the fast path every analysis uses: one kernel call per constraint type, vectorized over the
@@ -408,7 +447,8 @@ class MechanismBase:
         Returns
         -------
         dict with 'Phi' (…, m), 'Phi_q' (…, m, n) — a scipy CSR matrix when ``sparse`` (one instant) —
-        'nu' (…, m) and 'gamma' (…, m) (None without ``qd``).
+        'nu' (…, m) and 'gamma' (…, m) (None without ``qd``). With ``reduced``, 'Phi_q' leaves out the rows
+        and columns of the fixed bodies (``_reduction``), the system the solvers factor.
         """
         q = self._check_q(q)
         single = q.ndim == 1
@@ -449,6 +489,13 @@ class MechanismBase:
                 cols = np.concatenate([g.jac_cols for g in groups])
                 data = np.concatenate([v[0] for v in values])
                 out["Phi_q"] = sps.csr_matrix((data, (rows, cols)), shape=(m, n))
+            elif reduced and self._reduction is not None:
+                rows, cols = self._reduction
+                J = np.zeros((Bn, len(rows) * len(cols)))
+                for g, v in zip(groups, values):
+                    keep, flat = g.reduced_index(rows, cols, m, n)
+                    J[:, flat] = v if keep is None else v[:, keep]
+                out["Phi_q"] = J.reshape(Bn, len(rows), len(cols))
             else:
                 J = np.zeros((Bn, m * n))
                 for g, v in zip(groups, values):

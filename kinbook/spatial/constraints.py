@@ -99,17 +99,27 @@ def _C_np(p, a, abar=None):
 
 
 def _mv(M, v):
-    """Batched matrix-vector product (…, m, n) @ (…, n) -> (…, m)."""
-    return (M @ v[..., None])[..., 0]
+    """Batched matrix-vector product (…, m, n) @ (…, n) -> (…, m), for small n: n broadcast multiply-adds
+    (numpy's stacked matmul on tiny matrices costs more per matrix than the arithmetic)."""
+    out = M[..., 0] * v[..., None, 0]
+    for c in range(1, v.shape[-1]):
+        out += M[..., c] * v[..., None, c]
+    return out
 
 
 def _vtm(v, M):
-    """Batched vector-matrix product (…, m) @ (…, m, n) -> (…, n)."""
-    return (v[..., None, :] @ M)[..., 0, :]
+    """Batched vector-matrix product (…, m) @ (…, m, n) -> (…, n), for small m."""
+    out = v[..., 0, None] * M[..., 0, :]
+    for r in range(1, v.shape[-1]):
+        out += v[..., r, None] * M[..., r, :]
+    return out
 
 
 def _vdot(u, v):
-    return (u * v).sum(-1)
+    out = u[..., 0] * v[..., 0]
+    for c in range(1, u.shape[-1]):
+        out += u[..., c] * v[..., c]
+    return out
 
 
 class _V:
@@ -127,6 +137,35 @@ class _V:
         return _V(self.val - other.val, self.jac - other.jac, vel, quad)
 
 
+# E(p) = Σ_l p_l T_l: the constant tensor T (3, 4, 4) of the linear map p ↦ E(p)
+_E_T = np.zeros((3, 4, 4))
+_E_T[np.repeat(np.arange(3), 4), np.tile(np.arange(4), 3), _E_IDX] = _E_SIGN
+_C_MAPS = {}
+
+
+def _c_map(a):
+    """The constant (k, 4, 12) M with C(p, a) = ∂(A a)/∂p = p·M (C flattened to 12 entries), for local
+    vectors a (k, 3): C is linear in p, C_ij = 2 Σ_l p_l (Σ_m T_iml ā_mj + a_i δ_jl). Cached by value."""
+    key = (a.shape, a.tobytes())
+    M = _C_MAPS.get(key)
+    if M is None:
+        M = 2 * (np.einsum("iml,kmj->klij", _E_T, _abar_np(a)) + np.einsum("ki,jl->klij", a, np.eye(4)))
+        M = M.reshape(len(a), 4, 12)
+        if len(_C_MAPS) > 4096:
+            _C_MAPS.clear()
+        _C_MAPS[key] = M
+    return M
+
+
+def _c_of(p, M):
+    """C for p (B, k, 4): (B, k, 3, 4), one (B × 4)·(4 × 12) product per constraint of the group."""
+    Bn, k = p.shape[:2]
+    out = np.empty((Bn, k, 12))
+    for i in range(k):
+        np.matmul(p[:, i], M[i], out=out[:, i])
+    return out.reshape(Bn, k, 3, 4)
+
+
 def _body_vec(Q, Qd, b, a, point):
     """A s' (``point`` False) or r + A s' (True) for local components ``a`` (k, 3) on body ``b``.
 
@@ -135,9 +174,9 @@ def _body_vec(Q, Qd, b, a, point):
     C(ṗ) ṗ = 2(E(ṗ) ā ṗ + a ṗᵀṗ).
     """
     Bn, k, nb, _ = Q.shape
+    M = _c_map(a)
     p = Q[:, :, b, 3:7]
-    abar = _abar_np(a)
-    C = _C_np(p, a, abar)
+    C = _c_of(p, M)
     val = 0.5 * _mv(C, p) - a
     jac = np.zeros((Bn, k, 3, NCOORD * nb))
     jac[..., NCOORD * b + 3 : NCOORD * b + 7] = C
@@ -150,7 +189,7 @@ def _body_vec(Q, Qd, b, a, point):
         vel = _mv(C, pd)
         if point:
             vel = vel + Qd[:, :, b, :3]
-        quad = _mv(_C_np(pd, a, abar), pd)
+        quad = _mv(_c_of(pd, M), pd)
     return _V(val, jac, vel, quad)
 
 

@@ -138,3 +138,37 @@ def test_sweep_starting_near_a_limit_stays_on_the_branch_of_q0():
     phi3_at_0 = m.solve_position(0.0)[m.index("phi3")]
     assert r.coordinate("phi3")[-1] == pytest.approx(phi3_at_0, abs=1e-9)
     assert np.all(np.abs(np.diff(r.coordinate("phi3"))) < 0.2)  # continuous: no jump between branches
+
+
+@pytest.mark.parametrize("name", ["ch13_example1", "ch13_example2", "spatial_fourbar"])
+def test_fixed_bodies_are_set_aside_without_changing_the_system(name):
+    """The solvers factor Φ_q without the ground's rows and columns; that block-triangular reduction must be the
+    full matrix with those rows and columns deleted, and the ground's deleted rows must involve its columns
+    only (otherwise the reduced system would not be equivalent)."""
+    m = examples.load(name)
+    rows, cols = m._reduction
+    fixed_rows = np.setdiff1d(np.arange(m.m), rows)
+    fixed_cols = np.setdiff1d(np.arange(m.n), cols)
+    ground = m.bodies[0].name
+    assert len(fixed_rows) == len(fixed_cols) == len(m.COORDS)
+    np.testing.assert_array_equal(fixed_cols, np.arange(len(m.COORDS)) + len(m.COORDS) * (m.body(ground).number - 1))
+    rng = np.random.default_rng(3)
+    q = m.q0 + 0.1 * rng.standard_normal((5, m.n))
+    full = m.evaluate(q, 0.01)["Phi_q"]
+    red = m.evaluate(q, 0.01, reduced=True)["Phi_q"]
+    np.testing.assert_array_equal(red, full[:, rows][:, :, cols])
+    assert not full[:, fixed_rows][:, :, cols].any()
+    # a sweep keeps the ground where it is (to rounding: the first instant is solved with the full system),
+    # with zero velocity and acceleration
+    r = m.simulate(np.linspace(0, 0.01, 21))
+    np.testing.assert_allclose(r.q[:, fixed_cols], np.broadcast_to(m.q0[fixed_cols], (21, len(fixed_cols))),
+                               atol=1e-15)
+    np.testing.assert_allclose(r.qd[:, fixed_cols], 0, atol=1e-15 * np.abs(r.qd).max())
+    np.testing.assert_allclose(r.qdd[:, fixed_cols], 0, atol=1e-15 * np.abs(r.qdd).max())
+
+
+def test_no_reduction_without_a_fully_fixed_body():
+    m = examples.load("ch13_example2")
+    m.remove(m.constraints[0].name)  # the ground constraint
+    m.add(Simple(m.bodies[0].name, "x"))
+    assert m._reduction is None
