@@ -12,8 +12,6 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg as sla
-import scipy.sparse.linalg as spla
 
 from .errors import (
     AssemblyError,
@@ -92,6 +90,9 @@ def _t(t):
 
 def _solve(J, b):
     """Solve J x = b for one square system, dense or sparse. Returns None when J is singular."""
+    import scipy.linalg as sla  # imported when first needed: scipy adds about half a second to `import kinbook`
+    import scipy.sparse.linalg as spla
+
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", sla.LinAlgWarning)
         try:

@@ -12,7 +12,6 @@ import html
 from functools import cached_property
 
 import numpy as np
-import scipy.sparse as sps
 import sympy as sp
 
 from . import analysis
@@ -485,6 +484,8 @@ class MechanismBase:
             if sparse:
                 if not single:
                     raise InputError("a sparse Φ_q is available for one instant at a time")
+                import scipy.sparse as sps  # imported when first needed (see analysis._solve)
+
                 rows = np.concatenate([g.jac_rows for g in groups])
                 cols = np.concatenate([g.jac_cols for g in groups])
                 data = np.concatenate([v[0] for v in values])
