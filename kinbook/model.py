@@ -467,11 +467,15 @@ class MechanismBase:
         nu = np.zeros((Bn, m))
         values = []
         for g in groups:
-            phi, jac, gam = g.kernel(g.gather(qb), g.params, None if qdb is None else g.gather(qdb))
+            Qg, Qdg = g.gather(qb), None if qdb is None else g.gather(qdb)
+            if jacobian or not getattr(g.kernel, "optional_jacobian", False):
+                phi, jac, gam = g.kernel(Qg, g.params, Qdg)
+            else:  # Φ or γ alone: a kernel that builds Φ_q lazily skips it
+                phi, jac, gam = g.kernel(Qg, g.params, Qdg, jacobian=False)
             Phi[:, g.rows] = phi
             if gam is not None:
                 gamma[:, g.rows] = gam
-            values.append(jac.reshape(Bn, -1))
+            values.append(None if jac is None else jac.reshape(Bn, -1))
         for row, f0, f1, f2 in drivers:
             Phi[:, row] -= f0(tb)
             nu[:, row] = f1(tb)

@@ -124,17 +124,25 @@ def _vdot(u, v):
 
 class _V:
     """A 3-vector quantity of a constraint: value, Jacobian (w.r.t. the constraint's 7·nb coordinates),
-    velocity and the velocity-quadratic part of its second derivative (both None without Qd)."""
+    velocity and the velocity-quadratic part of its second derivative (both None without Qd).
 
-    __slots__ = ("val", "jac", "vel", "quad")
+    The Jacobian is built on first use (``jac``): an evaluation of Φ or γ alone never builds it."""
+
+    __slots__ = ("val", "_jac", "vel", "quad")
 
     def __init__(self, val, jac, vel, quad):
-        self.val, self.jac, self.vel, self.quad = val, jac, vel, quad
+        self.val, self._jac, self.vel, self.quad = val, jac, vel, quad
+
+    @property
+    def jac(self):
+        if callable(self._jac):
+            self._jac = self._jac()
+        return self._jac
 
     def __sub__(self, other):
         vel = None if self.vel is None else self.vel - other.vel
         quad = None if self.quad is None else self.quad - other.quad
-        return _V(self.val - other.val, self.jac - other.jac, vel, quad)
+        return _V(self.val - other.val, lambda: self.jac - other.jac, vel, quad)
 
 
 # E(p) = Σ_l p_l T_l: the constant tensor T (3, 4, 4) of the linear map p ↦ E(p)
@@ -178,12 +186,17 @@ def _body_vec(Q, Qd, b, a, point):
     p = Q[:, :, b, 3:7]
     C = _c_of(p, M)
     val = 0.5 * _mv(C, p) - a
-    jac = np.zeros((Bn, k, 3, NCOORD * nb))
-    jac[..., NCOORD * b + 3 : NCOORD * b + 7] = C
+
+    def jac():
+        out = np.zeros((Bn, k, 3, NCOORD * nb))
+        out[..., NCOORD * b + 3 : NCOORD * b + 7] = C
+        if point:
+            out[..., NCOORD * b : NCOORD * b + 3] = np.eye(3)
+        return out
+
     vel = quad = None
     if point:
         val = val + Q[:, :, b, :3]
-        jac[..., NCOORD * b : NCOORD * b + 3] = np.eye(3)
     if Qd is not None:
         pd = Qd[:, :, b, 3:7]
         vel = _mv(C, pd)
@@ -194,9 +207,12 @@ def _body_vec(Q, Qd, b, a, point):
 
 
 def _dot(u, v):
-    """One row Φ = uᵀv: returns (phi (B,k), jac (B,k,7nb), gamma (B,k) or None)."""
+    """One row Φ = uᵀv: returns (phi (B,k), jac: a function returning (B,k,7nb), gamma (B,k) or None)."""
     phi = _vdot(u.val, v.val)
-    jac = _vtm(v.val, u.jac) + _vtm(u.val, v.jac)
+
+    def jac():
+        return _vtm(v.val, u.jac) + _vtm(u.val, v.jac)
+
     gam = None
     if u.vel is not None:
         gam = -(_vdot(u.quad, v.val) + _vdot(u.val, v.quad)
@@ -206,12 +222,14 @@ def _dot(u, v):
 
 def _vector_rows(v):
     """Three rows Φ = v (a vector equation)."""
-    return [(v.val[..., r], v.jac[..., r, :], None if v.quad is None else -v.quad[..., r]) for r in range(3)]
+    return [(v.val[..., r], lambda r=r: v.jac[..., r, :], None if v.quad is None else -v.quad[..., r])
+            for r in range(3)]
 
 
-def _stack_rows(rows):
+def _stack_rows(rows, jacobian=True):
+    """Rows (phi, jac or a function building it, gamma) → stacked arrays; jac None unless ``jacobian``."""
     phi = np.stack([r[0] for r in rows], -1)
-    jac = np.stack([r[1] for r in rows], -2)
+    jac = np.stack([r[1]() if callable(r[1]) else r[1] for r in rows], -2) if jacobian else None
     gam = None if rows[0][2] is None else np.stack([r[2] for r in rows], -1)
     return phi, jac, gam
 
@@ -274,18 +292,19 @@ def _rows_ground(Q, Qd, P):
 
 
 def _rows_angle(Q, Qd, P):
-    fj = _body_vec(Q, Qd, 1, P["fj"], False)
-    c, cq, cg = _dot(_body_vec(Q, Qd, 0, P["fi"], False), fj)
-    s, sq, sg = _dot(_body_vec(Q, Qd, 0, P["gi"], False), fj)
+    fi, gi, fj = _body_vec(Q, Qd, 0, P["fi"], False), _body_vec(Q, Qd, 0, P["gi"], False), _body_vec(Q, Qd, 1, P["fj"], False)
+    c, cq, cg = _dot(fi, fj)
+    s, sq, sg = _dot(gi, fj)
     rho = c * c + s * s
     phi = np.arctan2(s, c)
-    jac = (c[..., None] * sq - s[..., None] * cq) / rho[..., None]
+
+    def jac():
+        return (c[..., None] * sq() - s[..., None] * cq()) / rho[..., None]
+
     gam = None
     if Qd is not None:
-        Bn, k, nb, _ = Qd.shape
-        qd = Qd.reshape(Bn, k, nb * NCOORD)
-        cd = _vdot(cq, qd)
-        sd = _vdot(sq, qd)
+        cd = _vdot(fi.vel, fj.val) + _vdot(fi.val, fj.vel)  # ċ = c_q q̇
+        sd = _vdot(gi.vel, fj.val) + _vdot(gi.val, fj.vel)
         # θ̈ = θ_q q̈ + (c s̈_quad − s c̈_quad)/ρ − (c ṡ − s ċ)·2(c ċ + s ṡ)/ρ², with s̈_quad = −γ_s
         quad = (-c * sg + s * cg) / rho - (c * sd - s * cd) * 2 * (c * cd + s * sd) / rho**2
         gam = -quad
@@ -293,13 +312,14 @@ def _rows_angle(Q, Qd, P):
 
 
 def _kernel(*builders):
-    def kernel(Q, P, Qd=None):
+    def kernel(Q, P, Qd=None, jacobian=True):
         rows = []
         for build in builders:
             rows.extend(build(Q, Qd, P))
-        return _stack_rows(rows)
+        return _stack_rows(rows, jacobian)
 
     kernel.builders = builders
+    kernel.optional_jacobian = True
     return kernel
 
 
