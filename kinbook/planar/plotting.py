@@ -34,6 +34,7 @@ import re
 
 import numpy as np
 
+from .._animation import AnimationHTML
 from ..errors import InputError, KinbookError
 
 __all__ = [
@@ -1180,43 +1181,30 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
     return anim
 
 
-class AnimationHTML:
-    """An animation that plays inside a notebook: ``_repr_html_`` is the animation's JavaScript player."""
-
-    def __init__(self, anim):
-        self.anim = anim
-        self._html = None
-
-    def to_html(self):
-        if self._html is None:
-            self._html = self.anim.to_jshtml()
-        return self._html
-
-    def _repr_html_(self):
-        return self.to_html()
-
-    def __repr__(self):
-        return f"<AnimationHTML: {len(self.anim.kinbook_indices)} frames>"
-
-
-def animation_html(result, **kwargs):
+def animation_html(result, frame_format="png", **kwargs):
     """:func:`animate` for notebooks: an object that renders as an HTML/JavaScript player.
 
     The figure is closed so the notebook does not also show it as a still image. Keyword arguments go to
     :func:`animate`; the defaults here are smaller (72 frames at most, 72 dpi) because every frame is
-    stored in the notebook as an image.
+    stored in the notebook as an image. The player's HTML is the same on every run (no random ids), so a
+    re-executed notebook changes only where its content does.
+
+    Parameters
+    ----------
+    frame_format : {"png", "jpeg"}
+        How the frames are stored.
 
     Returns
     -------
-    AnimationHTML
-        ``_repr_html_()`` returns ``anim.to_jshtml()``; ``.anim`` is the FuncAnimation.
+    kinbook._animation.AnimationHTML
+        ``_repr_html_()`` returns the JavaScript player; ``.anim`` is the FuncAnimation.
     """
     kwargs.setdefault("figsize", (6.0, 4.5))
     kwargs.setdefault("dpi", 72)
     kwargs.setdefault("max_frames", 72)
     anim = animate(result, **kwargs)
     _plt().close(anim._fig)
-    return AnimationHTML(anim)
+    return AnimationHTML(anim, frame_format)
 
 
 # ============================================================================================== explorer

@@ -29,6 +29,7 @@ from .constraints import (
     Universal,
 )
 from . import plotting
+from .plotting import draw_frame, draw_vector
 from .transforms import point_acceleration, point_position, point_velocity
 from .mechanism import Body, ConstraintTable, Mechanism
 from .rotations import (
@@ -58,6 +59,8 @@ from .rotations import (
 
 __all__ = [
     "plotting",
+    "draw_vector",
+    "draw_frame",
     "point_position",
     "point_velocity",
     "point_acceleration",

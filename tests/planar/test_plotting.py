@@ -227,6 +227,11 @@ def test_animation_html_plays_and_closes_its_figure(sweep):
     assert not plt.fignum_exists(h.anim._fig.number)
     html = h._repr_html_()
     assert "<script" in html and html.count("data:image/png") >= 1
+    # the same animation gives the same HTML (no random player id), a different one another id
+    again = plotting.animation_html(sweep, max_frames=2, labels=False).to_html()
+    other = plotting.animation_html(sweep, max_frames=3, labels=False).to_html()
+    player = re.compile(r'id="_anim_img([0-9a-f]+)"')
+    assert again == html and player.search(other).group(1) != player.search(html).group(1)
 
 
 # --------------------------------------------------------------------------------------------- explorer
