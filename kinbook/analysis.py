@@ -328,15 +328,15 @@ class SimulationResult:
         return (self.q, self.qd, self.qdd)[derivative][:, k]
 
     def position(self, body, point):
-        """Global positions of a body point at every instant, shape (N, 2)."""
+        """Global positions of a body point at every instant, shape (N, 2) (planar) or (N, 3) (spatial)."""
         return self.mechanism.point_position(self.q, body, point)
 
     def velocity(self, body, point):
-        """Global velocities of a body point, shape (N, 2)."""
+        """Global velocities of a body point, shape (N, 2) or (N, 3)."""
         return self.mechanism.point_velocity(self.q, self.qd, body, point)
 
     def acceleration(self, body, point):
-        """Global accelerations of a body point, shape (N, 2)."""
+        """Global accelerations of a body point, shape (N, 2) or (N, 3)."""
         return self.mechanism.point_acceleration(self.q, self.qd, self.qdd, body, point)
 
     def _summary(self):

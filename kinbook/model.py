@@ -257,7 +257,7 @@ class MechanismBase:
         raise ModelError(f"mechanism '{self.name}' has no constraint '{name}' (its constraints: {known})")
 
     def _invalidate(self):
-        for attr in ("_compiled", "_symbolic", "q", "qd", "_q0", "_sizes", "_reduction"):
+        for attr in ("_compiled", "_symbolic", "q", "qd", "_q0", "_sizes", "_reduction", "_derivations"):
             self.__dict__.pop(attr, None)
 
     # ------------------------------------------------------------------------------------------- sizes

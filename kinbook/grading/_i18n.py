@@ -130,12 +130,12 @@ _TEXT = {
               "ellas difieren del libro porque tu Φ difiere.",
     },
     "row_ok_scaled": {
-        "en": "correct (the book's row multiplied by {c:g}, which defines the same constraint)",
-        "es": "correcta (la fila del libro multiplicada por {c:g}, que define la misma restricción)",
+        "en": "correct (the reference row multiplied by {c:g}, which defines the same constraint)",
+        "es": "correcta (la fila de referencia multiplicada por {c:g}, que define la misma restricción)",
     },
     "row_ok_as": {
-        "en": "correct: it is {ref} of the book, multiplied by {c:g}",
-        "es": "correcta: es la {ref} del libro, multiplicada por {c:g}",
+        "en": "correct: it is {ref} of the reference, multiplied by {c:g}",
+        "es": "correcta: es la {ref} de la referencia, multiplicada por {c:g}",
     },
     "row_ok_moved": {
         "en": "correct, but it is the book's {ref}: the exercise asks for the book's order",

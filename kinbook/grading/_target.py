@@ -231,7 +231,12 @@ def target_for(target):
 def _generic(mech, rng):
     n = mech.n
     Q = rng.uniform(-3.0, 3.0, (N_GENERIC, n))
-    Q[:, 2::3] = rng.uniform(-np.pi, np.pi, (N_GENERIC, n // 3))
+    if mech.kind == "planar":  # angles φ_i in one turn
+        Q[:, 2::3] = rng.uniform(-np.pi, np.pi, (N_GENERIC, n // 3))
+    else:  # Euler parameters on the unit sphere, where every real configuration has them
+        for k in range(n // 7):
+            p = rng.normal(size=(N_GENERIC, 4))
+            Q[:, 7 * k + 3 : 7 * k + 7] = p / np.linalg.norm(p, axis=1, keepdims=True)
     QD = rng.normal(0.0, 3.0, (N_GENERIC, n))
     T = rng.uniform(0.0, 0.05, N_GENERIC)
     return Samples(Q, QD, T)

@@ -28,8 +28,9 @@ B_k = ∂(A_k s'ᴾ_k)/∂p_k for points and C_k = ∂(A_k s'_k)/∂p_k for vect
 :meth:`Constraint.blocks` returns these blocks for any constraint; the tests compare them with sympy.
 
 Parallel vectors. The book writes p1 and p2 as "two of the three" rows of s̃_i s_j = 0 without saying
-which; any fixed choice of two rows loses rank when s_i lies along one global axis (rows 1-2: X, rows 1-3:
-Y, rows 2-3: Z, where the other row is identically zero). kinbook instead uses two
+which; any fixed choice of two rows loses rank on a whole circle of directions of s_i: rows 1-2 wherever
+s_iz = 0 (the XY plane), rows 1-3 wherever s_iy = 0, rows 2-3 wherever s_ix = 0 (there the dropped row is
+no combination of the kept ones, and the kept ones miss a misalignment). kinbook instead uses two
 unit vectors h_1, h_2 fixed in body i, perpendicular to s'_i and to each other (h_1 from the coordinate axis
 least aligned with s'_i, h_2 = s'_i × h_1 / |s'_i|): s_j ∥ s_i ⇔ h_1ᵀs_j = h_2ᵀs_j = 0. Both rows are
 (n1,1) constraints (p2: (n2,1)), well-conditioned in every orientation (their gradients are orthogonal when

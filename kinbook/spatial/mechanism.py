@@ -161,12 +161,16 @@ class Mechanism(MechanismBase):
         Returns
         -------
         kinbook.symbolic.Derivation
-            Its ``q`` lists the coordinates of the constraint's bodies (x_i … e3_i, x_j … e3_j).
+            Its ``q`` lists the coordinates of the constraint's bodies (x_i … e3_i, x_j … e3_j). Computed
+            once per constraint (γ of a joint takes sympy a fraction of a second) until the mechanism changes.
         """
         c = self._constraint(constraint)
-        q = sp.Matrix.vstack(*[self.body_symbols(b.name) for b in c.bodies])
-        k = [self.index(str(s)) for s in q]
-        return derive(self.constraint_phi(c), q, self.qd[k, 0], t_symbol)
+        cache = self.__dict__.setdefault("_derivations", {})
+        if c.name not in cache:
+            q = sp.Matrix.vstack(*[self.body_symbols(b.name) for b in c.bodies])
+            k = [self.index(str(s)) for s in q]
+            cache[c.name] = derive(self.constraint_phi(c), q, self.qd[k, 0], t_symbol)
+        return cache[c.name]
 
     # ------------------------------------------------------------------------------------------- bodies and points
     def _pq(self, q, body, name="q", unit=True):

@@ -215,3 +215,13 @@ def test_redundant_assembly_raises_with_rows_named():
     with pytest.raises(RedundantConstraintsError, match="redundant.*spherical joint 'socket'.*'again'") as info:
         m.solve_position()
     assert set(info.value.constraints) == {"socket", "again"}
+
+
+def test_derivation_is_computed_once_per_constraint_until_the_mechanism_changes():
+    m = examples.load("spatial_fourbar")
+    name = m.constraints[5].name
+    d = m.derivation(name)
+    assert m.derivation(name) is d
+    m.remove(name)
+    with pytest.raises(ModelError, match=name):
+        m.derivation(name)
