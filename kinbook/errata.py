@@ -496,6 +496,280 @@ ERRATA += [
 ]
 
 
+# ------------------------------------------------------------------------------------------- §14.4 evidence
+def _ev_14_4_pair(joint, points, vectors, seed, count=20):
+    """A two-body spatial mechanism with one §14.4 constraint ``joint`` (bodies "i", "j") and ``count`` seeded
+    random configurations (random r, unit p; not assembled) as (q, r_i, A_i, r_j, A_j)."""
+    from .spatial import A_from_p, Mechanism
+
+    m = Mechanism("§14.4 evidence")
+    for b in ("i", "j"):
+        m.add_body(b, points=points.get(b), vectors=vectors.get(b))
+    m.add(joint)
+    rng = np.random.default_rng(seed)
+    states = []
+    for _ in range(count):
+        q = rng.uniform(-2, 2, 14)
+        for k in (3, 10):
+            q[k : k + 4] /= np.linalg.norm(q[k : k + 4])
+        states.append((q, q[:3], A_from_p(q[3:7]), q[7:10], A_from_p(q[10:14])))
+    return m, states
+
+
+def _ev_14_4_n2_primes():
+    from .spatial import Normal2
+
+    s_i, B_i, B_j = np.array([0.3, -0.8, 0.5]), np.array([1.2, 0.4, -0.3]), np.array([-0.6, 0.9, 0.7])
+    c = Normal2("i", "j", vector_i=tuple(s_i), point_i="B", point_j="B")
+    m, states = _ev_14_4_pair(c, {"i": {"B": B_i}, "j": {"B": B_j}}, {}, 144)
+    rows = []
+    for q, r_i, A_i, r_j, A_j in states:
+        # printed: s_iᵀ A_iᵀ (r_j + A_j s_j^B − r_i − A_i s_i^B), unprimed vectors having global components
+        printed = (A_i @ s_i) @ A_i.T @ (r_j + A_j @ (A_j @ B_j) - r_i - A_i @ (A_i @ B_i))
+        corrected = s_i @ A_i.T @ (r_j + A_j @ B_j - r_i - A_i @ B_i)
+        rows.append((printed, corrected, m.Phi(q)[c.rows][0]))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"At 20 random configurations the printed Φ^(n2,1), read with global s_i, s_i^B, s_j^B "
+                    f"(s = A s'), differs from kinbook's normal-2 row by up to {e_p:.3f}; with the local s'_i, "
+                    f"s'_i^B, s'_j^B it agrees to {e_c:.1e}.", e_p, e_c)
+
+
+def _ev_14_4_p1_transpose():
+    from .spatial import A_from_p, skew
+
+    s_i, s_j = np.array([0.3, -0.8, 0.5]), np.array([-0.6, 0.9, 0.7])
+    ps = _unit_ps(40, seed=144)
+    rows = []
+    for p_i, p_j in zip(ps[:20], ps[20:]):
+        A_i, A_j = A_from_p(p_i), A_from_p(p_j)
+        reference = skew(A_i @ s_i) @ (A_j @ s_j)  # s̃_i s_j in global components
+        printed = A_i @ skew(s_i).T @ A_i.T @ A_j @ s_j  # primes restored, the transpose kept
+        corrected = A_i @ skew(s_i) @ A_i.T @ A_j @ s_j
+        rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"At 20 random pairs of orientations A_i s̃'_iᵀ A_iᵀ A_j s'_j differs from s̃_i s_j by up to "
+                    f"{e_p:.3f} (it equals −s̃_i s_j, because s̃ᵀ = −s̃); A_i s̃'_i A_iᵀ A_j s'_j agrees to {e_c:.1e}.",
+                    e_p, e_c)
+
+
+def _ev_14_4_p1_two_rows():
+    from .spatial import Parallel1, p_from_axis_angle, skew
+
+    c = Parallel1("i", "j", vector_i=(1, 0, 0), vector_j=(1, 0, 0))
+    m, _ = _ev_14_4_pair(c, {}, {}, 0, count=0)
+    rows = []
+    for angle in np.radians(np.arange(10, 171, 20)):  # s_i along X, s_j turned in the XY plane: not parallel
+        q = np.r_[0, 0, 0, 1, 0, 0, 0, 1, 0, 0, p_from_axis_angle([0, 0, 1], angle)]
+        s_i, s_j = m.A(q, "i")[:, 0], m.A(q, "j")[:, 0]
+        cross = np.linalg.norm(skew(s_i) @ s_j)
+        printed = np.linalg.norm((skew(s_i) @ s_j)[:2])  # "the third row is a combination of the first two"
+        corrected = np.linalg.norm(m.Phi(q)[c.rows])  # kinbook's h_1ᵀ s_j, h_2ᵀ s_j
+        rows.append((printed, corrected, cross))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"With s_i along X and s_j turned 10°…170° about Z, rows 1-2 of s̃_i s_j are both 0 although "
+                    f"|s_i × s_j| reaches {e_p:.3f}: they miss the whole misalignment. The norm of kinbook's two rows "
+                    f"h_1ᵀ s_j, h_2ᵀ s_j equals |s_i × s_j| to {e_c:.1e}.", e_p, e_c)
+
+
+def _ev_14_4_universal_primes():
+    from .spatial import Universal
+
+    P_i, P_j = np.array([1.5, -0.2, 0.4]), np.array([-0.7, 0.3, 1.1])
+    c = Universal("i", "j", vector_i=(0, 1, 0), vector_j=(1, 0, 0), point="P")
+    m, states = _ev_14_4_pair(c, {"i": {"P": P_i}, "j": {"P": P_j}}, {}, 146)
+    rows = []
+    for q, r_i, A_i, r_j, A_j in states:
+        reference = m.Phi(q)[c.rows][:3]
+        printed = r_i + A_i @ (A_i @ P_i) - A_j @ (A_j @ P_j) - r_j  # s_i^P, s_j^P global: s^P = A s'^P
+        corrected = r_i + A_i @ P_i - A_j @ P_j - r_j
+        rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"At 20 random configurations the printed Φ^(s,3) of the universal joint, read with global "
+                    f"s_i^P, s_j^P as the spherical-joint section defines them, differs from kinbook's first three "
+                    f"rows by up to {e_p:.3f}; with s'^P_i, s'^P_j it agrees to {e_c:.1e}.", e_p, e_c)
+
+
+def _ev_14_4_revolute_tilde():
+    import sympy as sp
+
+    from .spatial import A_from_p, Revolute, p_from_A, p_from_axis_angle, skew
+
+    s_i, s_j, P_i, P_j = (0, 0, 1), (0, 0, 1), np.array([1.0, 0.0, 0.5]), np.array([0.0, 0.0, -0.4])
+    c = Revolute("i", "j", point="P", axis_i=s_i, axis_j=s_j)
+    m, _ = _ev_14_4_pair(c, {"i": {"P": P_i}, "j": {"P": P_j}}, {}, 0, count=0)
+    # an assembled joint: body j turned 0.9 rad about body i's axis, its P on body i's P
+    p_i = p_from_axis_angle([1, 2, -1], 0.7)
+    A_i = A_from_p(p_i)
+    A_j = A_i @ A_from_p(p_from_axis_angle(s_i, 0.9))
+    r_i = np.array([0.3, -0.2, 0.5])
+    r_j = r_i + A_i @ P_i - A_j @ P_j
+    q = np.r_[r_i, p_i, r_j, p_from_A(A_j)]
+    joint = float(np.abs(m.Phi(q)[c.rows]).max())
+    try:  # as printed: A_i s'_i A_iᵀ A_j s'_j, a 3×1 column times a 3×3 matrix
+        sp.Matrix(A_i) * sp.Matrix(s_i) * sp.Matrix(A_i.T) * sp.Matrix(A_j) * sp.Matrix(s_j)
+        printed = 0.0
+    except sp.ShapeError:
+        printed = np.inf
+    corrected = float(np.abs(A_i @ skew(s_i) @ A_i.T @ A_j @ np.array(s_j, float)).max())
+    return Evidence(f"As printed, A_i s'_i A_iᵀ A_j s'_j multiplies a 3×1 column by a 3×3 matrix: it is not defined "
+                    f"(sympy raises ShapeError). At an assembled revolute joint (kinbook's five rows: max |Φ| = "
+                    f"{joint:.1e}), the form with the tilde, A_i s̃'_i A_iᵀ A_j s'_j, is {corrected:.1e}.",
+                    printed, max(corrected, joint))
+
+
+# §14.4, constraints between two bodies (chapters/14-4-spatial-constraints.ipynb)
+ERRATA += [
+    Erratum("14.4-n2-primes", "§14.4, Vectores perpendiculares: Φ^(n2,1) in local components",
+            r"\Phi^{(n2,1)} = s_i^T A_i^T (r_j + A_j s_j^B - r_i - A_i s_i^B)",
+            r"\Phi^{(n2,1)} = s_i'^T A_i^T (r_j + A_j s_j'^B - r_i - A_i s_i'^B)",
+            "formula", _ev_14_4_n2_primes, "The primes of the three local vectors are missing; the n1 formula just "
+            "above (s_i'^T A_i^T A_j s_j') has them."),
+    Erratum("14.4-p1-local-form", "§14.4, Vectores paralelos: Φ^(p1,2) in local components",
+            r"\tilde s_i s_j = A_i \tilde s_i^T A_i^T A_j s_j^B",
+            r"\tilde s_i s_j = A_i \tilde s_i' A_i^T A_j s_j'", "formula", _ev_14_4_p1_transpose,
+            "The tilde is transposed (s̃ᵀ = −s̃), the primes are missing and a stray superscript B appears. Set to "
+            "zero, −s̃_i s_j = 0 is the same constraint, but the identity is wrong. Φ^(p2,2) below is printed right."),
+    Erratum("14.4-p1-two-rows", "§14.4, Vectores paralelos: which two rows of s̃_i s_j = 0",
+            r"\text{the third row is a linear combination of the first two}",
+            r"s_{ix}(\tilde s_i s_j)_1 + s_{iy}(\tilde s_i s_j)_2 + s_{iz}(\tilde s_i s_j)_3 = 0:\ "
+            r"\text{row 3 follows from rows 1-2 only if } s_{iz} \neq 0",
+            "formula", _ev_14_4_p1_two_rows, "Which row is redundant depends on the orientation of s_i, and it changes "
+            "as the mechanism moves. kinbook writes p1 and p2 as h_1ᵀs_j = h_2ᵀs_j = 0 with h_1, h_2 ⊥ s'_i fixed in "
+            "body i (docs/conventions.md), two rows that stay independent in every orientation."),
+    Erratum("14.4-universal-primes", "§14.4, Junta universal: Φ^(s,3)",
+            r"r_i + A_i s_i^P - A_j s_j^P - r_j", r"r_i + A_i s_i'^P - A_j s_j'^P - r_j",
+            "formula", _ev_14_4_universal_primes, "The spherical-joint section just before prints it with the primes."),
+    Erratum("14.4-revolute-tilde", "§14.4, Junta de revolución: Φ^(p1,2) in local components",
+            r"A_i s_i' A_i^T A_j s_j' = 0", r"A_i \tilde s_i' A_i^T A_j s_j' = 0",
+            "formula", _ev_14_4_revolute_tilde, "Without the tilde the product is undefined (3×1 times 3×3)."),
+]
+
+# ------------------------------------------------------------------------------------------- §14.5 evidence
+def _ev_14_5_normalization():
+    from . import examples
+    from .spatial import Mechanism
+
+    m = Mechanism("one free body")
+    m.add_body("b")
+    rng = np.random.default_rng(145)
+    q = np.hstack([rng.uniform(-2, 2, (20, 3)), rng.normal(size=(20, 4))])  # p off the unit sphere too
+    p = q[:, 3:]
+    unit = p / np.linalg.norm(p, axis=1, keepdims=True)
+    row = m.Phi(q)[:, 0]  # kinbook's normalization row
+    printed = float(np.abs(unit - 1.0).max())  # "pᵀ − 1 = 0": e_k − 1 = 0 for k = 0…3, at rotations
+    corrected = float(np.abs(np.einsum("ki,ki->k", p, p) - 1.0 - row).max())
+    fourbar = examples.load("spatial_fourbar")
+    dof = fourbar.n - fourbar.m_geometric - 3 * len(fourbar.bodies)
+    return Evidence(f"Read literally, pᵀ − 1 = 0 is four equations e_k = 1 that no rotation satisfies: at 20 "
+                    f"random unit p they are off by up to {printed:.3f}, and with four rows per body the spatial "
+                    f"four-bar would have {dof} degrees of freedom instead of 1. pᵀp − 1 equals kinbook's "
+                    f"normalization row to {corrected:.1e} at 20 random p (on and off the unit sphere).",
+                    printed, corrected)
+
+
+def _ev_14_5_n1_states(seed, tangent):
+    """A pair of free bodies with one normal-1 constraint (random local vectors a_i, a_j) and 20 random states
+    (q with unit p, q̇, q̈), each with the book's quantities. ``tangent``: ṗ ⊥ p and pᵀp̈ = −ṗᵀṗ, as on a
+    motion."""
+    from .spatial import A_from_p, E, G, Mechanism, Normal1, a_bar, dAa_dp
+
+    rng = np.random.default_rng(seed)
+    a_i, a_j = rng.uniform(-1, 1, 3).round(3), rng.uniform(-1, 1, 3).round(3)
+    m = Mechanism("n1 pair")
+    m.add_body("i")
+    m.add_body("j")
+    m.add(Normal1("i", "j", vector_i=tuple(a_i), vector_j=tuple(a_j)))
+    row = m.constraint("1").rows.start
+    out = []
+    for _ in range(20):
+        q, qd, qdd = rng.uniform(-2, 2, (3, 14))
+        for k in (3, 10):
+            q[k : k + 4] /= np.linalg.norm(q[k : k + 4])
+            if tangent:
+                p = q[k : k + 4]
+                qd[k : k + 4] -= p * (p @ qd[k : k + 4])
+                qdd[k : k + 4] -= p * (p @ qdd[k : k + 4] + qd[k : k + 4] @ qd[k : k + 4])
+        ev = m.evaluate(q, 0.0, qd)
+        b = {"phi_dd": ev["Phi_q"][row] @ qdd - ev["gamma"][row], "gamma": ev["gamma"][row]}
+        (p_i, p_j), (pd_i, pd_j), (pdd_i, pdd_j) = ((v[3:7], v[10:14]) for v in (q, qd, qdd))
+        s_i, s_j = A_from_p(p_i) @ a_i, A_from_p(p_j) @ a_j
+        sd_i, sd_j = dAa_dp(p_i, a_i) @ pd_i, dAa_dp(p_j, a_j) @ pd_j
+        # the book's row [2 s_jᵀ E_i ā_i, 2 s_iᵀ E_j ā_j] and right-hand side, Ġ read as Ġᵀ (Ġ s' is undefined)
+        L_i, L_j = 2 * s_j @ E(p_i) @ a_bar(a_i), 2 * s_i @ E(p_j) @ a_bar(a_j)
+        rhs = 2 * (s_j @ E(pd_i, check=False) @ G(pd_i, check=False).T @ a_i
+                   + s_i @ E(pd_j, check=False) @ G(pd_j, check=False).T @ a_j + sd_i @ sd_j)
+        b.update(printed=L_i @ pd_i + L_j @ pd_j - rhs, corrected=L_i @ pdd_i + L_j @ pdd_j + rhs, rhs=rhs,
+                 extra=2 * (s_j @ a_i) * (pd_i @ pd_i) + 2 * (s_i @ a_j) * (pd_j @ pd_j))
+        out.append(b)
+    return out
+
+
+def _ev_14_5_gamma_n1():
+    rows = [(b["printed"], b["corrected"], b["phi_dd"]) for b in _ev_14_5_n1_states(1451, tangent=True)]
+    e_p, e_c = _compare(rows)
+    return Evidence(f"At 20 random states on the unit sphere (pᵀṗ = 0, pᵀp̈ = −ṗᵀṗ) the printed relation, "
+                    f"2s_jᵀE_i s̄'_i ṗ_i + 2s_iᵀE_j s̄'_j ṗ_j − 2(s_jᵀĖ_iĠ_iᵀs'_i + s_iᵀĖ_jĠ_jᵀs'_j + "
+                    f"ṡ_iᵀṡ_j) (Ġ read as Ġᵀ: Ġ s' is undefined), differs from Φ̈ = Φ_q q̈ − γ by up to "
+                    f"{e_p:.3f}; with p̈ for ṗ and the right-hand side's sign changed it agrees to {e_c:.1e}.",
+                    e_p, e_c)
+
+
+def _ev_14_5_gamma_n1_table():
+    rows = [(-b["rhs"], -b["rhs"] - b["extra"], b["gamma"]) for b in _ev_14_5_n1_states(1452, tangent=False)]
+    e_p, e_c = _compare(rows)
+    return Evidence(f"At 20 random states the book's right-hand side, −2(s_jᵀĖ_iĠ_iᵀs'_i + s_iᵀĖ_jĠ_jᵀs'_j + "
+                    f"ṡ_iᵀṡ_j) (misprints of §14.5's n1 equation corrected), differs from kinbook's γ — the one "
+                    f"that goes with Table 14.1's Φ_p = 2s_jᵀ(E_i s̄'_i + s'_i p_iᵀ) — by up to {e_p:.3f}; "
+                    f"adding −2(s_jᵀs'_i)ṗ_iᵀṗ_i − 2(s_iᵀs'_j)ṗ_jᵀṗ_j it agrees to {e_c:.1e}.", e_p, e_c)
+
+
+# §14.5, spatial kinematic analysis (chapters/14-5-spatial-analysis.ipynb)
+ERRATA += [
+    Erratum("14.5-cross-references", "§14.5, opening paragraph, the Φ_p derivation and the γ paragraph",
+            r"\text{“apartado 211.5” (twice), “apartado 3.3” (twice)}",
+            r"\text{chapter 13 (§13.5–13.8) for the planar analysis; §14.3 for } \partial(Aa)/\partial p "
+            r"\text{ and } \ddot A a", "wording", None,
+            "The book has no §211.5 or §3.3 (numbers left from another edition): the planar analysis is chapter 13, "
+            "the Euler-parameter formulas are in §14.3."),
+    Erratum("14.5-normalization", "§14.5, the extra equation of each body with Euler parameters",
+            r"p_i^T - 1 = 0", r"\Phi^{(p)}_i = p_i^T p_i - 1 = 0", "formula", _ev_14_5_normalization,
+            "One equation per body: 7 coordinates − 1 = the 6 degrees of freedom of a free body. kinbook adds it "
+            "with every body (kind \"normalization\")."),
+    Erratum("14.5-n1-rj", "§14.5, Jacobian of Φ^(n1,1), the sentence before Φ_{r_j} and Φ_{p_j}",
+            r"\text{“respecto a } r_i \text{ y } p_j\text{”}", r"\text{with respect to } r_j \text{ and } p_j",
+            "wording"),
+    Erratum("14.5-table-14.1", "§14.5, Tabla 14.1 (Jacobian blocks of the common constraints)",
+            r"\text{an empty table (arrows only)}",
+            r"\text{the blocks } \Phi_{r_i},\ \Phi_{p_i},\ \Phi_{r_j},\ \Phi_{p_j} \text{ of every constraint type}",
+            "wording", None,
+            "Rebuilt in chapters/14-5-spatial-analysis.ipynb (section 2) and in the docstring of "
+            "kinbook.spatial.constraints, checked against finite differences, sympy and the closed forms with B_k "
+            "and C_k. The definition of B_k under the table prints s^{1B}_k for s'^B_k."),
+    Erratum("14.5-A-ddot-a", "§14.5, Ä a recalled from §14.3 for γ of Φ^(n1,1)",
+            r"\ddot A a = 2\dot E\dot G^T a + 2E\ddot a\,\ddot p", r"\ddot A a = 2\dot E\dot G^T a + 2E\bar a\,\ddot p",
+            "wording", None, "ä (the second derivative of a constant vector: zero) stands for ā; the §14.3 version "
+            "also drops p̈ (notebook 14-3)."),
+    Erratum("14.5-gamma-n1", "§14.5, the acceleration equation of Φ^(n1,1)",
+            r"[2s_j^TE_i\bar s'_i,\ 2s_i^TE_j\bar s'_j]\begin{bmatrix}\dot p_i\\ \dot p_j\end{bmatrix} = "
+            r"2(s_j^T\dot E_i\dot G_i s'_i + s_i^T\dot E_j\dot G_j s'_j + \dot s_i^T\dot s_j)",
+            r"[2s_j^TE_i\bar s'_i,\ 2s_i^TE_j\bar s'_j]\begin{bmatrix}\ddot p_i\\ \ddot p_j\end{bmatrix} = "
+            r"-2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)",
+            "formula", _ev_14_5_gamma_n1,
+            "Three slips: ṗ for p̈, Ġ for Ġᵀ (Ġ s' is undefined) and the sign of the right-hand side (the book's "
+            "own line before, s_jᵀÄ_is'_i + s_iᵀÄ_js'_j + 2ṡ_iᵀṡ_j = 0, gives the minus)."),
+    Erratum("14.5-gamma-n1-table", "§14.5, “the right-hand side is the vector γ of (n1,1)”",
+            r"\gamma^{(n1,1)} = -2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)"
+            r"\ \text{(misprints of 14.5-gamma-n1 corrected)}",
+            r"\gamma^{(n1,1)} = -2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)"
+            r" - 2(s_j^Ts'_i)\,\dot p_i^T\dot p_i - 2(s_i^Ts'_j)\,\dot p_j^T\dot p_j",
+            "formula", _ev_14_5_gamma_n1_table,
+            "The equation's row 2s_jᵀE_i s̄'_i is the derivative of E Gᵀ s'_i, not Table 14.1's Φ_p_i = "
+            "2s_jᵀ(E_i s̄'_i + s'_i p_iᵀ), the derivative of the A the constraint uses. With Table 14.1's Φ_q the "
+            "normalization rows force pᵀp̈ = −ṗᵀṗ, so Φ_q q̈ = γ needs the ṗᵀṗ terms; without them the "
+            "accelerations are wrong whenever s_jᵀs'_i or s_iᵀs'_j ≠ 0."),
+]
+
+
 def get(erratum_id):
     """The erratum with this id."""
     for e in ERRATA:
