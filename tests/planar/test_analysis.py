@@ -172,3 +172,23 @@ def test_no_reduction_without_a_fully_fixed_body():
     m.remove(m.constraints[0].name)  # the ground constraint
     m.add(Simple(m.bodies[0].name, "x"))
     assert m._reduction is None
+
+
+def test_hermite_guess_is_exact_for_quintics():
+    """The sweep's guesses between two solved instants interpolate q, q̇, q̈ at both ends; a quintic in t is
+    reproduced exactly (so the guess error is O(h⁶) for a smooth motion)."""
+    from kinbook.analysis import _hermite5
+
+    rng = np.random.default_rng(8)
+    c = rng.normal(size=(6, 3))  # q(t) = Σ c_k t^k, three coordinates
+
+    def q(t, d=0):
+        k = np.arange(6)
+        coef = np.array([np.prod(np.arange(j - d + 1, j + 1)) if j >= d else 0.0 for j in k])
+        powers = np.where(k >= d, np.power.outer(t, np.maximum(k - d, 0)), 0.0)
+        return (powers * coef) @ c
+
+    t0, t1 = np.array([0.2, -1.0]), np.array([0.9, 0.5])
+    t = t0 + np.array([0.3, 0.85]) * (t1 - t0)
+    ends = [tuple(q(tt, d) for d in range(3)) for tt in (t0, t1)]
+    np.testing.assert_allclose(_hermite5(t, t0, t1, *ends), q(t), rtol=1e-12, atol=1e-12)
