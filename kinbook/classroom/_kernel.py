@@ -1,6 +1,7 @@
 """The sandboxed kernel: ``python -m kinbook.classroom._kernel -f CONNECTION_FILE``.
 
-Started by :mod:`kinbook.classroom.sandbox` (never by a student). In order:
+Started by :mod:`kinbook.classroom.sandbox` (never by a student), or forked from the zygote
+(:mod:`kinbook.classroom._zygote`, which did step 1 once for many kernels). In order:
 
 1. imports the scientific stack and kinbook (so that imports do not count against the limits below and read
    no file once the audit hook is on);
@@ -208,17 +209,32 @@ def _vm_bytes():
     return 0
 
 
-def main(argv=None):
+def main(argv=None, *, forked=False):
+    """Start the sandboxed kernel (steps 1–4 of the module docstring) and serve cells until shut down.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        ipykernel's arguments (``-f CONNECTION_FILE``); default ``sys.argv[1:]``.
+    forked : bool
+        This process was forked from the zygote (:mod:`kinbook.classroom._zygote`), which did step 1; its
+        parent is the zygote, which ipykernel's parent poller then watches.
+    """
     argv = sys.argv[1:] if argv is None else argv
     root = os.path.realpath(os.environ["KINBOOK_SANDBOX_ROOT"])
     memory_mb = float(os.environ.get("KINBOOK_SANDBOX_MEMORY_MB", "0"))
     cpu_s = int(float(os.environ.get("KINBOOK_SANDBOX_CPU_S", "0")))
     os.chdir(root)
-    _preload()
+    options = ["--HistoryManager.enabled=False", "--IPKernelApp.quiet=False"]
+    if forked:
+        # ipykernel read JPY_PARENT_PID when the zygote imported it: say which parent to watch
+        options.append(f"--IPKernelApp.parent_handle={os.getppid()}")
+    else:
+        _preload()
     from ipykernel.kernelapp import IPKernelApp
 
     app = IPKernelApp.instance()
-    app.initialize(["--HistoryManager.enabled=False", "--IPKernelApp.quiet=False"] + list(argv))
+    app.initialize(options + list(argv))
     try:
         app.shell.InteractiveTB.set_mode("Plain")  # cheap tracebacks: the grader reads only exception names
     except Exception:

@@ -251,8 +251,15 @@ def _pool_worker_init():
     # the sandbox's processes and remove its temporary directories
     import signal
     import sys
+    from multiprocessing.util import Finalize
+
+    from .sandbox import enable_zygote, stop_zygote
 
     signal.signal(signal.SIGTERM, lambda signum, frame: sys.exit(1))
+    # this process's workers and kernels are forked from a zygote of its own, stopped (with what it still runs)
+    # when the process exits; were it killed outright, the zygote would see its control pipe close and stop
+    enable_zygote()
+    Finalize(None, stop_zygote, exitpriority=100)
 
 
 def _grade_task(args):
@@ -283,7 +290,9 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     timeout, memory :
         Per submission: wall-clock seconds and megabytes.
     jobs : int
-        Submissions graded in parallel (a process pool).
+        Submissions graded in parallel (a process pool). Each grading process forks the sandbox's worker
+        and kernel processes from a pre-warmed zygote of its own (:func:`kinbook.classroom.sandbox.zygote`),
+        stopped when the batch ends.
     force : bool
         Grade again submissions already graded.
     generic, reveal_hidden : bool
@@ -300,6 +309,7 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     from concurrent.futures.process import BrokenProcessPool
 
     from . import gradebook
+    from .sandbox import zygote
 
     src = load_source(source)
     references(src)  # an exercise that cannot be graded stops here, before any submission is run
@@ -348,8 +358,9 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         return list(left.values())
 
     if jobs <= 1:
-        for t in tasks:
-            record(_grade_task(t))
+        with zygote():  # workers and kernels forked from one pre-warmed process (kinbook.classroom._zygote)
+            for t in tasks:
+                record(_grade_task(t))
     else:
         # a grading process that dies takes the pool's other submissions with it: those are graded again,
         # each in a pool of its own, so that only the culprit is lost (and recorded as an error)

@@ -5,19 +5,27 @@
 1. a fresh temporary directory (the *sandbox root*) receives a copy of the submission — the student's code
    sees nothing else of the grader's files; a second, private directory (the *control* directory) holds
    the notebook to run, the kernel's connection file and the result;
-2. a worker process (``python -m kinbook.classroom.sandbox CONTROL``, its own session and process group)
-   runs the notebook with nbclient in a fresh kernel, :mod:`kinbook.classroom._kernel`, which caps memory
-   and CPU and installs the audit hook before any cell runs;
+2. a worker process (``python sandbox.py CONTROL``, its own session and process group) runs the notebook
+   with nbclient in a fresh kernel, :mod:`kinbook.classroom._kernel`, which caps memory and CPU and
+   installs the audit hook before any cell runs;
 3. after the student's cells, one cell appended by the worker prints the named answers as JSON between two
    random markers (:func:`kinbook.classroom.serialize.dumps`); only that cell's output is read;
 4. the parent waits at most ``timeout`` + start-up time, then kills the worker's and the kernel's process
    groups, and reads the worker's result file.
+
+Within :func:`zygote` (``kinbook grade`` uses it), the worker and the kernel are not started from scratch
+but forked, for each submission, from a zygote (:mod:`kinbook.classroom._zygote`): a clean process that
+did their imports once. The kernelspec's command is then a launcher (:mod:`kinbook.classroom._launch`)
+that stands in for the forked kernel (its exit status, its death), and step 4 also kills the forked
+kernel's process group. The worker and the kernel still get their own environment, directories, limits
+and (for the kernel) audit hook, set up by themselves before any student code runs.
 
 Nothing here raises for a bad submission: the outcome is an :class:`Execution` with a status.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import secrets
@@ -30,7 +38,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Execution", "execute", "STARTUP_SECONDS"]
+__all__ = ["Execution", "execute", "zygote", "STARTUP_SECONDS"]
 
 #: Time allowed to start the kernel (imports of numpy, sympy, kinbook), not counted in the timeout.
 STARTUP_SECONDS = 60.0
@@ -69,6 +77,109 @@ def _kill_group(pid):
         pass
 
 
+# ================================================================================================== zygote
+#: Set this environment variable to ``0`` to start every worker and kernel from scratch, even within
+#: :func:`zygote`.
+ZYGOTE_ENV = "KINBOOK_SANDBOX_ZYGOTE"
+_zygote_state = {"depth": 0, "handle": None, "failed": False}
+
+
+@contextlib.contextmanager
+def zygote():
+    """Within this block, :func:`execute` forks its worker and kernel processes from a pre-warmed zygote.
+
+    The zygote (:mod:`kinbook.classroom._zygote`) is started by the first :func:`execute` call, reused by
+    the following ones, and stopped — with any process it still has — when the outermost block ends, or
+    when this process dies. Each submission still gets a new worker and a new kernel process, which set up
+    their own limits (and the kernel its audit hook). Where a zygote cannot run (not Linux), or with the
+    environment variable ``KINBOOK_SANDBOX_ZYGOTE=0``, they are started from scratch as outside the block;
+    if the zygote fails to start, a ``RuntimeWarning`` says so and the same happens.
+
+    Examples
+    --------
+    >>> from kinbook.classroom.sandbox import zygote
+    >>> with zygote():  # doctest: +SKIP
+    ...     results = [grade_submission(source, s) for s in submissions]
+    """
+    enable_zygote()
+    try:
+        yield
+    finally:
+        _zygote_state["depth"] = max(0, _zygote_state["depth"] - 1)
+        if _zygote_state["depth"] == 0:
+            stop_zygote()
+
+
+def enable_zygote():
+    """Let :func:`execute` use a zygote in this process until :func:`stop_zygote` (see :func:`zygote`)."""
+    _zygote_state["depth"] += 1
+
+
+def stop_zygote():
+    """Stop this process's zygote, if any (it kills its processes first), and use none any more."""
+    handle = _zygote_state["handle"]
+    _zygote_state.update(depth=0, handle=None, failed=False)
+    if handle is not None:
+        handle.close()
+
+
+def _zygote_handle():
+    """This process's zygote (a :class:`kinbook.classroom._zygote.Zygote`), started if need be; None when the
+    worker and kernel start from scratch."""
+    from . import _zygote
+
+    state = _zygote_state
+    if state["depth"] <= 0 or state["failed"] or os.environ.get(ZYGOTE_ENV, "1") == "0" \
+            or not _zygote.supported():
+        return None
+    handle = state["handle"]
+    if handle is not None and not handle.alive():
+        handle.close()
+        handle = state["handle"] = None
+    if handle is None:
+        try:
+            handle = state["handle"] = _zygote.Zygote(_worker_env(), timeout=STARTUP_SECONDS)
+        except _zygote.ZygoteError as exc:
+            import warnings
+
+            state["failed"] = True
+            warnings.warn(f"{exc}; kernels are started from scratch", RuntimeWarning, stacklevel=3)
+            return None
+    return handle
+
+
+def _start_worker(control, zygote, log):
+    """The worker process: forked by the zygote, or started from scratch (also when the zygote fails)."""
+    env = _worker_env()
+    if zygote is not None:
+        from ._zygote import ZygoteError
+
+        with open(os.devnull, "rb") as null_in, open(os.devnull, "wb") as null_out:
+            try:
+                return zygote.spawn("worker", [str(control)], env, str(control),
+                                    (null_in.fileno(), null_out.fileno(), log.fileno()))
+            except ZygoteError:
+                pass
+    # run this file directly (not ``-m``): the worker needs neither kinbook nor sympy, only nbclient
+    boot = ("import sys, runpy; sys.modules['rfc3987_syntax'] = None; sys.argv[1:] = [%r]; "
+            "runpy.run_path(%r, run_name='__main__')" % (str(control), __file__))
+    return subprocess.Popen([sys.executable, "-c", boot], env=env, cwd=str(control), stdin=subprocess.DEVNULL,
+                            stdout=subprocess.DEVNULL, stderr=log, start_new_session=True)
+
+
+def _forget_zygote_in_child():
+    # a process forked from this one (a grading pool's process) must neither use nor stop this zygote, and
+    # must not keep its control pipe open (the zygote stops when that pipe closes)
+    handle = _zygote_state["handle"]
+    _zygote_state.update(depth=0, handle=None, failed=False)
+    if handle is not None:
+        handle.forget()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_zygote_in_child)
+
+
 def execute(nb, answer_names, *, timeout=60.0, memory_mb=1000, files=None):
     """Run notebook ``nb`` (a NotebookNode, student's cells only) in a sandbox and read ``answer_names``.
 
@@ -93,18 +204,13 @@ def execute(nb, answer_names, *, timeout=60.0, memory_mb=1000, files=None):
         for name, data in (files or {}).items():
             (root / Path(name).name).write_bytes(data)
         nonce = secrets.token_hex(16)
+        zygote = _zygote_handle()
         job = {"root": str(root), "timeout": float(timeout), "memory_mb": float(memory_mb), "nonce": nonce,
-               "names": list(answer_names)}
+               "names": list(answer_names), "zygote": zygote.socket if zygote else None}
         (control / "job.json").write_text(json.dumps(job))
         nbformat.write(nb, str(control / "run.ipynb"))
-        env = _worker_env()
-        # run this file directly (not ``-m``): the worker needs neither kinbook nor sympy, only nbclient
-        boot = ("import sys, runpy; sys.modules['rfc3987_syntax'] = None; sys.argv[1:] = [%r]; "
-                "runpy.run_path(%r, run_name='__main__')" % (str(control), __file__))
         with open(control / "worker.log", "wb") as log:
-            proc = subprocess.Popen([sys.executable, "-c", boot], env=env, cwd=str(control),
-                                    stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=log,
-                                    start_new_session=True)
+            proc = _start_worker(control, zygote, log)
         limit = float(timeout) + STARTUP_SECONDS + 15.0
         killed = False
         try:
@@ -113,12 +219,12 @@ def execute(nb, answer_names, *, timeout=60.0, memory_mb=1000, files=None):
             killed = True
         finally:  # also when this process is being terminated: no worker or kernel outlives the call
             _kill_group(proc.pid)
-            pidfile = control / "kernel.pid"
-            if pidfile.exists():
-                try:
-                    _kill_group(int(pidfile.read_text().strip()))
-                except ValueError:
-                    pass
+            for pidfile in (control / "kernel.pid", control / "kernel-fork.pid"):  # launcher, forked kernel
+                if pidfile.exists():
+                    try:
+                        _kill_group(int(pidfile.read_text().strip()))
+                    except ValueError:
+                        pass
             proc.wait()
         seconds = time.monotonic() - t0
         result_file = control / "result.json"
@@ -146,11 +252,15 @@ def _worker_env():
 
 
 # ================================================================================================== worker
-def _kernel_spec_dir(control):
+def _kernel_spec_dir(control, zygote_socket=None):
     d = control / "kernels" / "kinbook-sandbox"
     d.mkdir(parents=True)
-    spec = {"argv": [sys.executable, "-m", "kinbook.classroom._kernel", "-f", "{connection_file}"],
-            "display_name": "kinbook sandbox", "language": "python"}
+    if zygote_socket:  # the launcher: standard library only, no site-packages (starts in milliseconds)
+        launch = str(Path(__file__).with_name("_launch.py"))
+        argv = [sys.executable, "-I", "-S", launch, zygote_socket, str(control / "kernel-fork.pid")]
+    else:
+        argv = [sys.executable, "-m", "kinbook.classroom._kernel"]
+    spec = {"argv": argv + ["-f", "{connection_file}"], "display_name": "kinbook sandbox", "language": "python"}
     (d / "kernel.json").write_text(json.dumps(spec))
     return control / "kernels"
 
@@ -183,6 +293,11 @@ def _cell_errors(nb):
 
 
 def _worker(control):
+    """Run the notebook of ``control`` (a directory) and write ``result.json`` there.
+
+    The worker process's whole job: started from scratch (``python sandbox.py CONTROL``) or forked from
+    the zygote (its ``worker`` role); its kernels likewise (``job["zygote"]`` chooses the kernelspec).
+    """
     import resource
 
     import nbformat
@@ -202,7 +317,7 @@ def _worker(control):
         f"print({nonce!r} + _kb_dumps({job['names']!r}, get_ipython().user_ns) + {nonce!r})"
     )
     nb.cells.append(extract)
-    ksm = KernelSpecManager(kernel_dirs=[str(_kernel_spec_dir(control))])
+    ksm = KernelSpecManager(kernel_dirs=[str(_kernel_spec_dir(control, job.get("zygote")))])
     km = AsyncKernelManager(kernel_name="kinbook-sandbox", kernel_spec_manager=ksm)
     km.connection_file = str(control / "connection.json")
     deadline = [None]
