@@ -41,6 +41,12 @@ DENIED_EVENTS = frozenset({
     "signal.pthread_kill", "os.putenv", "os.unsetenv",
 })
 DENIED_PREFIXES = ("ctypes.", "_winapi.", "winreg.", "cpython.run_", "sqlite3.")
+#: Functions that reach other processes without raising an audit event (``pidfd_open`` +
+#: ``pidfd_send_signal`` would signal the grader or the zygote); :func:`install_audit_hook` removes them, and
+#: refuses to import their modules afresh (deleting a module from ``sys.modules`` and importing it again
+#: would bring them back).
+UNAUDITED = {"posix": ("pidfd_open",), "os": ("pidfd_open",), "_signal": ("pidfd_send_signal",),
+             "signal": ("pidfd_send_signal",)}
 #: Events whose first argument is a path that must lie inside the temporary directory (writes, deletes,
 #: renames, metadata changes).
 WRITE_EVENTS = frozenset({
@@ -76,21 +82,28 @@ def install_audit_hook(root, read_roots, extra_files=("/dev/null", "/dev/urandom
       ``extra_files``; file descriptors (ints) are allowed (they were opened under the same rules).
     * deleting, renaming, creating directories, changing metadata: only under ``root``.
     * processes, signals, sockets, ``ctypes``, ``gc`` and trace/profile hooks, code/function construction,
-      ``chdir``, ``setrlimit``: refused.
+      ``chdir``, ``setrlimit``: refused; the unaudited ``pidfd_open`` / ``pidfd_send_signal`` are removed
+      (:data:`UNAUDITED`) and their modules cannot be imported afresh.
 
     The hook keeps no mutable state: everything it uses is bound in its closure at installation (builtins
     included), so monkeypatching ``os`` or ``builtins`` afterwards does not change its decisions.
     """
     root = root.rstrip("/") + "/"
+    for name, functions in UNAUDITED.items():
+        module = __import__(name)
+        for f in functions:
+            if hasattr(module, f):
+                delattr(module, f)
     hook = _make_hook(root, tuple(read_roots), frozenset(extra_files), os.getcwd(), os.fspath, isinstance,
                       str, bytes, int, PermissionError, DENIED_EVENTS, DENIED_PREFIXES, WRITE_EVENTS,
-                      READ_EVENTS, _WRITE_FLAGS, len, int(socket.AF_UNIX), os.stat, stat.S_ISDIR, OSError)
+                      READ_EVENTS, _WRITE_FLAGS, len, int(socket.AF_UNIX), os.stat, stat.S_ISDIR, OSError,
+                      frozenset(UNAUDITED))
     sys.addaudithook(hook)
 
 
 def _make_hook(root, read_roots, extra_files, cwd, fspath, isinstance, str, bytes, int, PermissionError,
                denied, denied_prefixes, write_events, read_events, write_flags, len, af_unix, os_stat, s_isdir,
-               OSError):
+               OSError, pinned):
     # Every name used below is a parameter of this factory (a closure cell of the hook), never a global.
     def norm(path):
         if isinstance(path, int):
@@ -132,6 +145,8 @@ def _make_hook(root, read_roots, extra_files, cwd, fspath, isinstance, str, byte
         for prefix in denied_prefixes:
             if event.startswith(prefix):
                 refuse(event, "")
+        if event == "import" and len(args) and args[0] in pinned:
+            refuse("importing afresh", args[0])
         if event == "open":
             path, mode, flags = args
             p = norm(path)

@@ -143,6 +143,8 @@ out = dict(
     remove_dir_fd=attempt(lambda: os.remove('x', dir_fd=os.open('.', os.O_RDONLY))),
     fchmod=attempt(lambda: os.chmod(os.open(os.__file__, os.O_RDONLY), 0o777)),
     mkdir_inside=attempt(lambda: os.mkdir('sub')),
+    pidfd=str(hasattr(os, 'pidfd_open') or hasattr(__import__('signal'), 'pidfd_send_signal')),
+    fresh_posix=attempt(lambda: (sys.modules.pop('posix'), __import__('posix'))),
 )
 print(out)
 """
@@ -152,7 +154,7 @@ print(out)
                        dotdot="refused", write_tmp="refused", os_open="refused", remove="refused",
                        listdir="refused", symlink="refused", system="refused", fork="refused", gc="refused",
                        chdir="refused", dir_fd="refused", remove_dir_fd="refused", fchmod="refused",
-                       mkdir_inside="allowed")
+                       mkdir_inside="allowed", pidfd="False", fresh_posix="refused")
 
 
 def test_cli_variant(tmp_path, capsys):
