@@ -194,6 +194,58 @@ class Mechanism(MechanismBase):
         """Rotation matrix of the body (local → global), shape (3, 3) or (N, 3, 3)."""
         return rotations.A_from_p(self._pq(q, body)[..., 3:])
 
+    def moved(self, q, body, axis=(0.0, 0.0, 1.0), angle=0.0, about=None, shift=(0.0, 0.0, 0.0)):
+        """``q`` with one body moved rigidly: turned by ``angle`` about the line through ``about`` along
+        ``axis`` (global), then shifted by ``shift``. The other bodies stay where they are.
+
+        A quick way to test a joint: a motion it allows keeps its rows of Φ at zero, a motion it forbids
+        does not (notebook 14-4). The body's Euler parameters are composed (p_turn ⊗ p), so they stay
+        continuous with the original ones.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+        body : str
+        axis : array_like, shape (3,)
+            Direction of the rotation axis (any length but zero).
+        angle : float
+            Radians, right-handed about ``axis``.
+        about : array_like, shape (3,), optional
+            A point on the axis; default the body's reference point r.
+        shift : array_like, shape (3,), or 0
+
+        Returns
+        -------
+        ndarray, shape (n,)
+
+        Examples
+        --------
+        >>> import numpy as np, kinbook
+        >>> m = kinbook.examples.load("spatial_fourbar")
+        >>> q = m.moved(m.q0, "crank", axis=(0, 0, 1), angle=np.pi / 2, about=(0, 0, 0))
+        >>> A0, A1 = m.point_position(m.q0, "crank", "A"), m.point_position(q, "crank", "A")
+        >>> bool(np.allclose(A1, [-A0[1], A0[0], A0[2]]))  # a quarter turn about Z
+        True
+        """
+        q = self._check_q(q)
+        if q.ndim != 1:
+            raise InputError(f"`q` must be one configuration of shape ({self.n},), got {q.shape}")
+        b = self.body(body)
+        k = NCOORD * (b.number - 1)
+        turn = rotations.p_from_axis_angle(axis, angle)
+        r, p = q[k : k + 3], q[k + 3 : k + 7]
+        centre = r if about is None else rotations._vec3(about, "about")
+        R = rotations.A_from_p(turn)
+        out = q.copy()
+        if np.ndim(shift) == 0 and shift == 0:
+            shift = (0.0, 0.0, 0.0)
+        out[k : k + 3] = centre + R @ (r - centre) + rotations._vec3(shift, "shift")
+        t0, t = turn[0], turn[1:]
+        e0, e = p[0], p[1:]
+        out[k + 3] = t0 * e0 - t @ e  # Euler parameters compose like quaternions: A(p_turn ⊗ p) = A(p_turn) A(p)
+        out[k + 4 : k + 7] = t0 * e + e0 * t + np.cross(t, e)
+        return out
+
     @rotations._shapes
     def point_position(self, q, body, point):
         """Global position r^P = r + A s'^P of a body point, shape (3,) or (N, 3)."""

@@ -4,6 +4,7 @@ files, diagnosis of redundant constraints and point kinematics."""
 import numpy as np
 import pytest
 import sympy as sp
+from scipy.spatial.transform import Rotation
 
 import kinbook
 from kinbook import examples
@@ -225,3 +226,23 @@ def test_derivation_is_computed_once_per_constraint_until_the_mechanism_changes(
     m.remove(name)
     with pytest.raises(ModelError, match=name):
         m.derivation(name)
+
+
+def test_moved_turns_one_body_rigidly_and_keeps_its_parameters_continuous():
+    m = examples.load("spatial_fourbar")
+    q0 = m.solve_position(0.0)
+    axis, angle, about, shift = np.array([1.0, 2.0, -0.5]), 0.7, np.array([0.3, -0.2, 1.0]), np.array([0.1, 0, 2])
+    q = m.moved(q0, "coupler", axis, angle, about=about, shift=shift)
+    R = Rotation.from_rotvec(axis / np.linalg.norm(axis) * angle).as_matrix()  # scipy, independently
+    for name in m.body("coupler").points:
+        before, after = m.point_position(q0, "coupler", name), m.point_position(q, "coupler", name)
+        np.testing.assert_allclose(after, about + R @ (before - about) + shift, atol=1e-12)
+    others = [k for k in range(m.n) if not 14 <= k < 21]  # the coupler is the third body
+    np.testing.assert_array_equal(q[others], q0[others])
+    assert np.linalg.norm(q[17:21]) == pytest.approx(1.0) and q[17:21] @ q0[17:21] > 0.9  # no sign flip
+    # the joints' rows notice the move, the normalization does not
+    assert abs(m.Phi(q)).max() > 1e-3 and abs(m.Phi(q)[m.constraint("normalization coupler").rows]).max() < 1e-12
+    with pytest.raises(InputError, match="about"):
+        m.moved(q0, "coupler", axis, angle, about=(1, 2))
+    with pytest.raises(UnknownBodyError, match="wheel"):
+        m.moved(q0, "wheel")
