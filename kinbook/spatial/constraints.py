@@ -49,7 +49,7 @@ import sympy as sp
 from ..errors import ModelError, UnknownPointError
 from ..model import ConstraintBase, lookup_point
 from ..symbolic import t as t_symbol
-from .rotations import A_from_p as _A_sym, E as _E_sym
+from .rotations import A_from_p as _A_sym, E as _E_sym, _mv
 
 __all__ = [
     "Constraint",
@@ -97,15 +97,6 @@ def _C_np(p, a, abar=None):
     if abar is None:
         abar = _abar_np(a)
     return 2 * ((_E_np(p) @ abar) + a[None, :, :, None] * p[..., None, :])
-
-
-def _mv(M, v):
-    """Batched matrix-vector product (…, m, n) @ (…, n) -> (…, m), for small n: n broadcast multiply-adds
-    (numpy's stacked matmul on tiny matrices costs more per matrix than the arithmetic)."""
-    out = M[..., 0] * v[..., None, 0]
-    for c in range(1, v.shape[-1]):
-        out += M[..., c] * v[..., None, c]
-    return out
 
 
 def _vtm(v, M):

@@ -149,8 +149,8 @@ def draw(mech, q, ax=None, frames=False, frame_size=None, labels=False, limits=N
     if ax is None:
         fig = plt.figure(figsize=figsize, dpi=dpi)
         ax = fig.add_subplot(projection="3d")
-    elif getattr(ax, "name", "") != "3d":
-        raise InputError("`ax` must be a 3D axes: fig.add_subplot(projection='3d')")
+    else:
+        _check_ax(ax)
     ground = _grounded(mech)
     all_points = []
     drawing = Drawing(ax, mech)

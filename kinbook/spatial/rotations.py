@@ -643,8 +643,14 @@ def _mm(X, Y):
     return np.einsum("...ij,...jk->...ik", X, Y)
 
 
-def _mv(X, y):
-    return np.einsum("...ij,...j->...i", X, y)
+def _mv(M, v):
+    """Batched matrix-vector product (…, m, n) @ (…, n) -> (…, m), for small n: n broadcast multiply-adds
+    (numpy's stacked matmul on tiny matrices costs more per matrix than the arithmetic). Shared by
+    :mod:`~kinbook.spatial.transforms` and the constraint kernels."""
+    out = M[..., 0] * v[..., None, 0]
+    for c in range(1, v.shape[-1]):
+        out = out + M[..., c] * v[..., None, c]
+    return out
 
 
 def _T(X):

@@ -15,13 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .rotations import A_from_p, _array, _p, _shapes, _vec3, dAa_dp
+from .rotations import A_from_p, _array, _mv, _p, _shapes, _vec3, dAa_dp
 
 __all__ = ["point_position", "point_velocity", "point_acceleration"]
-
-
-def _mv(M, v):
-    return np.einsum("...ij,...j->...i", M, v)
 
 
 @_shapes
