@@ -16,7 +16,7 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["Erratum", "Evidence", "ERRATA", "table", "get"]
+__all__ = ["Erratum", "Evidence", "ERRATA", "table", "get", "book_n1_acceleration"]
 
 
 @dataclass(frozen=True)
@@ -667,11 +667,49 @@ def _ev_14_5_normalization():
                     printed, corrected)
 
 
+def book_n1_acceleration(a_i, p_i, pd_i, a_j, p_j, pd_j):
+    """§14.5's printed acceleration equation of Φ^(n1,1), as far as it can be read, for local vectors a_i, a_j
+    on bodies with Euler parameters p and rates ṗ (any leading batch axes) — the thing the 14.5-gamma-n1
+    errata test, written once here for them and for notebook 14-5.
+
+    The book writes [2 s_jᵀE_i s̄'_i, 2 s_iᵀE_j s̄'_j] [ṗ_i; ṗ_j] = 2(s_jᵀĖ_iĠ_i s'_i + s_iᵀĖ_jĠ_j s'_j + ṡ_iᵀṡ_j);
+    Ġ s' is undefined and is read as Ġᵀ s'.
+
+    Returns
+    -------
+    L_i, L_j : ndarray, shape (..., 4)
+        The row blocks 2 s_jᵀE_i s̄'_i and 2 s_iᵀE_j s̄'_j.
+    rhs : ndarray, shape (...)
+        The printed right-hand side.
+    extra : ndarray, shape (...)
+        2(s_jᵀs'_i)ṗ_iᵀṗ_i + 2(s_iᵀs'_j)ṗ_jᵀṗ_j: what the corrected equation lacks to be γ of Table 14.1's Φ_p.
+    """
+    from .spatial import A_from_p, E, G, a_bar, dAa_dp
+
+    def mv(M, v):
+        return np.einsum("...ij,...j->...i", M, v)
+
+    def dot(u, v):
+        return np.einsum("...i,...i->...", u, v)
+
+    def EGt(pd):  # Ė Ġᵀ
+        return E(pd, check=False) @ np.swapaxes(G(pd, check=False), -1, -2)
+
+    a_i, a_j = np.asarray(a_i, dtype=float), np.asarray(a_j, dtype=float)
+    s_i, s_j = mv(A_from_p(p_i), a_i), mv(A_from_p(p_j), a_j)
+    sd_i, sd_j = mv(dAa_dp(p_i, a_i), pd_i), mv(dAa_dp(p_j, a_j), pd_j)
+    L_i = 2 * np.einsum("...i,...ij->...j", s_j, E(p_i) @ a_bar(a_i))
+    L_j = 2 * np.einsum("...i,...ij->...j", s_i, E(p_j) @ a_bar(a_j))
+    rhs = 2 * (dot(s_j, mv(EGt(pd_i), a_i)) + dot(s_i, mv(EGt(pd_j), a_j)) + dot(sd_i, sd_j))
+    extra = 2 * dot(s_j, a_i) * dot(pd_i, pd_i) + 2 * dot(s_i, a_j) * dot(pd_j, pd_j)
+    return L_i, L_j, rhs, extra
+
+
 def _ev_14_5_n1_states(seed, tangent):
     """A pair of free bodies with one normal-1 constraint (random local vectors a_i, a_j) and 20 random states
     (q with unit p, q̇, q̈), each with the book's quantities. ``tangent``: ṗ ⊥ p and pᵀp̈ = −ṗᵀṗ, as on a
     motion."""
-    from .spatial import A_from_p, E, G, Mechanism, Normal1, a_bar, dAa_dp
+    from .spatial import Mechanism, Normal1
 
     rng = np.random.default_rng(seed)
     a_i, a_j = rng.uniform(-1, 1, 3).round(3), rng.uniform(-1, 1, 3).round(3)
@@ -692,14 +730,9 @@ def _ev_14_5_n1_states(seed, tangent):
         ev = m.evaluate(q, 0.0, qd)
         b = {"phi_dd": ev["Phi_q"][row] @ qdd - ev["gamma"][row], "gamma": ev["gamma"][row]}
         (p_i, p_j), (pd_i, pd_j), (pdd_i, pdd_j) = ((v[3:7], v[10:14]) for v in (q, qd, qdd))
-        s_i, s_j = A_from_p(p_i) @ a_i, A_from_p(p_j) @ a_j
-        sd_i, sd_j = dAa_dp(p_i, a_i) @ pd_i, dAa_dp(p_j, a_j) @ pd_j
-        # the book's row [2 s_jᵀ E_i ā_i, 2 s_iᵀ E_j ā_j] and right-hand side, Ġ read as Ġᵀ (Ġ s' is undefined)
-        L_i, L_j = 2 * s_j @ E(p_i) @ a_bar(a_i), 2 * s_i @ E(p_j) @ a_bar(a_j)
-        rhs = 2 * (s_j @ E(pd_i, check=False) @ G(pd_i, check=False).T @ a_i
-                   + s_i @ E(pd_j, check=False) @ G(pd_j, check=False).T @ a_j + sd_i @ sd_j)
+        L_i, L_j, rhs, extra = book_n1_acceleration(a_i, p_i, pd_i, a_j, p_j, pd_j)
         b.update(printed=L_i @ pd_i + L_j @ pd_j - rhs, corrected=L_i @ pdd_i + L_j @ pdd_j + rhs, rhs=rhs,
-                 extra=2 * (s_j @ a_i) * (pd_i @ pd_i) + 2 * (s_i @ a_j) * (pd_j @ pd_j))
+                 extra=extra)
         out.append(b)
     return out
 
