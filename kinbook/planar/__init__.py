@@ -1,6 +1,7 @@
 """Planar kinematics in body coordinates (textbook chapter 13)."""
 
 from ..analysis import Diagnosis, SimulationResult
+from . import constraints, mechanism, transforms
 from .constraints import (
     CONSTRAINT_TYPES,
     Constraint,
@@ -19,28 +20,4 @@ from .constraints import (
 from .mechanism import Body, ConstraintTable, Mechanism
 from .transforms import A, B, point_acceleration, point_position, point_velocity
 
-__all__ = [
-    "A",
-    "B",
-    "point_position",
-    "point_velocity",
-    "point_acceleration",
-    "Body",
-    "Mechanism",
-    "ConstraintTable",
-    "Constraint",
-    "Simple",
-    "Ground",
-    "Revolute",
-    "Translational",
-    "RevoluteRevolute",
-    "RevoluteTranslational",
-    "Gear",
-    "RackPinion",
-    "Driver",
-    "RelativeAngleDriver",
-    "DistanceDriver",
-    "CONSTRAINT_TYPES",
-    "Diagnosis",
-    "SimulationResult",
-]
+__all__ = [*transforms.__all__, *mechanism.__all__, *constraints.__all__, "Diagnosis", "SimulationResult"]
