@@ -57,7 +57,7 @@ class Erratum:
 
 # ------------------------------------------------------------------------------------------------ helpers
 def _ex(name):
-    from . import examples
+    from .. import examples
 
     return examples.load(name)
 
@@ -82,7 +82,7 @@ def _pair(kind, seed=0):
 
     Returns (mech, states) where states() yields (q, qd, values) with the book's point quantities.
     """
-    from .planar import Mechanism, Revolute, RevoluteRevolute, RevoluteTranslational, Translational
+    from ..planar import Mechanism, Revolute, RevoluteRevolute, RevoluteTranslational, Translational
 
     rng = np.random.default_rng(seed)
     m = Mechanism(f"{kind} pair")
@@ -241,7 +241,7 @@ def _ev_gamma_t():
 
 
 def _ev_eq37():
-    from .planar import Gear, Mechanism
+    from ..planar import Gear, Mechanism
 
     rng = np.random.default_rng(37)
     m = Mechanism("gear pair on a carrier")
@@ -297,7 +297,7 @@ def _unit_ps(count=20, seed=14):
 
 
 def _ev_elementary_rotation():
-    from .spatial import A_from_euler
+    from ..spatial import A_from_euler
 
     rows = []
     for psi in np.linspace(0.1, 3.0, 12):
@@ -313,7 +313,7 @@ def _ev_elementary_rotation():
 
 
 def _ev_a21_row3():
-    from .spatial import A_from_euler
+    from ..spatial import A_from_euler
 
     rng = np.random.default_rng(2)
     rows = []
@@ -338,7 +338,7 @@ def _printed_A_of_p(p):
 
 
 def _ev_A_of_p():
-    from .spatial import A_from_p
+    from ..spatial import A_from_p
 
     rows = []
     for p in _unit_ps():
@@ -357,7 +357,7 @@ def _ev_A_of_p():
 
 
 def _ev_G_row2():
-    from .spatial import G
+    from ..spatial import G
 
     rows = []
     for p in _unit_ps():
@@ -371,7 +371,7 @@ def _ev_G_row2():
 
 
 def _ev_p_from_A_180():
-    from .spatial import A_from_p, p_from_A, p_from_axis_angle
+    from ..spatial import A_from_p, p_from_A, p_from_axis_angle
 
     A = A_from_p(p_from_axis_angle([1, 2, 2], np.pi))
     e0 = np.sqrt(max(np.trace(A) + 1, 0.0) / 4)
@@ -500,7 +500,7 @@ ERRATA += [
 def _ev_14_4_pair(joint, points, vectors, seed, count=20):
     """A two-body spatial mechanism with one §14.4 constraint ``joint`` (bodies "i", "j") and ``count`` seeded
     random configurations (random r, unit p; not assembled) as (q, r_i, A_i, r_j, A_j)."""
-    from .spatial import A_from_p, Mechanism
+    from ..spatial import A_from_p, Mechanism
 
     m = Mechanism("§14.4 evidence")
     for b in ("i", "j"):
@@ -517,7 +517,7 @@ def _ev_14_4_pair(joint, points, vectors, seed, count=20):
 
 
 def _ev_14_4_n2_primes():
-    from .spatial import Normal2
+    from ..spatial import Normal2
 
     s_i, B_i, B_j = np.array([0.3, -0.8, 0.5]), np.array([1.2, 0.4, -0.3]), np.array([-0.6, 0.9, 0.7])
     c = Normal2("i", "j", vector_i=tuple(s_i), point_i="B", point_j="B")
@@ -535,7 +535,7 @@ def _ev_14_4_n2_primes():
 
 
 def _ev_14_4_p1_transpose():
-    from .spatial import A_from_p, skew
+    from ..spatial import A_from_p, skew
 
     s_i, s_j = np.array([0.3, -0.8, 0.5]), np.array([-0.6, 0.9, 0.7])
     ps = _unit_ps(40, seed=144)
@@ -553,7 +553,7 @@ def _ev_14_4_p1_transpose():
 
 
 def _ev_14_4_p1_two_rows():
-    from .spatial import Parallel1, p_from_axis_angle, skew
+    from ..spatial import Parallel1, p_from_axis_angle, skew
 
     c = Parallel1("i", "j", vector_i=(1, 0, 0), vector_j=(1, 0, 0))
     m, _ = _ev_14_4_pair(c, {}, {}, 0, count=0)
@@ -572,7 +572,7 @@ def _ev_14_4_p1_two_rows():
 
 
 def _ev_14_4_universal_primes():
-    from .spatial import Universal
+    from ..spatial import Universal
 
     P_i, P_j = np.array([1.5, -0.2, 0.4]), np.array([-0.7, 0.3, 1.1])
     c = Universal("i", "j", vector_i=(0, 1, 0), vector_j=(1, 0, 0), point="P")
@@ -592,7 +592,7 @@ def _ev_14_4_universal_primes():
 def _ev_14_4_revolute_tilde():
     import sympy as sp
 
-    from .spatial import A_from_p, Revolute, p_from_A, p_from_axis_angle, skew
+    from ..spatial import A_from_p, Revolute, p_from_A, p_from_axis_angle, skew
 
     s_i, s_j, P_i, P_j = (0, 0, 1), (0, 0, 1), np.array([1.0, 0.0, 0.5]), np.array([0.0, 0.0, -0.4])
     c = Revolute("i", "j", point="P", axis_i=s_i, axis_j=s_j)
@@ -646,8 +646,8 @@ ERRATA += [
 
 # ------------------------------------------------------------------------------------------- §14.5 evidence
 def _ev_14_5_normalization():
-    from . import examples
-    from .spatial import Mechanism
+    from .. import examples
+    from ..spatial import Mechanism
 
     m = Mechanism("one free body")
     m.add_body("b")
@@ -684,7 +684,7 @@ def book_n1_acceleration(a_i, p_i, pd_i, a_j, p_j, pd_j):
     extra : ndarray, shape (...)
         2(s_jᵀs'_i)ṗ_iᵀṗ_i + 2(s_iᵀs'_j)ṗ_jᵀṗ_j: what the corrected equation lacks to be γ of Table 14.1's Φ_p.
     """
-    from .spatial import A_from_p, E, G, a_bar, dAa_dp
+    from ..spatial import A_from_p, E, G, a_bar, dAa_dp
 
     def mv(M, v):
         return np.einsum("...ij,...j->...i", M, v)
@@ -709,7 +709,7 @@ def _ev_14_5_n1_states(seed, tangent):
     """A pair of free bodies with one normal-1 constraint (random local vectors a_i, a_j) and 20 random states
     (q with unit p, q̇, q̈), each with the book's quantities. ``tangent``: ṗ ⊥ p and pᵀp̈ = −ṗᵀṗ, as on a
     motion."""
-    from .spatial import Mechanism, Normal1
+    from ..spatial import Mechanism, Normal1
 
     rng = np.random.default_rng(seed)
     a_i, a_j = rng.uniform(-1, 1, 3).round(3), rng.uniform(-1, 1, 3).round(3)

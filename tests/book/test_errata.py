@@ -2,7 +2,7 @@
 
 import pytest
 
-from kinbook import errata
+from kinbook.book import errata
 
 COMPUTED = [e for e in errata.ERRATA if e.evidence is not None]
 
