@@ -11,6 +11,8 @@ The hierarchy::
     │   ├── UnknownPointError
     │   └── MechanismFileError     a mechanism file (TOML) that cannot be read; names the key
     ├── InputError                 wrong shapes, NaN/inf, values out of their domain
+    │   ├── ExpressionError        text that is not an allowed expression (kinbook.expressions)
+    │   └── DriverValueError       a driver's f(t), f'(t) or f''(t) is not finite and real where needed
     ├── DriverCountError           more or fewer drivers than degrees of freedom
     └── AnalysisError              the numbers went wrong during an analysis
         ├── ConvergenceError       Newton-Raphson did not converge
@@ -35,6 +37,8 @@ __all__ = [
     "UnknownPointError",
     "MechanismFileError",
     "InputError",
+    "ExpressionError",
+    "DriverValueError",
     "DriverCountError",
     "AnalysisError",
     "ConvergenceError",
@@ -76,6 +80,42 @@ class MechanismFileError(ModelError):
 
 class InputError(KinbookError, ValueError):
     """An argument of the wrong shape, with NaN or inf, or outside its domain."""
+
+
+class ExpressionError(InputError):
+    """Text (from a mechanism file, a student or the command line) that is not an allowed expression, or
+    exceeds a bound of :class:`kinbook.expressions.Limits`.
+
+    Attributes
+    ----------
+    where : str
+        Where the text came from ("file 'x.toml', key constraints[3].f").
+    text : str or None
+        The text read (None when the value was not text).
+    reason : str
+        What is wrong, without the location.
+    column : int or None
+        1-based column of the offending part of ``text``.
+    """
+
+    def __init__(self, message, *, where=None, text=None, reason=None, column=None):
+        super().__init__(message)
+        self.where, self.text, self.reason, self.column = where, text, reason, column
+
+
+class DriverValueError(InputError):
+    """A driver's prescribed function f(t), or its first or second derivative, is not a finite real number
+    at an instant where an analysis needs it (``sqrt(t - 5)`` at t = 0, ``Abs(t - 1)``'s kink at t = 1).
+
+    Attributes
+    ----------
+    t : float
+        The first such instant.
+    """
+
+    def __init__(self, message, *, t=None):
+        super().__init__(message)
+        self.t = t
 
 
 class DriverCountError(KinbookError):

@@ -1,0 +1,781 @@
+"""The one reader of untrusted text: every expression kinbook takes from a mechanism file, a student or the
+command line is read here, and nowhere else.
+
+How (PrairieLearn's symbolic input is the model): the text is parsed by Python's own parser into an abstract
+syntax tree (:mod:`ast`, which only parses — it runs nothing), the tree is walked against an allow-list, and
+only a tree that passed is built into a sympy object. Nothing is ever given to ``eval``, ``exec`` or
+``sympy.sympify``. Every bound is checked *before* any arithmetic, so a hostile input is refused in
+microseconds instead of being evaluated to find out that it is too big.
+
+What an expression may contain
+------------------------------
+- numbers: ``2``, ``-0.5``, ``1e-3`` (decimal integers and floats; no complex ``1j``);
+- the names of the context — the ``symbols`` argument (``t`` in a driver, the coordinates in an answer) —
+  and the constants ``pi`` (also ``π``) and ``E`` (Euler's number);
+- ``+ - * /``, powers written ``^`` or ``**``, unary minus, parentheses;
+- calls of the functions in :data:`FUNCTIONS`: ``sin cos tan asin acos atan atan2 sqrt exp log Abs sign``,
+  and the spellings in :data:`ALIASES` (the book's Spanish ``sen``, ``abs``, ``ln``, ``arctan`` …).
+
+Nothing else: no attribute access (``x.real``), no subscripts, no other calls, no keywords, comparisons,
+conditionals, strings, lambdas or names outside the context; products need their ``*`` (``2*t``, not ``2t``).
+
+Bounds (:class:`Limits`; checked on the text and the tree, before sympy sees anything): text length, number of
+tree nodes, nesting depth, characters in one numeric literal, the size of a numeric exponent (``x**100000`` is
+refused: no kinematic expression needs it) and the magnitude of every sub-expression made of numbers only
+(estimated in floating point from the tree; ``10**10**10``, ``9**9**9**9``, ``exp(1000)`` are refused).
+The built expression must be finite: ``1/0`` is refused.
+"""
+
+from __future__ import annotations
+
+import ast
+import cmath
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import sympy as sp
+
+from .errors import ExpressionError
+
+__all__ = [
+    "read_expression",
+    "read_number",
+    "read_constant",
+    "check_expression",
+    "Limits",
+    "DEFAULT_LIMITS",
+    "FUNCTIONS",
+    "ALIASES",
+    "CONSTANTS",
+    "ExpressionError",
+]
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Bounds on an expression; every one is checked before any arithmetic.
+
+    Attributes
+    ----------
+    length : int
+        Characters of the text.
+    nodes : int
+        Nodes of the syntax tree (or of a sympy tree, for :func:`check_expression`).
+    depth : int
+        Nesting depth of the tree.
+    digits : int
+        Characters of one numeric literal.
+    exponent : float
+        Largest |n| of a numeric exponent in a power ``a^n``.
+    magnitude : float
+        Largest absolute value of any sub-expression made of numbers only (and of any number in a sympy tree).
+    bits : int
+        Bound on the total size of the exact numbers sympy would build (the literals' sizes, added, and
+        multiplied by integer exponents): keeps exact rational arithmetic cheap.
+    """
+
+    length: int = 5000
+    nodes: int = 2000
+    depth: int = 100
+    digits: int = 40
+    exponent: float = 100
+    magnitude: float = 1e300
+    bits: int = 20000
+
+
+DEFAULT_LIMITS = Limits()
+"""The limits used when a caller gives none: generous for any kinematic expression of the book."""
+
+FUNCTIONS = {
+    "sin": (sp.sin, (1,)),
+    "cos": (sp.cos, (1,)),
+    "tan": (sp.tan, (1,)),
+    "asin": (sp.asin, (1,)),
+    "acos": (sp.acos, (1,)),
+    "atan": (sp.atan, (1,)),
+    "atan2": (sp.atan2, (2,)),
+    "sqrt": (sp.sqrt, (1,)),
+    "exp": (sp.exp, (1,)),
+    "log": (sp.log, (1, 2)),
+    "Abs": (sp.Abs, (1,)),
+    "sign": (sp.sign, (1,)),
+}
+"""The functions an expression may call: name → (sympy function, accepted numbers of arguments).
+``log(x, b)`` is the logarithm of x in base b; ``atan2(y, x)`` the angle of the point (x, y)."""
+
+ALIASES = {
+    "sen": "sin",  # the textbook's (Spanish) spelling
+    "asen": "asin",
+    "arcsen": "asin",
+    "arcsin": "asin",
+    "arccos": "acos",
+    "arctan": "atan",
+    "arctan2": "atan2",
+    "tg": "tan",
+    "ln": "log",
+    "abs": "Abs",
+}
+"""Other spellings accepted for the functions of :data:`FUNCTIONS`."""
+
+CONSTANTS = {"pi": sp.pi, "π": sp.pi, "E": sp.E}
+"""Named constants: π and Euler's number e (written ``E``, as sympy does, so that ``e`` stays free)."""
+
+# names people try that are refused with a reason and what to write instead
+_HINTS = {
+    "I": "complex numbers are not accepted: kinematic quantities are real",
+    "j": "complex numbers are not accepted: kinematic quantities are real",
+    "oo": "infinity is not a number kinbook can compute with",
+    "inf": "infinity is not a number kinbook can compute with",
+    "nan": "NaN is not a number kinbook can compute with",
+    "e": "Euler's number is written E (exp(1))",
+    "floor": "step functions are not accepted: a prescribed motion needs two continuous derivatives (for ν and γ); "
+             "drive each phase in its own sweep, or blend smoothly, e.g. (1 - cos(pi*t))/2",
+    "ceiling": "step functions are not accepted: a prescribed motion needs two continuous derivatives (for ν and "
+               "γ); drive each phase in its own sweep, or blend smoothly, e.g. (1 - cos(pi*t))/2",
+    "Heaviside": "step functions are not accepted: a prescribed motion needs two continuous derivatives (for ν "
+                 "and γ); drive each phase in its own sweep, or blend smoothly, e.g. (1 - cos(pi*t))/2",
+    "Piecewise": "piecewise functions are not accepted: a prescribed motion needs two continuous derivatives "
+                 "(for ν and γ); drive each phase in its own sweep (mechanism.remove / add a driver)",
+    "Min": "Min/Max have corners: write a smooth expression, or drive each phase in its own sweep",
+    "Max": "Min/Max have corners: write a smooth expression, or drive each phase in its own sweep",
+    "factorial": "factorial is not needed in kinematics (and grows too fast to bound)",
+    "gamma": "the gamma function is not available (γ of the acceleration equations is not an input)",
+    "DiracDelta": "impulses are not accepted: a prescribed motion needs two continuous derivatives",
+}
+
+_OPERATORS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "^"}
+_REFUSED_NODES = {
+    ast.Attribute: "attribute access ('.') is not allowed",
+    ast.Subscript: "subscripts ('[ ]') are not allowed",
+    ast.Compare: "comparisons (<, >, ==) are not expressions of a number",
+    ast.BoolOp: "'and' / 'or' are not expressions of a number",
+    ast.IfExp: "'if … else' is not allowed; a prescribed motion needs two continuous derivatives",
+    ast.Lambda: "lambda is not allowed",
+    ast.List: "a list is not an expression of a number",
+    ast.Tuple: "a tuple is not an expression of a number (a comma where none belongs?)",
+    ast.Set: "a set is not an expression of a number",
+    ast.Dict: "a dict is not an expression of a number",
+    ast.Starred: "'*' unpacking is not allowed",
+    ast.JoinedStr: "strings are not expressions of a number",
+    ast.NamedExpr: "':=' is not allowed",
+    ast.Await: "'await' is not allowed",
+    ast.Yield: "'yield' is not allowed",
+    ast.ListComp: "comprehensions are not allowed",
+    ast.GeneratorExp: "comprehensions are not allowed",
+    ast.SetComp: "comprehensions are not allowed",
+    ast.DictComp: "comprehensions are not allowed",
+    ast.Slice: "slices are not allowed",
+}
+_BINOP_NAMES = {ast.Mod: "%", ast.FloorDiv: "//", ast.MatMult: "@", ast.BitAnd: "&", ast.BitOr: "|",
+                ast.LShift: "<<", ast.RShift: ">>", ast.BitXor: "xor"}
+
+
+def _short(text, width=60):
+    text = str(text)
+    return repr(text if len(text) <= width else text[: width - 1] + "…")
+
+
+def _fail(where, text, reason, expected=None, node=None, column=None):
+    if column is None and node is not None:
+        column = node.col_offset + 1
+    at = f" at column {column}" if column is not None else ""
+    msg = f"{where}: {reason}{at} in {_short(text)}"
+    if expected:
+        msg += f"; expected {expected}"
+    raise ExpressionError(msg, where=where, text=text, reason=reason, column=column)
+
+
+def _function_table(functions):
+    if functions is None:
+        return FUNCTIONS, ALIASES
+    if isinstance(functions, Mapping):
+        table = {}
+        for name, f in functions.items():
+            if isinstance(f, tuple):
+                table[name] = f
+            else:
+                nargs = getattr(f, "nargs", None)
+                counts = tuple(sorted(nargs)) if isinstance(nargs, sp.FiniteSet) and len(nargs) < 5 else (1, 2, 3)
+                table[name] = (f, counts)
+        return table, {}
+    names = list(functions)
+    unknown = [n for n in names if n not in FUNCTIONS and n not in ALIASES]
+    if unknown:
+        raise ValueError(f"`functions`: unknown function name(s) {', '.join(unknown)} (known: {', '.join(FUNCTIONS)})")
+    table = {ALIASES.get(n, n): FUNCTIONS[ALIASES.get(n, n)] for n in names}
+    aliases = {a: f for a, f in ALIASES.items() if f in table}
+    return table, aliases
+
+
+def read_expression(text, *, symbols, where, functions=None, limits=None):
+    """Read an expression from untrusted text, against an allow-list.
+
+    Parameters
+    ----------
+    text : str
+        The expression, e.g. ``"pi/4 + 100*t"`` or ``"x2 - cos(phi2)"``. ``^`` means power.
+    symbols : Mapping[str, sympy.Symbol]
+        The names allowed in this context and the symbols they stand for (any Mapping: a class that
+        resolves spellings such as ``phi_2`` lazily in ``__contains__`` / ``__getitem__`` works).
+    where : str
+        Says where the text came from, for the messages: ``"file 'x.toml', key constraints[3].f"``.
+    functions : Mapping[str, callable] or iterable of str, optional
+        Default :data:`FUNCTIONS` (with :data:`ALIASES`). An iterable of names restricts the default set; a
+        mapping name → sympy function (or (function, accepted argument counts)) replaces it.
+    limits : Limits, optional
+        Default :data:`DEFAULT_LIMITS`.
+
+    Returns
+    -------
+    sympy.Expr
+
+    Raises
+    ------
+    ExpressionError
+        The text is not an expression of the allowed form, or exceeds a bound; the message names ``where``,
+        says what is wrong and where in the text, and what was expected.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t = sp.Symbol("t", real=True)
+    >>> read_expression("3*pi/4 + 100*t", symbols={"t": t}, where="driver f")
+    100*t + 3*pi/4
+    >>> read_expression("2^10 - sen(0)", symbols={}, where="a number")
+    1024
+    >>> read_expression("__import__('os')", symbols={}, where="q0[0]")
+    Traceback (most recent call last):
+    ...
+    kinbook.errors.ExpressionError: q0[0]: unknown function '__import__' at column 1 in "__import__('os')"; expected a number or an expression of numbers with + - * / ^, the functions sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, Abs, sign and the constants pi, E
+    """
+    limits = DEFAULT_LIMITS if limits is None else limits
+    if not isinstance(text, str):
+        raise ExpressionError(f"{where}: expected the text of an expression, got {type(text).__name__}",
+                              where=where, text=None, reason="not a string")
+    reader = _Reader(text, symbols, where, functions, limits)
+    if len(text) > limits.length:
+        reader.fail(f"the text is too long ({len(text)} characters, at most {limits.length})")
+    if not reader.source:
+        reader.fail("the text is empty", reader.expected())
+    try:
+        tree = ast.parse(reader.source, mode="eval")
+    except SyntaxError as exc:
+        reason = "not a valid expression"
+        detail = (exc.msg or "").split(" (")[0]
+        if detail and detail != "invalid syntax":
+            reason += f" ({detail})"
+        if "decimal literal" in (exc.msg or "") or "imaginary literal" in (exc.msg or ""):
+            reason += "; write products with * (2*t, not 2t)"
+        column = exc.offset + reader.offset if exc.offset and exc.lineno == 1 else None
+        reader.fail(reason, reader.expected(), column=column)
+    except (ValueError, RecursionError, MemoryError):  # null bytes, or nesting beyond the parser's stack
+        reader.fail("not a valid expression (unreadable characters or nesting too deep)")
+    reader.walk(tree.body)
+    expr = reader.build(tree.body)
+    if not isinstance(expr, sp.Expr):
+        reader.fail(f"not an expression of a number (got {type(expr).__name__})")
+    if expr.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
+        reader.fail("the expression is not finite (a division by zero?)", "a finite expression")
+    return expr
+
+
+class _Reader:
+    """One reading: the text, its context, and the walk and build over its tree."""
+
+    def __init__(self, text, symbols, where, functions, limits):
+        self.text, self.symbols, self.where, self.limits = text, symbols, where, limits
+        self.table, self.aliases = _function_table(functions)
+        stripped = text.lstrip()
+        self.offset = len(text) - len(stripped)  # columns in messages count in the text as given
+        self.source = stripped.rstrip().replace("^", "**")
+        self.value = {}  # id(node) -> float estimate of a numeric sub-expression, or None
+        self.calls = {}  # id(node) -> nesting depth of function calls in the sub-expression
+        self.bits = {}  # id(node) -> bound on the bits of the exact numbers sympy builds for the sub-expression
+
+    def fail(self, reason, expected=None, node=None, column=None):
+        if column is None and node is not None:
+            column = node.col_offset + 1 + self.offset
+        _fail(self.where, self.text, reason, expected, column=column)
+
+    def expected(self):
+        symbols = self.symbols
+        names = ", ".join(list(symbols)[:8]) + (" …" if len(symbols) > 8 else "")
+        what = f"an expression of {names}" if symbols else "a number or an expression of numbers"
+        return f"{what} with + - * / ^, the functions {', '.join(self.table)} and the constants pi, E"
+
+    # ------------------------------------------------------------------------------------------- walk
+    def walk(self, root):
+        """Check the tree against the allow-list and the bounds, iteratively (no recursion on a deep tree),
+        evaluating nothing but float estimates of numeric sub-expressions (bounded work per node)."""
+        limits = self.limits
+        count = 0
+        stack = [(root, 1, False)]
+        while stack:
+            node, depth, visited = stack.pop()
+            if visited:
+                self.calls[id(node)] = max((self.calls[id(c)] for c in ast.iter_child_nodes(node)
+                                            if id(c) in self.calls), default=0) + isinstance(node, ast.Call)
+                self.value[id(node)] = self.estimate(node)
+                self.bits[id(node)] = self.exact_bits(node)
+                continue
+            count += 1
+            if count > limits.nodes:
+                self.fail(f"the expression is too large (more than {limits.nodes} parts)")
+            if depth > limits.depth:
+                self.fail(f"the expression is nested too deeply (more than {limits.depth} levels)", node=node)
+            stack.append((node, depth, True))
+            for c in self.children(node):
+                # a chain a + b - c + … (or a * b / c …) is one level, however long: sums of many terms
+                # are legitimate, and the build flattens them without recursion
+                chain = isinstance(c, ast.BinOp) and c is getattr(node, "left", None) and _family(c) == _family(node)
+                stack.append((c, depth if chain else depth + 1, False))
+
+    def children(self, node):
+        table, aliases, symbols = self.table, self.aliases, self.symbols
+        if isinstance(node, ast.Constant):
+            v = node.value
+            if isinstance(v, bool) or v is None or v is Ellipsis:
+                self.fail(f"{v!r} is not a number", node=node)
+            if isinstance(v, complex):
+                self.fail("complex numbers are not accepted: kinematic quantities are real", node=node)
+            if not isinstance(v, (int, float)):
+                self.fail(f"a {type(v).__name__} literal is not an expression of a number", self.expected(), node)
+            width = (node.end_col_offset or 0) - node.col_offset if node.end_lineno == node.lineno else None
+            if width is None or width > self.limits.digits:
+                self.fail(f"a number is too long (more than {self.limits.digits} characters)", node=node)
+            if isinstance(v, float) and not math.isfinite(v):
+                self.fail("a number is not finite (too large for a float)", node=node)
+            return ()
+        if isinstance(node, ast.Name):
+            name = node.id
+            if name in symbols or name in CONSTANTS:
+                return ()
+            if name in table or name in aliases:
+                self.fail(f"'{name}' is a function: call it, as in {name}(…)", node=node)
+            reason = f"unknown name '{name}'"
+            if name in _HINTS:
+                reason += f" ({_HINTS[name]})"
+            self.fail(reason, self.expected(), node)
+        if isinstance(node, ast.BinOp):
+            if type(node.op) not in _OPERATORS:
+                op = _BINOP_NAMES.get(type(node.op), type(node.op).__name__)
+                self.fail(f"the operator '{op}' is not allowed", "+ - * / ^", node)
+            return (node.left, node.right)
+        if isinstance(node, ast.UnaryOp):
+            if not isinstance(node.op, (ast.USub, ast.UAdd)):
+                op = {ast.Not: "not", ast.Invert: "~"}.get(type(node.op), type(node.op).__name__)
+                self.fail(f"the operator '{op}' is not allowed", "+ - * / ^ and unary minus", node)
+            return (node.operand,)
+        if isinstance(node, ast.Call):
+            func = node.func
+            if not isinstance(func, ast.Name):
+                what = "attribute access ('.')" if isinstance(func, ast.Attribute) else "this kind of call"
+                self.fail(f"{what} is not allowed", f"a call of one of {', '.join(table)}", node)
+            name = aliases.get(func.id, func.id)
+            if name not in table:
+                if func.id in symbols or func.id in CONSTANTS:
+                    self.fail(f"'{func.id}' is not a function (a product needs its *: {func.id}*(…))", node=node)
+                reason = f"unknown function '{func.id}'"
+                if func.id in _HINTS:
+                    reason += f" ({_HINTS[func.id]})"
+                self.fail(reason, self.expected(), node)
+            if node.keywords:
+                self.fail(f"{func.id}() takes no keyword arguments", node=node)
+            counts = table[name][1]
+            if len(node.args) not in counts:
+                want = " or ".join(str(c) for c in counts)
+                self.fail(f"{func.id}() takes {want} argument(s), got {len(node.args)}", node=node)
+            return tuple(node.args)
+        for cls, reason in _REFUSED_NODES.items():
+            if isinstance(node, cls):
+                self.fail(reason, self.expected(), node)
+        self.fail(f"'{type(node).__name__}' is not allowed", self.expected(), node)
+
+    def estimate(self, node):
+        """A floating-point (complex) estimate of a sub-expression made of numbers only — None when it has
+        symbols — and the checks of exponent and magnitude that need it. Float arithmetic: it cannot hang."""
+        value, limits = self.value, self.limits
+        big = limits.magnitude
+        too_large = f"a number is too large (more than {big:.0e})"
+        if isinstance(node, ast.Constant):
+            return complex(node.value)
+        if isinstance(node, ast.Name):
+            const = CONSTANTS.get(node.id)
+            return complex(const) if const is not None else None
+        if isinstance(node, ast.UnaryOp):
+            v = value[id(node.operand)]
+            return None if v is None else (-v if isinstance(node.op, ast.USub) else v)
+        if isinstance(node, ast.BinOp):
+            a, b = value[id(node.left)], value[id(node.right)]
+            op = type(node.op)
+            if op is ast.Pow and b is not None and abs(b) > limits.exponent:
+                shown = f"{b.real:.6g}" if b.imag == 0 else f"{b:.6g}"
+                self.fail(f"the exponent {shown} is too large (at most {limits.exponent:g} in size)", node=node)
+            if a is None or b is None:
+                return None
+            if op is ast.Pow and a == 0 and b.real < 0:
+                self.fail("division by zero (0 to a negative power)", node=node)
+            if op is ast.Div and b == 0:
+                self.fail("division by zero", node=node)
+            compute = {ast.Pow: lambda: a**b, ast.Div: lambda: a / b, ast.Mult: lambda: a * b,
+                       ast.Add: lambda: a + b, ast.Sub: lambda: a - b}[op]
+        elif isinstance(node, ast.Call):
+            args = [value[id(a)] for a in node.args]
+            name = self.aliases.get(node.func.id, node.func.id)
+            if any(a is None for a in args) or name not in _COMPLEX or self.table.get(name) is not FUNCTIONS.get(name):
+                return None
+            compute = lambda: _COMPLEX[name](*args)  # noqa: E731
+        else:
+            return None
+        try:
+            r = complex(compute())
+        except (OverflowError, ZeroDivisionError):
+            self.fail(f"{too_large}, or a division by zero", node=node)
+        except (ValueError, TypeError):  # atan2 or sign of a complex number, or a domain error
+            r = complex(math.nan, math.nan)
+        if math.isnan(r.real) or math.isnan(r.imag):
+            self.fail("a part of the expression has no real value", "real numbers", node)
+        if not (math.isfinite(r.real) and math.isfinite(r.imag)) or abs(r) > big:
+            self.fail(too_large, node=node)
+        if abs(r.imag) > 1e-9 * max(1.0, abs(r.real)):
+            self.fail(f"a part of the expression is not a real number (≈ {r.real:.6g}{r.imag:+.6g}i)",
+                      "real numbers (kinematic quantities are real)", node)
+        return complex(r.real, 0.0) if r.imag else r
+
+    def exact_bits(self, node):
+        """A bound on the size, in bits, of the exact rational numbers sympy will build for this sub-expression
+        (its coefficients): sums and products add sizes, an integer power multiplies them. Without it,
+        ``1/1009**85 + 1/1013**85 + …`` builds a common denominator of 10⁵ digits, a quadratic cost."""
+        bits = self.bits
+        if isinstance(node, ast.Constant):
+            n = int(abs(node.value)).bit_length() if isinstance(node.value, int) else 64
+        elif isinstance(node, ast.Name):
+            n = 0
+        elif isinstance(node, ast.UnaryOp):
+            n = bits[id(node.operand)]
+        elif isinstance(node, ast.BinOp):
+            a, b = bits[id(node.left)], bits[id(node.right)]
+            exponent = self.value.get(id(node.right))
+            if isinstance(node.op, ast.Pow) and exponent is not None:
+                n = a * max(1, math.ceil(abs(exponent))) + b
+            else:
+                n = a + b
+        elif isinstance(node, ast.Call):
+            n = sum(bits[id(a)] for a in node.args)
+        else:
+            n = 0
+        if n > self.limits.bits:
+            self.fail(f"the exact numbers are too large (more than {self.limits.bits} bits in all)", node=node)
+        return n
+
+    # ------------------------------------------------------------------------------------------- build
+    def build(self, node):
+        """The sympy object of a tree that passed :meth:`walk` (depth bounded there, so recursion is safe)."""
+        if isinstance(node, ast.Constant):
+            v = node.value
+            return sp.Integer(v) if isinstance(v, int) else sp.Float(v)
+        if isinstance(node, ast.Name):
+            return self.symbols[node.id] if node.id in self.symbols else CONSTANTS[node.id]
+        if isinstance(node, ast.UnaryOp):
+            operand = self.build(node.operand)
+            return -operand if isinstance(node.op, ast.USub) else operand
+        if isinstance(node, ast.BinOp):
+            family = _family(node)
+            if family is None:  # a power
+                return sp.Pow(self.build(node.left), self.build(node.right))
+            # the left spine of a chain a + b - c + … in one Add (one Mul for a * b / c …), built iteratively
+            parts, left = [], node
+            while isinstance(left, ast.BinOp) and _family(left) == family:
+                right = self.build(left.right)
+                if isinstance(left.op, ast.Sub):
+                    right = -right
+                elif isinstance(left.op, ast.Div):
+                    right = sp.Pow(right, -1)
+                parts.append(right)
+                left = left.left
+            parts.append(self.build(left))
+            return (sp.Add if family == "add" else sp.Mul)(*reversed(parts))
+        name = self.aliases.get(node.func.id, node.func.id)
+        if self.value.get(id(node)) is not None and self.calls[id(node)] > 1:
+            # a call of numbers inside a call of numbers (sqrt(sin(1))): sympy's automatic evaluation asks the
+            # sign of such values by adaptive evalf, which can take minutes (sqrt(sqrt(…(2) - 1) - 1)); the
+            # value is computed at a fixed precision instead
+            return self.float_value(node)
+        return self.table[name][0](*[self.build(a) for a in node.args])
+
+    def float_value(self, node):
+        """A numeric call as a sympy Float of 20 digits, computed by mpmath on the tree at fixed precision."""
+        import mpmath
+
+        with mpmath.workdps(30):
+            try:
+                z = mpmath.mpc(self.mp(node, mpmath))
+            except (ValueError, ZeroDivisionError, OverflowError, TypeError):
+                z = mpmath.mpc(mpmath.nan)
+            if not (mpmath.isfinite(z.real) and mpmath.isfinite(z.imag)) or abs(z.imag) > 1e-20 * max(1, abs(z.real)):
+                self.fail("a part of the expression has no finite real value", "real numbers", node)
+            return sp.Float(z.real, 20)
+
+    def mp(self, node, mpmath):
+        """mpmath value of a numeric sub-tree (it passed the walk: numbers, constants, + - * / ^, calls)."""
+        if isinstance(node, ast.Constant):
+            return mpmath.mpf(node.value) if isinstance(node.value, float) else mpmath.mpf(int(node.value))
+        if isinstance(node, ast.Name):
+            return +mpmath.pi if CONSTANTS[node.id] is sp.pi else +mpmath.e
+        if isinstance(node, ast.UnaryOp):
+            v = self.mp(node.operand, mpmath)
+            return -v if isinstance(node.op, ast.USub) else v
+        if isinstance(node, ast.BinOp):
+            a, b = self.mp(node.left, mpmath), self.mp(node.right, mpmath)
+            op = type(node.op)
+            return {ast.Add: lambda: a + b, ast.Sub: lambda: a - b, ast.Mult: lambda: a * b,
+                    ast.Div: lambda: a / b, ast.Pow: lambda: mpmath.power(a, b)}[op]()
+        name = self.aliases.get(node.func.id, node.func.id)
+        args = [self.mp(a, mpmath) for a in node.args]
+        return _MP_BY_NAME[name](mpmath)(*args)
+
+
+def _family(node):
+    op = type(getattr(node, "op", None))
+    return "add" if op in (ast.Add, ast.Sub) else "mul" if op in (ast.Mult, ast.Div) else None
+
+
+def _real(z):
+    if z.imag != 0:
+        raise ValueError("complex argument")
+    return z.real
+
+
+_COMPLEX = {
+    "sin": cmath.sin, "cos": cmath.cos, "tan": cmath.tan, "asin": cmath.asin, "acos": cmath.acos,
+    "atan": cmath.atan, "atan2": lambda y, x: math.atan2(_real(y), _real(x)), "sqrt": cmath.sqrt,
+    "exp": cmath.exp, "log": lambda x, b=math.e: cmath.log(x, b), "Abs": abs,
+    "sign": lambda x: float((_real(x) > 0) - (_real(x) < 0)),
+}
+
+
+# ------------------------------------------------------------------------------------------------ numbers
+def read_constant(value, *, where, limits=None):
+    """A finite real number, kept exact as a sympy number: ``3``, ``0.5`` or a string such as ``"3*pi/4"``
+    (read by :func:`read_expression` with no symbols).
+
+    Parameters
+    ----------
+    value : int, float, str or sympy number
+        Not a bool.
+    where : str
+        Named in the messages.
+
+    Returns
+    -------
+    sympy.Expr
+        A number (``sp.pi/4`` stays exact, so symbolic displays show π).
+
+    Raises
+    ------
+    ExpressionError
+    """
+    if isinstance(value, bool) or value is None:
+        raise ExpressionError(f"{where}: expected a number, got {value!r}", where=where, text=None,
+                              reason="not a number")
+    if isinstance(value, int):
+        if abs(value) > (limits or DEFAULT_LIMITS).magnitude:
+            raise ExpressionError(f"{where}: the number is too large (more than "
+                                  f"{(limits or DEFAULT_LIMITS).magnitude:.0e})", where=where, text=None,
+                                  reason="too large")
+        return sp.Integer(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ExpressionError(f"{where}: expected a finite number, got {value!r}", where=where, text=None,
+                                  reason="not finite")
+        return sp.Float(value)
+    if isinstance(value, str):
+        expr = read_expression(value, symbols={}, where=where, limits=limits)
+    elif isinstance(value, sp.Basic):
+        check_expression(value, where=where, limits=limits)
+        expr = value
+    else:
+        import numbers
+
+        if isinstance(value, numbers.Real) and not isinstance(value, numbers.Integral):  # numpy floats …
+            return read_constant(float(value), where=where, limits=limits)
+        if isinstance(value, numbers.Integral):
+            return read_constant(int(value), where=where, limits=limits)
+        raise ExpressionError(f"{where}: expected a number or the text of one (such as \"pi/4\"), got "
+                              f"{type(value).__name__} {_short(value)}", where=where, text=None,
+                              reason="not a number")
+    if not isinstance(expr, sp.Expr) or expr.free_symbols:
+        names = ", ".join(sorted(map(str, getattr(expr, "free_symbols", ())))) or type(expr).__name__
+        raise ExpressionError(f"{where}: expected a number, got an expression of {names}: {_short(value)}",
+                              where=where, text=value if isinstance(value, str) else None, reason="not a number")
+    _real_value(expr, value, where)
+    return expr
+
+
+def _real_value(expr, value, where):
+    """The value of a numeric sympy expression as a float, computed by mpmath at a fixed 30 digits (sympy's
+    adaptive ``evalf`` can take minutes on nested logarithms of negative numbers); refuses complex and
+    non-finite values."""
+    import mpmath
+
+    with mpmath.workdps(30):
+        try:
+            z = _mp(expr, mpmath)
+        except (ValueError, ZeroDivisionError, OverflowError, TypeError):
+            z = mpmath.nan
+        z = mpmath.mpc(z)
+        finite = mpmath.isfinite(z.real) and mpmath.isfinite(z.imag)
+        if not finite or abs(z.imag) > mpmath.mpf(10) ** -25 * max(1, abs(z.real)):
+            got = mpmath.nstr(z, 6) if finite else "not finite"
+            raise ExpressionError(f"{where}: expected a finite real number, got {_short(value)} ({got})",
+                                  where=where, text=value if isinstance(value, str) else None, reason="not real")
+        return float(z.real)
+
+
+def _mp(e, mpmath):
+    """mpmath value of a sympy tree of numbers, constants and the functions of :data:`FUNCTIONS`."""
+    if isinstance(e, sp.Integer):
+        return mpmath.mpf(int(e))
+    if isinstance(e, sp.Rational):
+        return mpmath.mpf(int(e.p)) / int(e.q)
+    if isinstance(e, sp.Float):
+        return mpmath.mpf(e._mpf_)
+    if e is sp.pi:
+        return +mpmath.pi
+    if e is sp.E:
+        return +mpmath.e
+    if e is sp.I:
+        return mpmath.mpc(0, 1)
+    args = [_mp(a, mpmath) for a in e.args]
+    if isinstance(e, sp.Add):
+        return mpmath.fsum(args)
+    if isinstance(e, sp.Mul):
+        return mpmath.fprod(args)
+    if isinstance(e, sp.Pow):
+        return mpmath.power(args[0], args[1])
+    if isinstance(e, sp.exp):
+        return mpmath.exp(args[0])
+    f = _MP_FUNCTIONS.get(type(e))
+    if f is None:  # a sympy object from Python with other functions: sympy's own evaluation
+        return mpmath.mpmathify(complex(e.evalf(20)))
+    return f(mpmath)(*args)
+
+
+_MP_FUNCTIONS = {
+    sp.sin: lambda m: m.sin, sp.cos: lambda m: m.cos, sp.tan: lambda m: m.tan, sp.asin: lambda m: m.asin,
+    sp.acos: lambda m: m.acos, sp.atan: lambda m: m.atan, sp.log: lambda m: m.log, sp.Abs: lambda m: abs,
+    sp.atan2: lambda m: lambda y, x: m.atan2(_mp_real(y), _mp_real(x)),
+    sp.sign: lambda m: lambda x: m.sign(_mp_real(x)),
+}
+
+
+_MP_BY_NAME = {
+    "sin": lambda m: m.sin, "cos": lambda m: m.cos, "tan": lambda m: m.tan, "asin": lambda m: m.asin,
+    "acos": lambda m: m.acos, "atan": lambda m: m.atan, "exp": lambda m: m.exp, "sqrt": lambda m: m.sqrt,
+    "log": lambda m: lambda x, b=None: m.log(x) if b is None else m.log(x) / m.log(b), "Abs": lambda m: abs,
+    "atan2": lambda m: lambda y, x: m.atan2(_mp_real(y), _mp_real(x)),
+    "sign": lambda m: lambda x: m.sign(_mp_real(x)),
+}
+
+
+def _mp_real(x):
+    if getattr(x, "imag", 0) != 0:
+        raise ValueError("complex argument")
+    return getattr(x, "real", x)
+
+
+def read_number(value, *, where, limits=None):
+    """A finite real number as a float: an int or float (not a bool), or the text of one (``"pi/4"``).
+
+    Raises
+    ------
+    ExpressionError
+        Not a number, not finite, not real, or an expression of names; the message names ``where``.
+
+    Examples
+    --------
+    >>> read_number("pi/4", where="phi0")
+    0.7853981633974483
+    >>> read_number(True, where="length")
+    Traceback (most recent call last):
+    ...
+    kinbook.errors.ExpressionError: length: expected a number, got True
+    """
+    if isinstance(value, float) and math.isfinite(value):
+        return value
+    expr = read_constant(value, where=where, limits=limits)
+    return _real_value(expr, value, where)
+
+
+# ------------------------------------------------------------------------------------------------ sympy trees
+def check_expression(expr, *, where, limits=None):
+    """The bounds of :class:`Limits` on an already-built sympy object (an expression or a matrix), without
+    evaluating it: node count, depth, the magnitude of every number, numeric exponents.
+
+    For sympy objects handed over from Python (a student's expression, data decoded by the grader).
+
+    Raises
+    ------
+    ExpressionError
+        Naming ``where`` and the bound exceeded.
+    """
+    limits = DEFAULT_LIMITS if limits is None else limits
+    if isinstance(expr, (int, float)) and not isinstance(expr, bool):
+        if not math.isfinite(expr) or abs(expr) > limits.magnitude:
+            raise ExpressionError(f"{where}: expected a finite number of at most {limits.magnitude:.0e} in size, "
+                                  f"got {expr!r}", where=where, text=None, reason="not finite")
+        return
+    if isinstance(expr, sp.MatrixBase):
+        roots = list(expr)
+    elif isinstance(expr, sp.Basic):
+        roots = [expr]
+    else:
+        raise ExpressionError(f"{where}: expected a sympy expression, got {type(expr).__name__}", where=where,
+                              text=None, reason="not a sympy expression")
+    big_bits = math.log2(limits.magnitude)
+    count = 0
+    stack = [(r, 1) for r in roots]
+    while stack:
+        node, depth = stack.pop()
+        count += 1
+        if count > limits.nodes:
+            raise ExpressionError(f"{where}: the expression is too large (more than {limits.nodes} nodes)",
+                                  where=where, text=None, reason="too many nodes")
+        if depth > limits.depth:
+            raise ExpressionError(f"{where}: the expression is nested too deeply (more than {limits.depth} levels)",
+                                  where=where, text=None, reason="too deep")
+        if not isinstance(node, sp.Basic):
+            raise ExpressionError(f"{where}: a part of the expression is not a sympy object "
+                                  f"({type(node).__name__})", where=where, text=None, reason="not sympy")
+        if isinstance(node, sp.Number) or node in _INFINITIES:
+            _check_number(node, where, big_bits, limits)
+            continue
+        if isinstance(node, sp.Pow):
+            e = node.args[1]
+            if isinstance(e, sp.Number) and e.is_finite and abs(e) > limits.exponent:
+                raise ExpressionError(f"{where}: the exponent {e} is too large (at most {limits.exponent:g} in size)",
+                                      where=where, text=None, reason="exponent too large")
+        stack.extend((a, depth + 1) for a in node.args)
+
+
+_INFINITIES = (sp.zoo, sp.oo, -sp.oo, sp.nan)
+
+
+def _check_number(node, where, big_bits, limits):
+    if isinstance(node, sp.Integer):
+        bits = int(node).bit_length()
+    elif isinstance(node, sp.Rational):
+        bits = max(int(node.p).bit_length(), int(node.q).bit_length())
+    elif isinstance(node, sp.Float):
+        _, man, exp, bc = node._mpf_
+        bits = exp + bc if man else 0
+        if node._prec > 4096:
+            raise ExpressionError(f"{where}: a number has too many digits ({node._prec} bits)", where=where,
+                                  text=None, reason="too precise")
+    else:  # zoo, oo, nan
+        raise ExpressionError(f"{where}: the expression contains {node}, which is not a finite number",
+                              where=where, text=None, reason="not finite")
+    if bits > big_bits:
+        raise ExpressionError(f"{where}: a number is too large (more than {limits.magnitude:.0e})", where=where,
+                              text=None, reason="too large")
