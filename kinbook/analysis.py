@@ -449,7 +449,7 @@ def _hermite5(t, t0, t1, start, end):
 
 def _driver_text(mech, name, value):
     c = mech.constraint(name)
-    angle = getattr(c, "coordinate", None) == "phi" or c.type_name == "relative-driver" or getattr(c, "angular", False)
+    angle = (c.measures or (None,))[-1] == "angle"
     return f"driver '{name}' = {value:.6g}" + (f" rad = {np.degrees(value):.2f}°" if angle else "")
 
 

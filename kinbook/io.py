@@ -2,7 +2,7 @@
 docs/mechanism-files.md.
 
 A file names its kind (``kind = "planar"`` by default, or ``"spatial"``); each ``[[constraints]]`` table has a
-``type`` (a key of the kind's ``CONSTRAINT_TYPES``) and the keyword arguments of that constraint's class.
+``type`` (a constraint type registered in the kind's chapter, :func:`kinbook.model.constraint_types`) and the keyword arguments of that constraint's class.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
 from .errors import KinbookError, MechanismFileError
+from .model import constraint_class
 
 __all__ = ["load", "loads"]
 
@@ -100,11 +101,11 @@ def build(data, source="<data>"):
         where = f"constraints[{k}]"
         spec = dict(_table(spec, where, source))
         ctype = spec.pop("type", None)
-        if ctype not in module.CONSTRAINT_TYPES:
-            known = ", ".join(module.CONSTRAINT_TYPES)
-            raise MechanismFileError(f"{source}: {where}: `type` must be one of {known}, got {ctype!r}")
+        try:
+            cls = constraint_class(kind, ctype, files=True)
+        except KinbookError as exc:
+            raise MechanismFileError(f"{source}: {where}: {exc}") from None
         where += f" (type '{ctype}')"
-        cls = module.CONSTRAINT_TYPES[ctype]
         _check_keys(spec, inspect.signature(cls.__init__).parameters, where, source, skip=("self",))
         try:
             mech.add(cls(**spec))

@@ -1,24 +1,40 @@
-"""What planar and spatial mechanisms share: the constraint base class, the per-type index maps and the
-fast numeric assembly of Φ, Φ_q, ν and γ, the symbolic model, and the analysis entry points.
+"""What planar and spatial mechanisms share: the constraint family (an abstract base whose subclasses register
+themselves by type name, per chapter), the per-type index maps and the fast numeric assembly of Φ, Φ_q, ν
+and γ, the symbolic model, and the analysis entry points.
 
 :mod:`kinbook.planar` and :mod:`kinbook.spatial` subclass :class:`ConstraintBase` and :class:`MechanismBase`
 and add only what depends on the coordinates: (x, y, φ) per planar body, (x, y, z, e0, e1, e2, e3) per
-spatial body.
+spatial body. How to add a constraint type: docs/extending.md.
 """
 
 from __future__ import annotations
 
+import abc
 import html
-from functools import cached_property
+import inspect
+import numbers
+from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
 
-from . import analysis
+from . import analysis, kernels
 from .errors import InputError, ModelError, UnknownBodyError, UnknownPointError
 from .symbolic import derive, t as t_symbol, time_derivatives
 
-__all__ = ["ConstraintBase", "ConstraintGroup", "MechanismBase", "ConstraintTable", "time_function", "lookup_point"]
+__all__ = [
+    "ConstraintBase",
+    "ConstraintGroup",
+    "MechanismBase",
+    "ConstraintTable",
+    "time_function",
+    "lookup_point",
+    "constraint_types",
+    "constraint_class",
+    "stack_params",
+    "KINDS",
+    "MEASURES",
+]
 
 
 def time_function(f, owner):
@@ -44,36 +60,143 @@ def lookup_point(body, name, context=None):
     return body.points[name]
 
 
-class ConstraintBase:
-    """Naming, rows and binding shared by every constraint, planar or spatial.
+KINDS = ("joint", "simple", "driver", "normalization")
+"""What a constraint can be: joints are numbered as the book numbers them in its joint tables; simple
+constraints fix coordinates of one body; drivers are left out of the degrees-of-freedom count;
+normalization rows (spatial) belong to one body."""
 
-    A constraint type sets the class attributes, writes its Φ once in :meth:`phi` (the single source of
-    truth) and gives a vectorized ``kernel`` with the :meth:`params` it needs.
+MEASURES = ("length", "length^2", "angle", "ratio")
+"""What a row of Φ can measure (``Constraint.measures``): a distance, a product of two distances (dot and
+cross products of body vectors, squared lengths), an angle in radians, or a pure number."""
 
-    Attributes
+_REGISTRY = {}
+
+
+def constraint_types(chapter):
+    """The registered constraint classes of a chapter, by the ``type`` name used in mechanism files.
+
+    Parameters
     ----------
+    chapter : {"planar", "spatial"}
+
+    Returns
+    -------
+    mapping of str to class
+        A read-only view: a type registered later (a subclass defined in a notebook or a test) appears in it.
+
+    Examples
+    --------
+    >>> import kinbook
+    >>> constraint_types("planar")["revolute"]
+    <class 'kinbook.planar.constraints.Revolute'>
+    """
+    return MappingProxyType(_REGISTRY.setdefault(chapter, {}))
+
+
+def constraint_class(chapter, type_name, where=None, files=False):
+    """The constraint class registered as ``type_name`` in ``chapter``; :class:`ModelError` naming the known
+    types (and ``where``, when given) otherwise. With ``files``, only the types a mechanism file may declare
+    (``in_files``)."""
+    types = {k: v for k, v in _REGISTRY.get(chapter, {}).items() if v.in_files or not files}
+    if type_name in types:
+        return types[type_name]
+    known = ", ".join(types) or "none"
+    prefix = f"{where}: " if where else ""
+    raise ModelError(f"{prefix}`type` must be one of the {chapter} constraint types {known}, got {type_name!r}")
+
+
+class ConstraintBase(abc.ABC):
+    """A constraint type of either chapter: naming, rows, binding, registration and the numeric path.
+
+    A new type is one subclass of :class:`kinbook.planar.Constraint` or :class:`kinbook.spatial.Constraint`
+    that sets ``type_name`` and ``n_eq``, declares what it reads from a mechanism file (``points``,
+    ``vectors``, ``numbers``, ``functions``) and writes :meth:`phi`, its Φ — the single source of truth.
+    Everything else follows from that (docs/extending.md): the class registers itself under ``type_name``
+    in its chapter (mechanism files find it there), Φ_q, ν and γ are derived by :mod:`kinbook.symbolic`, and
+    the numeric path is compiled from :meth:`phi` (:mod:`kinbook.kernels`) unless the type gives a
+    hand-written ``kernel`` as an optimization (tested equal to the compiled one).
+
+    Class attributes
+    ----------------
     type_name : str
-        Name used in mechanism files and messages ("revolute").
+        Name in mechanism files and messages ("revolute"); setting it registers the class.
     label : str
         The book's notation (r, t, r-r, s,3, p1,2 …).
     n_eq : int
         Number of equations (rows of Φ).
     kind : {"joint", "simple", "driver", "normalization"}
-        Joints are numbered as the book numbers them in its joint tables; drivers are left out of the degrees
-        of freedom count.
-    angular : bool
-        Φ is an angle: the mechanism wraps its value into (−π, π].
+    title : dict
+        ``{"en": "revolute joint", "es": "par de revolución"}`` for messages and tables.
+    roles : tuple of str
+        The roles of the bodies it connects, in order ("i", "j").
+    measures : tuple or None
+        What each row measures, one of :data:`MEASURES` per row (None: not known).
+    wrap : dict
+        ``{row: period}``: rows whose value jumps by a period (an angle from atan2: 2π) and is wrapped by the
+        mechanism into (−period/2, period/2].
+    per_body : bool
+        The constraint belongs to its one body and is named after it (ground, normalization).
+    in_files : bool
+        Mechanism files may declare it (False for the normalization rows a spatial body brings itself).
+    parts : tuple
+        A composite joint: the constraint classes whose rows it stacks, each optionally with a dict renaming
+        the part's attributes to the composite's (``(Normal1, {"a_i": "hp_i"})``). ``n_eq``, ``label``,
+        ``wrap``, ``measures``, :meth:`phi` and the kernel follow from the parts.
+    points, vectors : dict
+        ``{key: role}``: file keys naming a point (a vector) of the body in that role; bound to the local
+        coordinates, read in :meth:`phi` with :meth:`point` and :meth:`vector`.
+    numbers : tuple or dict
+        File keys of numeric parameters (a dict gives defaults); bound to sympy numbers.
+    functions : dict
+        ``{key: variable}``: file keys of functions of one variable, written as expressions in it
+        (``"2 + cos(psi)"``); bound to a sympy Lambda, called in :meth:`phi` as ``self.profile(ψ)``.
+    parameters : tuple of str
+        Attributes that :meth:`phi` reads and that hold numbers (the declared keys by default): the compiled
+        path makes them symbols, so one compiled kernel serves every constraint of the type.
+    kernel : callable or None
+        Hand-written vectorized kernel ``kernel(Q, P, Qd=None) -> (Φ, Φ_q, γ)`` with the :meth:`params` it
+        reads.
+
+    Instance attributes
+    -------------------
     rows : slice or None
-        The rows of Φ this constraint occupies, set when it is added to a mechanism.
-    mechanism : the mechanism it is bound to, or None.
+        The rows of Φ it occupies, set when it is added to a mechanism.
+    bodies : list of bodies, or None before it is bound; mechanism : the mechanism it is bound to, or None.
     """
 
-    type_name = "constraint"
+    chapter = None
+    COORDS = ()
+    type_name = None
     label = "?"
     n_eq = 0
     kind = "joint"
-    angular = False
+    title = None
+    roles = ("i", "j")
+    measures = None
+    wrap = {}
+    per_body = False
+    in_files = True
+    parts = ()
+    points = {}
+    vectors = {}
+    numbers = ()
+    functions = {}
+    parameters = ()
     kernel = None
+    owner = None
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        own = cls.__dict__
+        if own.get("parts"):
+            _declare_composite(cls)
+        declared = _declared_keys(cls)
+        if declared and "parameters" not in own:
+            cls.parameters = tuple(k for k in declared if k not in cls.functions)
+        if declared and _inherits_base_init(cls):
+            _install_init(cls, declared)
+        if own.get("type_name") is not None:
+            _register(cls)
 
     def __init__(self, bodies, name=None, f=None):
         self.body_names = tuple(str(b) for b in bodies)
@@ -83,8 +206,11 @@ class ConstraintBase:
         self.bodies = None
         self.mechanism = None
 
+    # ------------------------------------------------------------------------------------------- naming
     def describe(self):
         """Short English description: "revolute joint '3' (rows 8-9 of Φ)"."""
+        if self.owner is not None:
+            return self.owner.describe()
         kind = {"joint": "joint", "driver": "driver", "simple": "constraint", "normalization": "equation"}
         what = f"{self.type_name} {kind.get(self.kind, self.kind)} '{self.name}'"
         if self.rows is not None:
@@ -92,33 +218,289 @@ class ConstraintBase:
             what += f" (row {a} of Φ)" if a == b else f" (rows {a}-{b} of Φ)"
         return what
 
+    def name_stems(self):
+        """Default names for an unnamed constraint that is neither a joint nor a driver, in order of
+        preference (the mechanism numbers the last one when all are taken)."""
+        return (f"{self.type_name} {self.body_names[0]}",)
+
     def __repr__(self):
         bodies = ", ".join(repr(b) for b in self.body_names)
         return f"{type(self).__name__}({bodies}, name={self.name!r})"
 
+    # ------------------------------------------------------------------------------------------- binding
     def bind(self, mechanism):
         """Resolve body and point names against ``mechanism`` (called when the constraint is added)."""
         bodies = [mechanism.body(b, context=self) for b in self.body_names]
         if len({b.name for b in bodies}) != len(bodies):
             raise ModelError(f"{self.describe()} connects body '{bodies[0].name}' to itself")
         self.bodies = bodies
+        self.__dict__.pop("_views", None)
+        self.__dict__.pop("_template", None)
         self._bind_points()
+        if self.parts:
+            self._bind_parts()
         self.mechanism = mechanism
 
     def _bind_points(self):
-        """Hook: look up named points (and vectors); subclasses with points override it."""
+        """Hook: resolve named points, vectors and parameters. The default binds the declared keys; a type
+        with its own ``__init__`` overrides it."""
+        specs = getattr(self, "specs", None)
+        if not specs:
+            return
+        for key, role in self.points.items():
+            setattr(self, key, self._read_point(self.roles.index(role), specs[key], key))
+        for key, role in self.vectors.items():
+            setattr(self, key, self._read_vector(self.roles.index(role), specs[key], key))
+        for key in self.numbers:
+            setattr(self, key, self._read_number(specs[key], key))
+        for key, var in self.functions.items():
+            setattr(self, key, self._read_function(specs[key], var, key))
 
+    def _read_point(self, role_index, spec, key):
+        """Chapter hook: local coordinates of the point ``spec`` of the body in ``role_index``."""
+        raise NotImplementedError
+
+    def _read_vector(self, role_index, spec, key):
+        """Chapter hook: local components of the body-fixed vector ``spec``."""
+        raise NotImplementedError
+
+    def _read_number(self, value, key):
+        """A finite real number from a file key (a number, or text read by the safe reader)."""
+        if isinstance(value, str):
+            try:
+                from .expressions import read_number  # the one reader of untrusted text
+            except ImportError:  # pragma: no cover - until the reader lands
+                raise ModelError(f"{self.describe()}: `{key}` must be a number, got {value!r}") from None
+            return sp.Float(read_number(value, where=f"{self.describe()}, key {key}"), 17)
+        if isinstance(value, sp.Number):
+            e = value
+        elif isinstance(value, numbers.Integral) and not isinstance(value, bool):
+            e = sp.Integer(int(value))
+        elif isinstance(value, numbers.Real) and not isinstance(value, bool):
+            e = sp.Float(float(value), 17)
+        else:
+            raise ModelError(f"{self.describe()}: `{key}` must be a number, got {value!r}")
+        if not (e.is_real and e.is_finite):
+            raise ModelError(f"{self.describe()}: `{key}` must be a finite real number, got {value!r}")
+        return e
+
+    def _read_function(self, value, var, key):
+        """A function of one variable: an expression in ``var`` (text, read by the safe reader, or sympy), or a
+        Python callable building one; returns a sympy Lambda."""
+        x = sp.Symbol(var, real=True)
+        where = f"{self.describe()}, key {key}"
+        if isinstance(value, str):
+            try:
+                from .expressions import read_expression  # the one reader of untrusted text
+            except ImportError:  # pragma: no cover - until the reader lands
+                raise ModelError(f"{where}: functions written as text need kinbook.expressions") from None
+            expr = read_expression(value, symbols={var: x}, where=where)
+        elif isinstance(value, sp.Lambda):
+            expr = value(x)
+        elif isinstance(value, sp.Expr):
+            expr = value.subs({s: x for s in value.free_symbols if s.name == var})
+        elif callable(value):
+            expr = sp.S(value(x))
+        else:
+            raise ModelError(f"{where}: expected an expression in {var}, got {value!r}")
+        extra = expr.free_symbols - {x}
+        if extra:
+            raise ModelError(f"{where}: the function of {var} uses unknown symbols "
+                             f"{', '.join(sorted(map(str, extra)))}")
+        return sp.Lambda(x, expr)
+
+    # ------------------------------------------------------------------------------------------- Φ
+    @abc.abstractmethod
     def phi(self, Q, t=t_symbol):
         """Symbolic Φ of this constraint: a list of ``n_eq`` sympy expressions in the coordinates ``Q`` of its
         bodies (one sympy column per body, in ``self.bodies`` order); a driver's includes − f(t)."""
+
+    def point(self, Q, key):
+        """Symbolic global position of the declared point ``key`` (r + A s')."""
+        return self._global_point(Q[self.roles.index(self.points[key])], getattr(self, key))
+
+    def vector(self, Q, key):
+        """Symbolic global components of the declared body-fixed vector ``key`` (A s')."""
+        return self._global_vector(Q[self.roles.index(self.vectors[key])], getattr(self, key))
+
+    def _global_point(self, Qb, s):
         raise NotImplementedError
 
-    def params(self):
-        """Numeric parameters of this constraint for its kernel: a dict of float arrays."""
-        return {}
+    def _global_vector(self, Qb, s):
+        raise NotImplementedError
 
     def _f_expr(self, t):
         return sp.Integer(0) if self.f is None else self.f.subs(t_symbol, t)
+
+    # ------------------------------------------------------------------------------------------- numerics
+    def params(self):
+        """Numeric parameters of this constraint for its hand-written kernel: a dict of float arrays."""
+        return {}
+
+    def numeric(self, compiled=False):
+        """The fast numeric path of this constraint: (kernel, parameters).
+
+        The type's hand-written ``kernel`` and :meth:`params` when it has one and ``compiled`` is false;
+        otherwise the kernel compiled from :meth:`phi` (one per type, shared by every constraint of the type,
+        :func:`kinbook.kernels.compiled`). A composite stacks the numeric paths of its parts.
+        """
+        if self.parts:
+            return kernels.stacked([v.numeric(compiled) for v in self.part_views()])
+        if self.kernel is not None and not compiled:
+            return self.kernel, self.params()
+        return kernels.compiled(self)
+
+    # ------------------------------------------------------------------------------------------- composites
+    def part_views(self):
+        """The parts of a composite as constraints of the part types that read this one's attributes
+        (renamed as ``parts`` says), each occupying its rows; empty for a primitive type."""
+        if not self.parts:
+            return []
+        views = self.__dict__.get("_views")
+        if views is None:
+            views, start = [], 0
+            for cls, rename in self.parts:
+                v = object.__new__(cls)
+                v.__dict__.update((k, x) for k, x in self.__dict__.items() if k not in _OWN_STATE)
+                for attr, own in rename.items():
+                    setattr(v, attr, getattr(self, own))
+                v.owner, v.offset, v.rows = self, start, None
+                start += cls.n_eq
+                views.append(v)
+            self.__dict__["_views"] = views
+        return views
+
+    def _bind_parts(self):
+        views = self.part_views()
+        self.wrap = {v.offset + r: p for v in views for r, p in v.wrap.items()}
+        measures = [v.measures for v in views]
+        self.measures = None if any(m is None for m in measures) else tuple(x for m in measures for x in m)
+
+    def _composite_phi(self, Q, t=t_symbol):
+        return [e for v in self.part_views() for e in v.phi(Q, t)]
+
+    def _composite_params(self):
+        return {k: v for view in self.part_views() for k, v in view.params().items()}
+
+
+_OWN_STATE = {"_views", "_template", "wrap", "measures", "owner", "offset", "rows"}
+"""Attributes a composite does not share with its part views (what the views take from their own class)."""
+
+
+def _declared_keys(cls):
+    keys = [*cls.points, *cls.vectors, *cls.numbers, *cls.functions]
+    return tuple(keys)
+
+
+def _inherits_base_init(cls):
+    """True unless the class or a base between it and ConstraintBase writes its own ``__init__``."""
+    for klass in cls.__mro__:
+        if "__init__" in klass.__dict__:
+            return klass is ConstraintBase or getattr(klass.__dict__["__init__"], "declared", False)
+    return False
+
+
+_RESERVED = {"name", "f", "self"}
+
+
+def _install_init(cls, keys):
+    """Give a declarative type its constructor: the body roles, then every declared key, then ``name``."""
+    P = inspect.Parameter
+    defaults = cls.numbers if isinstance(cls.numbers, dict) else {}
+    bad = [k for k in keys if not k.isidentifier() or k in _RESERVED or k in cls.roles or hasattr(ConstraintBase, k)]
+    if bad or len(set(keys)) != len(keys):
+        raise ModelError(f"constraint class {cls.__name__}: declared key {(bad or [keys])[0]!r} clashes with a name "
+                         "the constraint uses itself")
+    params = [P(r, P.POSITIONAL_OR_KEYWORD) for r in cls.roles]
+    required = [k for k in keys if k not in defaults]
+    params += [P(k, P.POSITIONAL_OR_KEYWORD) for k in required]
+    if cls.kind == "driver":
+        params.append(P("f", P.POSITIONAL_OR_KEYWORD))
+    params += [P(k, P.POSITIONAL_OR_KEYWORD, default=defaults[k]) for k in keys if k in defaults]
+    params.append(P("name", P.POSITIONAL_OR_KEYWORD, default=None))
+    sig = inspect.Signature(params)
+
+    def __init__(self, *args, **kwargs):
+        try:
+            bound = sig.bind(*args, **kwargs)
+        except TypeError as exc:
+            raise ModelError(f"{cls.type_name or cls.__name__} constraint: {exc}") from None
+        bound.apply_defaults()
+        a = bound.arguments
+        ConstraintBase.__init__(self, [a[r] for r in cls.roles], name=a["name"], f=a.get("f"))
+        self.specs = {k: a[k] for k in keys}
+
+    __init__.__signature__ = inspect.Signature([P("self", P.POSITIONAL_OR_KEYWORD), *params])
+    __init__.__qualname__ = f"{cls.__qualname__}.__init__"
+    __init__.__doc__ = f"Constraint {cls.type_name or cls.__name__} between the bodies in roles {', '.join(cls.roles)}."
+    __init__.declared = True
+    cls.__init__ = __init__
+
+
+def _declare_composite(cls):
+    parts = []
+    for p in cls.parts:
+        part, rename = (p, {}) if isinstance(p, type) else (p[0], dict(p[1]))
+        if not (isinstance(part, type) and issubclass(part, ConstraintBase)):
+            raise ModelError(f"composite {cls.__name__}: parts must be constraint classes, got {part!r}")
+        parts.append((part, rename))
+    cls.parts = tuple(parts)
+    cls.n_eq = sum(p.n_eq for p, _ in parts)
+    if "label" not in cls.__dict__:
+        cls.label = " + ".join(p.label for p, _ in parts)
+    wrap, start = {}, 0
+    for p, _ in parts:
+        wrap.update({start + r: v for r, v in p.wrap.items()})
+        start += p.n_eq
+    cls.wrap = wrap
+    if "measures" not in cls.__dict__:
+        ms = [p.measures for p, _ in parts]
+        cls.measures = None if any(m is None for m in ms) else tuple(x for m in ms for x in m)
+    if "phi" not in cls.__dict__:
+        cls.phi = ConstraintBase._composite_phi
+    if "params" not in cls.__dict__:
+        cls.params = ConstraintBase._composite_params
+
+
+def _register(cls):
+    name, chapter = cls.type_name, cls.chapter
+    where = f"constraint class {cls.__module__}.{cls.__qualname__}"
+    if chapter is None:
+        raise ModelError(f"{where}: subclass kinbook.planar.Constraint or kinbook.spatial.Constraint")
+    if not isinstance(name, str) or not name:
+        raise ModelError(f"{where}: `type_name` must be a non-empty string, got {name!r}")
+    if getattr(cls.phi, "__isabstractmethod__", False):
+        raise ModelError(f"{where} ('{name}'): write its Φ in phi(self, Q, t)")
+    if not isinstance(cls.n_eq, int) or cls.n_eq < 1:
+        raise ModelError(f"{where} ('{name}'): `n_eq` must be a positive integer, got {cls.n_eq!r}")
+    if cls.kind not in KINDS:
+        raise ModelError(f"{where} ('{name}'): `kind` must be one of {', '.join(KINDS)}, got {cls.kind!r}")
+    if cls.measures is not None and (len(cls.measures) != cls.n_eq or not set(cls.measures) <= set(MEASURES)):
+        raise ModelError(f"{where} ('{name}'): `measures` needs one of {', '.join(MEASURES)} per row "
+                         f"({cls.n_eq}), got {cls.measures!r}")
+    if any(not (0 <= r < cls.n_eq) for r in cls.wrap):
+        raise ModelError(f"{where} ('{name}'): `wrap` names rows outside 0..{cls.n_eq - 1}: {cls.wrap!r}")
+    for key, role in [*cls.points.items(), *cls.vectors.items()]:
+        if role not in cls.roles:
+            raise ModelError(f"{where} ('{name}'): key '{key}' is on role {role!r}, not one of {cls.roles}")
+    if cls.__dict__.get("title") is None:
+        word = {"joint": "joint", "driver": "driver", "simple": "constraint", "normalization": "equation"}[cls.kind]
+        cls.title = {"en": f"{name} {word}", "es": f"{name} {word}"}
+    types = _REGISTRY.setdefault(chapter, {})
+    old = types.get(name)
+    if old is not None and (old.__module__, old.__qualname__) != (cls.__module__, cls.__qualname__):
+        raise ModelError(f"{where}: the {chapter} constraint type '{name}' is already "
+                         f"{old.__module__}.{old.__qualname__}")
+    types[name] = cls  # the same class defined again (a notebook cell run twice) replaces itself
+
+
+def stack_params(plist):
+    """The parameters of k constraints sharing a kernel, stacked: dicts of float arrays (nested for composites)
+    → one dict whose arrays have a leading axis k."""
+    first = plist[0]
+    if isinstance(first, dict):
+        return {key: stack_params([p[key] for p in plist]) for key in first}
+    return np.array(plist, dtype=float)
 
 
 class ConstraintGroup:
@@ -128,11 +510,10 @@ class ConstraintGroup:
     fancy-indexed assignment, with no Python loop over entries.
     """
 
-    def __init__(self, constraints, n, ncoord):
-        c0 = constraints[0]
-        self.kernel = c0.kernel
+    def __init__(self, constraints, kernel, plist, n, ncoord):
+        self.kernel = kernel
         self.constraints = constraints
-        self.nb = len(c0.bodies)
+        self.nb = len(constraints[0].bodies)
         self.ncoord = ncoord
         cols = np.array([[ncoord * (b.number - 1) + k for b in c.bodies for k in range(ncoord)] for c in constraints])
         rows = np.array([list(range(c.rows.start, c.rows.stop)) for c in constraints])
@@ -140,8 +521,7 @@ class ConstraintGroup:
         self.jac_rows = np.broadcast_to(rows[:, :, None], rows.shape + (cols.shape[1],)).ravel()
         self.jac_cols = np.broadcast_to(cols[:, None, :], rows.shape + (cols.shape[1],)).ravel()
         self.flat = self.jac_rows * n + self.jac_cols
-        plist = [c.params() for c in constraints]
-        self.params = {key: np.array([p[key] for p in plist], dtype=float) for key in plist[0]}
+        self.params = stack_params(plist)
 
     def reduced_index(self, rows, cols, m, n):
         """Where this group's Jacobian entries go in Φ_q restricted to ``rows`` × ``cols``: (mask of the
@@ -162,12 +542,18 @@ class ConstraintGroup:
 class MechanismBase:
     """Bodies, constraints, the symbolic model and the numeric assembly shared by planar and spatial
     mechanisms. Subclasses set ``COORDS`` (the names of one body's coordinates), ``constraint_base`` (the
-    constraint class they accept) and implement ``add_body``."""
+    constraint class they accept) and implement ``add_body``.
+
+    The mechanism owns everything derived from it (sizes, symbols, the compiled numeric model, the symbolic
+    model, per-constraint derivations, and what other layers store through :meth:`cached`): one ``version``
+    counter is bumped by every change, and the one cache is emptied with it.
+    """
 
     COORDS = ()
     POINT_DIM = 2
     constraint_base = ConstraintBase
     kind = "planar"
+    KERNELS = ("hand", "compiled")
 
     def __init__(self, name="mechanism", title=None):
         self.name = name
@@ -175,6 +561,9 @@ class MechanismBase:
         self.bodies = []
         self.constraints = []
         self._by_name = {}
+        self.version = 0
+        self._cache = {}
+        self._kernels = "hand"
 
     # ------------------------------------------------------------------------------------------- building
     def _new_body(self, body):
@@ -182,7 +571,7 @@ class MechanismBase:
             raise ModelError(f"mechanism '{self.name}' already has a body named '{body.name}'")
         self.bodies.append(body)
         self._by_name[body.name] = body
-        self._invalidate()
+        self._changed()
 
     def add(self, constraint):
         """Add a constraint; its equations take the next rows of Φ. Returns ``None``."""
@@ -204,7 +593,7 @@ class MechanismBase:
             constraint.rows = None
             raise
         self.constraints.append(constraint)
-        self._invalidate()
+        self._changed()
 
     def remove(self, name):
         """Remove the constraint called ``name``; the rows of the constraints after it move up. Returns it."""
@@ -216,7 +605,7 @@ class MechanismBase:
         for k in self.constraints:
             k.rows = slice(start, start + k.n_eq)
             start += k.n_eq
-        self._invalidate()
+        self._changed()
         return c
 
     def _check_removable(self, constraint):
@@ -228,13 +617,14 @@ class MechanismBase:
         if c.kind == "driver":
             return f"driver {sum(1 for k in self.constraints if k.kind == 'driver') + 1}"
         taken = {k.name for k in self.constraints}
-        if c.type_name == "ground" and "ground" not in taken:
-            return "ground"
-        base = " ".join([c.type_name, c.body_names[0]] + ([c.coordinate] if hasattr(c, "coordinate") else []))
-        k, name = 1, base
+        stems = c.name_stems()
+        for name in stems:
+            if name not in taken:
+                return name
+        k, name = 1, stems[-1]
         while name in taken:
             k += 1
-            name = f"{base} {k}"
+            name = f"{stems[-1]} {k}"
         return name
 
     def body(self, name, context=None):
@@ -256,9 +646,38 @@ class MechanismBase:
         known = ", ".join(repr(c.name) for c in self.constraints)
         raise ModelError(f"mechanism '{self.name}' has no constraint '{name}' (its constraints: {known})")
 
-    def _invalidate(self):
-        for attr in ("_compiled", "_symbolic", "q", "qd", "_q0", "_sizes", "_reduction", "_derivations"):
-            self.__dict__.pop(attr, None)
+    # ------------------------------------------------------------------------------------------- caches
+    def _changed(self):
+        """Every change of the mechanism comes here: a new version, and nothing derived from the old one."""
+        self.version += 1
+        self._cache.clear()
+
+    def cached(self, key, build):
+        """The value cached under ``key`` for this version of the mechanism, built by ``build()`` when absent.
+
+        The one place where anything derived from the mechanism is kept — by the mechanism itself and by the
+        layers above it (the checkers' reference and samples): it is emptied by every change (``version``),
+        so nothing stale survives a removed or re-added constraint. Keys are any hashable value; other
+        layers use a tuple starting with their own name, e.g. ``("grading", "target", constraint name)``.
+        """
+        try:
+            return self._cache[key]
+        except KeyError:
+            value = self._cache[key] = build()
+            return value
+
+    @property
+    def kernels(self):
+        """Which numeric path the mechanism evaluates: "hand" (the hand-written kernels where a type has one,
+        the default) or "compiled" (every constraint through the kernel compiled from its Φ)."""
+        return self._kernels
+
+    @kernels.setter
+    def kernels(self, value):
+        if value not in self.KERNELS:
+            raise InputError(f"`kernels` must be one of {', '.join(self.KERNELS)}, got {value!r}")
+        self._kernels = value
+        self._changed()
 
     # ------------------------------------------------------------------------------------------- sizes
     @property
@@ -268,10 +687,8 @@ class MechanismBase:
 
     @property
     def _counts(self):
-        if "_sizes" not in self.__dict__:
-            self._sizes = (sum(c.n_eq for c in self.constraints),
-                           sum(c.n_eq for c in self.constraints if c.kind != "driver"))
-        return self._sizes
+        return self.cached("sizes", lambda: (sum(c.n_eq for c in self.constraints),
+                                             sum(c.n_eq for c in self.constraints if c.kind != "driver")))
 
     @property
     def m(self):
@@ -312,20 +729,18 @@ class MechanismBase:
     @property
     def q0(self):
         """The initial guess: the bodies' q0 stacked, as floats (a fresh copy)."""
-        if "_q0" not in self.__dict__:
-            self._q0 = np.array([float(v) for b in self.bodies for v in b.q0])
-        return self._q0.copy()
+        return self.cached("q0", lambda: np.array([float(v) for b in self.bodies for v in b.q0])).copy()
 
     # ------------------------------------------------------------------------------------------- symbols
-    @cached_property
+    @property
     def q(self):
         """Coordinates as a sympy column matrix (x1, y1, …)."""
-        return sp.Matrix([sp.Symbol(s, real=True) for s in self.coordinate_names()])
+        return self.cached("q", lambda: sp.Matrix([sp.Symbol(s, real=True) for s in self.coordinate_names()]))
 
-    @cached_property
+    @property
     def qd(self):
         """Velocities as a sympy column matrix (dx1, dy1, …)."""
-        return sp.Matrix([sp.Symbol("d" + s, real=True) for s in self.coordinate_names()])
+        return self.cached("qd", lambda: sp.Matrix([sp.Symbol("d" + s, real=True) for s in self.coordinate_names()]))
 
     @property
     def t(self):
@@ -344,37 +759,82 @@ class MechanismBase:
         """Symbolic Φ rows of one constraint (a name or the object), in this mechanism's symbols."""
         c = self._constraint(constraint)
         Q = [self.body_symbols(b.name) for b in c.bodies]
-        return sp.Matrix(c.phi(Q, t_symbol))
+        rows = list(c.phi(Q, t_symbol))
+        if len(rows) != c.n_eq:
+            raise ModelError(f"{c.describe()}: phi() returns {len(rows)} rows, the type declares n_eq = {c.n_eq}")
+        return sp.Matrix(rows)
 
     def symbolic(self):
         """Φ, Φ_q, ν and γ as sympy matrices (a :class:`kinbook.symbolic.Derivation`), derived from Φ."""
-        if "_symbolic" not in self.__dict__:
+        def build():
             Phi = (sp.Matrix.vstack(*[self.constraint_phi(c) for c in self.constraints])
                    if self.constraints else sp.zeros(0, 1))
-            self._symbolic = derive(Phi, self.q, self.qd, t_symbol)
-        return self._symbolic
+            return derive(Phi, self.q, self.qd, t_symbol)
+
+        return self.cached("symbolic", build)
+
+    def derivation(self, constraint):
+        """Φ, Φ_q, ν and γ of one constraint (a name or the object) with respect to the coordinates of its own
+        bodies only (the rows of the book's Jacobian tables), derived by :func:`kinbook.symbolic.derive`.
+
+        Returns
+        -------
+        kinbook.symbolic.Derivation
+            Its ``q`` lists the coordinates of the constraint's bodies (body i's, then body j's …). Computed
+            once per constraint until the mechanism changes.
+        """
+        c = self._constraint(constraint)
+
+        def build():
+            q = sp.Matrix.vstack(*[self.body_symbols(b.name) for b in c.bodies])
+            k = [self.index(str(s)) for s in q]
+            return derive(self.constraint_phi(c), q, self.qd[k, 0], t_symbol)
+
+        return self.cached(("derivation", c.name), build)
 
     # ------------------------------------------------------------------------------------------- numerics
     @property
     def _compiled(self):
-        if "_compiled" not in self.__dict__:
-            if not self.bodies:
-                raise ModelError(f"mechanism '{self.name}' has no bodies")
-            for c in self.constraints:
-                params = {s for b in c.bodies for p in b.points.values() for v in p
-                          for s in getattr(v, "free_symbols", ())}
-                if params:
-                    names = ", ".join(sorted(map(str, params)))
-                    raise ModelError(f"{c.describe()} has symbolic parameters ({names}): substitute numbers "
-                                     "before a numeric evaluation")
-            groups = {}
-            for c in self.constraints:
-                groups.setdefault((c.kernel, len(c.bodies), c.n_eq), []).append(c)
-            drivers = [(c.rows.stop - 1, *time_derivatives(c.f)) for c in self.constraints if c.f is not None]
-            wrap = np.array([c.rows.start for c in self.constraints if c.angular], dtype=int)
-            ncoord = len(self.COORDS)
-            self.__dict__["_compiled"] = ([ConstraintGroup(g, self.n, ncoord) for g in groups.values()], drivers, wrap)
-        return self.__dict__["_compiled"]
+        return self.cached("compiled", self._compile)
+
+    def _compile(self):
+        """Group the constraints by kernel (hand-written or compiled from Φ, per ``kernels``), and gather the
+        drivers' f(t) with two derivatives and the rows to wrap with their periods."""
+        if not self.bodies:
+            raise ModelError(f"mechanism '{self.name}' has no bodies")
+        for c in self.constraints:
+            params = {s for b in c.bodies for p in b.points.values() for v in p
+                      for s in getattr(v, "free_symbols", ())}
+            if params:
+                names = ", ".join(sorted(map(str, params)))
+                raise ModelError(f"{c.describe()} has symbolic parameters ({names}): substitute numbers "
+                                 "before a numeric evaluation")
+        compiled = self.kernels == "compiled"
+        groups = {}
+        for c in self.constraints:
+            kernel, params = c.numeric(compiled=compiled)
+            groups.setdefault((kernel, len(c.bodies), c.n_eq), []).append((c, params))
+        drivers = [(c.rows.stop - 1, *time_derivatives(c.f)) for c in self.constraints if c.f is not None]
+        wrap = [(c.rows.start + r, float(period)) for c in self.constraints for r, period in sorted(c.wrap.items())]
+        wrap = (np.array([r for r, _ in wrap], dtype=int), np.array([p for _, p in wrap], dtype=float))
+        ncoord = len(self.COORDS)
+        return ([ConstraintGroup([c for c, _ in g], kernel, [p for _, p in g], self.n, ncoord)
+                 for (kernel, _, _), g in groups.items()], drivers, wrap)
+
+    def fixed_bodies(self):
+        """Names of the bodies fixed by constraints of their own: time-independent constraints acting on the
+        body alone with as many equations as it has coordinates (a ground constraint; three simple
+        constraints; in space ground plus normalization)."""
+        return [b.name for b, _ in self._own_constraints()]
+
+    def _own_constraints(self):
+        """[(body, its fixing constraints)] for the fixed bodies (see :meth:`fixed_bodies`), in body order."""
+        own = {}
+        for c in self.constraints:
+            if c.f is None and len(c.bodies) == 1:
+                own.setdefault(c.bodies[0].name, []).append(c)
+        ncoord = len(self.COORDS)
+        return [(b, own[b.name]) for b in self.bodies if sum(c.n_eq for c in own.get(b.name, [])) == ncoord]
 
     @property
     def _reduction(self):
@@ -386,23 +846,22 @@ class MechanismBase:
         assembled values, its q̇ and q̈ are zero, and the rest solves the smaller system of the other rows and
         columns — the same solution at a fraction of the cost of factoring the whole matrix.
         """
-        if "_reduction" not in self.__dict__:
+        def build():
             ncoord = len(self.COORDS)
-            own = {}
-            for c in self.constraints:
-                if c.f is None and len(c.bodies) == 1:
-                    own.setdefault(c.bodies[0].name, []).append(c)
             rows, cols = [], []
-            for b in self.bodies:
-                cs = own.get(b.name, [])
-                if sum(c.n_eq for c in cs) == ncoord:
-                    rows += [r for c in cs for r in range(c.rows.start, c.rows.stop)]
-                    cols += range((b.number - 1) * ncoord, b.number * ncoord)
-            red = None
-            if rows:
-                red = (np.setdiff1d(np.arange(self.m), rows), np.setdiff1d(np.arange(self.n), cols))
-            self.__dict__["_reduction"] = red
-        return self.__dict__["_reduction"]
+            for b, cs in self._own_constraints():
+                rows += [r for c in cs for r in range(c.rows.start, c.rows.stop)]
+                cols += range((b.number - 1) * ncoord, b.number * ncoord)
+            if not rows:
+                return None
+            return np.setdiff1d(np.arange(self.m), rows), np.setdiff1d(np.arange(self.n), cols)
+
+        return self.cached("reduction", build)
+
+    def check_q(self, q, name="q"):
+        """``q`` as a float array of shape (n,) or (N, n), finite; :class:`InputError` naming the mechanism,
+        the expected shape and the first bad coordinate otherwise."""
+        return self._check_q(q, name)
 
     def _check_q(self, q, name="q"):
         try:
@@ -481,8 +940,9 @@ class MechanismBase:
             nu[:, row] = f1(tb)
             if gamma is not None:
                 gamma[:, row] += f2(tb)
-        if wrap.size:
-            Phi[:, wrap] = np.mod(Phi[:, wrap] + np.pi, 2 * np.pi) - np.pi
+        wrap_rows, periods = wrap
+        if wrap_rows.size:
+            Phi[:, wrap_rows] = np.mod(Phi[:, wrap_rows] + 0.5 * periods, periods) - 0.5 * periods
         out = {"Phi": Phi, "nu": nu, "gamma": gamma}
         if jacobian:
             if sparse:

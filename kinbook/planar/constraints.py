@@ -18,7 +18,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import ModelError
-from ..model import ConstraintBase, lookup_point
+from ..model import ConstraintBase, constraint_types, lookup_point
 from ..symbolic import t as t_symbol
 from .transforms import A as A_matrix
 
@@ -68,14 +68,21 @@ def _sq(w):
 
 # --------------------------------------------------------------------------------------------------------- base
 class Constraint(ConstraintBase):
-    """Base class of planar constraints (see :class:`kinbook.model.ConstraintBase` for naming, rows and
-    binding).
+    """Base class of planar constraints (see :class:`kinbook.model.ConstraintBase` for the class attributes,
+    naming, rows, binding and registration; docs/extending.md for a new type).
 
-    A subclass sets ``type_name``, ``label``, ``n_eq``, ``kind`` and ``roles``, implements :meth:`phi` (the
-    symbolic Φ in the bodies' (x, y, φ): the single source of truth) and, for the fast numeric path, a
-    ``kernel`` with the :meth:`params` it needs.
+    A subclass sets ``type_name``, ``label``, ``n_eq``, ``kind`` and ``roles``, and implements :meth:`phi`
+    (the symbolic Φ in the bodies' (x, y, φ): the single source of truth). In :meth:`phi`, ``Q[k]`` is the
+    column (x, y, φ) of the body in role k, :meth:`point` the global position r + A(φ) s' of a declared point
+    and :meth:`vector` the global components A(φ) s' of a declared vector. A hand-written ``kernel`` with the
+    :meth:`params` it needs is an optional optimization.
+
+    Points are given as a point name of the body or a pair (ξ, η); vectors as two point names [P, Q] (from P
+    to Q) or a pair of components.
     """
 
+    chapter = "planar"
+    COORDS = ("x", "y", "phi")
     roles = ("i", "j")
 
     def _local(self, role_index, point):
@@ -94,6 +101,25 @@ class Constraint(ConstraintBase):
                 f"got {point!r}"
             ) from None
         return (xi, eta)
+
+    def _read_point(self, role_index, spec, key):
+        return self._local(role_index, spec)
+
+    def _read_vector(self, role_index, spec, key):
+        if isinstance(spec, (list, tuple)) and len(spec) == 2 and all(isinstance(p, str) for p in spec):
+            P, Q = (self._local(role_index, p) for p in spec)
+            v = (Q[0] - P[0], Q[1] - P[1])
+        else:
+            v = self._local(role_index, spec)
+        if v[0] == 0 and v[1] == 0:
+            raise ModelError(f"{self.describe()}: `{key}` on body '{self.bodies[role_index].name}' is zero ({spec!r})")
+        return v
+
+    def _global_point(self, Qb, s):
+        return self._r(Qb, s)
+
+    def _global_vector(self, Qb, s):
+        return A_matrix(Qb[2]) * sp.Matrix(s)
 
     # helpers for the symbolic hooks
     @staticmethod
@@ -147,7 +173,9 @@ class Simple(_Linear):
     label = "s"
     n_eq = 1
     kind = "simple"
+    title = {"en": "simple constraint", "es": "restricción simple"}
     roles = ("i",)
+    parameters = ("value",)
 
     def __init__(self, body, coordinate, value=None, name=None):
         if coordinate not in _COORDS:
@@ -155,7 +183,11 @@ class Simple(_Linear):
                              f"got {coordinate!r}")
         super().__init__((body,), name=name)
         self.coordinate = coordinate
+        self.measures = ("angle",) if coordinate == "phi" else ("length",)
         self.value = None if value is None else sp.sympify(value)
+
+    def name_stems(self):
+        return (f"simple {self.body_names[0]} {self.coordinate}",)
 
     def _bind_points(self):
         if self.value is None:
@@ -172,7 +204,14 @@ class Ground(_Linear):
     label = "simple"
     n_eq = 3
     kind = "simple"
+    title = {"en": "simple constraints of the fixed body", "es": "restricciones simples del elemento fijo"}
     roles = ("i",)
+    measures = ("length", "length", "angle")
+    per_body = True
+    parameters = ("value",)
+
+    def name_stems(self):
+        return ("ground", f"ground {self.body_names[0]}")
 
     def __init__(self, body, q=None, name=None):
         super().__init__((body,), name=name)
@@ -200,7 +239,10 @@ class Gear(_Linear):
     type_name = "gear"
     label = "g"
     n_eq = 1
+    title = {"en": "gear pair", "es": "engranaje"}
     roles = ("i", "j", "k")
+    measures = ("length",)
+    parameters = ("radius_i", "radius_j", "phi0")
 
     def __init__(self, i, j, k, radius_i, radius_j, phi0=None, name=None):
         super().__init__((i, j, k), name=name)
@@ -231,6 +273,9 @@ class RackPinion(_Linear):
     type_name = "rack-pinion"
     label = "rp"
     n_eq = 1
+    title = {"en": "rack-and-pinion", "es": "piñón-cremallera"}
+    measures = ("length",)
+    parameters = ("radius", "initial")
 
     def __init__(self, i, j, radius, sliding=False, initial=None, name=None):
         super().__init__((i, j), name=name)
@@ -261,6 +306,7 @@ class Driver(_Linear):
     label = "d"
     n_eq = 1
     kind = "driver"
+    title = {"en": "driver", "es": "restricción motriz"}
     roles = ("i",)
 
     def __init__(self, body, coordinate, f, name=None):
@@ -268,6 +314,7 @@ class Driver(_Linear):
             raise ModelError(f"driver on body '{body}': coordinate must be one of x, y, phi, got {coordinate!r}")
         super().__init__((body,), name=name, f=f)
         self.coordinate = coordinate
+        self.measures = ("angle",) if coordinate == "phi" else ("length",)
 
     def phi(self, Q, t=t_symbol):
         return [Q[0][_COORDS.index(self.coordinate)] - self._f_expr(t)]
@@ -280,6 +327,8 @@ class RelativeAngleDriver(_Linear):
     label = "d"
     n_eq = 1
     kind = "driver"
+    title = {"en": "relative-angle driver", "es": "restricción motriz de ángulo relativo"}
+    measures = ("angle",)
 
     def __init__(self, i, j, f, name=None):
         super().__init__((i, j), name=name, f=f)
@@ -321,6 +370,9 @@ class Revolute(Constraint):
     type_name = "revolute"
     label = "r"
     n_eq = 2
+    title = {"en": "revolute joint", "es": "par de revolución"}
+    measures = ("length", "length")
+    parameters = ("s_i", "s_j")
     kernel = staticmethod(_revolute_kernel)
 
     def __init__(self, i, j, point=None, point_i=None, point_j=None, name=None):
@@ -391,6 +443,9 @@ class Translational(Constraint):
     type_name = "translational"
     label = "t"
     n_eq = 2
+    title = {"en": "translational joint", "es": "par de traslación"}
+    measures = ("length^2", "angle")
+    parameters = ("s_Pi", "s_Qi", "s_Pj", "phi0")
     kernel = staticmethod(_translational_kernel)
 
     def __init__(self, i, j, axis, point_j, phi0=None, name=None):
@@ -448,6 +503,9 @@ class RevoluteRevolute(Constraint):
     type_name = "revolute-revolute"
     label = "r-r"
     n_eq = 1
+    title = {"en": "revolute-revolute joint", "es": "par revolución-revolución"}
+    measures = ("length^2",)
+    parameters = ("s_i", "s_j", "length")
     kernel = staticmethod(_rr_kernel)
 
     def __init__(self, i, j, point_i, point_j, length, name=None):
@@ -505,6 +563,9 @@ class RevoluteTranslational(Constraint):
     type_name = "revolute-translational"
     label = "r-t"
     n_eq = 1
+    title = {"en": "revolute-translational joint", "es": "par revolución-traslación"}
+    measures = ("length^2",)
+    parameters = ("s_Pi", "s_Pj", "s_Qj")
     kernel = staticmethod(_rt_kernel)
 
     def __init__(self, i, j, point_i, axis, name=None):
@@ -564,6 +625,9 @@ class DistanceDriver(Constraint):
     label = "d"
     n_eq = 1
     kind = "driver"
+    title = {"en": "distance driver", "es": "restricción motriz de distancia"}
+    measures = ("length",)
+    parameters = ("s_Pi", "s_Qi", "s_Pj", "axis_length")
     kernel = staticmethod(_distance_kernel)
 
     def __init__(self, i, j, axis, point_j, f, name=None):
@@ -589,20 +653,6 @@ class DistanceDriver(Constraint):
         return {"sPi": _f(self.s_Pi), "sQi": _f(self.s_Qi), "sPj": _f(self.s_Pj), "len": float(self.axis_length)}
 
 
-CONSTRAINT_TYPES = {
-    cls.type_name: cls
-    for cls in (
-        Simple,
-        Ground,
-        Revolute,
-        Translational,
-        RevoluteRevolute,
-        RevoluteTranslational,
-        Gear,
-        RackPinion,
-        Driver,
-        RelativeAngleDriver,
-        DistanceDriver,
-    )
-}
-"""Constraint classes by the ``type`` name used in mechanism files."""
+CONSTRAINT_TYPES = constraint_types("planar")
+"""Constraint classes by the ``type`` name used in mechanism files: a live, read-only view of the planar
+registry (every subclass of :class:`Constraint` that sets ``type_name`` appears in it)."""

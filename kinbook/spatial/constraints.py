@@ -47,7 +47,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import ModelError, UnknownPointError
-from ..model import ConstraintBase, lookup_point
+from ..model import ConstraintBase, constraint_types, lookup_point, stack_params
 from ..symbolic import t as t_symbol
 from .rotations import A_from_p as _A_sym, E as _E_sym, _mv
 
@@ -360,7 +360,7 @@ def _perpendiculars(a):
 
 
 def _num(v):
-    return sp.Float(float(v), 17)
+    return v if isinstance(v, sp.Basic) else sp.Float(float(v), 17)
 
 
 def _sym3(v):
@@ -370,13 +370,33 @@ def _sym3(v):
 # ======================================================================================= base class
 class Constraint(ConstraintBase):
     """Base class of spatial constraints (see :class:`kinbook.model.ConstraintBase` for the class attributes,
-    naming, rows and binding).
+    naming, rows, binding and registration; docs/extending.md for a new type).
 
-    A subclass resolves its points and vectors in :meth:`_bind_points` and implements :meth:`phi` (the
-    symbolic Φ in the bodies' (x, y, z, e0, e1, e2, e3): the single source of truth) and :meth:`params` + a
-    ``kernel`` (the fast numeric path, built from the row builders of this module). Its ``label`` is the
-    book's notation: "s,3", "p1,2", "s,3 + p1,2" …
+    A subclass declares the points and vectors it reads (or resolves them in its own :meth:`_bind_points`)
+    and implements :meth:`phi` (the symbolic Φ in the bodies' (x, y, z, e0, e1, e2, e3): the single source of
+    truth). In :meth:`phi`, :meth:`point` is the global position r + A(p) s' of a declared point and
+    :meth:`vector` the global components A(p) s' of a declared vector. A ``kernel`` built from the row
+    builders of this module, with the :meth:`params` it reads, is an optional optimization. Its ``label`` is
+    the book's notation: "s,3", "p1,2", "s,3 + p1,2" …
+
+    Points are given as a point name of the body or three local coordinates; vectors as a vector name, two
+    point names [P, Q] (from P to Q) or three components.
     """
+
+    chapter = "spatial"
+    COORDS = _COORDS
+
+    def _read_point(self, role_index, spec, key):
+        return self._point(role_index, spec, key)
+
+    def _read_vector(self, role_index, spec, key):
+        return self._vector(role_index, spec, key)
+
+    def _global_point(self, Qb, s):
+        return _sym_point(Qb, _sym3(s))
+
+    def _global_vector(self, Qb, s):
+        return _sym_vec(Qb, _sym3(s))
 
     def _point(self, role, spec, what="point"):
         """Local coordinates (floats, shape (3,)) of a point: a point name or a triple (ξ, η, ζ)."""
@@ -422,8 +442,8 @@ class Constraint(ConstraintBase):
         """
         nb = len(self.body_names)
         q = np.asarray(q, dtype=float).reshape(1, 1, nb, NCOORD)
-        P = {k: np.asarray(v, dtype=float)[None] for k, v in self.params().items()}
-        _, jac, _ = self.kernel(q, P)
+        kernel, params = self.numeric()
+        _, jac, _ = kernel(q, stack_params([params]))
         jac = jac[0, 0]
         out = {}
         for b, role in enumerate("ijk"[:nb]):
@@ -461,6 +481,11 @@ class Normalization(Constraint):
     label = "pᵀp−1"
     n_eq = 1
     kind = "normalization"
+    title = {"en": "Euler-parameter normalization", "es": "normalización de los parámetros de Euler"}
+    roles = ("i",)
+    measures = ("ratio",)
+    per_body = True
+    in_files = False
     kernel = staticmethod(_kernel(_rows_norm))
 
     def __init__(self, body, name=None):
@@ -489,7 +514,15 @@ class Ground(Constraint):
     label = "ground"
     n_eq = 6
     kind = "simple"
+    title = {"en": "simple constraints of the fixed body", "es": "restricciones simples del elemento fijo"}
+    roles = ("i",)
+    measures = ("length",) * 3 + ("ratio",) * 3
+    per_body = True
+    parameters = ("r0", "p0")
     kernel = staticmethod(_kernel(_rows_ground))
+
+    def name_stems(self):
+        return ("ground", f"ground {self.body_names[0]}")
 
     def __init__(self, body, q=None, name=None):
         super().__init__((body,), name=name)
@@ -538,6 +571,9 @@ class Normal1(Constraint):
     type_name = "normal-1"
     label = "n1,1"
     n_eq = 1
+    title = {"en": "normal-1 constraint", "es": "restricción normal-1"}
+    measures = ("length^2",)
+    parameters = ("a_i", "a_j")
     kernel = staticmethod(_kernel(_rows_n1))
 
     def __init__(self, i, j, vector_i, vector_j, name=None):
@@ -569,6 +605,9 @@ class Normal2(Constraint):
     type_name = "normal-2"
     label = "n2,1"
     n_eq = 1
+    title = {"en": "normal-2 constraint", "es": "restricción normal-2"}
+    measures = ("length^2",)
+    parameters = ("a_i", "P_i", "P_j")
     kernel = staticmethod(_kernel(_rows_n2))
 
     def __init__(self, i, j, vector_i, point_i, point_j, name=None):
@@ -593,14 +632,6 @@ class _ParallelMixin:
         self.a_i = self._vector(0, spec, what)
         self.h1, self.h2 = _perpendiculars(self.a_i)
 
-    def _phi_p1(self, Q):
-        sj = _sym_vec(Q[1], _sym3(self.a_j))
-        return [_sym_dot(_sym_vec(Q[0], _sym3(h)), sj) for h in (self.h1, self.h2)]
-
-    def _phi_p2(self, Q):
-        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
-        return [_sym_dot(_sym_vec(Q[0], _sym3(h)), d) for h in (self.h1, self.h2)]
-
 
 class Parallel1(_ParallelMixin, Constraint):
     """Parallel-1 (p1,2): two body-fixed vectors stay parallel, s_i × s_j = 0 (textbook §14.4).
@@ -617,6 +648,9 @@ class Parallel1(_ParallelMixin, Constraint):
     type_name = "parallel-1"
     label = "p1,2"
     n_eq = 2
+    title = {"en": "parallel-1 constraint", "es": "restricción paralela-1"}
+    measures = ("length", "length")
+    parameters = ("h1", "h2", "a_j")
     kernel = staticmethod(_kernel(_rows_p1))
 
     def __init__(self, i, j, vector_i, vector_j, name=None):
@@ -628,7 +662,8 @@ class Parallel1(_ParallelMixin, Constraint):
         self.a_j = self._vector(1, self.vector_j, "vector_j")
 
     def phi(self, Q, t=t_symbol):
-        return self._phi_p1(Q)
+        sj = _sym_vec(Q[1], _sym3(self.a_j))
+        return [_sym_dot(_sym_vec(Q[0], _sym3(h)), sj) for h in (self.h1, self.h2)]
 
     def params(self):
         return {"h1": self.h1, "h2": self.h2, "sj": self.a_j}
@@ -643,6 +678,9 @@ class Parallel2(_ParallelMixin, Constraint):
     type_name = "parallel-2"
     label = "p2,2"
     n_eq = 2
+    title = {"en": "parallel-2 constraint", "es": "restricción paralela-2"}
+    measures = ("length", "length")
+    parameters = ("h1", "h2", "P_i", "P_j")
     kernel = staticmethod(_kernel(_rows_p2))
 
     def __init__(self, i, j, vector_i, point_i, point_j, name=None):
@@ -655,7 +693,8 @@ class Parallel2(_ParallelMixin, Constraint):
         self.P_j = self._point(1, self.point_j, "point_j")
 
     def phi(self, Q, t=t_symbol):
-        return self._phi_p2(Q)
+        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
+        return [_sym_dot(_sym_vec(Q[0], _sym3(h)), d) for h in (self.h1, self.h2)]
 
     def params(self):
         return {"h1": self.h1, "h2": self.h2, "Pi": self.P_i, "Pj": self.P_j}
@@ -676,6 +715,9 @@ class Spherical(Constraint):
     type_name = "spherical"
     label = "s,3"
     n_eq = 3
+    title = {"en": "spherical joint", "es": "par esférico"}
+    measures = ("length", "length", "length")
+    parameters = ("P_i", "P_j")
     kernel = staticmethod(_kernel(_rows_s))
 
     def __init__(self, i, j, point=None, point_i=None, point_j=None, name=None):
@@ -686,11 +728,8 @@ class Spherical(Constraint):
         self.P_i = self._point(0, self.point_i, "point_i")
         self.P_j = self._point(1, self.point_j, "point_j")
 
-    def _phi_s(self, Q):
-        return list(_sym_point(Q[0], _sym3(self.P_i)) - _sym_point(Q[1], _sym3(self.P_j)))
-
     def phi(self, Q, t=t_symbol):
-        return self._phi_s(Q)
+        return list(_sym_point(Q[0], _sym3(self.P_i)) - _sym_point(Q[1], _sym3(self.P_j)))
 
     def params(self):
         return {"Pi": self.P_i, "Pj": self.P_j}
@@ -708,9 +747,8 @@ class Universal(Spherical):
     """
 
     type_name = "universal"
-    label = "s,3 + n1,1"
-    n_eq = 4
-    kernel = staticmethod(_kernel(_rows_s, _rows_n1))
+    title = {"en": "universal joint", "es": "junta universal"}
+    parts = (Spherical, Normal1)
 
     def __init__(self, i, j, vector_i, vector_j, point=None, point_i=None, point_j=None, name=None):
         super().__init__(i, j, point=point, point_i=point_i, point_j=point_j, name=name)
@@ -720,12 +758,6 @@ class Universal(Spherical):
         super()._bind_points()
         self.a_i = self._vector(0, self.vector_i, "vector_i")
         self.a_j = self._vector(1, self.vector_j, "vector_j")
-
-    def phi(self, Q, t=t_symbol):
-        return self._phi_s(Q) + [_sym_dot(_sym_vec(Q[0], _sym3(self.a_i)), _sym_vec(Q[1], _sym3(self.a_j)))]
-
-    def params(self):
-        return {"Pi": self.P_i, "Pj": self.P_j, "ai": self.a_i, "aj": self.a_j}
 
 
 class Revolute(_ParallelMixin, Spherical):
@@ -740,9 +772,8 @@ class Revolute(_ParallelMixin, Spherical):
     """
 
     type_name = "revolute"
-    label = "s,3 + p1,2"
-    n_eq = 5
-    kernel = staticmethod(_kernel(_rows_s, _rows_p1))
+    title = {"en": "revolute joint", "es": "par de revolución"}
+    parts = (Spherical, Parallel1)
 
     def __init__(self, i, j, axis_i, axis_j, point=None, point_i=None, point_j=None, name=None):
         super().__init__(i, j, point=point, point_i=point_i, point_j=point_j, name=name)
@@ -752,12 +783,6 @@ class Revolute(_ParallelMixin, Spherical):
         super()._bind_points()
         self._bind_axis(self.axis_i, "axis_i")
         self.a_j = self._vector(1, self.axis_j, "axis_j")
-
-    def phi(self, Q, t=t_symbol):
-        return self._phi_s(Q) + self._phi_p1(Q)
-
-    def params(self):
-        return {"Pi": self.P_i, "Pj": self.P_j, "h1": self.h1, "h2": self.h2, "sj": self.a_j}
 
 
 class Cylindrical(_ParallelMixin, Constraint):
@@ -771,9 +796,8 @@ class Cylindrical(_ParallelMixin, Constraint):
     """
 
     type_name = "cylindrical"
-    label = "p1,2 + p2,2"
-    n_eq = 4
-    kernel = staticmethod(_kernel(_rows_p1, _rows_p2))
+    title = {"en": "cylindrical joint", "es": "par cilíndrico"}
+    parts = (Parallel1, Parallel2)
 
     def __init__(self, i, j, axis_i, axis_j, point=None, point_i=None, point_j=None, name=None):
         super().__init__((i, j), name=name)
@@ -785,12 +809,6 @@ class Cylindrical(_ParallelMixin, Constraint):
         self.a_j = self._vector(1, self.axis_j, "axis_j")
         self.P_i = self._point(0, self.point_i, "point_i")
         self.P_j = self._point(1, self.point_j, "point_j")
-
-    def phi(self, Q, t=t_symbol):
-        return self._phi_p1(Q) + self._phi_p2(Q)
-
-    def params(self):
-        return {"h1": self.h1, "h2": self.h2, "sj": self.a_j, "Pi": self.P_i, "Pj": self.P_j}
 
 
 class Translational(Cylindrical):
@@ -807,9 +825,8 @@ class Translational(Cylindrical):
     """
 
     type_name = "translational"
-    label = "p1,2 + p2,2 + n1,1"
-    n_eq = 5
-    kernel = staticmethod(_kernel(_rows_p1, _rows_p2, _rows_n1))
+    title = {"en": "translational joint", "es": "par de traslación"}
+    parts = (Cylindrical, (Normal1, {"a_i": "hp_i", "a_j": "hp_j"}))
 
     def __init__(self, i, j, axis_i, axis_j, point=None, point_i=None, point_j=None, perp_i=None, perp_j=None,
                  name=None):
@@ -829,13 +846,6 @@ class Translational(Cylindrical):
         else:
             self.hp_j = self._vector(1, self.perp_j, "perp_j")
 
-    def phi(self, Q, t=t_symbol):
-        n1 = _sym_dot(_sym_vec(Q[0], _sym3(self.hp_i)), _sym_vec(Q[1], _sym3(self.hp_j)))
-        return self._phi_p1(Q) + self._phi_p2(Q) + [n1]
-
-    def params(self):
-        return dict(super().params(), ai=self.hp_i, aj=self.hp_j)
-
 
 def _A_q0(body):
     """Rotation matrix of a body at its q0 (whose p the Body has normalized)."""
@@ -849,6 +859,9 @@ class SphericalSpherical(Constraint):
     type_name = "spherical-spherical"
     label = "s-s,1"
     n_eq = 1
+    title = {"en": "spherical-spherical joint", "es": "par esférico-esférico"}
+    measures = ("length^2",)
+    parameters = ("P_i", "P_j", "l")
     kernel = staticmethod(_kernel(_rows_ss))
 
     def __init__(self, i, j, point_i, point_j, length, name=None):
@@ -898,7 +911,10 @@ class RevoluteDriver(Constraint):
     label = "d"
     n_eq = 1
     kind = "driver"
-    angular = True
+    title = {"en": "revolute driver", "es": "restricción motriz de rotación"}
+    measures = ("angle",)
+    wrap = {0: 2 * np.pi}
+    parameters = ("f_i", "g_i", "f_j")
     kernel = staticmethod(_kernel(_rows_angle))
 
     def __init__(self, i, j, axis_i, f, ref_i=None, ref_j=None, name=None):
@@ -941,6 +957,9 @@ class DistanceDriver(Constraint):
     label = "d"
     n_eq = 1
     kind = "driver"
+    title = {"en": "distance driver", "es": "restricción motriz de distancia"}
+    measures = ("length",)
+    parameters = ("u", "P_i", "P_j")
     kernel = staticmethod(_kernel(_rows_distance))
 
     def __init__(self, i, j, axis_i, point_i, point_j, f, name=None):
@@ -961,23 +980,6 @@ class DistanceDriver(Constraint):
         return {"u": self.u, "Pi": self.P_i, "Pj": self.P_j}
 
 
-CONSTRAINT_TYPES = {
-    cls.type_name: cls
-    for cls in (
-        Ground,
-        Normal1,
-        Normal2,
-        Parallel1,
-        Parallel2,
-        Spherical,
-        Universal,
-        Revolute,
-        Cylindrical,
-        Translational,
-        SphericalSpherical,
-        RevoluteDriver,
-        DistanceDriver,
-    )
-}
-"""Constraint classes by the ``type`` name used in mechanism files (normalization rows are added by the
-mechanism, one per body, and cannot be declared)."""
+CONSTRAINT_TYPES = constraint_types("spatial")
+"""Constraint classes by the ``type`` name used in mechanism files: a live, read-only view of the spatial
+registry (normalization rows are added by the mechanism, one per body, and cannot be declared)."""

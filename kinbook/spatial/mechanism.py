@@ -19,7 +19,6 @@ import sympy as sp
 
 from ..errors import InputError, ModelError
 from ..model import ConstraintTable, MechanismBase
-from ..symbolic import derive, t as t_symbol
 from . import rotations, transforms
 from .constraints import NCOORD, Constraint, Normalization
 
@@ -153,24 +152,6 @@ class Mechanism(MechanismBase):
         if q.ndim != 1:
             raise InputError(f"`q` must be one configuration of shape ({self.n},), got {q.shape}")
         return c.blocks(np.concatenate([self._body_q(q, b.name) for b in c.bodies]))
-
-    def derivation(self, constraint):
-        """Φ, Φ_q, ν and γ of one constraint (a name or the object) with respect to the coordinates of its own
-        bodies only — the rows of Table 14.1 — derived by :func:`kinbook.symbolic.derive`.
-
-        Returns
-        -------
-        kinbook.symbolic.Derivation
-            Its ``q`` lists the coordinates of the constraint's bodies (x_i … e3_i, x_j … e3_j). Computed
-            once per constraint (γ of a joint takes sympy a fraction of a second) until the mechanism changes.
-        """
-        c = self._constraint(constraint)
-        cache = self.__dict__.setdefault("_derivations", {})
-        if c.name not in cache:
-            q = sp.Matrix.vstack(*[self.body_symbols(b.name) for b in c.bodies])
-            k = [self.index(str(s)) for s in q]
-            cache[c.name] = derive(self.constraint_phi(c), q, self.qd[k, 0], t_symbol)
-        return cache[c.name]
 
     # ------------------------------------------------------------------------------------------- bodies and points
     def _pq(self, q, body, name="q", unit=True):

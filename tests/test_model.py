@@ -1,0 +1,235 @@
+"""The constraint family (registration by type name per chapter, declared keys, composites, the compiled
+numeric path) and the mechanism that owns its caches (one version counter, one cache)."""
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import kinbook
+from kinbook import ModelError, planar, spatial
+from kinbook.model import constraint_class, constraint_types
+
+
+# --------------------------------------------------------------------------------------------- a new type
+class Slot(planar.Constraint):
+    """Pin P of body i in a circular slot of radius ρ about centre C of body j."""
+
+    type_name = "test-circular-slot"
+    label = "r-c"
+    n_eq = 1
+    measures = ("length^2",)
+    points = {"pin": "i", "centre": "j"}
+    numbers = ("radius",)
+
+    def phi(self, Q, t=None):
+        d = self.point(Q, "pin") - self.point(Q, "centre")
+        return [d.dot(d) - self.radius**2]
+
+
+def _pendulum():
+    m = planar.Mechanism("slot")
+    m.add_body("ground", points={"C": (1, 0), "O": (0, 0)})
+    m.add_body("bar", points={"O": (0, 0), "P": (2, 0)}, q0=(0, 0, 0.1))
+    m.add(planar.Ground("ground"))
+    m.add(planar.Revolute("ground", "bar", point="O"))
+    return m
+
+
+def test_a_subclass_registers_itself_in_its_chapter():
+    assert constraint_types("planar")["test-circular-slot"] is Slot
+    assert planar.CONSTRAINT_TYPES["test-circular-slot"] is Slot  # the live view of the registry
+    assert "test-circular-slot" not in constraint_types("spatial")
+    assert constraint_class("planar", "test-circular-slot") is Slot
+    with pytest.raises(ModelError, match=r"must be one of the spatial constraint types .*got 'test-circular-slot'"):
+        constraint_class("spatial", "test-circular-slot")
+    assert Slot.title == {"en": "test-circular-slot joint", "es": "test-circular-slot joint"}
+
+
+def test_a_declared_type_gets_its_constructor_and_binds_its_keys():
+    c = Slot("bar", "ground", pin="P", centre="C", radius=1)
+    assert list(__import__("inspect").signature(Slot).parameters) == ["i", "j", "pin", "centre", "radius", "name"]
+    m = _pendulum()
+    m.add(c)
+    assert c.pin == (2, 0) and c.centre == (1, 0) and c.radius == 1
+    (x1, y1, p1), (x2, y2, p2) = m.body_symbols("ground"), m.body_symbols("bar")
+    expected = (x2 + 2 * sp.cos(p2) - x1 - sp.cos(p1)) ** 2 + (y2 + 2 * sp.sin(p2) - y1 - sp.sin(p1)) ** 2 - 1
+    assert sp.simplify(m.constraint_phi(c)[0] - expected) == 0
+    with pytest.raises(ModelError, match="missing a required argument: 'radius'"):
+        Slot("bar", "ground", pin="P", centre="C")
+    with pytest.raises(ModelError, match=r"`radius` must be a number, got \[1\]"):
+        m.add(Slot("bar", "ground", pin="P", centre="C", radius=[1], name="x"))
+
+
+def test_a_new_type_is_evaluated_through_its_compiled_kernel():
+    m = _pendulum()
+    m.add(Slot("bar", "ground", pin="P", centre="C", radius=1))
+    m.add(Slot("bar", "ground", pin="O", centre="C", radius=0.5, name="second"))  # same kernel, other numbers
+    groups = m._compiled[0]
+    slot_groups = [g for g in groups if type(g.constraints[0]) is Slot]
+    assert len(slot_groups) == 1 and len(slot_groups[0].constraints) == 2
+    rng = np.random.default_rng(0)
+    q, qd = rng.normal(size=m.n), rng.normal(size=m.n)
+    ev = m.evaluate(q, 0.0, qd)
+    d = m.symbolic()
+    at = {**dict(zip(m.q, q)), **dict(zip(m.qd, qd))}
+    for name in ("Phi", "Phi_q", "gamma"):
+        np.testing.assert_allclose(ev[name], np.array(getattr(d, name).subs(at), dtype=float).reshape(ev[name].shape),
+                                   atol=1e-12, err_msg=name)
+
+
+def test_a_file_finds_a_new_type_by_its_name():
+    text = """
+    [[bodies]]
+    name = "ground"
+    points = { C = [1, 0], O = [0, 0] }
+    [[bodies]]
+    name = "bar"
+    points = { O = [0, 0], P = [2, 0] }
+    q0 = [0, 0, 1.4]
+    [[constraints]]
+    type = "ground"
+    body = "ground"
+    [[constraints]]
+    type = "revolute"
+    i = "ground"
+    j = "bar"
+    point = "O"
+    [[constraints]]
+    type = "test-circular-slot"
+    i = "bar"
+    j = "ground"
+    pin = "P"
+    centre = "C"
+    radius = 1.5
+    """
+    m = kinbook.loads(text)
+    assert isinstance(m.constraints[-1], Slot)
+    with pytest.raises(kinbook.MechanismFileError, match=r"unknown key 'center' \(accepted keys: i, j, pin, centre"):
+        kinbook.loads(text.replace("centre =", "center ="))
+
+
+def test_declaration_mistakes_are_named_when_the_class_is_written():
+    with pytest.raises(ModelError, match=r"'test-no-phi'\): write its Φ in phi"):
+        class NoPhi(planar.Constraint):
+            type_name = "test-no-phi"
+            n_eq = 1
+
+    with pytest.raises(ModelError, match="`measures` needs one of length"):
+        class BadMeasure(planar.Constraint):
+            type_name = "test-bad-measure"
+            n_eq = 1
+            measures = ("metres",)
+
+            def phi(self, Q, t=None):
+                return [Q[0][0]]
+
+    with pytest.raises(ModelError, match="the planar constraint type 'revolute' is already kinbook.planar"):
+        class Hinge(planar.Constraint):
+            type_name = "revolute"
+            n_eq = 1
+
+            def phi(self, Q, t=None):
+                return [Q[0][0]]
+
+    with pytest.raises(ModelError, match="subclass kinbook.planar.Constraint or kinbook.spatial.Constraint"):
+        class Loose(kinbook.model.ConstraintBase):
+            type_name = "test-loose"
+            n_eq = 1
+
+            def phi(self, Q, t=None):
+                return [Q[0][0]]
+
+
+def test_phi_with_the_wrong_number_of_rows_is_named():
+    class Short(planar.Constraint):
+        type_name = "test-short"
+        n_eq = 2
+        points = {"pin": "i"}
+
+        def phi(self, Q, t=None):
+            return [self.point(Q, "pin")[0]]
+
+    m = _pendulum()
+    m.add(Short("bar", "ground", pin="P"))
+    with pytest.raises(ModelError, match=r"test-short joint '2' \(rows 6-7 of Φ\): phi\(\) returns 1 rows, .*n_eq = 2"):
+        m.symbolic()
+    with pytest.raises(ModelError, match=r"phi\(\) returns 1 rows"):
+        m.Phi(m.q0)
+
+
+def test_composite_rows_wrap_and_measures_follow_from_the_parts():
+    rev = spatial.Revolute
+    assert rev.parts == ((spatial.Spherical, {}), (spatial.Parallel1, {}))
+    assert (rev.n_eq, rev.label, rev.measures) == (5, "s,3 + p1,2", ("length",) * 5)
+    assert spatial.RevoluteDriver.wrap == {0: 2 * np.pi}
+
+    class Turn(spatial.Constraint):  # a motorized revolute: a composite of a joint and a wrapped driver row
+        type_name = "test-turn"
+        parts = (spatial.Revolute, (spatial.RevoluteDriver, {}))
+
+        def __init__(self, i, j, f, name=None):
+            super().__init__((i, j), name=name, f=f)
+
+        def _bind_points(self):
+            self.P_i = self.P_j = np.zeros(3)
+            self.a_i = self.a_j = np.array([0.0, 0.0, 1.0])
+            self.h1, self.h2 = np.array([1.0, 0, 0]), np.array([0, 1.0, 0])
+            self.f_i, self.g_i, self.f_j = self.h1, self.h2, self.h1
+
+    assert Turn.wrap == {5: 2 * np.pi} and Turn.n_eq == 6
+    m = spatial.Mechanism("turn")
+    m.add_body("a")
+    m.add_body("b")
+    m.add(spatial.Ground("a"))
+    m.add(Turn("a", "b", f="3*t"))
+    assert m.dof == 0
+    q = m.simulate(np.linspace(0.0, 1.2, 25)).q[-1]  # θ = 3.6 rad: past π only through the wrap of Turn's row 6
+    np.testing.assert_allclose(m.A(q, "b")[:, 0], [np.cos(3.6), np.sin(3.6), 0], atol=1e-10)
+
+
+# --------------------------------------------------------------------------------------------- caches
+def test_every_change_bumps_the_version_and_empties_the_cache():
+    m = _pendulum()
+    v = m.version
+    calls = []
+    assert m.cached(("test", 1), lambda: calls.append(1) or "built") == "built"
+    assert m.cached(("test", 1), lambda: calls.append(1) or "again") == "built" and calls == [1]
+    for change in (lambda: m.add(planar.Driver("bar", "phi", "t")), lambda: m.remove("driver 1"),
+                   lambda: m.add_body("other"), lambda: setattr(m, "kernels", "compiled")):
+        m.symbolic()
+        change()
+        assert m.version == v + 1
+        v = m.version
+        assert m.cached(("test", 1), lambda: "rebuilt") == "rebuilt"
+        m._cache.pop(("test", 1))
+    with pytest.raises(kinbook.InputError, match="`kernels` must be one of hand, compiled"):
+        m.kernels = "fast"
+
+
+def test_removing_and_adding_a_constraint_of_the_same_name_leaves_nothing_stale():
+    m = _pendulum()
+    m.add(planar.Driver("bar", "phi", "t", name="j"))
+    q = np.array([0, 0, 0, 0, 0, 0.3])
+    assert m.Phi(q, 0.0)[-1] == pytest.approx(0.3)
+    m.derivation("j")
+    m.remove("j")
+    m.add(planar.Driver("bar", "x", "2*t", name="j"))
+    assert m.Phi(q, 1.0)[-1] == pytest.approx(-2.0)
+    assert m.derivation("j").Phi[0] == m.q[3] - 2 * m.t
+
+
+@pytest.mark.xfail(strict=True, reason="needs the checkers (kinbook/grading/_target.py, h14) to keep their targets in "
+                                       "mech.cached(...) instead of the mechanism's __dict__")
+def test_grading_after_removing_and_re_adding_a_constraint_named_alike():
+    from kinbook.grading import check_phi
+
+    m = planar.Mechanism("two")
+    m.add_body("ground", points={"O": (0, 0)})
+    m.add_body("bar", points={"O": (-1, 0), "A": (1, 0)}, q0=(1, 0, 0))
+    m.add(planar.Ground("ground"))
+    m.add(planar.Revolute("ground", "bar", point="O", name="j"))
+    x2, y2, p2 = m.body_symbols("bar")
+    assert check_phi([-x2 + sp.cos(p2), -y2 + sp.sin(p2)], m.constraint("j")).passed
+    m.remove("j")
+    m.add(planar.Revolute("ground", "bar", point_i="O", point_j="A", name="j"))
+    assert check_phi([-x2 - sp.cos(p2), -y2 - sp.sin(p2)], m.constraint("j")).passed
