@@ -1,23 +1,21 @@
-"""The sandbox's kernel command when kernels are forked from a zygote (:mod:`kinbook.classroom._zygote`).
+"""The kernelspec's command: ``python -I -S launch.py SOCKET PIDFILE -f CONNECTION_FILE``.
 
-``python -I -S _launch.py SOCKET PIDFILE -f CONNECTION_FILE`` (run by path: it imports only the standard
-library, so it starts in a few milliseconds). It stands in for the kernel process that jupyter_client
-started before, and behaves like it:
+Run by path by the worker's jupyter_client (it imports only the standard library, so it starts in a few
+milliseconds). It stands in for the kernel process that jupyter_client would have started, and behaves
+like it:
 
-1. sends the zygote its kernel arguments (``-f CONNECTION_FILE``), its environment, working directory, umask
-   and resource limits, and its standard streams (``SCM_RIGHTS``); the zygote forks a kernel that takes all
-   of them (:func:`kinbook.classroom._zygote.serve`);
-2. writes the kernel's process id to ``PIDFILE`` (the sandbox kills that process group at the end, as well
-   as this launcher's);
+1. sends the zygote (:mod:`.zygote`, its socket ``SOCKET``) a launch request: the kernel's arguments
+   (``-f CONNECTION_FILE``), its environment, working directory, umask and resource limits; the zygote forks
+   a kernel that takes all of them;
+2. writes the kernel's process id to ``PIDFILE``;
 3. forwards ``SIGINT`` (an interrupt request) to the kernel;
 4. waits for the kernel's end and ends the same way: with its exit code, or killed by the same signal (so
    that the worker sees ``SIGXCPU`` as a timeout, ``SIGKILL`` after a ``MemoryError`` as out of memory).
 
-When this launcher dies (killed by the worker, by the sandbox's process-group kill), its connection closes
-and the zygote kills the kernel's process group at once: no kernel outlives its launcher. When its parent
-(the worker) goes away, it exits too, as ipykernel's parent poller makes a kernel do. When the zygote
-cannot be reached, it runs the kernel command used without a zygote instead (``python -m
-kinbook.classroom._kernel``, in this very process).
+When this launcher dies (killed by the worker, or at the end of the run), its connection closes and the
+zygote kills the kernel's process group at once. When its parent (the worker) goes away, it exits too, as
+ipykernel's parent poller makes a kernel do. When the zygote cannot be reached, it exits with status 1 (the
+worker then reports a kernel that did not start).
 """
 
 import os
@@ -41,9 +39,9 @@ def unix_address(path, call):
         os.close(fd)
 
 
-def request(role, argv, env=None, cwd=None):
-    """A launch request for the zygote (JSON bytes): what to run (``role``, ``argv``), with which environment
-    and working directory (default: this process's), and this process's umask and resource limits."""
+def request(argv):
+    """A kernel launch request for the zygote (JSON bytes): its arguments, and this process's environment,
+    working directory, umask and resource limits."""
     import json
     import resource
 
@@ -51,19 +49,14 @@ def request(role, argv, env=None, cwd=None):
     os.umask(umask)
     limits = {name: list(resource.getrlimit(getattr(resource, name))) for name in _LIMITS
               if hasattr(resource, name)}
-    return json.dumps({"role": role, "argv": list(argv), "env": dict(os.environ if env is None else env),
-                       "cwd": os.getcwd() if cwd is None else cwd, "umask": umask, "rlimits": limits}).encode()
+    return json.dumps({"role": "kernel", "argv": list(argv), "env": dict(os.environ), "cwd": os.getcwd(),
+                       "umask": umask, "rlimits": limits}).encode()
 
 
 def returncode(status):
     """The zygote's ``exit N`` / ``signal N`` as a ``subprocess`` return code (N, or −N for a signal)."""
     kind, _, number = status.partition(b" ")
     return -int(number) if kind == b"signal" else int(number)
-
-
-def _fallback(kernel_argv):
-    """Run the kernel without the zygote: this process becomes ``python -m kinbook.classroom._kernel``."""
-    os.execv(sys.executable, [sys.executable, "-m", "kinbook.classroom._kernel"] + list(kernel_argv))
 
 
 def _end_like(status):
@@ -91,13 +84,12 @@ def main(argv):
     sock = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
     try:
         unix_address(path, sock.connect)
-        socket.send_fds(sock, [request("kernel", kernel_argv)], [0, 1, 2])
+        sock.sendall(request(kernel_argv))
         reply = sock.recv(64)
     except OSError:
         reply = b""
     if not reply.startswith(b"pid "):
-        sock.close()
-        _fallback(kernel_argv)
+        os._exit(1)
     pid = int(reply[4:])
     tmp = pidfile + ".tmp"
     with open(tmp, "w") as f:

@@ -1,0 +1,408 @@
+"""The grading process's side of the sandbox: :class:`Sandbox` (start, run one notebook, reset, stop).
+
+One :class:`Sandbox` serves one grading process: it starts the zygote (:mod:`.zygote`) — inside bubblewrap
+(:mod:`.bwrap`), or, with ``isolation=False``, as a plain child process — once, then for every submission:
+
+1. sends ``run``; the zygote forks a worker and says its pid;
+2. writes the job frame (the code cells, the answer names, the limits, the submission's copy) on the job pipe;
+3. waits, at most ``timeout`` + start-up allowance, for the worker's result frame on the result pipe and for
+   the worker's end; reads at most :data:`~.protocol.MAX_RESULT_BYTES` and validates every field
+   (:func:`_validated`): the result is data written by a process in the student's reach;
+4. sends ``reset``: the zygote kills everything the run started (in bubblewrap, every process of the pid
+   namespace but itself — a ``setsid`` daemon included) and empties the writable directories. If it does not
+   answer ``clean`` in time, the whole sandbox is killed and the next run starts a new one.
+
+Killing the sandbox: the zygote's process group (the outermost ``bwrap`` with ``--die-with-parent`` at every
+level; without bubblewrap the zygote itself, whose children die with it). If the grading process itself dies
+(SIGKILL, the OOM killer), the kernel delivers the same deaths (``PR_SET_PDEATHSIG``): nothing outlives it.
+"""
+
+from __future__ import annotations
+
+import os
+import secrets
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import weakref
+from dataclasses import dataclass, field
+
+from ...errors import GradingError
+from . import bwrap
+from .protocol import ISOLATED, MAX_RESULT_BYTES, FrameError, FrameReader, Layout, write_frame
+
+__all__ = ["Execution", "Sandbox", "SandboxError", "STARTUP_SECONDS", "STATUSES"]
+
+#: Seconds allowed for the zygote's imports (once per sandbox) and for a kernel to start (per submission).
+STARTUP_SECONDS = 60.0
+#: Statuses an execution can have.
+STATUSES = ("ok", "timeout", "memory", "error")
+_MAX_ANSWERS = 100
+_MAX_ERRORS = 200
+
+
+class SandboxError(GradingError):
+    """The sandbox could not be started (not a submission's fault)."""
+
+
+@dataclass
+class Execution:
+    """Outcome of running a notebook.
+
+    Attributes
+    ----------
+    status : {"ok", "timeout", "memory", "error"}
+        "ok": every cell was run (some may have raised) and the answers were read.
+    message : str
+    answers : dict or None
+        {name: record or None} as written by :func:`kinbook.classroom.serialize.dumps` (not yet decoded).
+    errors : list of dict
+        One per cell that raised: cell number, exception name and value.
+    seconds : float
+    """
+
+    status: str
+    message: str = ""
+    answers: dict | None = None
+    errors: list = field(default_factory=list)
+    seconds: float = 0.0
+
+
+def _text(value, limit):
+    return value[:limit] if isinstance(value, str) else ""
+
+
+def _validated(header):
+    """An :class:`Execution`'s fields from a result frame, every one checked (type, size), or an error."""
+    status = header.get("status")
+    if status not in STATUSES:
+        return Execution("error", "the sandbox returned a result that is not one (no valid status)")
+    answers = header.get("answers")
+    if answers is not None:
+        if (not isinstance(answers, dict) or len(answers) > _MAX_ANSWERS
+                or not all(isinstance(k, str) and len(k) <= 100 for k in answers)):
+            return Execution("error", "the sandbox returned malformed answers")
+    errors = []
+    raw = header.get("errors")
+    for e in (raw if isinstance(raw, list) else [])[:_MAX_ERRORS]:
+        if isinstance(e, dict) and isinstance(e.get("cell"), int) and not isinstance(e.get("cell"), bool):
+            errors.append({"cell": e["cell"], "ename": _text(e.get("ename"), 100), "evalue": _text(e.get("evalue"), 300)})
+    if status == "ok" and answers is None:
+        return Execution("error", "the sandbox returned no answers")
+    return Execution(status, _text(header.get("message"), 500), answers if status == "ok" else None, errors)
+
+
+def _clean_env(extra=None):
+    """The zygote's environment without bubblewrap: nothing of the grader's but the interpreter's search path."""
+    keep = ("PATH", "LANG", "LC_ALL", "PYTHONPATH", "SYSTEMROOT")
+    env = {k: os.environ[k] for k in keep if k in os.environ}
+    env.update({k: v for k, v in bwrap.ENV.items() if k not in ("PATH", "LANG", "HOME", "TMPDIR", "MPLCONFIGDIR")})
+    env.update(extra or {})
+    return env
+
+
+_live = weakref.WeakSet()
+
+
+class Sandbox:
+    """The sandbox of one grading process (see the module docstring).
+
+    Parameters
+    ----------
+    isolation : bool
+        Run the zygote (and so every worker and kernel) inside bubblewrap. Without it the audit hook and the
+        resource limits are the only fence.
+
+    Raises
+    ------
+    kinbook.classroom.sandbox.bwrap.IsolationUnavailable
+        (from :meth:`start`) isolation was asked for and bubblewrap cannot provide it here.
+
+    Examples
+    --------
+    >>> with Sandbox() as sb:  # doctest: +SKIP
+    ...     ex = sb.run(["x = 1 + 1"], ["x"], timeout=10)
+    >>> ex.status, ex.answers["x"]["data"]  # doctest: +SKIP
+    ('ok', [2.0])
+    """
+
+    def __init__(self, isolation=True):
+        self.isolation = bool(isolation)
+        self.proc = None
+        self.owner = os.getpid()
+        self.private = None
+        self.starts = 0
+        _live.add(self)
+
+    # ------------------------------------------------------------------------------------------ lifetime
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    @property
+    def pid(self):
+        """The process id of the sandbox's outermost process (bwrap, or the zygote without isolation)."""
+        return None if self.proc is None else self.proc.pid
+
+    def alive(self):
+        return self.proc is not None and self.owner == os.getpid() and self.proc.poll() is None
+
+    def start(self):
+        """Start the zygote (a no-op when it runs); :class:`SandboxError` when it does not say ``ready``."""
+        if self.alive():
+            return
+        self.close()
+        if self.isolation:
+            bwrap.check()
+        self.private = os.path.realpath(tempfile.mkdtemp(prefix="kinbook-grader-"))
+        os.chmod(self.private, 0o700)
+        if self.isolation:
+            layout = ISOLATED
+        else:
+            layout = Layout(home=os.path.join(self.private, "home"), tmp=os.path.join(self.private, "tmp"),
+                            work=os.path.join(self.private, "work"), zygote=os.path.join(self.private, "zygote"),
+                            isolated=False)
+        self.layout = layout
+        job_r, self.job_w = os.pipe()
+        self.result_r, result_w = os.pipe()
+        self.job_r = job_r  # kept: the job pipe is drained here at every reset
+        argv = [sys.executable, "-s", "-m", "kinbook.classroom.sandbox.zygote", layout.to_json(), str(job_r),
+                str(result_w)]
+        if self.isolation:
+            cmd, env, cwd = bwrap.command(argv), {"PATH": os.environ.get("PATH", "/usr/bin:/bin")}, "/"
+        else:
+            cmd, cwd = argv, self.private
+            env = _clean_env({"HOME": layout.home, "TMPDIR": layout.tmp,
+                              "MPLCONFIGDIR": os.path.join(layout.tmp, ".matplotlib")})
+        self.log_path = os.path.join(self.private, "sandbox.log")
+        try:
+            with open(self.log_path, "wb") as log:
+                self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=log, env=env,
+                                             cwd=cwd, pass_fds=(job_r, result_w), start_new_session=True)
+        except OSError as exc:
+            self.close()
+            raise SandboxError(f"the sandbox could not be started: {exc}") from None
+        finally:
+            os.close(result_w)
+        self.starts += 1
+        for fd in (self.job_w, self.result_r, self.job_r, self.proc.stdout.fileno()):
+            os.set_blocking(fd, False)
+        self.events = b""
+        try:
+            line = self._event(time.monotonic() + STARTUP_SECONDS)
+        except BaseException:  # (also when this process is being terminated)
+            self.close()
+            raise
+        if line != "ready":
+            why = self._log_tail()
+            self.close()
+            raise SandboxError(f"the sandbox did not start: {why or 'no answer'}")
+
+    def close(self):
+        """Stop the sandbox (everything in it is killed) and remove its private directory."""
+        if self.proc is not None:
+            if self.owner == os.getpid():
+                try:
+                    self.proc.stdin.write(b"stop\n")
+                    self.proc.stdin.close()
+                except (OSError, ValueError):
+                    pass
+                try:
+                    self.proc.wait(2.0)
+                except subprocess.TimeoutExpired:
+                    pass
+                self._kill()
+            self._close_pipes()
+            self.proc = None
+        if self.private and self.owner == os.getpid():
+            shutil.rmtree(self.private, ignore_errors=True)
+        self.private = None
+
+    def _kill(self):
+        try:
+            os.killpg(self.proc.pid, signal.SIGKILL)
+        except OSError:
+            pass
+        try:
+            self.proc.kill()
+        except OSError:
+            pass
+        self.proc.wait()
+
+    def _close_pipes(self):
+        streams = (self.proc.stdin, self.proc.stdout) if self.proc is not None else ()
+        fds = [getattr(self, name, None) for name in ("job_w", "job_r", "result_r")]
+        for closer in [s.close for s in streams] + [lambda fd=fd: os.close(fd) for fd in fds if fd is not None]:
+            try:
+                closer()
+            except (OSError, ValueError):
+                pass
+        self.job_w = self.job_r = self.result_r = None
+
+    def forget(self):
+        """In a forked copy of the owner: drop the inherited descriptors without stopping the sandbox."""
+        self._close_pipes()
+        if self.proc is not None:
+            self.proc.returncode = 0  # not ours to wait for
+            self.proc = None
+        self.private = None
+
+    def _log_tail(self):
+        try:
+            with open(self.log_path, "rb") as f:
+                f.seek(0, 2)
+                f.seek(max(0, f.tell() - 600))
+                return f.read().decode(errors="replace").strip()[-400:]
+        except (OSError, AttributeError):
+            return ""
+
+    # -------------------------------------------------------------------------------------------- events
+    def _event(self, deadline):
+        """The zygote's next event line, or "" when none came by ``deadline`` (or it is gone)."""
+        import select
+
+        fd = self.proc.stdout.fileno()
+        while b"\n" not in self.events:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                return ""
+            ready, _, _ = select.select([fd], [], [], left)
+            if ready:
+                try:
+                    chunk = os.read(fd, 4096)
+                except BlockingIOError:
+                    continue
+                if not chunk:
+                    return ""
+                self.events += chunk
+                if len(self.events) > 1 << 16:
+                    return ""
+        line, self.events = self.events.split(b"\n", 1)
+        return line.decode(errors="replace").strip()
+
+    def _send(self, word):
+        try:
+            self.proc.stdin.write(word.encode() + b"\n")
+            self.proc.stdin.flush()
+            return True
+        except (OSError, ValueError):
+            return False
+
+    # ----------------------------------------------------------------------------------------------- run
+    def run(self, cells, names, *, timeout=60.0, memory_mb=1000, files=None, audit_hook=True):
+        """Run code cells in a fresh worker and kernel; read the named answers.
+
+        Parameters
+        ----------
+        cells : list of str
+            The code cells' sources, in order.
+        names : list of str
+            Answer variables to read after the last cell.
+        timeout : float
+            Wall-clock seconds for the cells (kernel start-up not included).
+        memory_mb : float
+            Memory the code may allocate beyond the kernel's own footprint (address-space limit).
+        files : dict, optional
+            {name: bytes} put in the submission's directory (a copy of the submission, for example).
+        audit_hook : bool
+            Install the kernel's audit hook (always, when grading). False only to test what the
+            operating-system sandbox holds on its own.
+
+        Returns
+        -------
+        Execution
+        """
+        import nbformat
+
+        t0 = time.monotonic()
+        self.start()
+        nb = nbformat.v4.new_notebook()
+        nb.cells = [nbformat.v4.new_code_cell(c) for c in cells]
+        files = dict(files or {})
+        header = {"timeout": float(timeout), "memory_mb": float(memory_mb), "nonce": secrets.token_hex(16),
+                  "names": list(names), "notebook": nbformat.writes(nb), "audit_hook": bool(audit_hook),
+                  "files": [[os.path.basename(k), len(v)] for k, v in files.items()]}
+        payload = b"".join(files.values())
+        try:
+            ex = self._run(header, payload, float(timeout))
+        finally:
+            self._reset()
+        ex.seconds = time.monotonic() - t0
+        return ex
+
+    def _run(self, header, payload, timeout):
+        import select
+
+        if not self._send("run"):
+            return Execution("error", "the sandbox stopped before the notebook could be run")
+        word = self._event(time.monotonic() + 30)
+        if not word.startswith("worker "):
+            return Execution("error", f"the sandbox did not start a worker ({word or 'no answer'})")
+        try:
+            write_frame(self.job_w, header, payload, deadline=time.monotonic() + 30)
+        except FrameError as exc:
+            return Execution("error", f"the job could not be handed to the sandbox: {exc}")
+        deadline = time.monotonic() + timeout + STARTUP_SECONDS + 15.0
+        reader = FrameReader(MAX_RESULT_BYTES)
+        ended = None
+        events = self.proc.stdout.fileno()
+        try:
+            while reader.frame is None:
+                if ended is not None:
+                    reader.feed(self.result_r)  # what the worker wrote before it ended
+                    break
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    return Execution("timeout", f"the notebook did not finish within {timeout:g} s")
+                ready, _, _ = select.select([self.result_r, events], [], [], min(left, 1.0))
+                if self.result_r in ready:
+                    reader.feed(self.result_r)
+                if events in ready or b"\n" in self.events:
+                    word = self._event(time.monotonic() + 0.1)
+                    if word.startswith(("exit ", "signal ")):
+                        ended = word
+                    elif word == "" and self.proc.poll() is not None:
+                        return Execution("error", "the sandbox stopped while running the notebook")
+        except FrameError as exc:
+            return Execution("error", f"the sandbox returned an unreadable result: {exc}")
+        if reader.frame is None:
+            return Execution("error", f"the grading worker stopped without a result ({ended})")
+        return _validated(reader.frame[0])
+
+    def _reset(self):
+        """End the run (see the module docstring); a sandbox that does not come back clean is thrown away."""
+        if not self.alive():
+            self.close()
+            return
+        ok = self._send("reset")
+        deadline = time.monotonic() + 15.0
+        while ok:
+            word = self._event(deadline)
+            if not word.startswith(("exit ", "signal ")):  # the worker's end, when it came after its result
+                ok = word == "clean"
+                break
+        for fd in (self.result_r, self.job_r):  # nothing of this run reaches the next one
+            try:
+                while os.read(fd, 1 << 16):
+                    pass
+            except (BlockingIOError, OSError):
+                pass
+        if not ok:
+            self.close()
+
+
+def _forget_in_child():
+    # a process forked from this one (a grading pool's process) must neither use nor stop these sandboxes
+    for sb in list(_live):
+        if sb.owner != os.getpid():
+            sb.forget()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_in_child)
+

@@ -1,0 +1,295 @@
+"""The student's kernel, forked from the zygote (:mod:`.zygote`) for each submission.
+
+The zygote did the imports once (:func:`preload`: the scientific stack and kinbook, so that imports do not
+count against the limits below and read no file once the audit hook is on). Then, in each forked kernel,
+:func:`main`:
+
+1. initializes ipykernel (reads the connection file, binds its ZeroMQ sockets);
+2. caps the address space at *current size + memory budget* (``RLIMIT_AS``), file size (``RLIMIT_FSIZE``),
+   CPU time (``RLIMIT_CPU``, a backstop to the wall-clock timeout) and processes (``RLIMIT_NPROC``, inside
+   bubblewrap);
+3. installs :func:`install_audit_hook` — a ``sys.addaudithook`` hook cannot be removed — and only then
+   starts serving cells, so that no student code runs before the hook.
+
+The hook is the *second* fence: the first is the operating-system sandbox around the zygote and everything it
+forks (:mod:`.bwrap`). Without bubblewrap (``--no-isolation``) it is the only one.
+
+Environment (set by the worker): ``KINBOOK_SANDBOX_ROOT`` (the submission's copy: working directory, writable),
+``KINBOOK_SANDBOX_TMP`` (the private temporary directory, writable), ``KINBOOK_SANDBOX_MEMORY_MB``,
+``KINBOOK_SANDBOX_CPU_S``, and ``KINBOOK_SANDBOX_AUDIT`` (``0`` only when the grading process asked for a
+kernel without the hook: the tests that show what bubblewrap alone holds; a student cannot set a kernel's
+environment, which is fixed before any of their code runs).
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import socket
+import stat
+import sys
+import sysconfig
+
+__all__ = ["install_audit_hook", "main", "preload"]
+
+#: Audit events refused whatever their arguments: other processes, the network, native code, introspection
+#: that could reach the hook's own state.
+DENIED_EVENTS = frozenset({
+    "subprocess.Popen", "os.system", "os.exec", "os.posix_spawn", "os.spawn", "os.fork", "os.forkpty",
+    "os.kill", "os.killpg", "os.startfile", "pty.spawn", "os.symlink", "os.link", "os.chroot",
+    "socket.bind", "socket.connect", "socket.getaddrinfo", "socket.gethostbyname",
+    "socket.sendto", "socket.sendmsg", "urllib.Request", "http.client.connect", "ftplib.connect",
+    "smtplib.connect", "imaplib.open", "poplib.connect", "telnetlib.Telnet.open", "webbrowser.open",
+    "gc.get_objects", "gc.get_referrers", "gc.get_referents", "sys.settrace", "sys.setprofile",
+    "sys._current_frames", "sys.set_asyncgen_hooks_firstiter", "code.__new__", "function.__new__",
+    "pickle.find_class", "resource.setrlimit", "resource.prlimit",
+    "os.setuid", "os.setgid", "mmap.__new__", "fcntl.ioctl", "os.chdir", "os.fchdir",
+    "signal.pthread_kill", "os.putenv", "os.unsetenv",
+})
+DENIED_PREFIXES = ("ctypes.", "_winapi.", "winreg.", "cpython.run_", "sqlite3.")
+#: Functions that act without raising an audit event (``pidfd_open`` + ``pidfd_send_signal`` signal another
+#: process, ``fork_exec`` starts one, ``mknod``/``mkfifo`` make device nodes and FIFOs);
+#: :func:`install_audit_hook` removes them, and refuses to import their modules afresh (deleting a module from
+#: ``sys.modules`` and importing it again would bring them back).
+UNAUDITED = {"posix": ("pidfd_open", "mknod", "mkfifo"), "os": ("pidfd_open", "mknod", "mkfifo"),
+             "_signal": ("pidfd_send_signal",), "signal": ("pidfd_send_signal",), "_posixsubprocess": ("fork_exec",)}
+#: Modules whose import is refused: a subinterpreter (it starts without this hook), and CPython's test helpers
+#: (they corrupt memory on purpose).
+REFUSED_IMPORTS = frozenset({"_xxsubinterpreters", "_xxinterpchannels", "_xxinterpqueues", "_interpreters",
+                             "_interpchannels", "_interpqueues", "_testcapi", "_testinternalcapi",
+                             "_testmultiphase", "_testimportmultiple", "_testsinglephase", "_ctypes"})
+#: Events whose first argument is a path that must lie inside the temporary directory (writes, deletes,
+#: renames, metadata changes).
+WRITE_EVENTS = frozenset({
+    "os.remove", "os.rmdir", "os.rename", "os.mkdir", "os.chmod", "os.chown", "os.truncate", "os.utime",
+    "shutil.rmtree", "shutil.copyfile", "shutil.copytree", "shutil.move", "shutil.make_archive",
+    "shutil.unpack_archive", "os.setxattr", "os.removexattr",
+})
+#: Events whose first argument is a path that may be read (listed) inside the read-only roots too.
+READ_EVENTS = frozenset({"os.listdir", "os.scandir", "glob.glob", "glob.glob/2", "os.listxattr", "os.getxattr"})
+#: Processes the sandbox's user may have (inside bubblewrap only: elsewhere the count is the grader's user's).
+NPROC = 128
+_WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_TRUNC | os.O_APPEND
+
+
+def _read_roots():
+    """Directories student code may read: the Python installation and its packages (nothing else)."""
+    roots = {sys.prefix, sys.base_prefix, sys.exec_prefix, sys.base_exec_prefix}
+    for key in ("stdlib", "platstdlib", "purelib", "platlib"):
+        try:
+            roots.add(sysconfig.get_paths()[key])
+        except KeyError:
+            pass
+    roots.update(p for p in sys.path if p and os.path.isdir(p) and "site-packages" in p)
+    import kinbook
+
+    roots.add(os.path.dirname(os.path.abspath(kinbook.__file__)))  # an editable install: the package only
+    roots = {os.path.realpath(r) for r in roots} | {os.path.abspath(r) for r in roots}
+    return tuple(sorted(r.rstrip("/") + "/" for r in roots if r and r != "/"))
+
+
+def install_audit_hook(root, read_roots, extra_files=("/dev/null", "/dev/urandom", "/dev/random")):
+    """Install the audit hook that confines the process to ``root`` (a directory, or a tuple of them).
+
+    * ``open``: writing (or creating) only under ``root``; reading only under ``root``, ``read_roots`` and
+      ``extra_files``; file descriptors (ints) are allowed (they were opened under the same rules).
+    * deleting, renaming, creating directories, changing metadata: only under ``root``.
+    * processes, signals, sockets, ``ctypes``, ``gc`` and trace/profile hooks, code/function construction,
+      replacing a function's ``__code__``, ``chdir``, ``setrlimit``: refused; the unaudited functions of
+      :data:`UNAUDITED` are removed and their modules cannot be imported afresh; subinterpreters and CPython's
+      test modules cannot be imported (:data:`REFUSED_IMPORTS`).
+
+    The hook keeps no mutable state: everything it uses is bound in its closure at installation (builtins
+    included), so monkeypatching ``os`` or ``builtins`` afterwards does not change its decisions.
+    """
+    roots = (root,) if isinstance(root, str) else tuple(root)
+    root = tuple(r.rstrip("/") + "/" for r in roots)
+    for name, functions in UNAUDITED.items():
+        try:
+            module = __import__(name)
+        except ImportError:
+            continue
+        for f in functions:
+            if hasattr(module, f):
+                delattr(module, f)
+    hook = _make_hook(root, tuple(read_roots), frozenset(extra_files), os.getcwd(), os.fspath, isinstance,
+                      str, bytes, int, PermissionError, DENIED_EVENTS, DENIED_PREFIXES, WRITE_EVENTS,
+                      READ_EVENTS, _WRITE_FLAGS, len, int(socket.AF_UNIX), os.stat, stat.S_ISDIR, OSError,
+                      frozenset(UNAUDITED) | REFUSED_IMPORTS, frozenset({"__code__"}), hasattr, list)
+    sys.addaudithook(hook)
+
+
+def _make_hook(roots, read_roots, extra_files, cwd, fspath, isinstance, str, bytes, int, PermissionError,
+               denied, denied_prefixes, write_events, read_events, write_flags, len, af_unix, os_stat, s_isdir,
+               OSError, refused_imports, refused_attrs, hasattr, list):
+    # Every name used below is a parameter of this factory (a closure cell of the hook), never a global, and the
+    # hook is one function with no helpers: a frame it raises in exposes nothing a student could change (a
+    # helper function object would be reachable from the traceback and its ``__code__`` replaceable).
+    def hook(event, args):
+        why = what = None
+        if event in denied:
+            why, what = event, args[0] if len(args) else ""
+        elif event == "socket.__new__":
+            # asyncio's self-pipe: a pair of unconnected Unix sockets; connect/bind/sendto stay refused
+            if len(args) < 2 or args[1] != af_unix:
+                why, what = "network sockets", args[1] if len(args) > 1 else ""
+        elif event == "import":
+            if len(args) and args[0] in refused_imports:
+                why, what = "importing", args[0]
+        elif event == "object.__setattr__":
+            if len(args) > 1 and args[1] in refused_attrs:
+                why, what = "setting", args[1]
+        elif event == "open" or event in write_events or event in read_events:
+            writing = event in write_events
+            candidates = args[:2] if writing else args[:1]
+            if event == "open":
+                mode, flags = args[1], args[2]
+                if isinstance(mode, str):
+                    for c in "wax+":
+                        if c in mode:
+                            writing = True
+                if isinstance(flags, int) and flags & write_flags:
+                    writing = True
+            elif writing:
+                if len(args) and isinstance(args[0], int):
+                    why, what = event, "a file descriptor"  # fchmod/ftruncate/futimes of a file opened read-only
+                # dir_fd arguments (-1 when not given): a descriptor would re-anchor a relative path
+                if event[:3] == "os." and event != "os.truncate" and len(args) > 1 and isinstance(args[-1], int) \
+                        and args[-1] != -1:
+                    why, what = event, "dir_fd"
+                if event == "os.rename" and len(args) > 2 and isinstance(args[2], int) and args[2] != -1:
+                    why, what = event, "dir_fd"
+            elif not len(args):
+                candidates = (".",)
+            for path in candidates:
+                if why is not None:
+                    break
+                if isinstance(path, int) or not (isinstance(path, (str, bytes)) or hasattr(path, "__fspath__")):
+                    continue
+                path = fspath(path)
+                if isinstance(path, bytes):
+                    path = path.decode("utf-8", "surrogateescape")
+                if path[:1] != "/":
+                    path = cwd + "/" + path
+                parts = []
+                for piece in path.split("/"):
+                    if piece == "" or piece == ".":
+                        continue
+                    if piece == "..":
+                        if parts:
+                            parts.pop()
+                        continue
+                    parts.append(piece)
+                p = "/" + "/".join(parts)
+                probe = p + "/"
+                allowed = False
+                for prefix in roots:
+                    if probe.startswith(prefix):
+                        allowed = True
+                if allowed:
+                    continue
+                if not writing:
+                    readable = p in extra_files
+                    for prefix in read_roots:
+                        if probe.startswith(prefix):
+                            readable = True
+                    if readable and event == "open":
+                        # no directory descriptors outside the root: with one, ``dir_fd=`` would make a relative
+                        # path (which this hook resolves against the working directory) land elsewhere
+                        try:
+                            readable = not s_isdir(os_stat(p).st_mode)
+                        except OSError:
+                            pass
+                    if readable:
+                        continue
+                why, what = ("opening for writing" if writing else "opening") if event == "open" else event, p
+        else:
+            for prefix in denied_prefixes:
+                if event[:len(prefix)] == prefix:
+                    why, what = event, ""
+        if why is not None:
+            raise PermissionError(f"kinbook sandbox: {why} {str(what)[:200]!r} is not allowed while grading")
+
+    return hook
+
+
+def _vm_bytes():
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmSize:"):
+                return int(line.split()[1]) * 1024
+    return 0
+
+
+def preload():
+    """Import what nearly every exercise uses, before the limits and the hook (in the zygote, once: the kernels
+    forked from it share these pages). matplotlib's font list is built here too, so that a plotting cell does
+    not rebuild it in every kernel."""
+    import warnings
+
+    warnings.filterwarnings("ignore")
+    os.environ.setdefault("MPLBACKEND", "Agg")
+    import numpy  # noqa: F401
+    import sympy
+
+    import IPython.core.logger  # noqa: F401  (imported lazily by IPython at the first cell)
+    import stack_data  # noqa: F401  (tracebacks)
+
+    import kinbook  # noqa: F401
+    import kinbook.classroom.parts  # noqa: F401
+    import kinbook.classroom.serialize  # noqa: F401
+
+    sympy.lambdify([sympy.Symbol("x")], sympy.sin(sympy.Symbol("x")) ** 2, "numpy")(0.5)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.font_manager  # noqa: F401  (builds the font list once)
+    import matplotlib.pyplot  # noqa: F401
+
+    import ipykernel.debugger  # noqa: F401  (what IPKernelApp.initialize imports)
+    import ipykernel.ipkernel  # noqa: F401
+    import ipykernel.kernelapp  # noqa: F401
+    import ipykernel.zmqshell  # noqa: F401
+
+    warnings.resetwarnings()
+
+
+def main(argv, layout):
+    """Start the kernel (steps 1–3 of the module docstring) and serve cells until shut down.
+
+    Parameters
+    ----------
+    argv : list of str
+        ipykernel's arguments (``-f CONNECTION_FILE``).
+    layout : kinbook.classroom.sandbox.protocol.Layout
+        Where the submission's copy and the temporary directory are.
+    """
+    root = os.path.realpath(os.environ["KINBOOK_SANDBOX_ROOT"])
+    tmp = os.path.realpath(os.environ.get("KINBOOK_SANDBOX_TMP", root))
+    memory_mb = float(os.environ.get("KINBOOK_SANDBOX_MEMORY_MB", "0"))
+    cpu_s = int(float(os.environ.get("KINBOOK_SANDBOX_CPU_S", "0")))
+    os.chdir(root)
+    # ipykernel read JPY_PARENT_PID when the zygote imported it: say which parent to watch (the zygote)
+    options = ["--HistoryManager.enabled=False", "--IPKernelApp.quiet=False",
+               f"--IPKernelApp.parent_handle={os.getppid()}"]
+    from ipykernel.kernelapp import IPKernelApp
+
+    app = IPKernelApp.instance()
+    app.initialize(options + list(argv))
+    try:
+        app.shell.InteractiveTB.set_mode("Plain")  # cheap tracebacks: the grader reads only exception names
+    except Exception:
+        pass
+    read_roots = _read_roots()
+    if memory_mb > 0:
+        limit = _vm_bytes() + int(memory_mb * 1024 * 1024)
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+    if cpu_s > 0:
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu_s, cpu_s + 5))
+    resource.setrlimit(resource.RLIMIT_FSIZE, (64 * 1024 * 1024, 64 * 1024 * 1024))
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    if layout.isolated:  # the whole sandbox is this submission's: a fork bomb stops here
+        resource.setrlimit(resource.RLIMIT_NPROC, (NPROC, NPROC))
+    if os.environ.get("KINBOOK_SANDBOX_AUDIT", "1") != "0":  # "0": tests of the operating-system boundary alone
+        install_audit_hook((root, tmp), read_roots)
+    app.start()

@@ -1,0 +1,227 @@
+"""What the grading process and the sandbox's processes agree on: directories, descriptors, message frames,
+bounds, and two process-lifetime helpers.
+
+Both sides import this module (standard library only); neither imports the other's module, so there is no
+import cycle between :mod:`.host` and :mod:`.zygote`.
+
+Channels between the grading process (outside) and the sandbox (inside)
+    ``stdin`` of the zygote
+        commands, one line each: ``run``, ``reset``, ``stop`` (end of file also stops it);
+    ``stdout`` of the zygote
+        events, one line each: ``ready``, ``worker PID``, ``exit N`` / ``signal N`` (the worker ended),
+        ``clean`` / ``dirty REASON`` (after ``reset``);
+    descriptor :data:`JOB_FD` (read end, inside)
+        one job frame per ``run``, read by that run's worker only — the zygote never reads it, so no
+        submission ever enters the zygote's memory (which every later kernel would inherit);
+    descriptor :data:`RESULT_FD` (write end, inside)
+        one result frame per run, written by the worker. The grading process reads at most
+        :data:`MAX_RESULT_BYTES` of it and treats it as untrusted data (:func:`kinbook.classroom.sandbox.host`
+        validates every field).
+
+Nothing else crosses: no file of the grading process is visible inside the sandbox, and no file the
+sandbox writes is read by the grading process.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import select
+import time
+from dataclasses import asdict, dataclass
+
+__all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "FrameError", "write_frame",
+           "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper"]
+
+JOB_FD = 3
+RESULT_FD = 4
+#: A job carries the notebook to run and a copy of the submission (each refused above 8 MB before).
+MAX_JOB_BYTES = 40 * 1024 * 1024
+#: The answers (at most 2 MB each, 100 of them in principle; far less in practice) and cell errors.
+MAX_RESULT_BYTES = 16 * 1024 * 1024
+_MAGIC = b"KBF1"
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Where things are, as the processes in the sandbox see them.
+
+    Attributes
+    ----------
+    home : str
+        The submission's own copy: the kernel's working directory and HOME, writable.
+    tmp : str
+        A private temporary directory (the sandbox's ``/tmp``), writable.
+    work : str
+        The worker's control directory (the notebook to run, the kernel's connection file and kernelspec).
+    zygote : str
+        The directory of the zygote's socket (kernels are forked on request of the launcher).
+    isolated : bool
+        True inside bubblewrap (own pid namespace, an unprivileged uid, nothing of the host writable).
+    """
+
+    home: str
+    tmp: str
+    work: str
+    zygote: str
+    isolated: bool
+
+    @property
+    def socket(self):
+        return os.path.join(self.zygote, "fork.sock")
+
+    def to_json(self):
+        return json.dumps(asdict(self))
+
+    @classmethod
+    def from_json(cls, text):
+        return cls(**json.loads(text))
+
+
+#: The layout inside bubblewrap (every directory a size-capped tmpfs of the sandbox).
+ISOLATED = Layout(home="/home/student", tmp="/tmp", work="/run/kinbook/work", zygote="/run/kinbook/zygote",
+                  isolated=True)
+
+
+class FrameError(ValueError):
+    """A frame that is malformed, too large, or did not arrive in time."""
+
+
+def write_frame(fd, header, payload=b"", deadline=None):
+    """Write ``header`` (a JSON-able dict) and ``payload`` (bytes) to ``fd`` as one frame.
+
+    ``fd`` may be non-blocking; with ``deadline`` (a ``time.monotonic()`` value) the write gives up with
+    :class:`FrameError` when it is not done by then (the reader is stuck or gone).
+    """
+    head = json.dumps(header).encode()
+    data = b"%s %d %d\n" % (_MAGIC, len(head), len(payload)) + head + payload
+    view = memoryview(data)
+    while view:
+        if deadline is not None:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise FrameError("the other side did not read the frame in time")
+            _, ready, _ = select.select([], [fd], [], left)
+            if not ready:
+                continue
+        try:
+            n = os.write(fd, view)
+        except BlockingIOError:
+            continue
+        except OSError as exc:
+            raise FrameError(f"the frame could not be written: {exc}") from None
+        view = view[n:]
+
+
+class FrameReader:
+    """Incremental reader of one frame from a (non-blocking) descriptor, with a size bound.
+
+    Feed it with :meth:`feed` whenever the descriptor is readable; :attr:`frame` is ``(header, payload)``
+    once complete. More than ``limit`` bytes, or a malformed prefix, raise :class:`FrameError`.
+    """
+
+    def __init__(self, limit):
+        self.limit = limit
+        self.buf = bytearray()
+        self.need = None  # (header bytes, payload bytes) once the prefix line is read
+        self.frame = None
+        self.eof = False
+
+    def feed(self, fd):
+        """Read what is available; returns False at end of file."""
+        try:
+            chunk = os.read(fd, 1 << 16)
+        except BlockingIOError:
+            return True
+        if not chunk:
+            self.eof = True
+            return False
+        if self.frame is not None:
+            return True  # anything after the frame is ignored (and drained)
+        self.buf += chunk
+        if len(self.buf) > self.limit + 64:
+            raise FrameError(f"more than {self.limit // 2**20} MB")
+        if self.need is None:
+            end = self.buf.find(b"\n", 0, 64)
+            if end < 0:
+                if len(self.buf) >= 64:
+                    raise FrameError("no frame header")
+                return True
+            parts = bytes(self.buf[:end]).split(b" ")
+            if len(parts) != 3 or parts[0] != _MAGIC or not parts[1].isdigit() or not parts[2].isdigit():
+                raise FrameError("no frame header")
+            self.need = (int(parts[1]), int(parts[2]))
+            if sum(self.need) > self.limit:
+                raise FrameError(f"more than {self.limit // 2**20} MB")
+            del self.buf[:end + 1]
+        h, p = self.need
+        if len(self.buf) >= h + p:
+            try:
+                header = json.loads(bytes(self.buf[:h]))
+            except ValueError:
+                raise FrameError("the frame header is not JSON") from None
+            if not isinstance(header, dict):
+                raise FrameError("the frame header is not an object")
+            self.frame = (header, bytes(self.buf[h:h + p]))
+            self.buf = bytearray()
+        return True
+
+
+def read_frame(fd, limit, timeout=None):
+    """Read one frame from blocking or non-blocking ``fd``: ``(header, payload)``; :class:`FrameError` when it is
+    malformed, larger than ``limit`` bytes, cut short, or not complete within ``timeout`` seconds."""
+    reader = FrameReader(limit)
+    deadline = None if timeout is None else time.monotonic() + timeout
+    while reader.frame is None:
+        if deadline is not None:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise FrameError("no frame in time")
+            ready, _, _ = select.select([fd], [], [], left)
+            if not ready:
+                continue
+        if not reader.feed(fd) and reader.frame is None:
+            raise FrameError("the frame was cut short")
+    return reader.frame
+
+
+# ================================================================================== process lifetime (Linux)
+_PR_SET_PDEATHSIG = 1
+_PR_SET_DUMPABLE = 4
+_PR_SET_CHILD_SUBREAPER = 36
+
+
+def _prctl(option, value):
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        return libc.prctl(option, value, 0, 0, 0) == 0
+    except (OSError, AttributeError):  # not Linux
+        return False
+
+
+def die_with_parent(parent_pid=None):
+    """Have the kernel kill this process (SIGKILL) when its parent dies (``PR_SET_PDEATHSIG``).
+
+    ``parent_pid`` is the parent expected; if it is already gone (it died before the call), this process
+    exits at once. Returns whether the kernel took the request (Linux only).
+    """
+    import signal
+
+    ok = _prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL))
+    if parent_pid is not None and os.getppid() != parent_pid:
+        os._exit(1)
+    return ok
+
+
+def set_dumpable(flag):
+    """``PR_SET_DUMPABLE``: a process that is not dumpable cannot be traced, nor its memory, descriptors or
+    environment read through /proc, by other processes of the same user (without CAP_SYS_PTRACE)."""
+    return _prctl(_PR_SET_DUMPABLE, 1 if flag else 0)
+
+
+def set_child_subreaper():
+    """``PR_SET_CHILD_SUBREAPER``: orphans among this process's descendants become its children (so that it
+    can reap — and find — a daemon a student left behind)."""
+    return _prctl(_PR_SET_CHILD_SUBREAPER, 1)
