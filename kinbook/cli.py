@@ -76,7 +76,7 @@ def _cmd_grade(args):
 
     results = grade(args.source, args.submissions, args.output, timeout=args.timeout, memory=args.memory,
                     jobs=args.jobs, force=args.force, generic=args.generic, reveal_hidden=args.reveal_hidden,
-                    progress=progress)
+                    isolation=not args.no_isolation, progress=progress)
     print(f"graded {len(results)} submission(s); gradebook in {args.output}/grades.csv, feedback in "
           f"{args.output}/feedback/")
 
@@ -119,6 +119,8 @@ def build_parser():
                    help="students got the generic release (default parameters), not per-student variants")
     p.add_argument("--reveal-hidden", action="store_true",
                    help="give the checkers' full messages for hidden checks too (they may quote the expected value)")
+    p.add_argument("--no-isolation", action="store_true",
+                   help="grade without the bubblewrap sandbox (audit hook only; recorded as 'isolation: none')")
     p.set_defaults(func=_cmd_grade)
     return parser
 

@@ -3,7 +3,8 @@
 * :func:`part` and :func:`parameters` — what an exercise notebook declares (:mod:`.parts`);
 * :func:`release` — students' versions of source notebooks (:mod:`.release`);
 * :func:`variant` — one student's version with their own parameters (:mod:`.variant`);
-* :func:`grade` — run submissions in sandboxes, grade their answers, write the gradebook (:mod:`.grade`).
+* :func:`grade` — run submissions in the sandbox (:mod:`.sandbox`: bubblewrap), grade their answers, record
+  them in the gradebook (:mod:`.gradebook`, SQLite) and export grades.csv, totals.csv and feedback pages.
 
 See docs/instructors.md and the README's "For instructors" section.
 """
@@ -15,9 +16,10 @@ import sys as _sys
 if "jsonschema" not in _sys.modules:
     _sys.modules.setdefault("rfc3987_syntax", None)
 
-from .grade import STATUSES, SubmissionResult, grade, grade_submission  # noqa: E402
+from .grade import grade, grade_submission  # noqa: E402
 from .parts import Part, parameters, part  # noqa: E402
 from .release import release, write_variant  # noqa: E402
+from .results import STATUSES, SubmissionResult  # noqa: E402
 from .variant import student_parameters, variant  # noqa: E402
 
 # (nbformat and nbclient are imported inside the functions that need them, so that a student's kernel that

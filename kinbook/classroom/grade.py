@@ -1,125 +1,62 @@
 """Grading submitted notebooks (``kinbook grade``).
 
-For each submission: read it (never modify it), compare its locked cells with the release, run it in a
-sandbox (:mod:`kinbook.classroom.sandbox`), read the named answers as data
-(:mod:`kinbook.classroom.serialize`), and grade them with kinbook's checkers here, in the grader's process,
-against references built from the instructor's source (:func:`kinbook.classroom.variant.references`).
+The instructor's source notebook is read once, hashed and its code compiled before any student code runs
+(:func:`~kinbook.classroom.notebook.load_source`); the references are built from that in-memory copy, in the
+grader's process (:func:`kinbook.classroom.variant.references`). If the file on disk changes during the run,
+the run stops (the results recorded until then are kept).
 
-Statuses (one per part; the submission's status is the worst of them):
+For each submission, found in ``collected/`` without following any link (:func:`kinbook.classroom.files.collect`):
+read it once (never modify it), refuse it before parsing when too large, compare its locked cells with the
+release (by content, not by cell id), run its code cells in the sandbox (:mod:`kinbook.classroom.sandbox`:
+bubblewrap around a kernel with its own audit hook), read the named answers as bounded data
+(:mod:`kinbook.classroom.serialize`), and grade them with kinbook's checkers here, in the grader's process.
+Which answers came from kinbook's own reference is read from the submitted code
+(:mod:`kinbook.classroom.reference_use`) and reported, not penalized. Statuses: :mod:`kinbook.classroom.results`.
 
-=================  ==========================================================================================
-ok                 the answer was read and checked (its score may be anything from 0 to full)
-missing-answer     the variable was not assigned (cell left as released, or it raised before assigning)
-error              the answer is not gradable data, or the kernel died (``os._exit``, killed itself)
-timeout            the notebook did not finish within ``timeout`` seconds
-memory             the notebook exceeded its memory budget
-tampered           a locked cell differs from the release (or is missing): not run, 0 points
-corrupt-notebook   the file is not a readable notebook: not run, 0 points
-=================  ==========================================================================================
+A batch records each result in the gradebook (:mod:`kinbook.classroom.gradebook`, SQLite) as soon as it is
+graded; a killed run keeps them all and the next run grades only what is left. A submission graded before is
+skipped — unless its file changed (another sha256): then it is reported "changed since graded", and graded
+again only with ``force``.
 """
 
 from __future__ import annotations
 
 import hashlib
-import re
+import os
+import signal
+import sys
 import time
-from dataclasses import asdict, dataclass, field
+import warnings
 from pathlib import Path
 
 from ..errors import GradingError
-from .notebook import checksum, find_parameters, load_source, locked_checksums, student_notebook
+from .files import Entry, EntryRefused, collect, read_entry, student_id
+from .gradebook import Gradebook
+from .notebook import (MAX_NOTEBOOK_BYTES, SubmissionRefused, find_parameters, load_source, locked_sequence,
+                       missing_locked, parse_submission, student_notebook)
+from .reference_use import reference_use
+from .results import STATUSES, PartGrade, SubmissionResult, worst
 from .serialize import DecodeError, decode
 from .variant import references, student_parameters
 
-__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "grade_submission", "grade", "student_of",
-           "MAX_NOTEBOOK_BYTES"]
+__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "grade_submission", "grade", "NO_ISOLATION_WARNING"]
 
-STATUSES = ("ok", "missing-answer", "error", "timeout", "memory", "tampered", "corrupt-notebook")
-_SEVERITY = {s: i for i, s in enumerate(STATUSES)}
-MAX_NOTEBOOK_BYTES = 20 * 1024 * 1024
-
-
-@dataclass
-class PartGrade:
-    """One row of grades.csv."""
-
-    part: str
-    score: float
-    max_score: float
-    status: str
-    message: str = ""
-    html: str = ""
-
-
-@dataclass
-class SubmissionResult:
-    """The grading of one submission."""
-
-    student: str
-    exercise: str
-    submission: str
-    sha256: str
-    status: str
-    message: str
-    parts: list = field(default_factory=list)
-    seconds: float = 0.0
-
-    @property
-    def score(self):
-        return round(sum(p.score for p in self.parts), 4)
-
-    @property
-    def max_score(self):
-        return sum(p.max_score for p in self.parts)
-
-    def to_dict(self):
-        return asdict(self)
-
-    @classmethod
-    def from_dict(cls, d):
-        d = dict(d)
-        d["parts"] = [PartGrade(**p) for p in d.get("parts", [])]
-        return cls(**d)
-
-    def __repr__(self):
-        return (f"SubmissionResult({self.student!r}, {self.exercise!r}: {self.status}, "
-                f"{self.score:g}/{self.max_score:g})")
-
-    def _repr_html_(self):
-        import html
-
-        rows = "".join(f"<tr><td>{html.escape(p.part)}</td><td>{p.score:g} / {p.max_score:g}</td>"
-                       f"<td>{html.escape(p.status)}</td><td>{html.escape(p.message[:200])}</td></tr>"
-                       for p in self.parts)
-        return (f"<p><b>{html.escape(self.student)}</b> — {html.escape(self.exercise)}: {self.score:g} / "
-                f"{self.max_score:g} ({html.escape(self.status)})</p><table><tr><th>part</th><th>score</th>"
-                f"<th>status</th><th>message</th></tr>{rows}</table>")
-
-
-def student_of(path, exercise):
-    """The student a submission belongs to, from its path: ``<student>/<exercise>.ipynb``,
-    ``<exercise>-<student>.ipynb`` (as written by ``kinbook variant``) or ``<student>.ipynb``."""
-    path = Path(path)
-    stem = path.stem
-    if stem == exercise:
-        name = path.resolve().parent.name
-    elif stem.startswith(exercise + "-"):
-        name = stem[len(exercise) + 1:]
-    else:
-        name = stem
-    return re.sub(r"[^A-Za-z0-9._@+-]", "_", name) or "unknown"
+NO_ISOLATION_WARNING = ("grading WITHOUT isolation (--no-isolation): students' code runs as your user, fenced only "
+                        "by an in-process audit hook; recorded as 'isolation: none' in the gradebook")
 
 
 def _all_parts(parts, status, message):
     return [PartGrade(p.name, 0.0, p.points, status, message) for p in parts]
 
 
-def _worst(parts, default="ok"):
-    return max((p.status for p in parts), key=lambda s: _SEVERITY[s], default=default)
+def _refused(source, entry, status, message, isolation=""):
+    parts = references(source)
+    return SubmissionResult(entry.student, source.exercise, entry.path, "", status, message,
+                            _all_parts(parts, status, message), 0.0, isolation)
 
 
 def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1000, generic=False,
-                     reveal_hidden=False):
+                     reveal_hidden=False, isolation=True, sandbox=None):
     """Grade one submitted notebook.
 
     Parameters
@@ -127,9 +64,10 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     source : path or Source
         The instructor's source notebook.
     submission : path
-        The submitted notebook (read, never modified).
+        The submitted notebook (read once, never modified; a link, device or FIFO is refused, not followed).
     student : str, optional
-        Default: from the path (:func:`student_of`).
+        Default: from the path (``<student>/<exercise>.ipynb``, ``<exercise>-<student>.ipynb`` or
+        ``<student>.ipynb``).
     timeout : float
         Wall-clock seconds for running the notebook.
     memory : float
@@ -139,57 +77,73 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     reveal_hidden : bool
         Put the checkers' full messages (which may quote the expected value) of hidden checks in the
         gradebook and the feedback; by default they only say whether the answer is correct.
+    isolation : bool
+        Run the notebook inside bubblewrap (the default; :class:`~kinbook.classroom.sandbox.IsolationUnavailable`
+        where it cannot be). False: the audit hook and resource limits only.
+    sandbox : kinbook.classroom.sandbox.Sandbox, optional
+        A running sandbox to use (a batch keeps one per grading process); by default one is started for this
+        call and stopped after it.
 
     Returns
     -------
     SubmissionResult
     """
-    import nbformat
+    source = load_source(source)
+    entries = collect([submission], source.exercise, max_bytes=MAX_NOTEBOOK_BYTES)
+    entry = entries[0] if entries else Entry(str(submission), ".", (os.path.basename(str(submission)),), None,
+                                             "unknown", "refused", "not found")
+    if student is not None:
+        entry.student, bad = student_id(student)
+        if bad and not entry.status:
+            entry.status, entry.message = "bad-id", bad
+    if entry.status:
+        return _refused(source, entry, entry.status, entry.message)
+    try:
+        data = read_entry(entry, MAX_NOTEBOOK_BYTES)
+    except EntryRefused as exc:
+        return _refused(source, entry, exc.status, exc.message)
+    if sandbox is None:
+        from .sandbox import Sandbox
 
+        with Sandbox(isolation) as sb:
+            return _grade_bytes(source, entry, data, timeout=timeout, memory=memory, generic=generic,
+                                reveal_hidden=reveal_hidden, sandbox=sb)
+    return _grade_bytes(source, entry, data, timeout=timeout, memory=memory, generic=generic,
+                        reveal_hidden=reveal_hidden, sandbox=sandbox)
+
+
+def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden, sandbox):
+    """Grade the bytes of one submission (read already) with a running sandbox."""
     t0 = time.monotonic()
-    source = load_source(source) if not hasattr(source, "nb") else source
-    submission = Path(submission)
-    student = student or student_of(submission, source.exercise)
+    student = entry.student
+    digest = hashlib.sha256(data).hexdigest()
     values = None
     if find_parameters(source.nb) is not None and not generic:
         values = student_parameters(source, student)
     parts = references(source, values)
+    isolation = "bubblewrap" if sandbox.isolation else "none"
 
-    def done(status, message, grades):
-        return SubmissionResult(student, source.exercise, str(submission), digest, status, message, grades,
-                                round(time.monotonic() - t0, 3))
+    def done(status, message, grades, ran=False):
+        return SubmissionResult(student, source.exercise, entry.path, digest, status, message, grades,
+                                round(time.monotonic() - t0, 3), isolation if ran else "")
 
-    digest = ""
     try:
-        data = submission.read_bytes()
-        digest = hashlib.sha256(data).hexdigest()
-        if len(data) > MAX_NOTEBOOK_BYTES:
-            raise ValueError(f"larger than {MAX_NOTEBOOK_BYTES // 2**20} MB")
-        nb = nbformat.reads(data.decode("utf-8"), as_version=4)
-        if not isinstance(nb.get("cells"), list) or any(
-                not isinstance(c, dict) or not isinstance(c.get("source"), str) for c in nb.cells):
-            raise ValueError("no list of cells")
-    except Exception as exc:
-        msg = f"not a readable notebook: {type(exc).__name__}: {str(exc)[:200]}"
-        return done("corrupt-notebook", msg, _all_parts(parts, "corrupt-notebook", msg))
-
-    expected = locked_checksums(student_notebook(source, values, student if values is not None else None))
-    got = {c.get("id"): c for c in nb.cells}
-    changed = [cid for cid, h in expected.items() if cid not in got or checksum(got[cid]) != h]
-    if changed:
-        where = ", ".join(changed[:5]) + (" …" if len(changed) > 5 else "")
-        msg = (f"{len(changed)} locked cell(s) were changed or deleted ({where}); the notebook was not run. "
+        cells = parse_submission(data)
+    except SubmissionRefused as exc:
+        return done(exc.status, exc.message, _all_parts(parts, exc.status, exc.message))
+    expected = locked_sequence(student_notebook(source, values, student if values is not None else None))
+    missing = missing_locked(expected, cells)
+    if missing:
+        where = ", ".join(missing[:5]) + (" …" if len(missing) > 5 else "")
+        msg = (f"{len(missing)} locked cell(s) were changed, moved or deleted ({where}); the notebook was not run. "
                "Start again from the released notebook and only edit the answer cells.")
         return done("tampered", msg, _all_parts(parts, "tampered", msg))
 
-    from .sandbox import execute
-
-    run = nbformat.v4.new_notebook()
-    run.cells = [nbformat.v4.new_code_cell(c.source) for c in nb.cells if c.get("cell_type") == "code"]
+    code = [c["source"] for c in cells if c["cell_type"] == "code"]
     names = sorted({p.answer for p in parts} | {p.options["phi"] for p in parts if isinstance(p.options.get("phi"), str)})
-    ex = execute(run, names, timeout=timeout, memory_mb=memory, files={"submission.ipynb": data})
+    ex = sandbox.run(code, names, timeout=timeout, memory_mb=memory, files={"submission.ipynb": data})
     if ex.status != "ok":
-        return done(ex.status, ex.message, _all_parts(parts, ex.status, ex.message))
+        return done(ex.status, ex.message, _all_parts(parts, ex.status, ex.message), ran=True)
 
     decoded, problems = {}, {}
     for name in names:
@@ -197,10 +151,11 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
         if rec is None:
             continue
         try:
-            decoded[name] = decode(rec)
+            decoded[name] = decode(rec, name)
         except DecodeError as exc:
             problems[name] = str(exc)
     errors = {e["cell"]: f"{e['ename']}: {e['evalue']}" for e in ex.errors}
+    used = reference_use(code, [p.answer for p in parts])
     grades = []
     for p in parts:
         if p.answer in problems:
@@ -221,153 +176,257 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
         if p.hidden and not reveal_hidden:  # the verdict, not the expected value, of a hidden check
             verdict = "correct" if result.passed else "not correct" + (
                 f" (mistakes: {', '.join(result.mistakes)})" if result.mistakes else "")
-            grades.append(PartGrade(p.name, score, p.points, "ok", f"hidden check: {verdict}"))
+            grades.append(PartGrade(p.name, score, p.points, "ok", f"hidden check: {verdict}", "", used[p.answer]))
             continue
         grades.append(PartGrade(p.name, score, p.points, "ok", " | ".join(result.messages)[:1000],
-                                result._repr_html_()))
-    status = _worst(grades)
+                                result._repr_html_(), used[p.answer]))
+    status = worst(g.status for g in grades)
     message = "" if status == "ok" else next(g.message for g in grades if g.status == status)
-    return done(status, message, grades)
+    return done(status, message, grades, ran=True)
 
 
 # ================================================================================================== batch
-def _expand(submissions, exercise):
-    """Files as given; directories searched for notebooks of this exercise (``<exercise>.ipynb``,
-    ``<exercise>-<student>.ipynb``), or for every notebook when none is named after the exercise."""
-    out = []
-    for s in submissions:
-        s = Path(s)
-        if s.is_dir():
-            found = sorted(p for p in s.rglob("*.ipynb") if ".ipynb_checkpoints" not in p.parts)
-            named = [p for p in found if p.stem == exercise or p.stem.startswith(exercise + "-")]
-            out += named or found
-        else:
-            out.append(s)
-    return out
+_state = {}
 
 
-def _pool_worker_init():
-    # a pool that breaks terminates its processes (SIGTERM): exit through the `finally` clauses, which kill
-    # the sandbox's processes and remove its temporary directories
-    import signal
-    import sys
+def _pool_init(source, isolation):
+    """In each grading process of the pool: die with the batch's process, keep one sandbox for the run."""
     from multiprocessing.util import Finalize
 
-    from .sandbox import enable_zygote, stop_zygote
+    from .sandbox import Sandbox
+    from .sandbox.protocol import die_with_parent
 
+    die_with_parent(os.getppid())
+    # a pool that breaks terminates its processes (SIGTERM): exit through the `finally` clauses, which stop
+    # the sandbox (everything in it is killed)
     signal.signal(signal.SIGTERM, lambda signum, frame: sys.exit(1))
-    # this process's workers and kernels are forked from a zygote of its own, stopped (with what it still runs)
-    # when the process exits; were it killed outright, the zygote would see its control pipe close and stop
-    enable_zygote()
-    Finalize(None, stop_zygote, exitpriority=100)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the batch's to handle: it stops the pool
+    _state.update(source=source, sandbox=Sandbox(isolation))
+    Finalize(None, _state["sandbox"].close, exitpriority=100)
 
 
 def _grade_task(args):
-    source, submission, student, timeout, memory, generic, reveal_hidden = args
+    entry, data, options = args
+    source, sandbox = _state["source"], _state["sandbox"]
     try:
-        return grade_submission(source, submission, student=student, timeout=timeout, memory=memory,
-                                generic=generic, reveal_hidden=reveal_hidden)
+        return _grade_bytes(source, entry, data, sandbox=sandbox, **options)
     except GradingError:
         raise
     except Exception as exc:  # the grader itself failed on this submission: record it, keep the batch
-        return SubmissionResult(student, Path(source).stem, str(submission), "", "error",
+        return SubmissionResult(entry.student, source.exercise, entry.path, hashlib.sha256(data).hexdigest(), "error",
                                 f"the grader failed: {type(exc).__name__}: {exc}", [], 0.0)
 
 
+class _Interrupted(BaseException):
+    pass
+
+
 def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jobs=1, force=False,
-          generic=False, reveal_hidden=False, progress=None):
-    """Grade a batch of submissions of one exercise and write the gradebook.
+          generic=False, reveal_hidden=False, isolation=True, progress=None):
+    """Grade a batch of submissions of one exercise and record them in the gradebook.
 
     Parameters
     ----------
     source : path
-        The instructor's source notebook.
+        The instructor's source notebook (read once, at the start).
     submissions : list of paths
-        Notebooks, or directories searched for ``*.ipynb``.
+        Notebooks, or directories searched for ``*.ipynb`` (links, devices and FIFOs in them are refused).
     outdir : path
-        Receives ``grades.csv``, ``totals.csv``, ``feedback/<student>.html`` and ``.kinbook/`` (one result
-        file per graded submission, so that a re-run skips what is already graded).
+        Receives ``gradebook.sqlite`` and its exports ``grades.csv``, ``totals.csv``, ``feedback/<student>.html``.
     timeout, memory :
         Per submission: wall-clock seconds and megabytes.
     jobs : int
-        Submissions graded in parallel (a process pool). Each grading process forks the sandbox's worker
-        and kernel processes from a pre-warmed zygote of its own (:func:`kinbook.classroom.sandbox.zygote`),
-        stopped when the batch ends.
+        Submissions graded in parallel (a process pool). Each grading process keeps one sandbox, whose zygote
+        forks a fresh worker and kernel for every submission and resets everything after it.
     force : bool
-        Grade again submissions already graded.
+        Grade again submissions already graded (also those whose file changed since).
     generic, reveal_hidden : bool
         See :func:`grade_submission`.
+    isolation : bool
+        Run the notebooks inside bubblewrap (default). Where it is not available,
+        :class:`~kinbook.classroom.sandbox.IsolationUnavailable` is raised before anything is graded; False grades
+        with the audit hook only, warns, and records ``isolation: none``.
     progress : callable, optional
-        Called with each :class:`SubmissionResult` (or a skip notice string) as it completes.
+        Called with each :class:`SubmissionResult` (or a notice string) as it completes.
 
     Returns
     -------
     list of SubmissionResult
         The submissions graded in this run (not the skipped ones).
     """
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-    from concurrent.futures.process import BrokenProcessPool
-
-    from . import gradebook
-    from .sandbox import zygote
-
     src = load_source(source)
     references(src)  # an exercise that cannot be graded stops here, before any submission is run
-    book = gradebook.Gradebook(outdir)
-    tasks, seen = [], {}
-    for sub in _expand(submissions, src.exercise):
-        student = student_of(sub, src.exercise)
-        if student in seen:
-            raise GradingError(f"two submissions for student {student!r} of {src.exercise}: {seen[student]} and {sub}")
-        seen[student] = sub
-        if not force and book.has(student, src.exercise):
-            if progress:
-                progress(f"skipped {student}: already graded (use --force to grade again)")
-            continue
-        tasks.append((str(src.path), str(sub), student, float(timeout), float(memory), bool(generic),
-                      bool(reveal_hidden)))
-    results = []
+    if isolation:
+        from .sandbox.bwrap import check
+
+        check()
+    else:
+        warnings.warn(NO_ISOLATION_WARNING, RuntimeWarning, stacklevel=2)
+        if progress:
+            progress("warning: " + NO_ISOLATION_WARNING)
+    book = Gradebook(outdir)
+    run = book.begin_run(src, "bubblewrap" if isolation else "none")
+    options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden))
+    results, touched = [], set()
 
     def record(res):
-        book.record(res)
+        book.record(res, run)
         results.append(res)
+        touched.add(res.student)
         if progress:
             progress(res)
+        if src.changed_on_disk():
+            raise GradingError(f"the source notebook {str(src.path)!r} changed during grading; the run was stopped "
+                               "(every result recorded so far is kept). Grade again once it is final.")
 
-    def run_pool(batch, workers):
-        """Run tasks in one process pool; returns the tasks whose process died (BrokenProcessPool)."""
-        left = {t[1]: t for t in batch}
+    todo = []
+    for entry in collect(submissions, src.exercise, max_bytes=MAX_NOTEBOOK_BYTES):
+        previous = book.graded(src.exercise, entry.student)
+        if entry.status is None:
+            try:
+                digest = hashlib.sha256(read_entry(entry, MAX_NOTEBOOK_BYTES)).hexdigest()
+            except EntryRefused as exc:
+                entry.status, entry.message = exc.status, exc.message
+        if previous is not None and not force:
+            if entry.status is None and previous[0] != digest:
+                book.note_changed(src.exercise, entry.student, digest)
+                if progress:
+                    progress(f"changed since graded: {entry.student} ({entry.path}; use --force to grade it again)")
+            elif progress:
+                progress(f"skipped {entry.student}: already graded (use --force to grade again)")
+            continue
+        if entry.status is not None:
+            record(_refused(src, entry, entry.status, entry.message))
+            continue
+        todo.append(entry)
+
+    previous_handler = None
+    if _main_thread():
+        previous_handler = signal.signal(signal.SIGTERM, _on_sigterm)
+    try:
+        if jobs <= 1 or len(todo) <= 1:
+            from .sandbox import Sandbox
+
+            with Sandbox(isolation) as sb:
+                for entry in todo:
+                    record(_one(src, entry, options, sb))
+        else:
+            _run_pool(src, todo, options, int(jobs), isolation, record)
+    finally:
+        if previous_handler is not None:
+            signal.signal(signal.SIGTERM, previous_handler)
+        book.end_run(run)
         try:
-            with ProcessPoolExecutor(max_workers=workers, initializer=_pool_worker_init) as pool:
-                futures = {pool.submit(_grade_task, t): t for t in batch}
-                for fut in as_completed(futures):
-                    t = futures[fut]
+            book.export()
+        finally:
+            book.close()
+    return results
+
+
+def _main_thread():
+    import threading
+
+    return threading.current_thread() is threading.main_thread()
+
+
+def _on_sigterm(signum, frame):
+    raise _Interrupted("terminated")
+
+
+def _read_again(entry):
+    """The entry's bytes, read now (a file replaced since it was listed is refused)."""
+    try:
+        return read_entry(entry, MAX_NOTEBOOK_BYTES), None
+    except EntryRefused as exc:
+        return None, exc
+
+
+def _one(src, entry, options, sandbox):
+    data, refused = _read_again(entry)
+    if refused is not None:
+        return _refused(src, entry, refused.status, refused.message)
+    try:
+        return _grade_bytes(src, entry, data, sandbox=sandbox, **options)
+    except GradingError:
+        raise
+    except Exception as exc:
+        return SubmissionResult(entry.student, src.exercise, entry.path, hashlib.sha256(data).hexdigest(), "error",
+                                f"the grader failed: {type(exc).__name__}: {exc}", [], 0.0)
+
+
+def _run_pool(src, todo, options, jobs, isolation, record):
+    """Grade ``todo`` in a process pool, at most ``2 * jobs`` submissions read ahead; a grading process that dies
+    takes its submissions with it: those are graded again, each in a pool of its own, so that only the culprit
+    is lost (and recorded as an error)."""
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    from concurrent.futures.process import BrokenProcessPool
+
+    def one_pool(batch, workers):
+        lost = []
+        pool = ProcessPoolExecutor(max_workers=workers, initializer=_pool_init, initargs=(src, isolation))
+        try:
+            pending = {}
+            queue = list(batch)
+            broken = False
+            while queue or pending:
+                while queue and len(pending) < 2 * workers and not broken:
+                    entry = queue.pop(0)
+                    data, refused = _read_again(entry)
+                    if refused is not None:
+                        record(_refused(src, entry, refused.status, refused.message))
+                        continue
+                    try:
+                        pending[pool.submit(_grade_task, (entry, data, options))] = entry
+                    except BrokenProcessPool:
+                        queue.insert(0, entry)
+                        broken = True
+                if not pending:
+                    break
+                finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+                for fut in finished:
+                    entry = pending.pop(fut)
                     try:
                         res = fut.result()
                     except BrokenProcessPool:
+                        lost.append(entry)
+                        broken = True
                         continue
                     except GradingError:
                         raise
                     except Exception as exc:
-                        res = SubmissionResult(t[2], src.exercise, t[1], "", "error",
+                        res = SubmissionResult(entry.student, src.exercise, entry.path, "", "error",
                                                f"the grader failed: {type(exc).__name__}: {exc}", [], 0.0)
-                    left.pop(t[1], None)
                     record(res)
-        except BrokenProcessPool:
-            pass
-        return list(left.values())
+                if broken:
+                    lost += queue
+                    queue = []
+        except BaseException:
+            _kill_pool(pool)
+            raise
+        else:
+            pool.shutdown(wait=True)
+        return lost
 
-    if jobs <= 1:
-        with zygote():  # workers and kernels forked from one pre-warmed process (kinbook.classroom._zygote)
-            for t in tasks:
-                record(_grade_task(t))
-    else:
-        # a grading process that dies takes the pool's other submissions with it: those are graded again,
-        # each in a pool of its own, so that only the culprit is lost (and recorded as an error)
-        for t in run_pool(tasks, int(jobs)):
-            for lost in run_pool([t], 1):
-                msg = "the grading process died while grading this notebook"
-                record(SubmissionResult(lost[2], src.exercise, lost[1], "", "error", msg,
-                                        _all_parts(references(src), "error", msg), 0.0))
-    book.write()
-    return results
+    for entry in one_pool(todo, jobs):
+        for culprit in one_pool([entry], 1):
+            msg = "the grading process died while grading this notebook"
+            record(SubmissionResult(culprit.student, src.exercise, culprit.path, "", "error", msg,
+                                    _all_parts(references(src), "error", msg), 0.0))
+
+
+def _kill_pool(pool):
+    """Stop a pool at once: its processes are killed (their sandboxes die with them)."""
+    for p in list(getattr(pool, "_processes", {}).values()):
+        try:
+            p.kill()
+        except Exception:
+            pass
+    pool.shutdown(wait=False, cancel_futures=True)
+
+
+def student_of(path, exercise):
+    """The student a submission path belongs to (see :func:`kinbook.classroom.files.student_id`)."""
+    from .files import _name_of
+
+    path = Path(path)
+    return student_id(_name_of(str(path.parent), (path.name,), exercise))[0]

@@ -8,9 +8,17 @@ The conventions (nbgrader's markers, so instructors already know them):
 * ``### BEGIN HIDDEN CHECKS`` … ``### END HIDDEN CHECKS``: code the student never gets (typically
   :func:`~kinbook.classroom.part` declarations whose ``expected=`` would give the answer away). Removed from
   the student's version; run only by the grader, in its own process.
-* every other cell is *locked*: released read-only (``editable: false``), and its checksum is recorded; a
-  submission whose locked cells differ from the release is graded ``tampered``.
+* every other cell is *locked*: released read-only (``editable: false``), and its checksum (type and
+  source: not its id or metadata) is recorded; a submission whose locked cells are not all there, unchanged
+  and in order, is graded ``tampered``. Cells are matched by content, not by id, so a notebook re-saved in
+  nbformat 4.4 (which has no cell ids) is not tampered.
 * a cell ``NAME = parameters(...)`` holds the per-student parameters (:mod:`kinbook.classroom.variant`).
+
+The source notebook is the instructor's and is trusted; it is read once (:func:`load_source`: its bytes,
+their sha256, the parsed notebook), and the grader runs its code from that in-memory copy, compiled once
+(:func:`grader_code`). A submission is student data: :func:`parse_submission` refuses it before parsing when it
+is too large, and reads it as plain JSON with a size, cell-count and structure check (no nbformat schema
+validation, which can take minutes on a hostile file).
 """
 
 from __future__ import annotations
@@ -20,15 +28,22 @@ import copy
 import hashlib
 import json
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import GradingError
 
 __all__ = [
     "BEGIN_SOLUTION", "END_SOLUTION", "BEGIN_HIDDEN", "END_HIDDEN", "Source", "load_source", "checksum",
-    "student_notebook", "locked_checksums", "grader_segments", "find_parameters",
+    "student_notebook", "locked_checksums", "locked_sequence", "missing_locked", "grader_segments", "grader_code",
+    "find_parameters", "parse_submission", "SubmissionRefused", "MAX_NOTEBOOK_BYTES", "MAX_CELLS",
 ]
+
+#: A submission larger than this is refused unread (``too-large``).
+MAX_NOTEBOOK_BYTES = 8 * 1024 * 1024
+#: A submission with more cells than this is refused (``too-large``).
+MAX_CELLS = 2000
+MAX_CELL_CHARS = 1_000_000
 
 BEGIN_SOLUTION = "### BEGIN SOLUTION"
 END_SOLUTION = "### END SOLUTION"
@@ -47,11 +62,25 @@ class Source:
     nb : nbformat.NotebookNode
     exercise : str
         The exercise's identifier: the file name without ``.ipynb``.
+    sha256 : str
+        Of the bytes read (once) from ``path``.
     """
 
     path: Path
     nb: object
     exercise: str
+    sha256: str = ""
+    compiled: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def __getstate__(self):  # code objects do not pickle: a copy in another process compiles again
+        return {**self.__dict__, "compiled": {}}
+
+    def changed_on_disk(self):
+        """Whether the file at ``path`` no longer holds the bytes that were read (edited, replaced, removed)."""
+        try:
+            return hashlib.sha256(Path(self.path).read_bytes()).hexdigest() != self.sha256
+        except OSError:
+            return True
 
     @property
     def parameters_cell(self):
@@ -60,12 +89,15 @@ class Source:
 
 
 def load_source(path):
-    """Read and validate a source notebook; cells get stable ids (``kb-NN``) when they have none."""
+    """Read (once) and validate a source notebook; cells get stable ids (``kb-NN``) when they have none."""
     import nbformat
 
+    if isinstance(path, Source):
+        return path
     path = Path(path)
     try:
-        nb = nbformat.read(str(path), as_version=4)
+        data = path.read_bytes()
+        nb = nbformat.reads(data.decode("utf-8"), as_version=4)
     except FileNotFoundError:
         raise GradingError(f"source notebook {str(path)!r} does not exist") from None
     except Exception as exc:
@@ -77,7 +109,7 @@ def load_source(path):
         seen.add(cell["id"])
         if cell.cell_type == "code":
             _regions(cell.source, f"{path.name}, cell {i + 1}")  # validates the markers
-    return Source(path, nb, path.stem)
+    return Source(path, nb, path.stem, hashlib.sha256(data).hexdigest())
 
 
 def _regions(code, where):
@@ -111,9 +143,13 @@ def is_answer_cell(cell):
 
 
 def checksum(cell):
-    """Checksum of a locked cell: its type and its source (line endings and trailing blanks normalized)."""
-    text = "\n".join(line.rstrip() for line in cell.source.replace("\r\n", "\n").split("\n")).strip()
-    return hashlib.sha256(f"{cell.cell_type}\n{text}".encode()).hexdigest()
+    """Checksum of a locked cell: its type and its source (line endings and trailing blanks normalized) — not
+    its id, outputs or metadata."""
+    source = cell["source"]
+    if isinstance(source, list):
+        source = "".join(source)
+    text = "\n".join(line.rstrip() for line in source.replace("\r\n", "\n").split("\n")).strip()
+    return hashlib.sha256(f"{cell['cell_type']}\n{text}".encode()).hexdigest()
 
 
 # ================================================================================================ parameters
@@ -219,11 +255,93 @@ def student_notebook(source, values=None, student=None, keep_solutions=False):
 
 
 def locked_checksums(nb):
-    """{cell id: checksum} of the locked cells of a student notebook."""
-    return {c["id"]: checksum(c) for c in nb.cells if c.get("metadata", {}).get("kinbook", {}).get("locked")}
+    """{cell id: checksum} of the locked cells of a student notebook (for the release's manifest)."""
+    return dict(locked_sequence(nb))
+
+
+def locked_sequence(nb):
+    """[(cell id, checksum)] of the locked cells of a student notebook, in order."""
+    return [(c["id"], checksum(c)) for c in nb.cells if c.get("metadata", {}).get("kinbook", {}).get("locked")]
+
+
+def missing_locked(expected, cells):
+    """The ids of the locked cells (``expected``: :func:`locked_sequence`) that ``cells`` (a submission's) do not
+    hold unchanged and in order; [] when every one is there. Cells are matched by checksum, not by id."""
+    sums = [checksum(c) for c in cells]
+    missing, at = [], 0
+    for cid, h in expected:
+        try:
+            at = sums.index(h, at) + 1
+        except ValueError:
+            missing.append(cid)
+    return missing
+
+
+# ================================================================================================ submissions
+class SubmissionRefused(Exception):
+    """A submitted file that is not graded: ``status`` (``too-large``, ``corrupt-notebook``) and a message."""
+
+    def __init__(self, status, message):
+        super().__init__(message)
+        self.status, self.message = status, message
+
+
+def parse_submission(data):
+    """The cells of a submitted notebook (bytes): a list of ``{"cell_type", "source", "id"}`` dicts.
+
+    Refused before parsing when larger than :data:`MAX_NOTEBOOK_BYTES` or holding more than :data:`MAX_CELLS`
+    cells (``too-large``); read as JSON, which must be an nbformat-4 notebook whose cells have a type and a
+    source (``corrupt-notebook``). Nothing in it is run or evaluated here.
+
+    Raises
+    ------
+    SubmissionRefused
+    """
+    if len(data) > MAX_NOTEBOOK_BYTES:
+        raise SubmissionRefused("too-large", f"the notebook has {len(data):,} bytes (at most {MAX_NOTEBOOK_BYTES:,}); "
+                                "not read")
+    if data.count(b'"cell_type"') > MAX_CELLS:
+        raise SubmissionRefused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
+    try:
+        nb = json.loads(data.decode("utf-8"))
+    except (UnicodeDecodeError, ValueError, RecursionError) as exc:
+        raise SubmissionRefused("corrupt-notebook", f"not a readable notebook: {type(exc).__name__}: {str(exc)[:200]}") from None
+    if not isinstance(nb, dict) or nb.get("nbformat") != 4 or not isinstance(nb.get("cells"), list):
+        raise SubmissionRefused("corrupt-notebook", "not a readable notebook: not an nbformat-4 notebook with a list "
+                                "of cells")
+    if len(nb["cells"]) > MAX_CELLS:
+        raise SubmissionRefused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
+    cells = []
+    for i, c in enumerate(nb["cells"]):
+        source = c.get("source") if isinstance(c, dict) else None
+        if isinstance(source, list) and all(isinstance(line, str) for line in source):
+            source = "".join(source)
+        if not isinstance(source, str) or c.get("cell_type") not in ("code", "markdown", "raw"):
+            raise SubmissionRefused("corrupt-notebook", f"not a readable notebook: cell {i + 1} has no type or source")
+        if len(source) > MAX_CELL_CHARS:
+            raise SubmissionRefused("too-large", f"cell {i + 1} has more than {MAX_CELL_CHARS:,} characters; not read")
+        cells.append({"cell_type": c["cell_type"], "source": source, "id": str(c.get("id", ""))[:64]})
+    return cells
 
 
 # ================================================================================================ grader view
+def grader_code(source, values=None):
+    """:func:`grader_segments` compiled: [(cell index, kind, code object or None)] — None for code that does not
+    stand alone (around a solution region). Compiled once per source (the parameters cell, which depends on
+    ``values``, once per values), from the in-memory copy."""
+    out = []
+    params = find_parameters(source.nb)
+    for index, kind, code in grader_segments(source, values):
+        key = (index, kind, code) if params is not None and index == params[0] else (index, kind)
+        if key not in source.compiled:
+            try:
+                source.compiled[key] = compile(code, f"<{source.exercise} cell {index + 1}>", "exec")
+            except SyntaxError:
+                source.compiled[key] = None
+        out.append((index, kind, source.compiled[key]))
+    return out
+
+
 def grader_segments(source, values=None):
     """The code the grader runs to build the references: [(cell index, kind, code)] where kind is "code"
     or "hidden"; solution regions are left out, the parameters cell gets ``values``."""

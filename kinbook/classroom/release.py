@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
 from pathlib import Path
 
 from ..errors import GradingError
+from .files import atomic_write
 from .notebook import load_source, locked_checksums, student_notebook
 from .variant import references, student_parameters
 
@@ -15,21 +15,10 @@ __all__ = ["release", "write_variant", "write_notebook"]
 
 
 def write_notebook(nb, path):
-    """Write a notebook atomically (temporary file + ``os.replace``)."""
+    """Write a notebook atomically (:func:`kinbook.classroom.files.atomic_write`)."""
     import nbformat
 
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            nbformat.write(nb, f)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
+    return atomic_write(path, nbformat.writes(nb) + "\n")
 
 
 def release(sources, outdir="release"):
@@ -65,17 +54,12 @@ def release(sources, outdir="release"):
             "parts": [{"part": p.name, "points": p.points, "answer": p.answer, "check": p.check,
                        "hidden": p.hidden} for p in parts],
         }
-    outdir.mkdir(parents=True, exist_ok=True)
-    tmp = manifest_path.with_suffix(".json.tmp")
-    tmp.write_text(json.dumps(manifest, indent=1, sort_keys=True))
-    os.replace(tmp, manifest_path)
+    atomic_write(manifest_path, json.dumps(manifest, indent=1, sort_keys=True))
     return written
 
 
 def write_variant(source, student, outdir="."):
     """Write ``student``'s own version of ``source`` as ``outdir/<exercise>-<student>.ipynb``."""
-    from .notebook import student_notebook as _sn
-
     source = load_source(source)
     values = student_parameters(source, student)
-    return write_notebook(_sn(source, values, student), Path(outdir) / f"{source.exercise}-{student}.ipynb")
+    return write_notebook(student_notebook(source, values, student), Path(outdir) / f"{source.exercise}-{student}.ipynb")

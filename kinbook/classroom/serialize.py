@@ -1,41 +1,49 @@
 """Answers as data: how a student's named answers leave the sandbox and enter the grader.
 
-Inside the student's kernel, :func:`encode` turns each answer into JSON-able data:
+Inside the student's kernel, :func:`encode` turns each answer into JSON-able data, without parsing or
+evaluating anything:
 
 * numbers and numeric arrays → ``{"kind": "array", "shape": [...], "data": [...]}`` (nan/inf as strings);
-* sympy expressions, matrices, and lists mixing expressions, numbers and strings (strings are parsed by
-  sympy *inside the sandbox*) → ``{"kind": "sympy", "shape": [r, c], "data": [tree, ...]}`` where a tree is
-  ``["Symbol", "x1"]``, ``["Integer", "3"]``, ``["Rational", "1", "2"]``, ``["Float", "0.5"]``,
-  ``["pi"]``, ``["E"]`` or ``[head, tree, ...]`` with ``head`` an operation (``Add``, ``Mul``, ``Pow``) or a
-  function of :data:`FUNCTIONS`;
+* sympy expressions and matrices, and (nested) lists mixing expressions, numbers and strings →
+  ``{"kind": "sympy", "shape": [r, c], "data": [entry, ...]}`` where an entry is a tree — ``["Symbol", "x1"]``,
+  ``["Integer", "3"]``, ``["Rational", "1", "2"]``, ``["Float", "0.5"]``, ``["pi"]``, ``["E"]`` or
+  ``[head, tree, ...]`` with ``head`` an operation (``Add``, ``Mul``, ``Pow``) or a function of
+  :data:`FUNCTIONS` — or ``["Text", "..."]``, a string as the student typed it;
 * anything else → ``{"kind": "unsupported", "type": "..."}``.
 
-In the grader, :func:`decode` rebuilds the value with its own small reader: a whitelist of heads, caps on
-size, depth and digits, no ``eval``, no ``sympify`` of text, no pickle.
+In the grader, :func:`decode` rebuilds the value. It never gives anything the student wrote to ``eval``,
+``sympify`` or pickle: the record's structure is checked first (shape, number of entries and nodes, depth,
+literal sizes, symbol names), then each tree is written out as an expression with every operation
+parenthesized and read back by the team's one whitelisting reader,
+:func:`kinbook.expressions.read_expression`, which bounds integer sizes, exponents and the magnitude of every
+numeric sub-expression *before* any arithmetic (a tower of powers is refused in microseconds, never computed).
+Text entries are handed to the checker as text, which reads them with the same reader.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import re
 
 import numpy as np
 
-__all__ = ["encode", "dumps", "decode", "DecodeError", "FUNCTIONS", "MAX_NODES", "MAX_DEPTH"]
+__all__ = ["encode", "dumps", "decode", "DecodeError", "FUNCTIONS", "MAX_NODES", "MAX_DEPTH", "MAX_TEXT"]
 
-FUNCTIONS = ("sin", "cos", "tan", "cot", "sec", "csc", "asin", "acos", "atan", "atan2", "sinh", "cosh",
-             "tanh", "exp", "log", "sqrt", "Abs", "sign")
+FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "exp", "log", "sqrt", "Abs", "sign")
 OPERATIONS = ("Add", "Mul", "Pow")
+#: Bounds on one answer record (checked on the JSON structure, before anything is built).
 MAX_NODES = 50_000
-MAX_DEPTH = 200
+MAX_DEPTH = 90
 MAX_DIGITS = 60
 MAX_ENTRIES = 100_000
+MAX_TEXT = 20_000
 _NAME = re.compile(r"^[A-Za-z_\u0370-\u03ff][A-Za-z0-9_\u0370-\u03ff]{0,40}$")
 
 
 class DecodeError(ValueError):
-    """An answer record that is not one :func:`encode` writes."""
+    """An answer record that cannot be graded; the message says why (and is shown to the student)."""
 
 
 # ============================================================================================ in the kernel
@@ -47,6 +55,14 @@ def _number(x):
 
 
 def _tree(e, sp):
+    if isinstance(e, str):
+        return ["Text", e[:MAX_TEXT + 1]]
+    if isinstance(e, (bool, np.bool_)):
+        raise TypeError("a boolean is not a value of a kinematic quantity")
+    if isinstance(e, (int, np.integer)):
+        return ["Integer", str(int(e))]
+    if isinstance(e, (float, np.floating)):
+        return ["Float", repr(float(e))]
     if isinstance(e, sp.Symbol):
         return ["Symbol", e.name]
     if isinstance(e, sp.Integer):
@@ -69,46 +85,49 @@ def _tree(e, sp):
     raise TypeError(f"{type(e).__name__} is not supported in answers")
 
 
+def _rows(value, sp):
+    """A 2-d list of entries from a matrix, an expression, a string or (nested) lists of those."""
+    if isinstance(value, sp.MatrixBase):
+        return [[value[i, j] for j in range(value.cols)] for i in range(value.rows)]
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if isinstance(value, (list, tuple)):
+        if value and all(isinstance(r, (list, tuple, sp.MatrixBase, np.ndarray)) for r in value):
+            rows = [list(np.asarray(r, dtype=object).ravel()) if not isinstance(r, (list, tuple)) else list(r)
+                    for r in value]
+            if len({len(r) for r in rows}) != 1:
+                raise TypeError("rows of different lengths")
+            return rows
+        return [[x] for x in value]
+    return [[value]]
+
+
 def encode(value):
     """JSON-able data for one answer (see the module docstring). Runs inside the student's kernel."""
     import sympy as sp
 
-    if isinstance(value, (bool, int, float, np.number)) and not isinstance(value, np.bool_):
+    if isinstance(value, (bool, np.bool_)):
+        return {"kind": "unsupported", "type": type(value).__name__}
+    if isinstance(value, (int, float, np.number)):
         return {"kind": "array", "shape": [], "data": [_number(value)]}
     if isinstance(value, np.ndarray) and value.dtype != object:
         a = np.asarray(value, dtype=float)
         return {"kind": "array", "shape": list(a.shape), "data": [_number(x) for x in a.ravel()]}
     if isinstance(value, (sp.Basic, sp.MatrixBase, list, tuple, str, np.ndarray)):
+        if isinstance(value, (list, tuple, np.ndarray)):
+            try:
+                arr = np.asarray(value, dtype=float)
+            except (TypeError, ValueError):
+                arr = None
+            if arr is not None and arr.dtype != object:
+                return {"kind": "array", "shape": list(arr.shape), "data": [_number(x) for x in arr.ravel()]}
         try:
-            arr = np.asarray(value, dtype=float) if not isinstance(value, (sp.Basic, sp.MatrixBase, str)) else None
-        except (TypeError, ValueError):
-            arr = None
-        if arr is not None and arr.dtype != object:
-            return {"kind": "array", "shape": list(arr.shape), "data": [_number(x) for x in arr.ravel()]}
-        try:
-            M = _as_matrix(value, sp)
-            return {"kind": "sympy", "shape": list(M.shape), "data": [_tree(sp.sympify(e), sp) for e in M]}
-        except Exception as exc:  # unreadable: graded as a malformed answer
+            rows = _rows(value, sp)
+            return {"kind": "sympy", "shape": [len(rows), len(rows[0]) if rows else 0],
+                    "data": [_tree(e, sp) for r in rows for e in r]}
+        except (TypeError, ValueError, RecursionError) as exc:  # unreadable: graded as a malformed answer
             return {"kind": "unsupported", "type": type(value).__name__, "error": f"{type(exc).__name__}: {exc}"[:300]}
     return {"kind": "unsupported", "type": type(value).__name__}
-
-
-def _as_matrix(value, sp):
-    if isinstance(value, sp.MatrixBase):
-        return value
-    if isinstance(value, np.ndarray):
-        value = value.tolist()
-    if isinstance(value, (list, tuple)):
-        if value and all(isinstance(r, (list, tuple, sp.MatrixBase)) for r in value):
-            return sp.Matrix([[_entry(x, sp) for x in r] for r in value])
-        return sp.Matrix([_entry(x, sp) for x in value])
-    return sp.Matrix([_entry(value, sp)])
-
-
-def _entry(x, sp):
-    if isinstance(x, str):
-        return sp.sympify(x.replace("^", "**"))
-    return sp.sympify(x)
 
 
 def dumps(names, namespace):
@@ -126,8 +145,9 @@ def dumps(names, namespace):
 
 
 # ============================================================================================= in the grader
-def decode(record):
-    """The value of one answer record: a float, an ndarray or a sympy Matrix. Raises :class:`DecodeError`."""
+def decode(record, name="answer"):
+    """The value of one answer record: a float, an ndarray, a sympy Matrix, or — when some entries are text —
+    a list of rows mixing sympy expressions and strings (read by the checker). Raises :class:`DecodeError`."""
     if not isinstance(record, dict) or not isinstance(record.get("kind"), str):
         raise DecodeError("an answer record must be an object with a 'kind'")
     kind = record["kind"]
@@ -137,7 +157,8 @@ def decode(record):
                           f"sympy expressions/matrices" + (f" ({str(record.get('error'))[:200]})" if record.get("error") else ""))
     shape = record.get("shape")
     data = record.get("data")
-    if (not isinstance(shape, list) or len(shape) > 3 or not all(isinstance(n, int) and 0 <= n <= MAX_ENTRIES for n in shape)
+    if (not isinstance(shape, list) or len(shape) > 3
+            or not all(isinstance(n, int) and not isinstance(n, bool) and 0 <= n <= MAX_ENTRIES for n in shape)
             or not isinstance(data, list) or len(data) > MAX_ENTRIES):
         raise DecodeError("bad shape or data in an answer record")
     size = int(np.prod(shape)) if shape else 1
@@ -152,6 +173,8 @@ def decode(record):
                 if x not in ("nan", "inf", "-inf"):
                     raise DecodeError("array entries must be numbers")
                 x = float(x)
+            elif isinstance(x, int) and abs(x) > 10 ** MAX_DIGITS:
+                raise DecodeError("an array entry is too large")
             vals.append(float(x))
         a = np.array(vals, dtype=float).reshape(shape)
         return float(a) if not shape else a
@@ -161,12 +184,43 @@ def decode(record):
         if len(shape) != 2:
             raise DecodeError("a sympy answer must have a 2-d shape")
         budget = [MAX_NODES]
-        entries = [_rebuild(t, sp, 0, budget) for t in data]
+        entries = [_entry(t, budget, f"`{name}`, entry {k + 1}") for k, t in enumerate(data)]
+        rows = [entries[i * shape[1]:(i + 1) * shape[1]] for i in range(shape[0])]
+        if any(isinstance(e, str) for e in entries):
+            return rows
         return sp.Matrix(shape[0], shape[1], entries)
     raise DecodeError(f"unknown answer kind {kind[:20]!r}")
 
 
-def _rebuild(t, sp, depth, budget):
+def _entry(t, budget, where):
+    """One entry: a string (as the student typed it), or a tree read back through the safe reader."""
+    if isinstance(t, list) and len(t) == 2 and t[0] == "Text":
+        if not isinstance(t[1], str) or len(t[1]) > MAX_TEXT:
+            raise DecodeError(f"{where}: a text answer longer than {MAX_TEXT} characters")
+        return t[1]
+    names = set()
+    pieces = []
+    _text(t, 0, budget, names, pieces)
+    from .. import expressions
+    from ..errors import KinbookError
+
+    reserved = set(expressions.FUNCTIONS) | set(expressions.ALIASES) | set(expressions.CONSTANTS)
+    clash = sorted(names & reserved)
+    if clash:
+        raise DecodeError(f"{where}: a symbol is named like a function or constant ({clash[0]!r})")
+    import sympy as sp
+
+    limits = dataclasses.replace(expressions.DEFAULT_LIMITS, length=40 * MAX_NODES, nodes=MAX_NODES, digits=MAX_DIGITS + 1,
+                                 depth=2 * MAX_DEPTH + 10)
+    try:
+        return expressions.read_expression("".join(pieces), symbols={n: sp.Symbol(n) for n in names}, where=where,
+                                           limits=limits)
+    except KinbookError as exc:
+        raise DecodeError(f"the answer is not gradable data: {getattr(exc, 'reason', None) or exc}") from None
+
+
+def _text(t, depth, budget, names, out):
+    """Write tree ``t`` as an expression (every operation parenthesized) into ``out``, checking its structure."""
     budget[0] -= 1
     if budget[0] < 0:
         raise DecodeError(f"expression larger than {MAX_NODES} nodes")
@@ -178,37 +232,33 @@ def _rebuild(t, sp, depth, budget):
     if head == "Symbol":
         if len(args) != 1 or not isinstance(args[0], str) or not _NAME.match(args[0]):
             raise DecodeError("bad symbol name")
-        return sp.Symbol(args[0])
-    if head in ("Integer", "Rational"):
+        names.add(args[0])
+        out.append(args[0])
+    elif head in ("Integer", "Rational"):
         if len(args) != (1 if head == "Integer" else 2) or not all(
                 isinstance(a, str) and re.fullmatch(r"-?\d{1,%d}" % MAX_DIGITS, a) for a in args):
             raise DecodeError("bad integer")
-        if head == "Integer":
-            return sp.Integer(int(args[0]))
-        if int(args[1]) == 0:
+        if head == "Rational" and int(args[1]) == 0:
             raise DecodeError("zero denominator")
-        return sp.Rational(int(args[0]), int(args[1]))
-    if head == "Float":
-        if len(args) != 1 or not isinstance(args[0], str) or len(args[0]) > 40:
+        out.append(f"({args[0]})" if head == "Integer" else f"(({args[0]})/({args[1]}))")
+    elif head == "Float":
+        if len(args) != 1 or not isinstance(args[0], str) or not re.fullmatch(r"-?(\d+\.?\d*(e[-+]?\d+)?|inf|nan)", args[0]) \
+                or len(args[0]) > 40:
             raise DecodeError("bad float")
-        try:
-            return sp.Float(float(args[0]))
-        except ValueError:
-            raise DecodeError("bad float") from None
-    if head in ("pi", "E"):
+        out.append(f"({args[0]})")
+    elif head in ("pi", "E"):
         if args:
             raise DecodeError("constants take no arguments")
-        return sp.pi if head == "pi" else sp.E
-    if head in OPERATIONS:
-        if len(args) < (2 if head == "Pow" else 1) or (head == "Pow" and len(args) != 2):
+        out.append(head)
+    elif head in OPERATIONS or head in FUNCTIONS:
+        if head == "Pow" and len(args) != 2 or head != "Pow" and not args or head in FUNCTIONS and len(args) > 2:
             raise DecodeError(f"bad arity for {head}")
-        sub = [_rebuild(a, sp, depth + 1, budget) for a in args]
-        if head == "Pow" and sub[1].is_Number and abs(float(sub[1])) > 64:
-            raise DecodeError("exponent too large")
-        return getattr(sp, head)(*sub)
-    if head in FUNCTIONS:
-        sub = [_rebuild(a, sp, depth + 1, budget) for a in args]
-        if len(sub) != (2 if head == "atan2" else 1):
-            raise DecodeError(f"bad arity for {head}")
-        return getattr(sp, head)(*sub)
-    raise DecodeError(f"operation {head[:30]!r} is not allowed in answers")
+        sep = {"Add": " + ", "Mul": "*", "Pow": ")**("}.get(head, ", ")
+        out.append("(" if head in OPERATIONS else f"{head}(")
+        for k, a in enumerate(args):
+            if k:
+                out.append(sep)
+            _text(a, depth + 1, budget, names, out)
+        out.append(")")
+    else:
+        raise DecodeError(f"operation {head[:30]!r} is not allowed in answers")

@@ -6,31 +6,38 @@ a draw is kept only when the instructor's own code runs with it (the mechanism a
 converges); otherwise the next draw is tried.
 
 :func:`references` is the grader's reading of a source notebook: it runs the source's code — without the
-solutions, with the hidden checks — in the grader's process, and returns the declared
+solutions, with the hidden checks — in the grader's process, from the copy read once by
+:func:`~kinbook.classroom.notebook.load_source` (compiled once), and returns the declared
 :class:`~kinbook.classroom.parts.Part` objects with their targets and expected values computed by kinbook.
+
+"Variant" means one thing in kinbook: a student's own version of an exercise (its parameters drawn for that
+student, :func:`variant`).
 """
 
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import io
 import warnings
 
 import numpy as np
 
 from ..errors import GradingError, KinbookError
-from .notebook import find_parameters, grader_segments, load_source, student_notebook
+from .notebook import find_parameters, grader_code, load_source, student_notebook
 from .parts import parameters, part, recording
 
-__all__ = ["student_parameters", "variant", "references", "MAX_DRAWS"]
+__all__ = ["student_parameters", "variant", "references", "seed_from", "MAX_DRAWS"]
 
 MAX_DRAWS = 25
 
 
-def _seed(exercise, student, attempt):
-    # the same derivation as kinbook.grading.exercise (a student id → a reproducible seed), per exercise
-    from ..grading.exercise import seed_from
+def seed_from(text):
+    """A reproducible 64-bit seed from a text (a student id, an exercise): the first 8 bytes of its sha256."""
+    return int.from_bytes(hashlib.sha256(str(text).encode("utf-8")).digest()[:8], "little")
 
+
+def _seed(exercise, student, attempt):
     return seed_from(f"{exercise}:{student}:{attempt}")
 
 
@@ -51,7 +58,7 @@ def _draw(ranges, defaults, rng):
 
 def student_parameters(source, student):
     """The parameter values of ``student`` (a dict), or None when the exercise has no parameters."""
-    source = load_source(source) if not hasattr(source, "nb") else source
+    source = load_source(source)
     found = find_parameters(source.nb)
     if found is None:
         return None
@@ -70,7 +77,7 @@ def student_parameters(source, student):
 
 def variant(source, student):
     """The student's own notebook (solutions removed, their parameters written in)."""
-    source = load_source(source) if not hasattr(source, "nb") else source
+    source = load_source(source)
     return student_notebook(source, student_parameters(source, student), student)
 
 
@@ -89,9 +96,8 @@ def references(source, values=None):
     list of Part
         In declaration order; ``hidden`` is set on parts declared in hidden checks.
     """
-    source = load_source(source) if not hasattr(source, "nb") else source
-    key = (str(source.path), source.path.stat().st_mtime_ns if source.path.exists() else 0,
-           repr(sorted((values or {}).items())))
+    source = load_source(source)
+    key = (source.sha256, repr(sorted((values or {}).items())))
     if key in _cache:
         return _cache[key]
     import matplotlib
@@ -105,10 +111,8 @@ def references(source, values=None):
     try:
         with recording() as rec, warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()):
             warnings.simplefilter("ignore")
-            for index, kind, code in grader_segments(source, values):
-                try:
-                    compiled = compile(code, f"<{source.exercise} cell {index + 1}>", "exec")
-                except SyntaxError:
+            for index, kind, compiled in grader_code(source, values):
+                if compiled is None:
                     continue  # code around a solution region that does not stand alone
                 before = len(rec)
                 try:

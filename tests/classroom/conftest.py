@@ -1,40 +1,130 @@
+import hashlib
+import json
 import os
+import shutil
+import time
+import unicodedata
 
 import pytest
 
 from kinbook.classroom import grade
+from kinbook.classroom.sandbox import bwrap
 
-# The fixture notebooks are hostile on purpose (infinite loops, memory hogs, os._exit): `pytest --nbval` must
-# never run them outside the grader's sandbox.
+# The fixture notebooks are hostile on purpose (infinite loops, memory hogs, os._exit, escape attempts):
+# `pytest --nbval` must never run them outside the grader's sandbox.
 collect_ignore_glob = ["submissions/*", "source/*"]
 
 HERE = os.path.dirname(__file__)
+ROOT = os.path.dirname(os.path.dirname(HERE))
 SOURCE = os.path.join(HERE, "source", "tiny.ipynb")
 SUBMISSIONS = os.path.join(HERE, "submissions")
 CANARY = "/tmp/kinbook-canary.txt"
 CANARY_DIR = "/tmp/kinbook-canary-dir"
 EVIL = "/tmp/kinbook-evil.txt"
+SECRET = "PRIVATE-SECRET-b7e1"
+#: Whether the isolation tests can run here; else the reason they are skipped.
+BWRAP = bwrap.available()
+WHY_NO_BWRAP = "" if BWRAP else f"no operating-system sandbox here: {bwrap._probe()} (install `bubblewrap`)"
+needs_bwrap = pytest.mark.skipif(not BWRAP, reason=WHY_NO_BWRAP)
+#: The student id of the over-long file name (as kinbook.classroom.files.student_id shortens it).
+LONG_NAME = "x" * 240
 
 
 def submission(name):
     return os.path.join(SUBMISSIONS, f"{name}.ipynb")
 
 
+def checkout_hash():
+    """sha256 of every file of the package, the exercises and the classroom tests (what a student would change)."""
+    h = hashlib.sha256()
+    for top in ("kinbook", "exercises", os.path.join("tests", "classroom")):
+        for d, dirs, files in sorted(os.walk(os.path.join(ROOT, top))):
+            dirs.sort()
+            for f in sorted(files):
+                if f.endswith(".pyc"):
+                    continue
+                path = os.path.join(d, f)
+                h.update(path.encode() + b"\0")
+                with open(path, "rb") as fh:
+                    h.update(fh.read())
+    return h.hexdigest()
+
+
+def descendants(pid):
+    """Live processes below ``pid`` (from /proc's parent links; zombies left out)."""
+    children = {}
+    for name in os.listdir("/proc"):
+        if not name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{name}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if fields[0] != "Z":
+            children.setdefault(int(fields[1]), []).append(int(name))
+    out, stack = [], [pid]
+    while stack:
+        for c in children.get(stack.pop(), []):
+            out.append(c)
+            stack.append(c)
+    return out
+
+
+def make_collected(root):
+    """A `collected/` directory: every committed fixture, and the entries that cannot be committed."""
+    collected = root / "collected"
+    collected.mkdir()
+    for f in sorted(os.listdir(SUBMISSIONS)):
+        shutil.copy(os.path.join(SUBMISSIONS, f), collected / f)
+    good = open(submission("good"), "rb").read()
+    nb = json.loads(good)
+    # a 20 MB notebook of 150,000 cells, and a small one with too many cells: refused before parsing
+    cell = {"cell_type": "code", "execution_count": None, "metadata": {}, "outputs": [], "source": "x = 1 " * 12}
+    (collected / "giant.ipynb").write_text(json.dumps({**nb, "cells": nb["cells"] + [cell] * 150_000}))
+    (collected / "many_cells.ipynb").write_text(json.dumps({**nb, "cells": nb["cells"] + [cell] * 2_500}))
+    # the same notebook re-saved by an older Jupyter (nbformat 4.4: no cell ids)
+    old = {**nb, "nbformat_minor": 4, "cells": [{k: v for k, v in c.items() if k != "id"} for c in nb["cells"]]}
+    (collected / "old44.ipynb").write_text(json.dumps(old, indent=1))
+    # links (to the source, to a private file, to a directory of classmates), a FIFO, a device node
+    secret = root / "private.txt"
+    secret.write_text(SECRET)
+    os.symlink(SOURCE, collected / "link_source.ipynb")
+    os.symlink(secret, collected / "link_secret.ipynb")
+    os.symlink(SUBMISSIONS, collected / "linkdir")
+    os.mkfifo(collected / "fifo.ipynb")
+    try:
+        os.mknod(collected / "device.ipynb", 0o20644, os.makedev(1, 3))
+    except PermissionError:  # not root: the device case is left out
+        pass
+    # ids that clash once normalized (NFC and NFD of the same name) and one too long for a file system's taste
+    for form in ("NFC", "NFD"):
+        (collected / (unicodedata.normalize(form, "José") + ".ipynb")).write_bytes(good)
+    (collected / (LONG_NAME + ".ipynb")).write_bytes(good)
+    return collected
+
+
 @pytest.fixture(scope="session")
 def batch(tmp_path_factory):
-    """Every fixture submission graded once, in one batch, two at a time (timeout 5 s, memory 400 MB)."""
-    out = tmp_path_factory.mktemp("graded")
+    """Every fixture submission graded once, in one batch, two at a time (timeout 5 s, memory 400 MB), in the
+    sandbox where bubblewrap works (else with the audit hook only)."""
+    root = tmp_path_factory.mktemp("hostile")
+    collected = make_collected(root)
+    out = root / "graded"
     with open(CANARY, "w") as f:
         f.write("do not delete")
     os.makedirs(CANARY_DIR, exist_ok=True)
     if os.path.exists(EVIL):
         os.remove(EVIL)
-    files = sorted(os.path.join(SUBMISSIONS, f) for f in os.listdir(SUBMISSIONS) if f.endswith(".ipynb"))
-    before = {f: (open(f, "rb").read(), os.stat(f).st_mtime_ns) for f in files}
-    import time
-
+    files = sorted(str(collected / f) for f in os.listdir(collected))
+    before = {f: (open(f, "rb").read(), os.stat(f).st_mtime_ns) for f in files
+              if os.path.isfile(f) and not os.path.islink(f) and not f.endswith("fifo.ipynb")}
+    checkout = checkout_hash()
+    seen = []
     t0 = time.monotonic()
-    results = grade(SOURCE, files, out, timeout=5, memory=400, jobs=2)
+    results = grade(SOURCE, [collected], out, timeout=5, memory=400, jobs=2, isolation=BWRAP,
+                    progress=lambda item: seen.append(item if isinstance(item, str) else item.student))
     seconds = time.monotonic() - t0
     return {"out": out, "results": {r.student: r for r in results}, "before": before, "seconds": seconds,
-            "files": files}
+            "collected": collected, "checkout": checkout, "checkout_after": checkout_hash(),
+            "left": descendants(os.getpid()), "progress": seen}

@@ -2,7 +2,14 @@
 
 ``source/tiny.ipynb`` is a two-part instructor notebook; every file in ``submissions/`` is its released
 version (``kinbook.classroom.release``) with the answer cells filled in by a (mostly ill-behaved) student.
-The files are committed: the tests grade these real notebooks, they do not build them.
+The files are committed: the tests grade these real notebooks, they do not build them. (Entries that cannot be
+committed — links, FIFOs, devices, a 20 MB notebook, ids that clash — are made at test time by conftest.py.)
+
+The hostile students of issue #12 (``ESCAPES``) give the right answers and, in a cell of their own, try to
+get out: switch the audit hook off, start processes and interpreters the hook does not see, look around the
+file system and /proc, write to the installed package, the source notebook and a classmate's file, leave a
+daemon behind. Each records what it achieved in ``probe`` (JSON text): the tests run these cells once more
+with the hook off, to show what bubblewrap alone lets them see.
 """
 
 from __future__ import annotations
@@ -97,7 +104,173 @@ CASES = {
         "                lambda: __import__('socket').create_connection(('example.org', 80))]:\n"
         "    try:\n        attempt()\n    except PermissionError as e:\n        print('blocked:', e)\n"
         "raise RuntimeError('still graded: the answers above were assigned')"]),
+    # a correct answer taken from kinbook's own reference: full marks, and the instructor is told
+    "reference": ("ref = mech.constraint_phi('1')\nPhi_OA = ref", RIGHT_ANGLE, []),
+    # answer data made of unevaluated powers (within every per-node cap): ~50 s of grader CPU if evaluated
+    "power_tower": ("big = sp.Integer(10**40)\n"
+                    "tower = sp.Pow(big, sp.Pow(big, sp.Pow(big, 99, evaluate=False), evaluate=False), evaluate=False)\n"
+                    "Phi_OA = sp.Matrix([tower * x1, tower])", RIGHT_ANGLE, []),
 }
+
+
+#: Shared by the escape fixtures: record an attempt's outcome in `seen` (never raise).
+_TRY = """import json, os, sys
+seen = {}
+def attempt(key, f):
+    try:
+        seen[key] = f()
+    except BaseException as exc:
+        seen[key] = "refused: " + type(exc).__name__ + ": " + str(exc)[:150]
+"""
+
+ESCAPES = {
+    # the hook's helpers were reachable from the frame it raised in: replace their code (issue #12)
+    "unhook": """def unhook():
+    try:
+        open("/etc/hostname")
+        return "no hook to switch off"
+    except PermissionError as exc:
+        tb = exc.__traceback__
+        while tb.tb_next is not None:
+            tb = tb.tb_next
+        frame = tb.tb_frame
+        names = sorted(frame.f_locals) + sorted(frame.f_back.f_locals if frame.f_back else [])
+        for f in (frame.f_locals.get("refuse"), frame.f_locals.get("inside")):
+            if f is not None:
+                f.__code__ = (lambda *a: True).__code__
+        return "frame locals: " + ",".join(names)[:100]
+attempt("unhook", unhook)
+attempt("read_etc", lambda: open("/etc/hostname").read()[:40])
+""",
+    # processes and interpreters the hook does not see, device nodes, FIFOs, raw system calls
+    "unaudited": """def fork_exec():
+    import _posixsubprocess, subprocess
+    return subprocess.run(["/bin/sh", "-c", "id -u; ls /"], capture_output=True, text=True).stdout.split()
+def subinterpreter():
+    import _xxsubinterpreters as interp
+    r, w = os.pipe()
+    interp.run_string(interp.create(), "import os\\nos.write(%d, repr(sorted(os.listdir('/'))).encode())" % w)
+    os.close(w)
+    return os.read(r, 4000).decode()
+def ctypes_syscalls():
+    import ctypes, errno
+    libc = ctypes.CDLL(None, use_errno=True)
+    out = {}
+    for name, call in [("mount", lambda: libc.mount(b"none", b"/usr", b"tmpfs", 0, None)),
+                       ("ptrace_zygote", lambda: libc.ptrace(16, os.getppid(), None, None)),
+                       ("setuid0", lambda: libc.setuid(0)),
+                       ("unshare_user", lambda: libc.unshare(0x10000000))]:
+        rc = call()
+        out[name] = "ok" if rc == 0 else errno.errorcode.get(ctypes.get_errno(), "?")
+    return out
+attempt("fork_exec", fork_exec)
+attempt("subinterpreter", subinterpreter)
+attempt("mknod", lambda: os.mknod(os.path.expanduser("~/null"), 0o20666, os.makedev(1, 3)) or "made")
+attempt("mkfifo", lambda: os.mkfifo(os.path.expanduser("~/fifo")) or "made")
+attempt("ctypes", ctypes_syscalls)
+""",
+    # what is there to see: the file system, /proc, the environment, the network
+    "recon": """def walk():
+    found, n = [], 0
+    skip = {"/proc", "/usr", sys.prefix, sys.base_prefix}  # the Python environment is readable on purpose
+    for d, dirs, files in os.walk("/"):
+        dirs[:] = [x for x in dirs if os.path.join(d, x) not in skip]
+        for f in files + [x + "/" for x in dirs]:
+            n += 1
+            if f.endswith((".ipynb", ".sqlite", ".csv", "collected/", "graded/")) or "canary" in f:
+                found.append(os.path.join(d, f))
+        if n > 100000:
+            break
+    return found
+def solutions():
+    hits = []
+    for path in walk():
+        try:
+            text = open(path, errors="replace").read()
+        except OSError:
+            continue
+        if "BEGIN SOLUTION" in text or "HIDDEN CHECKS" in text or "do not delete" in text:
+            hits.append(path)
+    return hits
+def processes():
+    out = {}
+    for pid in os.listdir("/proc"):
+        if pid.isdigit():
+            try:
+                out[pid] = open(f"/proc/{pid}/cmdline", "rb").read().replace(b"\\0", b" ").decode()[:120]
+            except OSError as exc:
+                out[pid] = "unreadable"
+    return out
+def environments():
+    out = []
+    for pid in os.listdir("/proc"):
+        if pid.isdigit():
+            try:
+                out += [k.split(b"=")[0].decode() for k in open(f"/proc/{pid}/environ", "rb").read().split(b"\\0") if k]
+            except OSError:
+                pass
+    return sorted(set(out))
+def network():
+    import socket
+    out = {}
+    for host in ("1.1.1.1", "127.0.0.1"):
+        s = socket.socket()
+        s.settimeout(2)
+        try:
+            s.connect((host, 53))
+            out[host] = "connected"
+        except OSError as exc:
+            out[host] = type(exc).__name__
+        s.close()
+    return out
+attempt("notebooks", walk)
+attempt("solutions", solutions)
+attempt("processes", processes)
+attempt("environ", lambda: sorted(os.environ))
+attempt("proc_environ", environments)
+attempt("network", network)
+attempt("uid", os.getuid)
+attempt("mounts", lambda: open("/proc/self/mounts").read().count("\\n"))
+""",
+    # writes to the installed package, the source notebook, a classmate's file and the canary
+    "writes": """import glob
+def write(path):
+    with open(path, "a") as f:
+        f.write("\\n# pwned")
+    return "written"
+def repo():
+    import kinbook
+    return os.path.dirname(os.path.dirname(kinbook.__file__))
+attempt("package", lambda: write(__import__("kinbook.grading.checks").grading.checks.__file__))
+attempt("source", lambda: write(os.path.join(repo(), "tests", "classroom", "source", "tiny.ipynb")))
+attempt("classmate", lambda: write(os.path.join(repo(), "tests", "classroom", "submissions", "good.ipynb")))
+attempt("collected", lambda: [write(p) for p in glob.glob("/tmp/pytest-of-*/*/*/collected/*.ipynb")] or "none found")
+attempt("canary", lambda: write("/tmp/kinbook-canary.txt"))
+""",
+    # a daemon in its own session that outlives the notebook, if it can
+    "daemon": """def daemon():
+    import time
+    pid = os.fork()
+    if pid == 0:
+        os.setsid()
+        if os.fork() == 0:
+            while True:
+                try:
+                    with open("/tmp/kinbook-daemon-alive", "w") as f:
+                        f.write(str(os.getpid()))
+                except OSError:
+                    pass
+                time.sleep(0.05)
+        os._exit(0)
+    os.waitpid(pid, 0)
+    time.sleep(0.2)
+    return open("/tmp/kinbook-daemon-alive").read()
+attempt("daemon", daemon)
+""",
+}
+
+CASES.update({name: (RIGHT_PHI, RIGHT_ANGLE, [_TRY + code + "probe = json.dumps(seen, default=str)"])
+              for name, code in ESCAPES.items()})
 
 
 def main():

@@ -1,4 +1,6 @@
-"""Grading real submitted notebooks (tests/classroom/submissions/, made by make_submissions.py)."""
+"""Grading real submitted notebooks in one batch: tests/classroom/submissions/ (made by make_submissions.py)
+and the entries conftest.py makes at test time (links, a FIFO, a device, giant notebooks, clashing and
+over-long ids, an nbformat-4.4 notebook)."""
 
 import csv
 import os
@@ -6,11 +8,13 @@ import os
 import pytest
 
 from kinbook.classroom import grade
-from kinbook.classroom.gradebook import COLUMNS
+from kinbook.classroom.files import student_id
+from kinbook.classroom.gradebook import COLUMNS, TOTALS
 
-from .conftest import CANARY, CANARY_DIR, EVIL, SOURCE, submission
+from .conftest import BWRAP, CANARY, CANARY_DIR, EVIL, LONG_NAME, SECRET, SOURCE, submission
 
 FULL = 6.0
+ESCAPES = ["unhook", "unaudited", "recon", "writes", "daemon"]
 
 
 def parts(batch, student):
@@ -21,6 +25,7 @@ def test_good_submission_gets_full_score_among_bad_ones(batch):
     r = batch["results"]["good"]
     assert (r.status, r.score, r.max_score) == ("ok", FULL, FULL)
     assert {p.status for p in r.parts} == {"ok"}
+    assert r.isolation == ("bubblewrap" if BWRAP else "none")
 
 
 @pytest.mark.parametrize("student, status, score", [
@@ -40,12 +45,60 @@ def test_good_submission_gets_full_score_among_bad_ones(batch):
     ("deleted_cell", "tampered", 0.0),
     ("corrupt", "corrupt-notebook", 0.0),
     ("not_a_notebook", "corrupt-notebook", 0.0),
-])
+    ("power_tower", "error", 2.0),           # the tower is refused as too large; the angle is right
+    ("reference", "ok", FULL),               # kinbook's own Φ: correct, and reported (not penalized)
+    ("old44", "ok", FULL),                   # re-saved as nbformat 4.4 (no cell ids): not tampered
+    ("giant", "too-large", 0.0),             # 20 MB, 150,000 cells: refused before reading
+    ("many_cells", "too-large", 0.0),        # 2,500 cells: refused before parsing
+    ("link_source", "refused", 0.0),         # a link to the instructor's source: never followed
+    ("link_secret", "refused", 0.0),         # a link to a private file: never followed
+    ("linkdir", "refused", 0.0),             # a link to a directory of classmates
+    ("fifo", "refused", 0.0),                # a FIFO: never opened (the batch does not hang on it)
+    ("José", "duplicate-id", 0.0),           # NFC and NFD spellings of one name: neither is graded
+    (student_id(LONG_NAME)[0], "bad-id", 0.0),
+] + [(name, "ok", FULL) for name in ESCAPES])  # every attempt refused; the answers themselves are right
 def test_status_and_score(batch, student, status, score):
     r = batch["results"][student]
     assert r.status == status, r
     assert r.score == score
     assert r.max_score == FULL
+
+
+def test_a_device_node_is_refused(batch):
+    if "device" not in batch["results"]:
+        pytest.skip("device nodes can only be made by root")
+    assert batch["results"]["device"].status == "refused"
+
+
+def test_refused_entries_say_why_and_leak_nothing(batch):
+    results = batch["results"]
+    assert "symbolic link" in results["link_source"].message and "not followed" in results["link_source"].message
+    assert "FIFO" in results["fifo"].message
+    assert "also" in results["José"].message and "none of them is graded" in results["José"].message
+    assert "characters" in results[student_id(LONG_NAME)[0]].message
+    assert "bytes" in results["giant"].message and "cells" in results["many_cells"].message
+    with open(batch["out"] / "grades.csv", encoding="utf-8") as f:
+        text = f.read()
+    assert SECRET not in text and "BEGIN SOLUTION" not in text and "solve_position" not in text
+    for page in os.listdir(batch["out"] / "feedback"):
+        assert SECRET not in (batch["out"] / "feedback" / page).read_text(encoding="utf-8")
+
+
+def test_power_tower_is_refused_as_too_large(batch):
+    p = parts(batch, "power_tower")
+    assert p["revolute"].status == "error" and "too large" in p["revolute"].message
+    assert p["angle"].status == "ok"
+
+
+def test_answers_taken_from_the_reference_are_reported_not_penalized(batch):
+    p = parts(batch, "reference")
+    assert p["revolute"].score == 4 and p["revolute"].reference == "mech.constraint_phi() (cell 2)"
+    assert p["angle"].reference == ""
+    assert all(q.reference == "" for q in batch["results"]["good"].parts)
+    rows = [r for r in csv.DictReader(open(batch["out"] / "grades.csv", encoding="utf-8")) if r["student"] == "reference"]
+    assert {r["part"]: r["reference"] for r in rows} == {"revolute": "mech.constraint_phi() (cell 2)", "angle": ""}
+    page = (batch["out"] / "feedback" / "reference.html").read_text(encoding="utf-8")
+    assert "computed with kinbook's own reference: mech.constraint_phi() (cell 2)" in page
 
 
 def test_wrong_answers_get_the_checkers_messages(batch):
@@ -70,10 +123,16 @@ def test_reading_the_source_is_refused(batch):
 
 
 def test_nothing_outside_the_sandbox_was_touched(batch):
+    assert batch["checkout_after"] == batch["checkout"]  # the package, the source, the classmates' files
     assert os.path.exists(CANARY) and open(CANARY).read() == "do not delete"
     assert os.path.isdir(CANARY_DIR)
     assert not os.path.exists(EVIL)
     assert not os.path.exists("/tmp/kinbook-moved.txt")
+    assert not os.path.exists("/tmp/kinbook-daemon-alive")
+
+
+def test_no_process_is_left_behind(batch):
+    assert batch["left"] == []
 
 
 def test_submissions_are_never_modified(batch):
@@ -87,38 +146,43 @@ def test_tampering_is_explained(batch):
     assert "tiny-04" in r.message and "locked" in r.message
 
 
-def test_grades_csv(batch):
-    with open(batch["out"] / "grades.csv", newline="") as f:
+def test_grades_and_totals_csv(batch):
+    with open(batch["out"] / "grades.csv", newline="", encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
     assert list(rows[0]) == COLUMNS
-    assert len(rows) == 2 * len(batch["files"])
+    assert len(rows) == 2 * len(batch["results"])  # every submission, refused ones included
     good = {r["part"]: r for r in rows if r["student"] == "good"}
     assert good["revolute"]["score"] == "4" and good["angle"]["max_score"] == "2"
     assert {r["status"] for r in rows} >= {"ok", "timeout", "memory", "error", "tampered", "missing-answer",
-                                             "corrupt-notebook"}
+                                             "corrupt-notebook", "too-large", "refused", "duplicate-id", "bad-id"}
+    with open(batch["out"] / "totals.csv", newline="", encoding="utf-8") as f:
+        totals = list(csv.DictReader(f))
+    assert list(totals[0]) == TOTALS and len(totals) == len(batch["results"])
+    ran = {t["student"]: t["isolation"] for t in totals}
+    assert ran["good"] == ("bubblewrap" if BWRAP else "none") and ran["link_source"] == ""
     assert not [p for p in os.listdir(batch["out"]) if p.endswith(".tmp")]
 
 
 def test_feedback_file_per_student(batch):
     fb = batch["out"] / "feedback"
     assert sorted(p[:-5] for p in os.listdir(fb)) == sorted(batch["results"])
-    page = (fb / "wrong.html").read_text()
+    page = (fb / "wrong.html").read_text(encoding="utf-8")
     assert "revolute" in page and "<table" in page
 
 
 def test_rerun_skips_graded_submissions_unless_forced(batch, tmp_path):
     skipped = []
     again = grade(SOURCE, [submission("good"), submission("corrupt")], batch["out"], timeout=5, memory=400,
-                  progress=skipped.append)
+                  isolation=BWRAP, progress=skipped.append)
     assert again == [] and len(skipped) == 2
-    forced = grade(SOURCE, [submission("corrupt")], batch["out"], force=True)
+    forced = grade(SOURCE, [submission("corrupt")], batch["out"], force=True, isolation=BWRAP)
     assert [r.status for r in forced] == ["corrupt-notebook"]
 
 
 def test_batch_throughput(batch):
-    n = len(batch["files"])
+    n = len(batch["results"])
     print(f"\ngraded {n} submissions in {batch['seconds']:.1f} s with jobs=2")
-    assert batch["seconds"] < 150
+    assert batch["seconds"] < 300
 
 
 def test_a_dying_grading_process_loses_nothing_else(tmp_path, monkeypatch):
@@ -131,14 +195,14 @@ def test_a_dying_grading_process_loses_nothing_else(tmp_path, monkeypatch):
     original = G._grade_task
 
     def dying(args):
-        if args[1].endswith("not_a_notebook.ipynb"):
+        if args[0].path.endswith("not_a_notebook.ipynb"):
             os._exit(1)
         return original(args)
 
     dying.__module__, dying.__qualname__ = original.__module__, original.__qualname__
     monkeypatch.setattr(G, "_grade_task", dying)
     subs = [submission("good"), submission("not_a_notebook"), submission("corrupt")]
-    results = {r.student: r for r in grade(SOURCE, subs, tmp_path, timeout=5, memory=400, jobs=2)}
+    results = {r.student: r for r in grade(SOURCE, subs, tmp_path, timeout=5, memory=400, jobs=2, isolation=BWRAP)}
     assert results["good"].score == FULL
     assert results["corrupt"].status == "corrupt-notebook"
     assert results["not_a_notebook"].status == "error" and "died" in results["not_a_notebook"].message
@@ -151,6 +215,6 @@ def test_a_dying_grading_process_loses_nothing_else(tmp_path, monkeypatch):
 def test_reveal_hidden_gives_the_full_messages(tmp_path):
     from kinbook.classroom import grade_submission
 
-    r = grade_submission(SOURCE, submission("wrong"), timeout=10, memory=400, reveal_hidden=True)
+    r = grade_submission(SOURCE, submission("wrong"), timeout=10, memory=400, reveal_hidden=True, isolation=BWRAP)
     angle = {p.part: p for p in r.parts}["angle"]
     assert "3.356" in angle.message and angle.html

@@ -1,0 +1,109 @@
+"""What grading produces: :class:`SubmissionResult` (one submission) made of :class:`PartGrade` (one row of
+grades.csv), and the statuses they can have. Imported by both the grader (:mod:`.grade`) and the gradebook
+(:mod:`.gradebook`), which do not import each other.
+
+Statuses (one per part; the submission's status is the worst of them):
+
+=================  ==========================================================================================
+ok                 the answer was read and checked (its score may be anything from 0 to full)
+missing-answer     the variable was not assigned (cell left as released, or it raised before assigning)
+error              the answer is not gradable data (or too large to read), or the kernel died
+timeout            the notebook did not finish within ``timeout`` seconds
+memory             the notebook exceeded its memory budget
+tampered           a locked cell differs from the release (or is missing): not run, 0 points
+corrupt-notebook   the file is not a readable notebook: not run, 0 points
+too-large          the file is over the size or cell-count cap: refused before parsing, 0 points
+refused            a symbolic link, device, FIFO or socket in ``collected/`` (never followed or opened), or a
+                   file replaced while it was being read: 0 points
+bad-id             the student id taken from the path is too long: not graded (rename and grade again)
+duplicate-id       two files give the same student (ids equal once case and Unicode forms are folded): neither
+                   is graded
+=================  ==========================================================================================
+"""
+
+from __future__ import annotations
+
+import html
+from dataclasses import asdict, dataclass, field
+
+__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "worst"]
+
+STATUSES = ("ok", "missing-answer", "error", "timeout", "memory", "tampered", "corrupt-notebook", "too-large",
+            "refused", "bad-id", "duplicate-id")
+_SEVERITY = {s: i for i, s in enumerate(STATUSES)}
+
+
+def worst(statuses, default="ok"):
+    """The most severe of ``statuses`` (in the order of :data:`STATUSES`)."""
+    return max(statuses, key=lambda s: _SEVERITY[s], default=default)
+
+
+@dataclass
+class PartGrade:
+    """One row of grades.csv.
+
+    Attributes
+    ----------
+    reference : str
+        How the student's code obtained the answer from kinbook's own reference, when it did (information for
+        the instructor, not a penalty; see :mod:`kinbook.classroom.reference_use`), else "".
+    """
+
+    part: str
+    score: float
+    max_score: float
+    status: str
+    message: str = ""
+    html: str = ""
+    reference: str = ""
+
+
+@dataclass
+class SubmissionResult:
+    """The grading of one submission.
+
+    Attributes
+    ----------
+    isolation : str
+        ``"bubblewrap"`` (the notebook ran in the operating-system sandbox), ``"none"`` (``--no-isolation``:
+        the audit hook only), or ``""`` when nothing was run.
+    """
+
+    student: str
+    exercise: str
+    submission: str
+    sha256: str
+    status: str
+    message: str
+    parts: list = field(default_factory=list)
+    seconds: float = 0.0
+    isolation: str = ""
+
+    @property
+    def score(self):
+        return round(sum(p.score for p in self.parts), 4)
+
+    @property
+    def max_score(self):
+        return sum(p.max_score for p in self.parts)
+
+    def to_dict(self):
+        return asdict(self)
+
+    @classmethod
+    def from_dict(cls, d):
+        d = dict(d)
+        d["parts"] = [PartGrade(**p) for p in d.get("parts", [])]
+        return cls(**d)
+
+    def __repr__(self):
+        return (f"SubmissionResult({self.student!r}, {self.exercise!r}: {self.status}, "
+                f"{self.score:g}/{self.max_score:g})")
+
+    def _repr_html_(self):
+        rows = "".join(f"<tr><td>{html.escape(p.part)}</td><td>{p.score:g} / {p.max_score:g}</td>"
+                       f"<td>{html.escape(p.status)}</td><td>{html.escape(p.message[:200])}</td></tr>"
+                       for p in self.parts)
+        return (f"<p><b>{html.escape(self.student)}</b> — {html.escape(self.exercise)}: {self.score:g} / "
+                f"{self.max_score:g} ({html.escape(self.status)})</p><table><tr><th>part</th><th>score</th>"
+                f"<th>status</th><th>message</th></tr>{rows}</table>")
