@@ -8,14 +8,14 @@
 (True, 1.0)
 
 Public API: :func:`check_phi`, :func:`check_jacobian`, :func:`check_nu`, :func:`check_gamma`,
-:func:`check_value`, :func:`check_rotation`, :func:`check_euler_parameters`, :class:`CheckResult`, the
-mistake catalogue (:data:`MISTAKES`, :func:`explain`) and exercise definitions (:class:`Exercise`).
+:func:`check_value`, :func:`check_rotation`, :func:`check_euler_parameters`, :class:`CheckResult` and the
+mistake catalogue (:data:`MISTAKES`, :func:`explain`). Exercises (graded parts, per-student parameters) are
+declared in notebooks with :mod:`kinbook.classroom`.
 """
 
 from ._i18n import get_language, set_language
 from .catalogue import MISTAKES, explain
 from .checks import check_gamma, check_jacobian, check_nu, check_phi
-from .exercise import Exercise, Grade, Parameter, Part, Variant
 from .result import CheckResult, RowResult
 from .values import check_euler_parameters, check_rotation, check_value
 
@@ -28,11 +28,6 @@ __all__ = [
     "check_rotation",
     "check_euler_parameters",
     "CheckResult",
-    "Exercise",
-    "Part",
-    "Parameter",
-    "Variant",
-    "Grade",
     "RowResult",
     "MISTAKES",
     "explain",
