@@ -1,0 +1,77 @@
+"""The gradebook database (kinbook.classroom.gradebook): transactions, resuming, changed resubmissions, exports."""
+
+import csv
+import json
+import sqlite3
+
+from kinbook.classroom import grade
+from kinbook.classroom.gradebook import COLUMNS, Gradebook
+from kinbook.classroom.results import PartGrade, SubmissionResult
+
+from .conftest import BWRAP, SOURCE, submission
+
+
+def result(student, score=1.0, status="ok"):
+    return SubmissionResult(student, "ex01", f"collected/{student}.ipynb", "ab" * 32, status, "",
+                            [PartGrade("a", score, 2.0, status, "=cmd|' /c calc'!A0", reference="mech.symbolic() (cell 3)"),
+                             PartGrade("b", 0.0, 1.0, status, "fine")], 1.5, "bubblewrap")
+
+
+def test_each_result_is_one_transaction_and_survives_a_reopen(tmp_path):
+    book = Gradebook(tmp_path)
+    assert book.db.execute("PRAGMA journal_mode").fetchone() == ("wal",)
+    book.record(result("alice"))
+    book.record(result("bob", 0.5))
+    book.record(result("alice", 2.0))  # graded again: replaced, not added
+    # another connection (a killed run's successor) sees exactly what was committed
+    other = sqlite3.connect(tmp_path / "gradebook.sqlite")
+    assert other.execute("SELECT student, score FROM submissions ORDER BY student").fetchall() == [
+        ("alice", 2.0), ("bob", 0.5)]
+    assert other.execute("SELECT COUNT(*) FROM parts").fetchone() == (4,)
+    book.close()
+    again = Gradebook(tmp_path)
+    assert [(r.student, r.score, r.parts[0].reference) for r in again.results()] == [
+        ("alice", 2.0, "mech.symbolic() (cell 3)"), ("bob", 0.5, "mech.symbolic() (cell 3)")]
+
+
+def test_exports_are_complete_and_safe_for_spreadsheets(tmp_path):
+    book = Gradebook(tmp_path)
+    for s in ("alice", "bob"):
+        book.record(result(s))
+    book.export()
+    rows = list(csv.DictReader(open(tmp_path / "grades.csv", newline="")))
+    assert list(rows[0]) == COLUMNS and len(rows) == 4
+    assert rows[0]["message"].startswith("'=")  # never a formula
+    assert sorted(p.name for p in (tmp_path / "feedback").iterdir()) == ["alice.html", "bob.html"]
+
+
+def test_results_of_an_older_kinbook_are_imported_once(tmp_path):
+    store = tmp_path / ".kinbook" / "results" / "ex01"
+    store.mkdir(parents=True)
+    old = result("carol").to_dict()
+    del old["isolation"]
+    for p in old["parts"]:
+        del p["reference"]
+    (store / "carol.json").write_text(json.dumps(old))
+    book = Gradebook(tmp_path)
+    assert [(r.student, r.score, r.isolation) for r in book.results()] == [("carol", 1.0, "none")]
+
+
+def test_a_changed_resubmission_is_reported_not_silently_skipped(tmp_path):
+    """Corrupt notebooks are graded without running anything: the bookkeeping alone is exercised here."""
+    subs = tmp_path / "collected"
+    subs.mkdir()
+    (subs / "dave.ipynb").write_bytes(open(submission("corrupt"), "rb").read())
+    out = tmp_path / "graded"
+    first = grade(SOURCE, [subs], out, isolation=BWRAP)
+    assert [r.status for r in first] == ["corrupt-notebook"]
+    (subs / "dave.ipynb").write_bytes(open(submission("not_a_notebook"), "rb").read())  # handed in again
+    seen = []
+    assert grade(SOURCE, [subs], out, isolation=BWRAP, progress=seen.append) == []
+    assert any("changed since graded: dave" in str(s) for s in seen)
+    totals = {r["student"]: r for r in csv.DictReader(open(out / "totals.csv", newline=""))}
+    assert totals["dave"]["note"].startswith("changed since graded")
+    forced = grade(SOURCE, [subs], out, isolation=BWRAP, force=True)
+    assert [r.status for r in forced] == ["corrupt-notebook"]
+    totals = {r["student"]: r for r in csv.DictReader(open(out / "totals.csv", newline=""))}
+    assert totals["dave"]["note"] == ""

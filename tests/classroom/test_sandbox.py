@@ -1,0 +1,295 @@
+"""The operating-system sandbox (kinbook.classroom.sandbox): what a student's code can see and do in it, and
+that nothing outlives it.
+
+The escape fixtures (tests/classroom/submissions/{unhook,unaudited,recon,writes,daemon}.ipynb) are graded with
+the rest in tests/classroom/conftest.py's batch, with the audit hook on. Here their cells run once more in one
+sandbox with the hook *off* — as if a student had found a way past it — and each reports in ``probe`` what it
+saw and did: the tests assert that bubblewrap alone held.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import nbformat
+import pytest
+
+from kinbook.classroom import grade, grade_submission
+from kinbook.classroom.notebook import parse_submission
+from kinbook.classroom.sandbox import IsolationUnavailable, Sandbox, bwrap
+
+from .conftest import BWRAP, CANARY, ROOT, SOURCE, checkout_hash, descendants, needs_bwrap, submission
+
+GRADER_SECRET = "KINBOOK_TEST_GRADER_SECRET"
+
+
+def cells_of(name):
+    with open(submission(name), "rb") as f:
+        data = f.read()
+    return [c["source"] for c in parse_submission(data) if c["cell_type"] == "code"], data
+
+
+@pytest.fixture(scope="module")
+def probes():
+    """Each escape fixture's `probe`, run in one sandbox (hook off, except for `unhook`), in this order: the
+    daemon's run comes before a second reconnaissance, which must find nothing of it."""
+    if not BWRAP:
+        pytest.skip("no operating-system sandbox here")
+    os.environ[GRADER_SECRET] = "the grader's environment"
+    with open(CANARY, "w") as f:
+        f.write("do not delete")
+    checkout = checkout_hash()
+    out = {}
+    try:
+        with Sandbox(isolation=True) as sb:
+            for name in ("unhook", "unaudited", "recon", "writes", "daemon", "recon"):
+                cells, data = cells_of(name)
+                ex = sb.run(cells, ["probe"], timeout=60, memory_mb=400, files={"submission.ipynb": data},
+                            audit_hook=name == "unhook")
+                assert ex.status == "ok", (name, ex)
+                out[name if name not in out else "recon_after_daemon"] = json.loads(ex.answers["probe"]["data"][0][1])
+            out["starts"] = sb.starts
+            out["zygote_pid"] = sb.pid
+    finally:
+        del os.environ[GRADER_SECRET]
+    out["left"] = descendants(os.getpid())
+    out["checkout_changed"] = checkout_hash() != checkout
+    return out
+
+
+def refused(value):
+    return isinstance(value, str) and value.startswith("refused")
+
+
+@needs_bwrap
+def test_the_hook_cannot_be_switched_off_from_inside(probes):
+    p = probes["unhook"]
+    assert not p["unhook"].startswith("no hook")  # the hook was there, and refused
+    assert refused(p["read_etc"])                # and still refuses after the attempt
+
+
+@needs_bwrap
+def test_unaudited_processes_and_interpreters_stay_inside(probes):
+    p = probes["unaudited"]
+    uid, *listing = p["fork_exec"]               # a shell did run, hook off, as the sandbox's user
+    assert uid == "65534"
+    visible = {d.strip("/").split("/")[0] for d in bwrap.readonly_dirs()}
+    assert set(listing) <= {"bin", "sbin", "lib", "lib32", "lib64", "libx32", "dev", "proc", "tmp", "home", "run"} | visible
+    assert "etc" not in listing
+    assert "etc" not in p["subinterpreter"]      # a subinterpreter sees the same root
+    assert refused(p["mknod"])                   # no device nodes
+    assert p["mkfifo"] == "made"                 # a FIFO in its own directory is harmless (and is wiped)
+    assert all(v != "ok" for v in p["ctypes"].values()), p["ctypes"]  # mount, ptrace, setuid, unshare
+
+
+@needs_bwrap
+def test_reconnaissance_finds_nothing_of_the_grader(probes):
+    for key in ("recon", "recon_after_daemon"):
+        p = probes[key]
+        mine = "/home/student/submission.ipynb"  # the student's own copy (its code names what it looks for)
+        assert [f for f in p["notebooks"] if f != mine] == []       # no source, collected/, graded/, canary
+        assert [f for f in p["solutions"] if f != mine] == []
+        for pid, cmd in p["processes"].items():  # the sandbox's own processes only
+            assert "bwrap" in cmd or "kinbook" in cmd or cmd == "unreadable", (pid, cmd)
+        assert GRADER_SECRET not in p["environ"] and GRADER_SECRET not in p["proc_environ"]
+        assert p["network"]["1.1.1.1"] != "connected"
+        assert p["uid"] == 65534
+
+
+@needs_bwrap
+def test_writes_outside_reach_nothing(probes):
+    p = probes["writes"]
+    assert refused(p["package"]) and "Errno" in p["package"]       # read-only
+    assert "FileNotFoundError" in p["source"] and "FileNotFoundError" in p["classmate"]  # not there at all
+    assert p["collected"] == "none found"
+    assert p["canary"] == "written"   # a canary of its own: the sandbox's private /tmp
+    assert open(CANARY).read() == "do not delete"
+    assert not probes["checkout_changed"]
+
+
+@needs_bwrap
+def test_a_daemon_dies_with_the_run(probes):
+    daemon = probes["daemon"]["daemon"]
+    assert daemon.isdigit()                                          # it did start, in its own session
+    later = probes["recon_after_daemon"]
+    assert daemon not in later["processes"]                          # gone at the next submission
+    assert probes["starts"] == 1                                     # without restarting the sandbox
+    assert probes["left"] == []                                      # and nothing is left on the host
+
+
+def _run(code, **kw):
+    with Sandbox(isolation=BWRAP) as sb:
+        return sb.run([code], ["probe"], timeout=30, memory_mb=400, **kw)
+
+
+@pytest.mark.parametrize("code, status, message", [
+    ("import signal\nsignal.raise_signal(signal.SIGXCPU)", "timeout", "the notebook used up its CPU time"),
+    ("import signal\nsignal.raise_signal(signal.SIGKILL)", "error", "the kernel died (exit code -9)"),
+    ("import os\nos._exit(3)", "error", "the kernel died (exit code 3)"),
+])
+def test_how_a_kernel_ends_reaches_the_worker(code, status, message):
+    """The launcher ends as its forked kernel did (same exit code, same signal): the worker tells them apart."""
+    ex = _run(code)
+    assert ex.status == status and ex.message.startswith(message)
+
+
+def test_a_forged_result_is_data_checked_field_by_field():
+    from kinbook.classroom.sandbox.host import _validated
+
+    assert _validated({"status": "ok", "answers": {"x": None}, "errors": [{"cell": "1"}, {"cell": 2}]}).errors == [
+        {"cell": 2, "ename": "", "evalue": ""}]
+    assert _validated({"status": "pwned"}).status == "error"
+    assert _validated({"status": "ok", "answers": {str(i): None for i in range(101)}}).status == "error"
+    assert _validated({"status": "ok"}).message == "the sandbox returned no answers"
+
+
+@needs_bwrap
+def test_neither_the_source_nor_submissions_enter_the_zygote(tmp_path):
+    """The zygote, which every kernel is forked from, never holds the instructor's notebook or a submission:
+    jobs go to each run's worker on their own pipe."""
+    import secrets
+
+    secret = f"kinbook-secret-{secrets.token_hex(8)}"
+    nb = nbformat.read(SOURCE, 4)
+    for cell in nb.cells:
+        if cell.source.startswith("### BEGIN SOLUTION"):
+            cell.source = cell.source.replace("### BEGIN SOLUTION\n", f"### BEGIN SOLUTION\n# {secret}\n")
+    src = tmp_path / "tiny.ipynb"
+    nbformat.write(nb, str(src))
+    student = f"kinbook-student-{secrets.token_hex(8)}"
+    sub = nbformat.read(submission("good"), 4)
+    sub.cells[-1].source += f"\n# {student}"
+    nbformat.write(sub, str(tmp_path / "good.ipynb"))
+    with Sandbox() as sb:
+        r = grade_submission(src, tmp_path / "good.ipynb", timeout=30, memory=400, sandbox=sb)
+        zygote = [p for p in descendants(sb.pid) if b"sandbox.zygote" in open(f"/proc/{p}/cmdline", "rb").read()]
+        zygote = min(zygote)  # its children (worker, kernel) are gone after the reset; the zygote is the oldest
+        try:
+            found = [_memory_contains(zygote, s.encode()) for s in (secret, student, "ready")]
+        except PermissionError:
+            pytest.skip("the zygote's memory cannot be read here (ptrace restrictions)")
+    assert r.score == 6.0
+    assert found == [False, False, True]  # what it does hold ("ready", its own word) is found
+
+
+def _memory_contains(pid, needle):
+    with open(f"/proc/{pid}/maps") as maps, open(f"/proc/{pid}/mem", "rb", buffering=0) as mem:
+        for line in maps:
+            fields = line.split()
+            start, end = (int(x, 16) for x in fields[0].split("-"))
+            if "r" not in fields[1] or (len(fields) > 5 and fields[5] in ("[vvar]", "[vsyscall]", "[vvar_vclock]")):
+                continue
+            try:
+                mem.seek(start)
+                if needle in mem.read(end - start):
+                    return True
+            except (OSError, ValueError, OverflowError):
+                continue
+    return False
+
+
+def test_without_bubblewrap_grading_refuses_and_names_the_package(tmp_path, monkeypatch):
+    from kinbook.cli import main
+
+    monkeypatch.setattr(bwrap, "_probe", lambda: "bubblewrap (`bwrap`) is not installed")
+    with pytest.raises(IsolationUnavailable, match=r"apt-get install bubblewrap.*--no-isolation"):
+        grade(SOURCE, [submission("corrupt")], tmp_path / "g")
+    assert not (tmp_path / "g").exists()  # refused before anything is graded or written
+    assert main(["grade", SOURCE, submission("corrupt"), "-o", str(tmp_path / "g")]) == 2
+
+
+def test_no_isolation_warns_and_is_recorded(tmp_path):
+    import csv
+    import sqlite3
+
+    seen = []
+    with pytest.warns(RuntimeWarning, match="WITHOUT isolation"):
+        results = grade(SOURCE, [submission("good")], tmp_path, timeout=30, memory=400, isolation=False,
+                        progress=seen.append)
+    assert results[0].score == 6.0 and results[0].isolation == "none"
+    assert any(isinstance(s, str) and s.startswith("warning: grading WITHOUT isolation") for s in seen)
+    db = sqlite3.connect(tmp_path / "gradebook.sqlite")
+    assert db.execute("SELECT isolation FROM runs").fetchall() == [("none",)]
+    assert db.execute("SELECT isolation FROM submissions").fetchall() == [("none",)]
+    assert [r["isolation"] for r in csv.DictReader(open(tmp_path / "totals.csv"))] == ["none"]
+
+
+# ======================================================================================== killing the grader
+def _grader(out, subs, jobs):
+    cmd = [sys.executable, "-m", "kinbook.cli", "grade", SOURCE, *subs, "-o", str(out), "--timeout", "8",
+           "--memory", "400", "--jobs", str(jobs), *([] if BWRAP else ["--no-isolation"])]
+    return subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            start_new_session=True)
+
+
+def _running_kernels(family):
+    """Processes forked by a zygote (workers, kernels) among ``family``."""
+    return [p for p in family if "sandbox.zygote" in _cmdline(p) and "sandbox.zygote" in _cmdline(_ppid(p))]
+
+
+def test_killing_the_grader_leaves_no_process_and_the_next_run_resumes(tmp_path):
+    """`kinbook grade` killed (SIGKILL with two grading processes; SIGTERM and Ctrl-C with one) while notebooks
+    run: within 2 s nothing it started is left — pool processes, sandboxes, zygotes, kernels —; what was
+    recorded before stays; running the same command again grades only what is left, with complete CSV files."""
+    import csv
+    import sqlite3
+
+    subs = [submission(s) for s in ("corrupt", "good", "loop")]
+    runs = {signal.SIGKILL: _grader(tmp_path / "kill", subs, 2), signal.SIGTERM: _grader(tmp_path / "term", subs, 1),
+            signal.SIGINT: _grader(tmp_path / "int", subs, 1)}
+    deadline = time.monotonic() + 180
+    pending = dict(runs)
+    while pending and time.monotonic() < deadline:
+        for signum, proc in list(pending.items()):
+            family = descendants(proc.pid)
+            if _running_kernels(family):
+                os.kill(proc.pid, signum)
+                t0 = time.monotonic()
+                while time.monotonic() - t0 < 2.0 and [p for p in family if _alive(p)]:
+                    time.sleep(0.05)
+                left = [(p, _cmdline(p)[:60]) for p in family if _alive(p)]
+                assert left == [], (signum, left)
+                proc.wait(30)
+                del pending[signum]
+        time.sleep(0.1)
+    assert not pending, f"the graders never started a kernel: {pending}"
+    for name in ("kill", "term", "int"):
+        db = sqlite3.connect(tmp_path / name / "gradebook.sqlite")
+        assert ("corrupt",) in db.execute("SELECT student FROM submissions").fetchall()  # recorded before the kill
+        db.close()
+    assert (tmp_path / "term" / "grades.csv").exists() and (tmp_path / "int" / "totals.csv").exists()  # exported
+    again = _grader(tmp_path / "kill", subs, 2)
+    out, _ = again.communicate(timeout=300)
+    assert again.returncode == 0, out
+    assert "skipped corrupt: already graded" in out
+    with open(tmp_path / "kill" / "totals.csv", newline="") as f:
+        totals = {r["student"]: r for r in csv.DictReader(f)}
+    assert set(totals) == {"corrupt", "good", "loop"}
+    assert totals["good"]["score"] == "6" and totals["loop"]["status"] == "timeout"
+
+
+def _cmdline(pid):
+    try:
+        with open(f"/proc/{pid}/cmdline", "rb") as f:
+            return f.read().replace(b"\0", b" ").decode(errors="replace")
+    except OSError:
+        return ""
+
+
+def _ppid(pid):
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return int(f.read().rsplit(")", 1)[1].split()[1])
+    except (OSError, ValueError, IndexError):
+        return -1
+
+
+def _alive(pid):
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
