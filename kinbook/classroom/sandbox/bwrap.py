@@ -19,8 +19,8 @@ The sandbox's user must be unprivileged *on the host* too. Run as root, bubblewr
 inside to root outside (root's file permissions on what is visible, no ``RLIMIT_NPROC``), so the grading
 process, when it is root, starts bubblewrap as user 65534 (``setpriv``, util-linux). Directories that user
 cannot traverse on the host (a Python under ``/root``) are first made reachable by an outer bubblewrap, run
-as root with only a private mount namespace, that replaces the blocking directory by a tmpfs holding just the
-directories needed (nothing of the host changes).
+as root with only a private mount and pid namespace, that replaces the blocking directory by a tmpfs holding
+just the directories needed (nothing of the host changes).
 """
 
 from __future__ import annotations
@@ -109,7 +109,9 @@ def _outer(blocked):
                     args += ["--perms", "0755", "--dir", p]
                     made.add(p)
             args += ["--ro-bind", d, d]
-    return [shutil.which("bwrap")] + args + ["--die-with-parent", "--"]
+    # its own pid namespace: when it dies, the kernel kills everything below it (setpriv's change of user
+    # clears the parent-death signal of what it runs, so --die-with-parent alone would not reach that far)
+    return [shutil.which("bwrap")] + args + ["--unshare-pid", "--die-with-parent", "--"]
 
 
 def command(argv, env=None):

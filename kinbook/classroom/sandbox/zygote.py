@@ -396,6 +396,9 @@ def _empty(directory, budget):
     return True
 
 
+_LIFELINE = [None]
+
+
 def _single_threaded():
     try:
         return len(os.listdir("/proc/self/task")) == 1
@@ -427,6 +430,8 @@ def serve(layout, job_fd, result_fd):
     for d in (layout.home, layout.tmp, layout.work, layout.zygote):
         os.makedirs(d, mode=0o700, exist_ok=True)
     _preload()
+    if _LIFELINE[0] is not None:
+        _LIFELINE[0].end()
     if not _single_threaded():
         raise RuntimeError("the imports started a thread: forking would not be safe")
     gc.freeze()  # the imported objects stay shared with the forked processes (no copy-on-write by the collector)
@@ -447,11 +452,42 @@ def serve(layout, job_fd, result_fd):
         listener.close()
 
 
+class _Lifeline:
+    """Exit at once if stdin (a pipe from the grading process) reaches end of file while the imports run.
+
+    The grading process may die while bubblewrap is still setting the sandbox up, before bubblewrap's own
+    parent-death signals are in place; the zygote then starts without anyone to serve. Its stdin's end of file
+    says so (the write end was the grading process's), and it exits before the slow imports — taking the
+    sandbox with it. A thread, stopped (and joined) before the zygote forks anything.
+    """
+
+    def __init__(self):
+        import threading
+
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._watch, daemon=True)
+        self.thread.start()
+
+    def _watch(self):
+        poll = select.poll()
+        poll.register(0, select.POLLIN | select.POLLHUP)
+        while not self.stop.is_set():
+            if poll.poll(50):  # nothing is written before "ready": readable or hung up means end of file
+                os._exit(1)
+
+    def end(self):
+        self.stop.set()
+        self.thread.join()
+
+
 def main(argv):
     layout = Layout.from_json(argv[0])
     job_fd, result_fd = int(argv[1]), int(argv[2])
     for fd in (job_fd, result_fd):
         os.set_inheritable(fd, False)  # the zygote's children inherit them only when asked (the worker)
+    if not layout.isolated:  # (in bubblewrap, --die-with-parent at every level)
+        die_with_parent()
+    _LIFELINE[0] = _Lifeline()
     try:
         serve(layout, job_fd, result_fd)
     except Exception:
