@@ -84,9 +84,9 @@ def test_refused_entries_say_why_and_leak_nothing(batch):
         assert SECRET not in (batch["out"] / "feedback" / page).read_text(encoding="utf-8")
 
 
-def test_power_tower_is_refused_as_too_large(batch):
+def test_power_tower_is_refused_not_computed(batch):
     p = parts(batch, "power_tower")
-    assert p["revolute"].status == "error" and "too large" in p["revolute"].message
+    assert p["revolute"].status == "error" and "not gradable data" in p["revolute"].message
     assert p["angle"].status == "ok"
 
 

@@ -104,7 +104,7 @@ def test_a_power_tower_is_refused_in_microseconds():
     tower = sp.Pow(big, sp.Pow(big, sp.Pow(big, 99, evaluate=False), evaluate=False), evaluate=False)
     rec = encode(sp.Matrix([tower * sp.Symbol("x1"), tower]))
     t0 = time.perf_counter()
-    with pytest.raises(DecodeError, match="too large"):
+    with pytest.raises(DecodeError, match="not gradable data"):
         decode(rec)
     assert time.perf_counter() - t0 < 0.5  # (in practice well under a millisecond; the bound is for a loaded CI)
 
