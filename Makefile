@@ -28,10 +28,11 @@ lab: $(STAMP)
 	$(BIN)/jupyter lab --notebook-dir=chapters $(if $(filter 0,$(shell id -u)),--allow-root)
 
 # -n auto: one pytest worker per core (pytest-xdist); --dist loadfile keeps each notebook's cells in order on
-# one worker (they share its kernel). JOBS=1 runs everything in this one process.
+# one worker (they share its kernel). JOBS=1 runs everything in this one process. -rs lists skipped tests with
+# their reason (the grading sandbox's tests are skipped where bubblewrap cannot run).
 JOBS ?= auto
 test: $(STAMP)
-	$(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=120 \
+	$(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=120 -rs \
 		$(if $(filter 1,$(JOBS)),,-n $(JOBS) --dist loadfile)
 
 # Re-execute stored notebooks in place after a library change (NB=path to do only some)
