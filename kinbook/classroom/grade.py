@@ -217,10 +217,6 @@ def _grade_task(args):
                                 f"the grader failed: {type(exc).__name__}: {exc}", [], 0.0)
 
 
-class _Interrupted(BaseException):
-    pass
-
-
 def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jobs=1, force=False,
           generic=False, reveal_hidden=False, isolation=True, progress=None):
     """Grade a batch of submissions of one exercise and record them in the gradebook.
@@ -330,7 +326,8 @@ def _main_thread():
 
 
 def _on_sigterm(signum, frame):
-    raise _Interrupted("terminated")
+    # unwinds like Ctrl-C: the pool is killed, the exports written, the process exits with 128 + SIGTERM
+    raise SystemExit(128 + signum)
 
 
 def _read_again(entry):

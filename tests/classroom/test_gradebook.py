@@ -75,3 +75,29 @@ def test_a_changed_resubmission_is_reported_not_silently_skipped(tmp_path):
     assert [r.status for r in forced] == ["corrupt-notebook"]
     totals = {r["student"]: r for r in csv.DictReader(open(out / "totals.csv", newline=""))}
     assert totals["dave"]["note"] == ""
+
+
+def test_a_source_that_changes_during_grading_stops_the_run(tmp_path):
+    """The grader runs the source it read at the start; a file that changes under it (an edit, or an attack from a
+    submission) stops the run, keeping what was recorded."""
+    import shutil
+
+    import pytest
+
+    from kinbook.errors import GradingError
+
+    src = tmp_path / "tiny.ipynb"
+    shutil.copy(SOURCE, src)
+    subs = tmp_path / "collected"
+    subs.mkdir()
+    for name in ("anna", "ben", "cleo"):
+        shutil.copy(submission("corrupt"), subs / f"{name}.ipynb")
+
+    def edit(item):
+        with open(src, "a") as f:
+            f.write(" ")
+
+    with pytest.raises(GradingError, match="changed during grading"):
+        grade(src, [subs], tmp_path / "graded", isolation=BWRAP, progress=edit)
+    db = sqlite3.connect(tmp_path / "graded" / "gradebook.sqlite")
+    assert db.execute("SELECT student FROM submissions").fetchall() == [("anna",)]
