@@ -13,7 +13,12 @@ namespaces. :func:`command` asks it for:
   a new ``/proc`` (its own processes only), a minimal read-only ``/dev``, and three size-capped tmpfs
   directories (:data:`kinbook.classroom.sandbox.protocol.ISOLATED`): the submission's copy, ``/tmp`` and
   the worker's control directory;
-* an empty environment plus the few variables of :data:`ENV`.
+* an empty environment plus the few variables of :data:`ENV`;
+* a seccomp filter (built with libseccomp, the library Flatpak and systemd use) refusing, with ``EPERM``, the
+  system calls a notebook has no use for and that reach the host's kernel state or other processes:
+  :data:`DENIED_SYSCALLS` (keyrings — shared by every sandbox of the same uid —, ptrace and cross-process
+  memory, BPF, perf, io_uring, userfaultfd, mounts and namespaces, modules). Where libseccomp cannot be loaded
+  the sandbox runs without it (:func:`seccomp_program` returns None).
 
 The sandbox's user must be unprivileged *on the host* too. Run as root, bubblewrap would map uid 65534
 inside to root outside (root's file permissions on what is visible, no ``RLIMIT_NPROC``), so the grading
@@ -35,7 +40,8 @@ import sys
 from ...errors import GradingError
 from .protocol import ISOLATED
 
-__all__ = ["IsolationUnavailable", "check", "command", "readonly_dirs", "PACKAGE", "SANDBOX_UID", "ENV"]
+__all__ = ["IsolationUnavailable", "check", "command", "readonly_dirs", "seccomp_program", "PACKAGE", "SANDBOX_UID",
+           "ENV", "DENIED_SYSCALLS"]
 
 PACKAGE = "bubblewrap"
 SANDBOX_UID = 65534
@@ -49,6 +55,63 @@ ENV = {
     "MPLCONFIGDIR": ISOLATED.tmp + "/.matplotlib", "PYDEVD_DISABLE_FILE_VALIDATION": "1",
 }
 _TOP_LINKS = ("/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32")
+DENIED_SYSCALLS = (
+    "keyctl", "add_key", "request_key", "ptrace", "process_vm_readv", "process_vm_writev", "kcmp",
+    "perf_event_open", "bpf", "userfaultfd", "io_uring_setup", "io_uring_enter", "io_uring_register",
+    "mount", "umount2", "pivot_root", "move_mount", "open_tree", "fsopen", "fsmount", "fspick", "setns", "unshare",
+    "open_by_handle_at", "name_to_handle_at", "init_module", "finit_module", "delete_module", "kexec_load",
+    "kexec_file_load", "swapon", "swapoff", "reboot", "acct", "quotactl", "syslog", "lookup_dcookie",
+)
+
+
+@functools.lru_cache(maxsize=None)
+def seccomp_program():
+    """The seccomp filter of the sandbox, as BPF bytes for ``bwrap --seccomp``: every call of
+    :data:`DENIED_SYSCALLS` fails with ``EPERM``, the rest is allowed. None without libseccomp."""
+    import ctypes
+    import ctypes.util
+    import errno
+
+    try:
+        lib = ctypes.CDLL(ctypes.util.find_library("seccomp") or "libseccomp.so.2")
+    except OSError:
+        return None
+    lib.seccomp_init.restype = ctypes.c_void_p
+    lib.seccomp_init.argtypes = [ctypes.c_uint32]
+    lib.seccomp_rule_add.argtypes = [ctypes.c_void_p, ctypes.c_uint32, ctypes.c_int, ctypes.c_uint]
+    lib.seccomp_syscall_resolve_name.argtypes = [ctypes.c_char_p]
+    lib.seccomp_export_bpf.argtypes = [ctypes.c_void_p, ctypes.c_int]
+    lib.seccomp_release.argtypes = [ctypes.c_void_p]
+    allow, refuse = 0x7FFF0000, 0x00050000 | errno.EPERM  # SCMP_ACT_ALLOW, SCMP_ACT_ERRNO(EPERM)
+    ctx = lib.seccomp_init(allow)
+    if not ctx:
+        return None
+    try:
+        for name in DENIED_SYSCALLS:
+            nr = lib.seccomp_syscall_resolve_name(name.encode())
+            if nr >= 0 and lib.seccomp_rule_add(ctx, refuse, nr, 0) != 0:
+                return None
+        fd = os.memfd_create("kinbook-seccomp")
+        try:
+            if lib.seccomp_export_bpf(ctx, fd) != 0:
+                return None
+            os.lseek(fd, 0, os.SEEK_SET)
+            return os.read(fd, 1 << 20)
+        finally:
+            os.close(fd)
+    finally:
+        lib.seccomp_release(ctx)
+
+
+def seccomp_fd():
+    """A descriptor holding :func:`seccomp_program` (for ``--seccomp``), or None; the caller closes it."""
+    program = seccomp_program()
+    if program is None:
+        return None
+    fd = os.memfd_create("kinbook-seccomp")
+    os.write(fd, program)
+    os.lseek(fd, 0, os.SEEK_SET)
+    return fd
 
 
 class IsolationUnavailable(GradingError):
@@ -114,7 +177,7 @@ def _outer(blocked):
     return [shutil.which("bwrap")] + args + ["--unshare-pid", "--die-with-parent", "--"]
 
 
-def command(argv, env=None):
+def command(argv, env=None, seccomp=None):
     """The command that runs ``argv`` (a program visible in the sandbox, with its arguments) in a new sandbox.
 
     Parameters
@@ -122,6 +185,8 @@ def command(argv, env=None):
     argv : list of str
     env : dict, optional
         Extra environment variables inside (beyond :data:`ENV`).
+    seccomp : int, optional
+        A descriptor holding the seccomp filter (:func:`seccomp_fd`), passed to the new process.
 
     Returns
     -------
@@ -145,7 +210,10 @@ def command(argv, env=None):
     inner += ["--proc", "/proc", "--dev", "/dev"]
     for path, size in SIZES.items():
         inner += ["--size", str(size), "--perms", "0700", "--tmpfs", path]
-    inner += ["--remount-ro", "/dev", "--remount-ro", "/", "--chdir", ISOLATED.home, "--"] + list(argv)
+    inner += ["--remount-ro", "/dev", "--remount-ro", "/", "--chdir", ISOLATED.home]
+    if seccomp is not None:
+        inner += ["--seccomp", str(seccomp)]
+    inner += ["--"] + list(argv)
     if os.geteuid() != 0:
         return inner  # bubblewrap runs as this (unprivileged) user; 65534 inside maps to it
     drop = [shutil.which("setpriv") or "setpriv", f"--reuid={SANDBOX_UID}", f"--regid={SANDBOX_UID}",

@@ -173,9 +173,14 @@ class Sandbox:
         self.job_r = job_r  # kept: the job pipe is drained here at every reset
         argv = [sys.executable, "-s", "-m", "kinbook.classroom.sandbox.zygote", layout.to_json(), str(job_r),
                 str(result_w)]
+        keep = [job_r, result_w]
         if self.isolation:
-            cmd, env, cwd = bwrap.command(argv), {"PATH": os.environ.get("PATH", "/usr/bin:/bin")}, "/"
+            seccomp = bwrap.seccomp_fd()
+            if seccomp is not None:
+                keep.append(seccomp)
+            cmd, env, cwd = bwrap.command(argv, seccomp=seccomp), {"PATH": os.environ.get("PATH", "/usr/bin:/bin")}, "/"
         else:
+            seccomp = None
             cmd, cwd = argv, self.private
             env = _clean_env({"HOME": layout.home, "TMPDIR": layout.tmp,
                               "MPLCONFIGDIR": os.path.join(layout.tmp, ".matplotlib")})
@@ -183,12 +188,14 @@ class Sandbox:
         try:
             with open(self.log_path, "wb") as log:
                 self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=log, env=env,
-                                             cwd=cwd, pass_fds=(job_r, result_w), start_new_session=True)
+                                             cwd=cwd, pass_fds=keep, start_new_session=True)
         except OSError as exc:
             self.close()
             raise SandboxError(f"the sandbox could not be started: {exc}") from None
         finally:
             os.close(result_w)
+            if seccomp is not None:
+                os.close(seccomp)
         self.starts += 1
         for fd in (self.job_w, self.result_r, self.job_r, self.proc.stdout.fileno()):
             os.set_blocking(fd, False)
