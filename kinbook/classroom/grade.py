@@ -202,7 +202,7 @@ def _pool_init(source, isolation):
     signal.signal(signal.SIGTERM, lambda signum, frame: sys.exit(1))
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the batch's to handle: it stops the pool
     _state.update(source=source, sandbox=Sandbox(isolation))
-    Finalize(None, _state["sandbox"].close, exitpriority=100)
+    Finalize(None, _state["sandbox"].close, kwargs={"wait": True}, exitpriority=100)
 
 
 def _grade_task(args):
