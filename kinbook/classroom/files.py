@@ -27,7 +27,9 @@ import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["atomic_write", "Entry", "collect", "read_entry", "student_id", "MAX_ID_CHARS", "EntryRefused"]
+from .results import Refused
+
+__all__ = ["atomic_write", "Entry", "collect", "read_entry", "student_id", "MAX_ID_CHARS"]
 
 MAX_ID_CHARS = 64
 _ID_EXTRA = "._@+-"
@@ -50,14 +52,6 @@ def atomic_write(path, data):
             os.unlink(tmp)
         raise
     return path
-
-
-class EntryRefused(Exception):
-    """An entry that is not graded: ``status`` (``refused``, ``too-large``) and a message."""
-
-    def __init__(self, status, message):
-        super().__init__(message)
-        self.status, self.message = status, message
 
 
 def student_id(name):
@@ -231,7 +225,7 @@ def read_entry(entry, max_bytes):
 
     Raises
     ------
-    EntryRefused
+    Refused
     """
     flags = os.O_RDONLY | os.O_NOFOLLOW | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
     dirs = []
@@ -243,18 +237,18 @@ def read_entry(entry, max_bytes):
             dirs.append(dfd)
         fd = os.open(entry.parts[-1], flags, dir_fd=dfd)
     except OSError as exc:
-        raise EntryRefused("refused", f"cannot be opened as a regular file ({exc.strerror}): not read") from None
+        raise Refused("refused", f"cannot be opened as a regular file ({exc.strerror}): not read") from None
     finally:
         for d in dirs:
             os.close(d)
     try:
         st = os.fstat(fd)
         if not stat.S_ISREG(st.st_mode):
-            raise EntryRefused("refused", f"{_kind(st.st_mode)}: not read")
+            raise Refused("refused", f"{_kind(st.st_mode)}: not read")
         if entry.ident is not None and (st.st_dev, st.st_ino) != entry.ident[:2]:
-            raise EntryRefused("refused", "the file was replaced after it was listed: not read")
+            raise Refused("refused", "the file was replaced after it was listed: not read")
         if st.st_size > max_bytes:
-            raise EntryRefused("too-large", f"the file has {st.st_size:,} bytes (at most {max_bytes:,}); not read")
+            raise Refused("too-large", f"the file has {st.st_size:,} bytes (at most {max_bytes:,}); not read")
         chunks, total = [], 0
         while True:
             chunk = os.read(fd, 1 << 20)
@@ -262,7 +256,7 @@ def read_entry(entry, max_bytes):
                 break
             total += len(chunk)
             if total > max_bytes:
-                raise EntryRefused("too-large", f"the file has more than {max_bytes:,} bytes; not read")
+                raise Refused("too-large", f"the file has more than {max_bytes:,} bytes; not read")
             chunks.append(chunk)
         return b"".join(chunks)
     finally:

@@ -27,15 +27,14 @@ import signal
 import sys
 import time
 import warnings
-from pathlib import Path
 
 from ..errors import GradingError
-from .files import Entry, EntryRefused, collect, read_entry, student_id
+from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
-from .notebook import (MAX_NOTEBOOK_BYTES, SubmissionRefused, find_parameters, load_source, locked_sequence,
-                       missing_locked, parse_submission, student_notebook)
+from .notebook import (MAX_NOTEBOOK_BYTES, find_parameters, load_source, locked_sequence, missing_locked,
+                       parse_submission, student_notebook)
 from .reference_use import reference_use
-from .results import STATUSES, PartGrade, SubmissionResult, worst
+from .results import STATUSES, PartGrade, Refused, SubmissionResult, worst
 from .serialize import DecodeError, decode
 from .variant import references, student_parameters
 
@@ -100,7 +99,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
         return _refused(source, entry, entry.status, entry.message)
     try:
         data = read_entry(entry, MAX_NOTEBOOK_BYTES)
-    except EntryRefused as exc:
+    except Refused as exc:
         return _refused(source, entry, exc.status, exc.message)
     if sandbox is None:
         from .sandbox import Sandbox
@@ -129,7 +128,7 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
 
     try:
         cells = parse_submission(data)
-    except SubmissionRefused as exc:
+    except Refused as exc:
         return done(exc.status, exc.message, _all_parts(parts, exc.status, exc.message))
     expected = locked_sequence(student_notebook(source, values, student if values is not None else None))
     missing = missing_locked(expected, cells)
@@ -281,7 +280,7 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         if entry.status is None:
             try:
                 digest = hashlib.sha256(read_entry(entry, MAX_NOTEBOOK_BYTES)).hexdigest()
-            except EntryRefused as exc:
+            except Refused as exc:
                 entry.status, entry.message = exc.status, exc.message
         if previous is not None and not force:
             if entry.status is None and previous[0] != digest:
@@ -334,7 +333,7 @@ def _read_again(entry):
     """The entry's bytes, read now (a file replaced since it was listed is refused)."""
     try:
         return read_entry(entry, MAX_NOTEBOOK_BYTES), None
-    except EntryRefused as exc:
+    except Refused as exc:
         return None, exc
 
 
@@ -419,11 +418,3 @@ def _kill_pool(pool):
         except Exception:
             pass
     pool.shutdown(wait=False, cancel_futures=True)
-
-
-def student_of(path, exercise):
-    """The student a submission path belongs to (see :func:`kinbook.classroom.files.student_id`)."""
-    from .files import _name_of
-
-    path = Path(path)
-    return student_id(_name_of(str(path.parent), (path.name,), exercise))[0]

@@ -32,11 +32,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import GradingError
+from .results import Refused
 
 __all__ = [
     "BEGIN_SOLUTION", "END_SOLUTION", "BEGIN_HIDDEN", "END_HIDDEN", "Source", "load_source", "checksum",
     "student_notebook", "locked_checksums", "locked_sequence", "missing_locked", "grader_segments", "grader_code",
-    "find_parameters", "parse_submission", "SubmissionRefused", "MAX_NOTEBOOK_BYTES", "MAX_CELLS",
+    "find_parameters", "parse_submission", "MAX_NOTEBOOK_BYTES", "MAX_CELLS",
 ]
 
 #: A submission larger than this is refused unread (``too-large``).
@@ -278,14 +279,6 @@ def missing_locked(expected, cells):
 
 
 # ================================================================================================ submissions
-class SubmissionRefused(Exception):
-    """A submitted file that is not graded: ``status`` (``too-large``, ``corrupt-notebook``) and a message."""
-
-    def __init__(self, status, message):
-        super().__init__(message)
-        self.status, self.message = status, message
-
-
 def parse_submission(data):
     """The cells of a submitted notebook (bytes): a list of ``{"cell_type", "source", "id"}`` dicts.
 
@@ -295,31 +288,31 @@ def parse_submission(data):
 
     Raises
     ------
-    SubmissionRefused
+    Refused
     """
     if len(data) > MAX_NOTEBOOK_BYTES:
-        raise SubmissionRefused("too-large", f"the notebook has {len(data):,} bytes (at most {MAX_NOTEBOOK_BYTES:,}); "
+        raise Refused("too-large", f"the notebook has {len(data):,} bytes (at most {MAX_NOTEBOOK_BYTES:,}); "
                                 "not read")
     if data.count(b'"cell_type"') > MAX_CELLS:
-        raise SubmissionRefused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
+        raise Refused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
     try:
         nb = json.loads(data.decode("utf-8"))
     except (UnicodeDecodeError, ValueError, RecursionError) as exc:
-        raise SubmissionRefused("corrupt-notebook", f"not a readable notebook: {type(exc).__name__}: {str(exc)[:200]}") from None
+        raise Refused("corrupt-notebook", f"not a readable notebook: {type(exc).__name__}: {str(exc)[:200]}") from None
     if not isinstance(nb, dict) or nb.get("nbformat") != 4 or not isinstance(nb.get("cells"), list):
-        raise SubmissionRefused("corrupt-notebook", "not a readable notebook: not an nbformat-4 notebook with a list "
+        raise Refused("corrupt-notebook", "not a readable notebook: not an nbformat-4 notebook with a list "
                                 "of cells")
     if len(nb["cells"]) > MAX_CELLS:
-        raise SubmissionRefused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
+        raise Refused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
     cells = []
     for i, c in enumerate(nb["cells"]):
         source = c.get("source") if isinstance(c, dict) else None
         if isinstance(source, list) and all(isinstance(line, str) for line in source):
             source = "".join(source)
         if not isinstance(source, str) or c.get("cell_type") not in ("code", "markdown", "raw"):
-            raise SubmissionRefused("corrupt-notebook", f"not a readable notebook: cell {i + 1} has no type or source")
+            raise Refused("corrupt-notebook", f"not a readable notebook: cell {i + 1} has no type or source")
         if len(source) > MAX_CELL_CHARS:
-            raise SubmissionRefused("too-large", f"cell {i + 1} has more than {MAX_CELL_CHARS:,} characters; not read")
+            raise Refused("too-large", f"cell {i + 1} has more than {MAX_CELL_CHARS:,} characters; not read")
         cells.append({"cell_type": c["cell_type"], "source": source, "id": str(c.get("id", ""))[:64]})
     return cells
 

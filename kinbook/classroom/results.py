@@ -26,11 +26,20 @@ from __future__ import annotations
 import html
 from dataclasses import asdict, dataclass, field
 
-__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "worst"]
+__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "Refused", "worst"]
 
 STATUSES = ("ok", "missing-answer", "error", "timeout", "memory", "tampered", "corrupt-notebook", "too-large",
             "refused", "bad-id", "duplicate-id")
 _SEVERITY = {s: i for i, s in enumerate(STATUSES)}
+
+
+class Refused(Exception):
+    """A submission that is not graded, before anything of it is run: ``status`` (one of :data:`STATUSES`, e.g.
+    ``refused``, ``too-large``, ``corrupt-notebook``) and a message for the gradebook."""
+
+    def __init__(self, status, message):
+        super().__init__(message)
+        self.status, self.message = status, message
 
 
 def worst(statuses, default="ok"):

@@ -5,7 +5,8 @@ import unicodedata
 
 import pytest
 
-from kinbook.classroom.files import EntryRefused, atomic_write, collect, read_entry, student_id
+from kinbook.classroom.files import atomic_write, collect, read_entry, student_id
+from kinbook.classroom.results import Refused
 
 
 def test_links_fifos_and_devices_are_refused_and_never_opened(tmp_path):
@@ -29,11 +30,11 @@ def test_a_file_replaced_after_listing_is_refused(tmp_path):
     (entry,) = collect([tmp_path], "ex01", max_bytes=1000)
     (tmp_path / "other").write_text("{ }")                    # another file (another inode) put in its place
     os.replace(tmp_path / "other", tmp_path / "ex01-eve.ipynb")
-    with pytest.raises(EntryRefused, match="replaced"):
+    with pytest.raises(Refused, match="replaced"):
         read_entry(entry, 1000)
     os.remove(tmp_path / "ex01-eve.ipynb")
     os.symlink("/etc/hostname", tmp_path / "ex01-eve.ipynb")  # swapped for a link between listing and reading
-    with pytest.raises(EntryRefused, match="cannot be opened as a regular file"):
+    with pytest.raises(Refused, match="cannot be opened as a regular file"):
         read_entry(entry, 1000)
 
 
