@@ -32,5 +32,5 @@ def test_corpus_codes_are_catalogued_and_cover_the_planar_catalogue():
 
 def test_public_api():
     for name in ("check_phi", "check_jacobian", "check_nu", "check_gamma", "check_value", "check_rotation",
-                 "check_euler_parameters", "CheckResult", "Exercise", "set_language"):
+                 "check_euler_parameters", "CheckResult", "set_language"):
         assert name in grading.__all__
