@@ -233,6 +233,8 @@ attempt("environ", lambda: sorted(os.environ))
 attempt("proc_environ", environments)
 attempt("network", network)
 attempt("uid", os.getuid)
+attempt("leftovers", lambda: sorted(os.listdir("/tmp")) + sorted(os.listdir(os.path.expanduser("~")))
+        + sorted(os.listdir("/run/kinbook")))
 attempt("mounts", lambda: open("/proc/self/mounts").read().count("\\n"))
 """,
     # writes to the installed package, the source notebook, a classmate's file and the canary
@@ -249,6 +251,20 @@ attempt("source", lambda: write(os.path.join(repo(), "tests", "classroom", "sour
 attempt("classmate", lambda: write(os.path.join(repo(), "tests", "classroom", "submissions", "good.ipynb")))
 attempt("collected", lambda: [write(p) for p in glob.glob("/tmp/pytest-of-*/*/*/collected/*.ipynb")] or "none found")
 attempt("canary", lambda: write("/tmp/kinbook-canary.txt"))
+""",
+    # notes left for the next student, and the sandbox's own socket removed (no kernel for the next one)
+    "leftovers": """def leave():
+    out = []
+    for path in ("/tmp/kinbook-note", os.path.expanduser("~/kinbook-note"), "/run/kinbook/kinbook-note"):
+        try:
+            with open(path, "w") as f:
+                f.write("from a classmate")
+            out.append(path)
+        except OSError as exc:
+            out.append(path + ": " + str(exc.strerror))
+    return out
+attempt("left", leave)
+attempt("socket", lambda: os.remove("/run/kinbook/zygote/fork.sock") or "removed")
 """,
     # a daemon in its own session that outlives the notebook, if it can
     "daemon": """def daemon():

@@ -14,7 +14,7 @@ from kinbook.classroom.gradebook import COLUMNS, TOTALS
 from .conftest import BWRAP, CANARY, CANARY_DIR, EVIL, LONG_NAME, SECRET, SOURCE, submission
 
 FULL = 6.0
-ESCAPES = ["unhook", "unaudited", "recon", "writes", "daemon"]
+ESCAPES = ["unhook", "unaudited", "recon", "writes", "daemon", "leftovers"]
 
 
 def parts(batch, student):

@@ -35,7 +35,7 @@ def cells_of(name):
 @pytest.fixture(scope="module")
 def probes():
     """Each escape fixture's `probe`, run in one sandbox (hook off, except for `unhook`), in this order: the
-    daemon's run comes before a second reconnaissance, which must find nothing of it."""
+    daemon's and the leftovers' runs come before a second reconnaissance, which must find nothing of them."""
     if not BWRAP:
         pytest.skip("no operating-system sandbox here")
     os.environ[GRADER_SECRET] = "the grader's environment"
@@ -45,12 +45,13 @@ def probes():
     out = {}
     try:
         with Sandbox(isolation=True) as sb:
-            for name in ("unhook", "unaudited", "recon", "writes", "daemon", "recon"):
+            for name in ("unhook", "unaudited", "recon", "writes", "daemon", "leftovers", "recon"):
                 cells, data = cells_of(name)
                 ex = sb.run(cells, ["probe"], timeout=60, memory_mb=400, files={"submission.ipynb": data},
                             audit_hook=name == "unhook")
                 assert ex.status == "ok", (name, ex)
-                out[name if name not in out else "recon_after_daemon"] = json.loads(ex.answers["probe"]["data"][0][1])
+                out[name if name not in out else "recon_after"] = json.loads(ex.answers["probe"]["data"][0][1])
+                out[f"starts_after_{name}"] = sb.starts
             out["starts"] = sb.starts
             out["zygote_pid"] = sb.pid
     finally:
@@ -89,7 +90,7 @@ def test_unaudited_processes_and_interpreters_stay_inside(probes):
 
 @needs_bwrap
 def test_reconnaissance_finds_nothing_of_the_grader(probes):
-    for key in ("recon", "recon_after_daemon"):
+    for key in ("recon", "recon_after"):
         p = probes[key]
         mine = "/home/student/submission.ipynb"  # the student's own copy (its code names what it looks for)
         assert [f for f in p["notebooks"] if f != mine] == []       # no source, collected/, graded/, canary
@@ -116,10 +117,21 @@ def test_writes_outside_reach_nothing(probes):
 def test_a_daemon_dies_with_the_run(probes):
     daemon = probes["daemon"]["daemon"]
     assert daemon.isdigit()                                          # it did start, in its own session
-    later = probes["recon_after_daemon"]
+    later = probes["recon_after"]
     assert daemon not in later["processes"]                          # gone at the next submission
-    assert probes["starts"] == 1                                     # without restarting the sandbox
+    assert probes["starts_after_daemon"] == 1                        # without restarting the sandbox
     assert probes["left"] == []                                      # and nothing is left on the host
+
+
+@needs_bwrap
+def test_nothing_a_run_leaves_reaches_the_next(probes):
+    left = probes["leftovers"]
+    assert left["left"] == ["/tmp/kinbook-note", "/home/student/kinbook-note",
+                            "/run/kinbook/kinbook-note"]          # written (the sandbox's own directories)
+    assert left["socket"] == "removed"                           # and the zygote's socket removed
+    assert probes["starts"] == 2                                 # so the sandbox was replaced, not reused
+    later = probes["recon_after"]["leftovers"]
+    assert "kinbook-note" not in later and later.count("work") == 1 and "zygote" in later
 
 
 def _run(code, **kw):

@@ -40,6 +40,7 @@ MAX_JOB_BYTES = 40 * 1024 * 1024
 #: The answers (at most 2 MB each, 100 of them in principle; far less in practice) and cell errors.
 MAX_RESULT_BYTES = 16 * 1024 * 1024
 _MAGIC = b"KBF1"
+SOCKET_NAME = "fork.sock"
 
 
 @dataclass(frozen=True)
@@ -68,7 +69,7 @@ class Layout:
 
     @property
     def socket(self):
-        return os.path.join(self.zygote, "fork.sock")
+        return os.path.join(self.zygote, SOCKET_NAME)
 
     def to_json(self):
         return json.dumps(asdict(self))

@@ -42,7 +42,7 @@ import sys
 import time
 import traceback
 
-from .protocol import Layout, die_with_parent, set_child_subreaper, set_dumpable
+from .protocol import SOCKET_NAME, Layout, die_with_parent, set_child_subreaper, set_dumpable
 
 __all__ = ["serve", "MAX_KERNELS", "MAX_REQUEST", "MAX_ENTRIES"]
 
@@ -90,6 +90,8 @@ class _Server:
         self.kernels = {}    # kernel pid → launcher connection
         self.conns = {}      # connection fd → (socket, kernel pid)
         self.started = 0     # kernels started in this run
+        st = os.lstat(layout.socket)
+        self.socket_id = (st.st_dev, st.st_ino)  # checked at every reset
         r, w = os.pipe2(os.O_NONBLOCK | os.O_CLOEXEC)
         self.wake = r
         signal.signal(signal.SIGCHLD, lambda signum, frame: None)
@@ -325,6 +327,19 @@ class _Server:
         for d in (self.layout.home, self.layout.tmp, self.layout.work):
             if not _empty(d, budget):
                 return f"more than {MAX_ENTRIES} files were left in the writable directories"
+        # the control directories are writable by the sandbox's user too: anything left beside them would reach
+        # the next submission, and a removed or replaced socket would leave it without a kernel
+        parent = os.path.dirname(self.layout.work)
+        if self.layout.isolated and os.path.dirname(self.layout.zygote) == parent:
+            keep = {os.path.basename(self.layout.work), os.path.basename(self.layout.zygote)}
+            if sorted(set(os.listdir(parent)) - keep):
+                return f"files were left in {parent}"
+        try:
+            st = os.lstat(self.layout.socket)
+            if (st.st_dev, st.st_ino) != self.socket_id or os.listdir(self.layout.zygote) != [SOCKET_NAME]:
+                return "the zygote's socket was replaced"
+        except OSError:
+            return "the zygote's socket was removed"
         if self.layout.isolated:
             for kind in ("shm", "msg", "sem"):
                 try:
