@@ -17,7 +17,8 @@ namespaces. :func:`command` asks it for:
 * a seccomp filter (built with libseccomp, the library Flatpak and systemd use) refusing, with ``EPERM``, the
   system calls a notebook has no use for and that reach the host's kernel state or other processes:
   :data:`DENIED_SYSCALLS` (keyrings — shared by every sandbox of the same uid —, ptrace and cross-process
-  memory, BPF, perf, io_uring, userfaultfd, mounts and namespaces, modules). Where libseccomp cannot be loaded
+  memory, BPF, perf, io_uring, userfaultfd, mounts and namespaces, modules, and IPC objects that would outlive
+  a run). Where libseccomp cannot be loaded
   the sandbox runs without it (:func:`seccomp_program` returns None).
 
 The sandbox's user must be unprivileged *on the host* too. Run as root, bubblewrap would map uid 65534
@@ -61,6 +62,9 @@ DENIED_SYSCALLS = (
     "mount", "umount2", "pivot_root", "move_mount", "open_tree", "fsopen", "fsmount", "fspick", "setns", "unshare",
     "open_by_handle_at", "name_to_handle_at", "init_module", "finit_module", "delete_module", "kexec_load",
     "kexec_file_load", "swapon", "swapoff", "reboot", "acct", "quotactl", "syslog", "lookup_dcookie",
+    # IPC objects outlive their processes in the sandbox's IPC namespace: one run could leave data for the next
+    "mq_open", "mq_unlink", "mq_timedsend", "mq_timedreceive", "mq_notify", "mq_getsetattr", "msgget", "shmget",
+    "semget",
 )
 
 
