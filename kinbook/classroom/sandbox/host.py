@@ -159,11 +159,11 @@ class Sandbox:
         self.close()
         if self.isolation:
             bwrap.check()
-        self.private = os.path.realpath(tempfile.mkdtemp(prefix="kinbook-grader-"))
-        os.chmod(self.private, 0o700)
         if self.isolation:
-            layout = ISOLATED
+            layout = ISOLATED  # nothing of the sandbox is on the host's disk
         else:
+            self.private = os.path.realpath(tempfile.mkdtemp(prefix="kinbook-grader-"))
+            os.chmod(self.private, 0o700)
             layout = Layout(home=os.path.join(self.private, "home"), tmp=os.path.join(self.private, "tmp"),
                             work=os.path.join(self.private, "work"), zygote=os.path.join(self.private, "zygote"),
                             isolated=False)
@@ -184,11 +184,11 @@ class Sandbox:
             cmd, cwd = argv, self.private
             env = _clean_env({"HOME": layout.home, "TMPDIR": layout.tmp,
                               "MPLCONFIGDIR": os.path.join(layout.tmp, ".matplotlib")})
-        self.log_path = os.path.join(self.private, "sandbox.log")
+        # the sandbox's own messages (bubblewrap's, tracebacks): an unlinked file, gone with this process
+        self.log = tempfile.TemporaryFile(prefix="kinbook-sandbox-log-")
         try:
-            with open(self.log_path, "wb") as log:
-                self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=log, env=env,
-                                             cwd=cwd, pass_fds=keep, start_new_session=True)
+            self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=self.log, env=env,
+                                         cwd=cwd, pass_fds=keep, start_new_session=True)
         except OSError as exc:
             self.close()
             raise SandboxError(f"the sandbox could not be started: {exc}") from None
@@ -229,6 +229,9 @@ class Sandbox:
         if self.private and self.owner == os.getpid():
             shutil.rmtree(self.private, ignore_errors=True)
         self.private = None
+        if getattr(self, "log", None) is not None:
+            self.log.close()
+            self.log = None
 
     def _kill(self):
         try:
@@ -261,11 +264,10 @@ class Sandbox:
 
     def _log_tail(self):
         try:
-            with open(self.log_path, "rb") as f:
-                f.seek(0, 2)
-                f.seek(max(0, f.tell() - 600))
-                return f.read().decode(errors="replace").strip()[-400:]
-        except (OSError, AttributeError):
+            self.log.seek(0, 2)
+            self.log.seek(max(0, self.log.tell() - 600))
+            return self.log.read().decode(errors="replace").strip()[-400:]
+        except (OSError, ValueError, AttributeError):
             return ""
 
     # -------------------------------------------------------------------------------------------- events
