@@ -414,13 +414,24 @@ def _empty(directory, budget):
 _LIFELINE = [None]
 
 
-def _single_threaded():
-    try:
-        return len(os.listdir("/proc/self/task")) == 1
-    except OSError:
-        import threading
+def _single_threaded(settle=2.0):
+    """True when this process has one thread. A joined thread can stay listed in /proc/self/task for a moment
+    after ``join`` returns (its OS thread is still exiting), so a count above one is looked at again for up to
+    ``settle`` seconds before it is believed."""
+    import threading
 
-        return threading.active_count() == 1
+    if threading.active_count() != 1:
+        return False
+    deadline = time.monotonic() + settle
+    while True:
+        try:
+            if len(os.listdir("/proc/self/task")) == 1:
+                return True
+        except OSError:
+            return True  # no /proc: threading's count above is all there is
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.005)
 
 
 def _preload():
