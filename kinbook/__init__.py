@@ -26,6 +26,7 @@ from .errors import (
 from .io import load, loads
 from . import grading  # noqa: E402  (after the modules it grades with)
 from .grading import set_language
+from .notebook import setup as notebook_setup
 
 __version__ = "0.1.0"
 
@@ -36,6 +37,7 @@ __all__ = [
     "planar",
     "grading",
     "set_language",
+    "notebook_setup",
     "spatial",
     "KinbookError",
     "ModelError",

@@ -16,6 +16,8 @@ from typing import Callable
 
 import numpy as np
 
+from ..notebook import agrees, clean, small, tolerance_text
+
 __all__ = ["Erratum", "Evidence", "ERRATA", "table", "get", "book_n1_acceleration"]
 
 
@@ -56,6 +58,11 @@ class Erratum:
 
 
 # ------------------------------------------------------------------------------------------------ helpers
+def _below(err, tol=1e-12):
+    """"< 1e-12" for a residual at round-off level, else its value."""
+    return f"< {tolerance_text(tol)}" if abs(err) < tol else f"= {small(err)}"
+
+
 def _ex(name):
     from .. import examples
 
@@ -131,7 +138,7 @@ def _ev_ex1_solution():
         f"at the printed A and B the coupler would be |AB| = {np.linalg.norm(B - A):.3f} long instead of 6. "
         f"kinbook's solution: φ_3 = {np.degrees(q[8]):.2f}°, φ_4 = {np.degrees(q[11]):.2f}°, "
         f"B = ({m.point_position(q, 'rocker', 'B')[0]:.4f}, {m.point_position(q, 'rocker', 'B')[1]:.4f}), "
-        f"max |Φ_k| = {ok:.1e}.",
+        f"max |Φ_k| {_below(ok)}.",
         float(np.abs(res).max()), float(ok))
 
 
@@ -143,7 +150,7 @@ def _ev_ex3_x2():
     fixed[3] = -0.7071
     return Evidence(
         f"With the printed x_2 = +0.7071, Φ_4 = x_1 − x_2 + cos φ_2 = {res[3]:.4f}; with x_2 = −0.7071 it is "
-        f"{m.Phi(fixed, 0.0)[3]:.1e}.", abs(float(res[3])), abs(float(m.Phi(fixed, 0.0)[3])))
+        f"{small(m.Phi(fixed, 0.0)[3], 1e-4)} (the printed four decimals).", abs(float(res[3])), abs(float(m.Phi(fixed, 0.0)[3])))
 
 
 def _ev_ex4_phi8():
@@ -158,7 +165,7 @@ def _ev_ex4_phi8():
         rows.append((printed, corrected, m.Phi(q, 0.0)[7]))
     e_p, e_c = _compare(rows)
     return Evidence(f"At 20 random configurations the printed Φ_8 differs from kinbook's by up to {e_p:.3f}; the "
-                    f"corrected row agrees to {e_c:.1e}.", e_p, e_c)
+                    f"corrected row {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_table_13_2():
@@ -173,7 +180,7 @@ def _ev_table_13_2():
         rows.append((printed, corrected, -J[0, 5]))
     e_p, e_c = _compare(rows)
     return Evidence(f"∂Φ_1/∂φ_j at 20 random configurations: the printed entry is off by up to {e_p:.3f}; with "
-                    f"x_j, y_j it matches kinbook's derivative to {e_c:.1e}.", e_p, e_c)
+                    f"x_j, y_j it matches kinbook's derivative: it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_table_13_3():
@@ -187,7 +194,7 @@ def _ev_table_13_3():
         rows.append((printed, corrected, J[0, 2]))
     e_p, e_c = _compare(rows)
     return Evidence(f"The printed ∂Φ/∂φ_i reduces to 0; kinbook's entry reaches {e_p:.3f} at random "
-                    f"configurations; the corrected entry agrees to {e_c:.1e}.", e_p, e_c)
+                    f"configurations; the corrected entry {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_table_13_4():
@@ -200,8 +207,8 @@ def _ev_table_13_4():
         corrected = (v["y_iP"] - v["y_j"]) * sy + (v["x_iP"] - v["x_j"]) * sx
         rows.append((printed, corrected, J[0, 5]))
     e_p, e_c = _compare(rows)
-    return Evidence(f"∂Φ/∂φ_j of the r-t joint: printed entry off by up to {e_p:.3f}; with x_j, y_j it agrees "
-                    f"to {e_c:.1e}.", e_p, e_c)
+    return Evidence(f"∂Φ/∂φ_j of the r-t joint: printed entry off by up to {e_p:.3f}; with x_j, y_j it "
+                    f"{agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_gamma_rr():
@@ -220,7 +227,7 @@ def _ev_gamma_rr():
         rows.append((-2 * dx**2 - 2 * dy + rest, -2 * dx**2 - 2 * dy**2 + rest, g))
     e_p, e_c = _compare(rows)
     return Evidence(f"γ of the r-r joint at 20 random states: printed entry off by up to {e_p:.2f}; with "
-                    f"(ẏ_i − ẏ_j)² it agrees to {e_c:.1e}.", e_p, e_c)
+                    f"(ẏ_i − ẏ_j)² it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_gamma_t():
@@ -237,7 +244,7 @@ def _ev_gamma_t():
         rows.append((vel - quad, -vel - quad, -m.gamma(q, qd)[0]))
     e_p, e_c = _compare(rows)
     return Evidence(f"γ_1 of the translational joint at 20 random states with φ̇_j = φ̇_i: printed entry off by up "
-                    f"to {e_p:.2f}; with −2[…]φ̇_i it agrees to {e_c:.1e}.", e_p, e_c)
+                    f"to {e_p:.2f}; with −2[…]φ̇_i it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_eq37():
@@ -259,7 +266,7 @@ def _ev_eq37():
     e_p, e_c = _compare(rows)
     return Evidence(f"With the carrier's initial angle φ_k⁰ = {pk0:.3f}, eq. 37 differs from kinbook's gear row by "
                     f"(ρ_i + ρ_j) φ_k⁰ = {e_p:.3f}; measuring the initial angles relative to the carrier too (eq. 38) "
-                    f"agrees to {e_c:.1e}.", e_p, e_c)
+                    f"{agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_ex5_velocity():
@@ -308,8 +315,8 @@ def _ev_elementary_rotation():
         rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
     e_p, e_c = _compare(rows)
     return Evidence(f"The printed A^ψ has det = cos 2ψ (0.5 at ψ = 30°), so it is no rotation; it differs from the "
-                    f"transpose of kinbook's A(ψ, 0, 0) by up to {e_p:.3f}; with −sin ψ in row 2 it agrees to "
-                    f"{e_c:.1e}.", e_p, e_c)
+                    f"transpose of kinbook's A(ψ, 0, 0) by up to {e_p:.3f}; with −sin ψ in row 2 it "
+                    f"{agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_a21_row3():
@@ -324,7 +331,7 @@ def _ev_a21_row3():
         rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
     e_p, e_c = _compare(rows)
     return Evidence(f"Row 3 of the product A^φ A^θ A^ψ (the transpose of kinbook's A_from_euler) at 20 random "
-                    f"angles: the printed row is off by up to {e_p:.3f}; with sin θ for sin φ it agrees to {e_c:.1e}.",
+                    f"angles: the printed row is off by up to {e_p:.3f}; with sin θ for sin φ it {agrees(e_c)}.",
                     e_p, e_c)
 
 
@@ -352,8 +359,8 @@ def _ev_A_of_p():
         rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
     e_p, e_c = _compare(rows)
     return Evidence(f"At 20 random unit p the printed matrix differs from A(p) by up to {e_p:.3f} (it is symmetric, "
-                    f"so it cannot be a rotation in general); twice it, with + e0 terms at a13, a21, a32, agrees to "
-                    f"{e_c:.1e}.", e_p, e_c)
+                    f"so it cannot be a rotation in general); twice it, with + e0 terms at a13, a21, a32, "
+                    f"{agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_G_row2():
@@ -367,7 +374,7 @@ def _ev_G_row2():
         rows.append((np.abs(printed @ p).max(), np.abs(G(p) @ p).max(), 0.0))
     e_p, e_c = _compare(rows)
     return Evidence(f"With the printed row 2, G p = [0, 2 e1 e3, 0] reaches {e_p:.3f} at random unit p instead of "
-                    f"0; kinbook's G gives |G p| ≤ {e_c:.1e}.", e_p, e_c)
+                    f"0; kinbook's G gives |G p| {_below(e_c)}.", e_p, e_c)
 
 
 def _ev_p_from_A_180():
@@ -379,9 +386,9 @@ def _ev_p_from_A_180():
         e = np.array([A[2, 1] - A[1, 2], A[0, 2] - A[2, 0], A[1, 0] - A[0, 1]]) / (4 * e0)
     book_ok = bool(np.all(np.isfinite(e)))
     rebuilt = np.abs(A_from_p(p_from_A(A)) - A).max()
-    return Evidence(f"For a 180° turn about (1, 2, 2)/3, e0 = {e0:.1e} and the book's recipe divides by it: "
+    return Evidence(f"For a 180° turn about (1, 2, 2)/3, e0 = cos 90° {_below(e0, 1e-6)} and the book's recipe divides by it: "
                     f"e = {np.array2string(e, precision=3)}; kinbook's largest-component branch gives "
-                    f"p = {np.array2string(p_from_A(A), precision=4)} and rebuilds A to {rebuilt:.1e}.",
+                    f"p = {np.array2string(clean(p_from_A(A)), precision=4)} and rebuilds A: it {agrees(rebuilt)}.",
                     0.0 if book_ok else np.inf, float(rebuilt))
 
 
@@ -531,7 +538,7 @@ def _ev_14_4_n2_primes():
     e_p, e_c = _compare(rows)
     return Evidence(f"At 20 random configurations the printed Φ^(n2,1), read with global s_i, s_i^B, s_j^B "
                     f"(s = A s'), differs from kinbook's normal-2 row by up to {e_p:.3f}; with the local s'_i, "
-                    f"s'_i^B, s'_j^B it agrees to {e_c:.1e}.", e_p, e_c)
+                    f"s'_i^B, s'_j^B it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_14_4_p1_transpose():
@@ -548,7 +555,7 @@ def _ev_14_4_p1_transpose():
         rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
     e_p, e_c = _compare(rows)
     return Evidence(f"At 20 random pairs of orientations A_i s̃'_iᵀ A_iᵀ A_j s'_j differs from s̃_i s_j by up to "
-                    f"{e_p:.3f} (it equals −s̃_i s_j, because s̃ᵀ = −s̃); A_i s̃'_i A_iᵀ A_j s'_j agrees to {e_c:.1e}.",
+                    f"{e_p:.3f} (it equals −s̃_i s_j, because s̃ᵀ = −s̃); A_i s̃'_i A_iᵀ A_j s'_j {agrees(e_c)}.",
                     e_p, e_c)
 
 
@@ -568,7 +575,7 @@ def _ev_14_4_p1_two_rows():
     e_p, e_c = _compare(rows)
     return Evidence(f"With s_i along X and s_j turned 10°…170° about Z, rows 1-2 of s̃_i s_j are both 0 although "
                     f"|s_i × s_j| reaches {e_p:.3f}: they miss the whole misalignment. The norm of kinbook's two rows "
-                    f"h_1ᵀ s_j, h_2ᵀ s_j equals |s_i × s_j| to {e_c:.1e}.", e_p, e_c)
+                    f"h_1ᵀ s_j, h_2ᵀ s_j equals |s_i × s_j|: it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_14_4_universal_primes():
@@ -586,7 +593,7 @@ def _ev_14_4_universal_primes():
     e_p, e_c = _compare(rows)
     return Evidence(f"At 20 random configurations the printed Φ^(s,3) of the universal joint, read with global "
                     f"s_i^P, s_j^P as the spherical-joint section defines them, differs from kinbook's first three "
-                    f"rows by up to {e_p:.3f}; with s'^P_i, s'^P_j it agrees to {e_c:.1e}.", e_p, e_c)
+                    f"rows by up to {e_p:.3f}; with s'^P_i, s'^P_j it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_14_4_revolute_tilde():
@@ -612,8 +619,8 @@ def _ev_14_4_revolute_tilde():
         printed = np.inf
     corrected = float(np.abs(A_i @ skew(s_i) @ A_i.T @ A_j @ np.array(s_j, float)).max())
     return Evidence(f"As printed, A_i s'_i A_iᵀ A_j s'_j multiplies a 3×1 column by a 3×3 matrix: it is not defined "
-                    f"(sympy raises ShapeError). At an assembled revolute joint (kinbook's five rows: max |Φ| = "
-                    f"{joint:.1e}), the form with the tilde, A_i s̃'_i A_iᵀ A_j s'_j, is {corrected:.1e}.",
+                    f"(sympy raises ShapeError). At an assembled revolute joint (kinbook's five rows: max |Φ| "
+                    f"{_below(joint)}), the form with the tilde, A_i s̃'_i A_iᵀ A_j s'_j, has max |·| {_below(corrected)}.",
                     printed, max(corrected, joint))
 
 
@@ -663,7 +670,7 @@ def _ev_14_5_normalization():
     return Evidence(f"Read literally, pᵀ − 1 = 0 is four equations e_k = 1 that no rotation satisfies: at 20 "
                     f"random unit p they are off by up to {printed:.3f}, and with four rows per body the spatial "
                     f"four-bar would have {dof} degrees of freedom instead of 1. pᵀp − 1 equals kinbook's "
-                    f"normalization row to {corrected:.1e} at 20 random p (on and off the unit sphere).",
+                    f"normalization row ({agrees(corrected)}) at 20 random p (on and off the unit sphere).",
                     printed, corrected)
 
 
@@ -743,7 +750,7 @@ def _ev_14_5_gamma_n1():
     return Evidence(f"At 20 random states on the unit sphere (pᵀṗ = 0, pᵀp̈ = −ṗᵀṗ) the printed relation, "
                     f"2s_jᵀE_i s̄'_i ṗ_i + 2s_iᵀE_j s̄'_j ṗ_j − 2(s_jᵀĖ_iĠ_iᵀs'_i + s_iᵀĖ_jĠ_jᵀs'_j + "
                     f"ṡ_iᵀṡ_j) (Ġ read as Ġᵀ: Ġ s' is undefined), differs from Φ̈ = Φ_q q̈ − γ by up to "
-                    f"{e_p:.3f}; with p̈ for ṗ and the right-hand side's sign changed it agrees to {e_c:.1e}.",
+                    f"{e_p:.3f}; with p̈ for ṗ and the right-hand side's sign changed it {agrees(e_c)}.",
                     e_p, e_c)
 
 
@@ -753,7 +760,7 @@ def _ev_14_5_gamma_n1_table():
     return Evidence(f"At 20 random states the book's right-hand side, −2(s_jᵀĖ_iĠ_iᵀs'_i + s_iᵀĖ_jĠ_jᵀs'_j + "
                     f"ṡ_iᵀṡ_j) (misprints of §14.5's n1 equation corrected), differs from kinbook's γ — the one "
                     f"that goes with Table 14.1's Φ_p = 2s_jᵀ(E_i s̄'_i + s'_i p_iᵀ) — by up to {e_p:.3f}; "
-                    f"adding −2(s_jᵀs'_i)ṗ_iᵀṗ_i − 2(s_iᵀs'_j)ṗ_jᵀṗ_j it agrees to {e_c:.1e}.", e_p, e_c)
+                    f"adding −2(s_jᵀs'_i)ṗ_iᵀṗ_i − 2(s_iᵀs'_j)ṗ_jᵀṗ_j it {agrees(e_c)}.", e_p, e_c)
 
 
 # §14.5, spatial kinematic analysis (chapters/14-5-spatial-analysis.ipynb)

@@ -1,0 +1,31 @@
+"""The notebook display helpers never let round-off through: exact zeros print the same on every CPU."""
+
+import numpy as np
+import pytest
+
+from kinbook import notebook
+
+
+@pytest.mark.parametrize("noise", [0.0, -0.0, 1.5e-17, -1.5e-17, 9.9e-13, -4e-16])
+def test_round_off_prints_as_the_same_zero(noise, capsys):
+    notebook.show(np.array([noise, 0.5]), noise, [noise], (noise,))
+    assert capsys.readouterr().out == "[0.  0.5] 0 [0.0] (0.0,)\n"
+    assert notebook.fmt(noise) == "0.0000"
+    assert notebook.small(noise) == "< 1e-12"
+    assert notebook.agrees(noise) == "agrees to within 1e-12"
+
+
+def test_values_above_the_tolerance_are_kept():
+    x = np.array([1e-11, -2e-3, 3.0])
+    assert np.array_equal(notebook.clean(x), x)
+    assert notebook.fmt(-2e-3, 3) == "-0.002"
+    assert notebook.agrees(0.0451) == "differs by 0.045"
+    assert notebook.agrees(22111.7) == "differs by 22112"
+
+
+def test_clean_leaves_other_objects_alone():
+    import sympy as sp
+
+    x = sp.Symbol("x")
+    assert notebook.clean({"a": x, "b": "text", "c": 3, "d": True}) == {"a": x, "b": "text", "c": 3, "d": True}
+    assert notebook.clean(np.arange(3)).dtype.kind == "i"
