@@ -8,7 +8,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinbook-installed
 PIN    := requirements/constraints.txt
 
-.PHONY: lab test install kernel lock clean notebooks
+.PHONY: lab test install kernel lock clean notebooks test-cpu
 
 install: $(STAMP)
 
@@ -23,8 +23,10 @@ $(STAMP): pyproject.toml $(PIN) | $(BIN)/python
 kernel: $(STAMP)
 
 # root (a container, a CI box) needs --allow-root; everyone else gets the plain command
+# The chapter notebooks are trusted first, so their stored animations (JavaScript players) play when opened.
 lab: $(STAMP)
 	mkdir -p chapters
+	$(BIN)/jupyter trust chapters/*.ipynb >/dev/null
 	$(BIN)/jupyter lab --notebook-dir=chapters $(if $(filter 0,$(shell id -u)),--allow-root)
 
 # -n auto: one pytest worker per core (pytest-xdist); --dist loadfile keeps each notebook's cells in order on
@@ -33,6 +35,14 @@ lab: $(STAMP)
 JOBS ?= auto
 test: $(STAMP)
 	$(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=120 -rs \
+		$(if $(filter 1,$(JOBS)),,-n $(JOBS) --dist loadfile)
+
+# The notebook tests again under another BLAS/SIMD profile: OpenBLAS's SSE3 (Prescott) kernels and numpy without
+# its AVX2 (X86_V3) and AVX-512 (X86_V4, AVX512_*) loops. Outputs stored on one CPU and compared on another round
+# differently; a notebook that prints round-off fails here even on the machine that stored it.
+CPU_PROFILE := OPENBLAS_CORETYPE=Prescott NPY_DISABLE_CPU_FEATURES="X86_V3 X86_V4 AVX512_ICL AVX512_SPR"
+test-cpu: $(STAMP)
+	$(CPU_PROFILE) $(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=120 chapters exercises \
 		$(if $(filter 1,$(JOBS)),,-n $(JOBS) --dist loadfile)
 
 # Re-execute stored notebooks in place after a library change (NB=path to do only some)
