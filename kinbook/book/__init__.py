@@ -1,9 +1,14 @@
-"""The textbook as data: what it prints, where it is wrong, and how to write in its notation.
+"""The textbook as data and the notebooks' toolkit: what the book prints, where it is wrong, how to write in
+its notation, how to check a printed formula, and the notebooks' "Try it" exercises.
 
-:mod:`kinbook.book.errata` is the one list of the book's errata (stable ids such as ``"13.6-table-13.2"``),
-each with evidence that kinbook computes. Notebooks, checkers and tests cite errata by id.
+- :mod:`~kinbook.book.printed` — the book's printed numbers and tables, typed once (only as the thing under test)
+- :mod:`~kinbook.book.errata` — the one list of the book's errata, stable ids (``"13.6-table-13.2"``), evidence
+- :mod:`~kinbook.book.notation` — the book's symbols, its two-body joints, a book-notation LaTeX printer
+- :mod:`~kinbook.book.verify` — printed-vs-derived tables, finite-difference and second-derivative checks
+- :mod:`~kinbook.book.tryits` — every notebook's "Try it": checker, target and worked answer as data
 """
 
-from . import errata
+from . import errata, notation, printed, verify
+from .tryits import reveal, try_it
 
-__all__ = ["errata"]
+__all__ = ["errata", "notation", "printed", "verify", "try_it", "reveal"]

@@ -1,0 +1,211 @@
+"""The book's notation: its symbols, its two-body joints, and a LaTeX printer that writes kinbook's results
+the way the book does (the idea of sympy's ``vlatex``).
+
+kinbook names coordinates ``x1, y1, phi1, dx1 …`` (body numbers); the book writes :math:`x_i, y_i, \\varphi_i,
+\\dot x_i` and global point coordinates :math:`x_i^P`. This module translates both ways:
+
+- :data:`S` holds the book's symbols for a joint between bodies *i* and *j* (``S.x_i``, ``S.xP_i`` for
+  :math:`x_i^P`, ``S.w_i`` for :math:`\\dot\\varphi_i` …);
+- :func:`pair` builds the two-body mechanism of one joint type with symbolic local points (ξ, η), as §13.5
+  and §13.6 treat each joint;
+- :func:`to_book` rewrites a kinbook expression of such a pair in the book's global point coordinates,
+  :func:`from_book` goes back (both checked against each other in ``tests/book``);
+- :func:`latex` prints any kinbook expression with the book's names (x_1, φ_1, ẋ_1, e_{0,1}, …);
+  :func:`equations` writes a list of rows as :math:`\\Phi_k \\equiv … = 0`; :func:`matrix` a numeric matrix
+  without round-off.
+"""
+
+from __future__ import annotations
+
+import re
+from functools import lru_cache
+from types import SimpleNamespace
+
+import numpy as np
+import sympy as sp
+
+__all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "equations", "matrix", "names",
+           "book_gamma", "Math"]
+
+
+def _sym(name, tex):
+    """A real symbol whose LaTeX is ``tex`` (sympy prints a Symbol by its name)."""
+    return sp.Symbol(tex if tex else name, real=True)
+
+
+# ---------------------------------------------------------------------------------------- book symbols
+S = SimpleNamespace()
+"""The book's symbols for a joint between bodies i and j (planar, §13.5–13.8).
+
+Coordinates ``x_i, y_i, phi_i, x_j, y_j, phi_j``; velocities ``xd_i, yd_i, w_i, xd_j, yd_j, w_j`` (ẋ, ẏ, φ̇);
+global point coordinates ``xP_i, yP_i, xQ_i, yQ_i, xP_j, yP_j, xQ_j, yQ_j`` (x_i^P …; the book prints Q as
+"o" in its tables); local coordinates ``xiP_i, etaP_i, …`` (ξ_i^P, η_i^P); the link length ``l``.
+"""
+for _b in "ij":
+    setattr(S, f"x_{_b}", _sym(None, f"x_{_b}"))
+    setattr(S, f"y_{_b}", _sym(None, f"y_{_b}"))
+    setattr(S, f"phi_{_b}", _sym(None, rf"\varphi_{_b}"))
+    setattr(S, f"xd_{_b}", _sym(None, rf"\dot{{x}}_{_b}"))
+    setattr(S, f"yd_{_b}", _sym(None, rf"\dot{{y}}_{_b}"))
+    setattr(S, f"w_{_b}", _sym(None, rf"\dot{{\varphi}}_{_b}"))
+    for _p in "PQ":
+        setattr(S, f"x{_p}_{_b}", _sym(None, f"x_{_b}^{_p}"))
+        setattr(S, f"y{_p}_{_b}", _sym(None, f"y_{_b}^{_p}"))
+        setattr(S, f"xi{_p}_{_b}", _sym(None, rf"\xi_{_b}^{_p}"))
+        setattr(S, f"eta{_p}_{_b}", _sym(None, rf"\eta_{_b}^{_p}"))
+S.l = sp.Symbol("l", positive=True)
+S.c = sp.Symbol(r"c", real=True)  # the translational joint's constant φ_i⁰ − φ_j⁰
+S.q = sp.Matrix([S.x_i, S.y_i, S.phi_i, S.x_j, S.y_j, S.phi_j])
+S.qd = sp.Matrix([S.xd_i, S.yd_i, S.w_i, S.xd_j, S.yd_j, S.w_j])
+S.columns = [rf"\partial/\partial {v}" for v in ("x_i", "y_i", r"\varphi_i", "x_j", "y_j", r"\varphi_j")]
+
+PAIR_KINDS = {
+    "r": (r"(r,2)", "revolute"),
+    "t": (r"(t,2)", "translational"),
+    "rr": (r"(r\text{-}r,1)", "revolute–revolute"),
+    "rt": (r"(r\text{-}t,1)", "revolute–translational"),
+}
+"""The four planar joints of §13.5: kind → (the book's superscript, English name)."""
+
+
+@lru_cache(maxsize=None)
+def pair(kind):
+    """The two-body mechanism of one planar joint type with symbolic local points, as §13.5–13.8 treat it.
+
+    Body ``i`` (coordinates x1, y1, phi1) carries P (and Q for the translational joint), body ``j`` (x2, y2,
+    phi2) carries P (and Q for the revolute–translational joint); their local coordinates are the symbols
+    ``S.xiP_i`` … The translational joint uses the book's eq. 26 (s_i from Q_i to P_i, so ``axis=("Q", "P")``)
+    with the constant angle ``S.c``; the revolute–revolute link has length ``S.l``.
+
+    Parameters
+    ----------
+    kind : {"r", "t", "rr", "rt"}
+
+    Returns
+    -------
+    kinbook.planar.Mechanism
+        Cached: do not add to it.
+    """
+    from ..planar import Mechanism, Revolute, RevoluteRevolute, RevoluteTranslational, Translational
+
+    if kind not in PAIR_KINDS:
+        raise ValueError(f"`kind` must be one of {', '.join(PAIR_KINDS)}, got {kind!r}")
+    points = {"i": "PQ" if kind == "t" else "P", "j": "PQ" if kind == "rt" else "P"}
+    m = Mechanism(f"{PAIR_KINDS[kind][1]} pair")
+    for b in "ij":
+        m.add_body(b, points={p: (getattr(S, f"xi{p}_{b}"), getattr(S, f"eta{p}_{b}")) for p in points[b]})
+    m.add({"r": lambda: Revolute("i", "j", point="P"),
+           "t": lambda: Translational("i", "j", axis=("Q", "P"), point_j="P", phi0=S.c),
+           "rr": lambda: RevoluteRevolute("i", "j", "P", "P", length=S.l),
+           "rt": lambda: RevoluteTranslational("i", "j", "P", axis=("P", "Q"))}[kind]())
+    return m
+
+
+def _maps(mech):
+    """(read, back): kinbook symbols → book notation at φ = 0, and book notation → kinbook symbols."""
+    trig, read = {}, dict(zip(mech.q, S.q)) | dict(zip(mech.qd, S.qd))
+    back = dict(zip(S.q, mech.q)) | dict(zip(S.qd, mech.qd))
+    for body, b in zip(mech.bodies, "ij"):
+        x, y, phi = mech.body_symbols(body.name)
+        trig |= {sp.sin(phi): 0, sp.cos(phi): 1}
+        for p, (xi, eta) in body.points.items():
+            X, Y = getattr(S, f"x{p}_{b}"), getattr(S, f"y{p}_{b}")
+            read[xi], read[eta] = X - getattr(S, f"x_{b}"), Y - getattr(S, f"y_{b}")
+            back[X] = x + xi * sp.cos(phi) - eta * sp.sin(phi)
+            back[Y] = y + xi * sp.sin(phi) + eta * sp.cos(phi)
+    return (trig, read), back
+
+
+def to_book(expr, mech):
+    """A kinbook expression of :func:`pair` ``mech`` written in the book's global point coordinates.
+
+    Every entry of Φ, Φ_q and γ depends on the points only through global vectors such as
+    x_i^P − x_i = ξ cos φ − η sin φ, so the book's form can be read off at φ_i = φ_j = 0, where ξ = x_i^P − x_i
+    and η = y_i^P − y_i; :func:`kinbook.book.verify.compare` confirms the result at random configurations.
+    """
+    (trig, read), _ = _maps(mech)
+    return sp.sympify(expr).subs(trig).subs(read, simultaneous=True)
+
+
+def from_book(expr, mech):
+    """An expression in the book's notation (:data:`S`) in the kinbook symbols of :func:`pair` ``mech``, at
+    any angle (x_i^P → x_i + ξ cos φ_i − η sin φ_i, …)."""
+    _, back = _maps(mech)
+    return sp.sympify(expr).subs(back, simultaneous=True)
+
+
+def book_gamma(expr, mech):
+    """γ (or any velocity-quadratic expression) of a pair in the book's notation, collected by the products
+    of angular velocities and factored term by term, as Table 13.5 writes it."""
+    g = sp.expand(to_book(expr, mech))
+    keys = [S.w_i**2, S.w_i * S.w_j, S.w_j**2, S.w_i, S.w_j]
+    return sp.collect(g, keys, func=lambda c: sp.factor(c))
+
+
+# ----------------------------------------------------------------------------------------- the printer
+_COORD = re.compile(r"^(d?)(x|y|z|phi|e0|e1|e2|e3)(\d+)$")
+_TEX = {"x": "x", "y": "y", "z": "z", "phi": r"\varphi"}
+
+
+def names(expr, mech=None):
+    """``symbol_names`` for :func:`sympy.latex`: kinbook's coordinate symbols in the book's notation.
+
+    ``x1 → x_1``, ``phi2 → \\varphi_2``, ``dx1 → \\dot{x}_1``, ``e02 → e_{0,2}``; with a mechanism whose
+    bodies are named by one letter (``i``, ``j``), that letter is the subscript (``x1 → x_i``).
+    """
+    letters = {}
+    if mech is not None:
+        letters = {str(b.number): b.name for b in mech.bodies if len(b.name) == 1 and b.name.isalpha()}
+    out = {}
+    for s in sp.sympify(expr).free_symbols:
+        m = _COORD.match(s.name)
+        if not m:
+            continue
+        dot, base, number = m.groups()
+        sub = letters.get(number, number)
+        if base.startswith("e"):  # Euler parameters e_{0i}: the book's index first, then the body
+            head, sub = "e", base[1] + ("," if len(sub) > 1 or sub.isdigit() else "") + sub
+        else:
+            head = _TEX[base]
+        out[s] = (rf"\dot{{{head}}}" if dot else head) + f"_{{{sub}}}"
+    return out
+
+
+def latex(expr, mech=None, **kwargs):
+    """LaTeX of a kinbook expression in the book's notation (see :func:`names`)."""
+    expr = sp.sympify(expr)
+    return sp.latex(expr, symbol_names=names(expr, mech), **kwargs)
+
+
+def equations(rows, mech=None, first=1, label=r"\Phi"):
+    """``rows`` (a sympy column) as the book writes a system: Φ_1 ≡ … = 0, one line each (a LaTeX string)."""
+    lines = [rf"{label}_{{{k}}} &\equiv {latex(e, mech)} = 0" for k, e in enumerate(list(rows), start=first)]
+    return r"\begin{aligned}" + r"\\ ".join(lines) + r"\end{aligned}"
+
+
+def matrix(values, digits=4, row_labels=None, column_labels=None):
+    """A numeric matrix or vector as a LaTeX array, rounded to ``digits`` decimals without round-off
+    (exact zeros as 0, no −0)."""
+    from ..notebook import fmt
+
+    a = np.atleast_2d(np.asarray(values, dtype=float))
+
+    def cell(v):
+        text = fmt(v, digits)
+        return text.rstrip("0").rstrip(".") if "." in text else text
+
+    rows = [[cell(v) for v in r] for r in a]
+    if row_labels is not None:
+        rows = [[lab] + r for lab, r in zip(row_labels, rows)]
+    head = ""
+    if column_labels is not None:
+        head = (" & " if row_labels is not None else "") + " & ".join(column_labels) + r" \\ \hline "
+    spec = ("c|" if row_labels is not None else "") + "r" * a.shape[1]
+    return rf"\begin{{array}}{{{spec}}}" + head + r" \\ ".join(" & ".join(r) for r in rows) + r"\end{array}"
+
+
+def Math(tex):
+    """IPython's ``Math`` display object (imported lazily so the library does not need IPython)."""
+    from IPython.display import Math as _Math
+
+    return _Math(tex)

@@ -1,0 +1,153 @@
+"""What the book prints, typed once — only as the thing under test.
+
+Numbers and formulas here are copied from the textbook text as printed, misprints included, so that the
+errata (:mod:`kinbook.book.errata`), the notebooks and the tests compare kinbook's derivations with one copy
+of the book. Nothing in kinbook uses them as a reference answer.
+
+Chapter 13: the solutions of examples 1–4 at t = 0 (angles in degrees, as printed), example 5's Jacobian,
+right-hand side and velocities, example 6's γ, accelerations and point accelerations, and Tables 13.1–13.5
+written in the book's symbols (:data:`kinbook.book.notation.S`; the book's "o" is the point Q).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from .notation import S
+
+__all__ = ["EX1", "EX2", "EX3", "EX4", "EX5", "EX6", "q_book", "TABLES", "TABLE_13_1_TEXT",
+           "EX5_RR_ROW", "TABLE_13_5_JACOBIAN", "TABLE_13_5_GAMMA", "REVOLUTE_STEPS"]
+
+
+def q_book(values):
+    """A printed solution (angles in degrees) as kinbook's q (radians)."""
+    q = np.array(values, dtype=float)
+    q[2::3] = np.radians(q[2::3])
+    return q
+
+
+# ------------------------------------------------------------------------------ §13.5, examples 1–4 at t = 0
+EX1 = {
+    "q": q_book([0, 0, 0, -0.7071, 0.7071, 135, 1.5777, 1.9854, 10.81, 3.7849, 1.2783, 238.45]),
+    "A": np.array([-1.4142, 1.4142]),
+    "B": np.array([4.5697, 2.5566]),
+}
+"""Example 1 (four-bar, four bodies): the printed solution at t = 0 and the points A, B."""
+
+EX2 = {
+    "q": q_book([0, 0, 0, 0.7071, 0.7071, 45, 4.3297, 0.7071, 346.37, 7.2452, 0, 0]),
+    "A": np.array([1.4142, 1.4142]),
+    "B": np.array([7.2452, 0.0]),
+}
+"""Example 2 (slider-crank, four bodies)."""
+
+EX3 = {"q": q_book([0, 0, 0, 0.7071, 0.7071, 135, 3.7849, 1.2783, 238.45])}
+"""Example 3 (four-bar with a revolute–revolute joint), printed with x_2 = +0.7071."""
+
+EX4 = {"q": q_book([0, 0, 0, 0.7071, 0.7071, 45, 4.3297, 0.7071, 346.37])}
+"""Example 4 (slider-crank with a revolute–translational joint)."""
+
+# ------------------------------------------------------------------------------------ §13.7, example 5
+EX5 = {
+    "q": q_book([0, 0, 0, -0.7071, 0.7071, 135, 3.7849, 1.2783, 238.45]),  # example 3's, as example 6 prints it
+    "J": np.array([[1, 0, 0, 0, 0, 0, 0, 0, 0],
+                   [0, 1, 0, 0, 0, 0, 0, 0, 0],
+                   [0, 0, 1, 0, 0, 0, 0, 0, 0],
+                   [1, 0, 0, -1, 0, -0.7071, 0, 0, 0],
+                   [0, 1, 0, 0, -1, -0.7071, 0, 0, 0],
+                   [1, 0, 0, 0, 0, 0, -1, 0, -1.2783],
+                   [0, 1, 3, 0, 0, 0, 0, -1, 0.7849],
+                   [0, 0, 0, -11.968, -2.2848, 10.0781, 11.968, 2.2848, -13.5053],
+                   [0, 0, 0, 0, 0, 1, 0, 0, 0]]),
+    "nu": np.array([0, 0, 0, 0, 0, 0, 0, 0, 100.0]),
+    "qd": np.array([0, 0, 0, 70.71, 70.71, 100, 95.391, 58.5719, 74.6233]),  # "Solución"
+    "qd_ex6": np.array([0, 0, 0, -70.71, -70.71, 100, -95.391, 58.5719, 74.6233]),  # as example 6 reuses it
+    "vA": np.array([-141.4207, -141.4207]),
+    "vB": np.array([-190.7802, 117.1410]),
+}
+"""Example 5: the global Jacobian at example 3's printed configuration, ν, the velocities and v_A, v_B."""
+
+# ------------------------------------------------------------------------------------ §13.8, example 6
+EX6 = {
+    "gamma": np.array([0, 0, 0, -7071, 7071, 4370.82, 7118.39, 1539.6, 0]),  # the global vector γ
+    "gamma8_joint": -1539.60,  # γ_8 in the joint section
+    "gamma8_system": -1539.6,  # γ_8 in the list of equations
+    "qdd": np.array([0, 0, 0, 7071, -7071, 0, 2042.03, -11056, -5016.7]),
+    "aA": np.array([14142.068, -14142.068]),
+    "aB": np.array([4084.136, -22111.679]),
+}
+"""Example 6: γ (printed three ways for γ_8), the accelerations q̈ and a_A, a_B."""
+
+# ------------------------------------------------------------------------- §13.6, Tables 13.1–13.4 (Φ_q)
+_s = S
+_t1 = sp.Matrix([[1, 0, -(_s.yP_i - _s.y_i), -1, 0, (_s.yP_j - _s.y_j)],
+                 [0, 1, (_s.xP_i - _s.x_i), 0, -1, -(_s.xP_j - _s.x_j)]])
+_t2_phi = (_s.xP_j - _s.x_i) * (_s.xP_i - _s.xQ_i) + (_s.yP_j - _s.y_i) * (_s.yP_i - _s.yQ_i)
+_t2 = sp.Matrix([[(_s.yP_i - _s.yQ_i), -(_s.xP_i - _s.xQ_i), -_t2_phi, -(_s.yP_i - _s.yQ_i), (_s.xP_i - _s.xQ_i),
+                  _t2_phi], [0, 0, 1, 0, 0, -1]])
+_dx, _dy = _s.xP_i - _s.xP_j, _s.yP_i - _s.yP_j
+_t3 = sp.Matrix([[2 * _dx, 2 * _dy, -2 * _dx * _dy + 2 * _dy * _dx, -2 * _dx, -2 * _dy,
+                  2 * _dx * (_s.yP_j - _s.yP_j) - 2 * _dy * (_s.xP_j - _s.xP_j)]])
+_t4_phi = (_s.yP_i - _s.y_i) * (_s.yP_j - _s.yQ_j) + (_s.xP_i - _s.x_i) * (_s.xP_j - _s.xQ_j)
+_t4 = sp.Matrix([[(_s.yP_j - _s.yQ_j), -(_s.xP_j - _s.xQ_j), -_t4_phi, -(_s.yP_j - _s.yQ_j), (_s.xP_j - _s.xQ_j),
+                  _t4_phi]])
+
+TABLES = {
+    "13.1": ("r", _t1),
+    "13.2": ("t", _t2),
+    "13.3": ("rr", _t3),
+    "13.4": ("rt", _t4),
+}
+"""Tables 13.1–13.4 as printed: table number → (pair kind, the printed Φ_q rows in :data:`S`)."""
+
+_t2_fixed_phi_j = (_s.xP_j - _s.x_j) * (_s.xP_i - _s.xQ_i) + (_s.yP_j - _s.y_j) * (_s.yP_i - _s.yQ_i)
+TABLE_13_5_JACOBIAN = {
+    "r": _t1,
+    "t": sp.Matrix([list(_t2.row(0))[:5] + [_t2_fixed_phi_j], [0, 0, 1, 0, 0, -1]]),
+    "rr": sp.Matrix([[2 * _dx, 2 * _dy, -2 * _dx * (_s.yP_i - _s.y_i) + 2 * _dy * (_s.xP_i - _s.x_i), -2 * _dx,
+                      -2 * _dy, 2 * _dx * (_s.yP_j - _s.y_j) - 2 * _dy * (_s.xP_j - _s.x_j)]]),
+    "rt": _t4,
+}
+"""Table 13.5's Jacobian rows as printed (it corrects Tables 13.2 and 13.3, repeats Table 13.4)."""
+
+TABLE_13_1_TEXT = sp.Matrix([[1, 0, -(_s.yP_i - _s.yP_j), -1, 0, (_s.yP_j - _s.yP_i)],
+                             [0, 1, (_s.xP_i - _s.xP_j), 0, -1, -(_s.xP_j - _s.xP_i)]])
+"""The entry-by-entry derivation printed under Table 13.1 (revolute joint)."""
+
+EX5_RR_ROW = sp.Matrix([[2 * _dx, 2 * _dy, -2 * _dx * _dy + 2 * _dy * _dx, -2 * _dx, -2 * _dy,
+                         2 * _dx * (_s.yP_j - _s.yP_i) - 2 * _dy * (_s.xP_j - _s.xP_i)]])
+"""The general (r-r,1) Jacobian row example 5 repeats."""
+
+# ------------------------------------------------------------------------------ §13.8, Table 13.5 (γ)
+_vx, _vy = _s.xd_i - _s.xd_j, _s.yd_i - _s.yd_j
+_ai = (_s.xP_i - _s.x_i, _s.yP_i - _s.y_i)
+_aj = (_s.xP_j - _s.x_j, _s.yP_j - _s.y_j)
+_rr_rest = (-2 * (_ai[0] * (_s.xP_j - _s.x_i) + _ai[1] * (_s.yP_j - _s.y_i)) * _s.w_i**2
+            - 2 * (_aj[0] * (_s.xP_i - _s.x_j) + _aj[1] * (_s.yP_i - _s.y_j)) * _s.w_j**2
+            + 4 * (_ai[0] * _aj[0] + _ai[1] * _aj[1]) * _s.w_i * _s.w_j
+            - 4 * (_ai[0] * _vy - _ai[1] * _vx) * _s.w_i + 4 * (_aj[0] * _vy - _aj[1] * _vx) * _s.w_j)
+_sx, _sy = _s.xP_i - _s.xQ_i, _s.yP_i - _s.yQ_i
+TABLE_13_5_GAMMA = {
+    "r": sp.Matrix([(_s.xP_i - _s.x_i) * _s.w_i**2 - (_s.xP_j - _s.x_j) * _s.w_j**2,
+                    (_s.yP_i - _s.y_i) * _s.w_i**2 - (_s.yP_j - _s.y_j) * _s.w_j**2]),
+    "t": sp.Matrix([2 * (_sx * _vx + _sy * _vy) * _s.w_i
+                    - (_sx * (_s.y_i - _s.y_j) - _sy * (_s.x_i - _s.x_j)) * _s.w_i**2, 0]),
+    "rr": sp.Matrix([-2 * _vx**2 - 2 * _vy + _rr_rest]),
+    "rt": sp.Matrix([((_s.xP_i - _s.x_i) * (_s.yP_j - _s.yQ_j) - (_s.yP_i - _s.y_i) * (_s.xP_j - _s.xQ_j))
+                     * (_s.w_i - 2 * _s.w_j) * _s.w_i
+                     + ((_s.xP_i - _s.x_j) * (_s.yP_j - _s.yQ_j) - (_s.yP_i - _s.y_j) * (_s.xP_j - _s.xQ_j)) * _s.w_j**2
+                     - 2 * ((_s.xP_j - _s.xQ_j) * _vx + (_s.yP_j - _s.yQ_j) * _vy) * _s.w_j]),
+}
+"""Table 13.5's γ entries as printed (the translational entry has already used φ̇_j = φ̇_i, the joint's second
+velocity equation, so it is tested at states where that holds)."""
+
+REVOLUTE_STEPS = {
+    "Phi_q qd": sp.Matrix([_s.xd_i - (_s.yP_i - _s.y_i) * _s.w_i - _s.xd_j + (_s.yP_j - _s.y_j) * _s.w_j,
+                           _s.xd_j - (_s.xP_i - _s.x_i) * _s.w_i - _s.yd_j + (_s.xP_j - _s.x_j) * _s.w_j]),
+    "(Phi_q qd)_q qd": sp.Matrix([-(_s.xP_i - _s.x_i) * _s.w_i**2 + (_s.xP_j - _s.x_j) * _s.w_j**2,
+                                  -(_s.yP_i - _s.y_i) * _s.w_i**2 + (_s.yP_j - _s.y_j) * _s.w_j**2]),
+    "gamma": sp.Matrix([(_s.xP_i - _s.x_i) * _s.w_i**2 - (_s.xP_j - _s.x_j) * _s.w_j**2,
+                        (_s.yP_i - _s.y_i) * _s.w_i**2 - (_s.yP_j - _s.y_j) * _s.w_j**2]),
+}
+"""§13.8's worked revolute joint, step by step as printed: Φ_q q̇, (Φ_q q̇)_q q̇ and the concluded γ."""
