@@ -30,6 +30,15 @@ from .notebook import setup as notebook_setup
 
 __version__ = "0.1.0"
 
+
+def __getattr__(name):
+    # the notebooks' try-it helpers load the book package only when first used (import kinbook stays light)
+    if name in ("try_it", "reveal"):
+        from .book import tryits
+
+        return getattr(tryits, name)
+    raise AttributeError(f"module 'kinbook' has no attribute {name!r}")
+
 __all__ = [
     "load",
     "loads",

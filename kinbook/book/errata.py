@@ -18,7 +18,7 @@ import numpy as np
 
 from ..notebook import agrees, clean, small, tolerance_text
 
-__all__ = ["Erratum", "Evidence", "ERRATA", "table", "get", "book_n1_acceleration"]
+__all__ = ["Erratum", "Evidence", "ERRATA", "table", "show", "get", "book_n1_acceleration"]
 
 
 @dataclass(frozen=True)
@@ -400,6 +400,10 @@ ERRATA = [
             "of local coordinates [ξ, η]ᵀ (after eq. 5); kinbook and the workbook write the local one with a prime."),
     Erratum("13.5-eq4-text", "§13.5, text after eq. 4", r"[x, y]_i \text{: coordinates of O in local axes}",
             r"[x, y]_i \text{: global coordinates of } O_i", "wording"),
+    Erratum("13.5-q-elements", "§13.5, the sentence after q = [q_1ᵀ, q_2ᵀ, …, q_Nᵀ]ᵀ",
+            r"q_1, q_2, \dots, q_n \text{ correspond to the elements } 1, 2, \dots, n",
+            r"\mathbf q_1, \dots, \mathbf q_N \text{ belong to the } N \text{ bodies; } n = 3N \text{ (plane) or } 6N "
+            r"\text{ (space) counts coordinates}", "wording"),
     Erratum("13.5-ex1-solution", "§13.5, example 1: solution at t = 0 and the points A, B",
             r"x_3 = 1.5777,\ y_3 = 1.9854,\ \varphi_3 = 10.81°,\ x_4 = 3.7849,\ y_4 = 1.2783,\ \varphi_4 = 238.45°,\ B = (4.5697, 2.5566)",
             r"\varphi_3 = 11.58°,\ \varphi_4 = 240.80°,\ B = (4.4636, 2.6187)", "number", _ev_ex1_solution,
@@ -415,15 +419,25 @@ ERRATA = [
             r"-(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)\cos\varphi_1",
             "formula", _ev_ex4_phi8),
     Erratum("13.5-ex2-l3", "§13.5, example 2: local frame of body 3", r"l_3 = b/6", r"l_3 = 6", "wording"),
-    Erratum("13.5-eq25", "§13.5, translational joint, eqs. 23.a, 25, 26",
-            r"s_i = r_i^P - r_i^O,\ (x_i^P - x_i^O)(y_j^P - y_i^P) - (y_i^P - y_i^O)(x_j^P - x_i^P)",
-            r"(x_i^Q - x_i^P)(y_j^P - y_i^P) - (y_i^Q - y_i^P)(x_j^P - x_i^P)", "wording", None,
-            "The text defines s_i from P_i to Q_i; the printed O (the body origin) satisfies the constraint only "
-            "when O_i lies on the line of translation. The book's sign is −1 × kinbook's row: the same constraint."),
+    Erratum("13.5-revolute-words", "§13.5, Par elemental de Revolución, first sentence and after eqs. 14–15",
+            r"\text{“la junta de revolución que une los dos puntos } i \text{ y } j\text{”; } s_j^P, s_i^P "
+            r"\text{ “los vectores } O_j^P \text{ y } O_i^P\text{”}",
+            r"\text{the joint connects the two bodies } i, j\text{; } s_j^P, s_i^P \text{ are the vectors } "
+            r"\overrightarrow{O_jP},\ \overrightarrow{O_iP}", "wording"),
+    Erratum("13.5-eq25", "§13.5, translational joint, eqs. 23.a and 24–26 (and Tables 13.2, 13.4, 13.5: “o”)",
+            r"s_i = r_i^P - r_i^O,\ (x_i^P - x_i^O)(y_j^P - y_i^P) - (y_i^P - y_i^O)(x_j^P - x_i^P) = 0",
+            r"s_i = r_i^P - r_i^Q,\ (x_i^P - x_i^Q)(y_j^P - y_i^P) - (y_i^P - y_i^Q)(x_j^P - x_i^P) = 0",
+            "wording", None,
+            "The text takes the guide points P_i and Q_i; the formulas call the second one O, the letter the book "
+            "reserves for a body's reference point O_i. Read as O_i the equation holds only when O_i happens to lie "
+            "on the guide line."),
     Erratum("13.5-eq21", "§13.5, translational joint, text after eq. 21", r"\text{eq. (19) is one of the two equations}",
             r"\text{eq. (21)}", "wording"),
     Erratum("13.5-eq24", "§13.5, translational joint, before eq. 24", r"\text{multiplying the vectors scalarly}",
             r"\text{the vector (cross) product}", "wording"),
+    Erratum("13.5-rt-collinearity", "§13.5, Par de Revolución-Traslación, last paragraph",
+            r"\text{the translational joint required the collinearity of } s_i \text{ and } s_j",
+            r"\text{of } s_i \text{ and } d \text{ (eq. 22)}", "wording"),
     Erratum("13.5-eq37", "§13.5, gears: eq. 37", r"\rho_i(\varphi'_i - \varphi_i^0) + \rho_j(\varphi'_j - \varphi_j^0) = 0",
             r"\rho_i(\varphi'_i - \varphi_i'^0) + \rho_j(\varphi'_j - \varphi_j'^0) = 0,\ \varphi'^0 = \varphi^0 - \varphi_k^0",
             "formula", _ev_eq37, "Eq. 38, the constraint kinbook uses, is right; eq. 37 only holds when φ_k⁰ = 0."),
@@ -848,6 +862,11 @@ class ErrataTable:
             cards.append("<div style='text-align:left; border-left:4px solid #c62828; padding:4px 10px; "
                          "margin:10px 0; background:#fdf6f6'>" + "".join(parts) + "</div>")
         return "".join(cards)
+
+
+def show(*ids):
+    """The errata with these ids, evidence computed (what a chapter notebook displays)."""
+    return ErrataTable([get(i) for i in ids])
 
 
 def table(prefix=""):

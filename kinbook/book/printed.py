@@ -16,7 +16,7 @@ import sympy as sp
 
 from .notation import S
 
-__all__ = ["EX1", "EX2", "EX3", "EX4", "EX5", "EX6", "q_book", "TABLES", "TABLE_13_1_TEXT",
+__all__ = ["EQ", "EX1", "EX2", "EX3", "EX4", "EX5", "EX6", "q_book", "TABLES", "TABLE_13_1_TEXT",
            "EX5_RR_ROW", "TABLE_13_5_JACOBIAN", "TABLE_13_5_GAMMA", "REVOLUTE_STEPS"]
 
 
@@ -78,6 +78,22 @@ EX6 = {
     "aB": np.array([4084.136, -22111.679]),
 }
 """Example 6: γ (printed three ways for γ_8), the accelerations q̈ and a_A, a_B."""
+
+# ------------------------------------------------------------------------- §13.5, the joints' equations
+def _A(phi):
+    return sp.Matrix([[sp.cos(phi), -sp.sin(phi)], [sp.sin(phi), sp.cos(phi)]])
+
+
+EQ = {
+    "18": (sp.Matrix([S.x_i, S.y_i]) + _A(S.phi_i) * sp.Matrix([S.xiP_i, S.etaP_i])
+           - sp.Matrix([S.x_j, S.y_j]) - _A(S.phi_j) * sp.Matrix([S.xiP_j, S.etaP_j])),
+    "26": sp.Matrix([(S.xP_i - S.xQ_i) * (S.yP_j - S.yP_i) - (S.yP_i - S.yQ_i) * (S.xP_j - S.xP_i), S.phi_i - S.phi_j - S.c]),
+    "32": sp.Matrix([(S.xP_i - S.xP_j) ** 2 + (S.yP_i - S.yP_j) ** 2 - S.l**2]),
+    "33": sp.Matrix([(S.xP_i - S.xQ_j) * (S.yP_j - S.yQ_j) - (S.yP_i - S.yQ_j) * (S.xP_j - S.xQ_j)]),
+}
+"""The joints' constraint equations as printed: eq. 18 (revolute, in ξ, η), eq. 26 (translational; its point "O"
+read as the guide point Q_i, erratum 13.5-eq25, and φ_i⁰ − φ_j⁰ written as the constant ``S.c``), eq. 32
+(revolute–revolute) and eq. 33 (revolute–translational)."""
 
 # ------------------------------------------------------------------------- §13.6, Tables 13.1–13.4 (Φ_q)
 _s = S
