@@ -15,15 +15,27 @@ import re
 __all__ = ["AnimationHTML"]
 
 _PLAYER_ID = re.compile(r'id="_anim_img([0-9a-f]+)"')
+_ICON_FONT = re.compile(r'<link rel="stylesheet"\s*href="[^"]*font-awesome[^"]*">')
+# The player's buttons are Font Awesome icons loaded from a CDN: without internet (an HTML export opened offline,
+# a lab without network) they are blank. Plain text symbols need no font and no network.
+_ICONS = {"fa fa-minus": "−", "fa fa-fast-backward": "⏮", "fa fa-step-backward": "◂", "fa fa-play fa-flip-horizontal": "◀",
+          "fa fa-pause": "⏸", "fa fa-play": "▶", "fa fa-step-forward": "▸", "fa fa-fast-forward": "⏭", "fa fa-plus": "+"}
+
+
+def _offline_buttons(html):
+    html = _ICON_FONT.sub("", html)
+    for cls, text in _ICONS.items():
+        html = html.replace(f'<i class="{cls}"></i>', f"<span>{text}</span>")
+    return html
 
 
 def stable_jshtml(anim, frame_format="png"):
-    """``anim.to_jshtml()`` with frames stored as ``frame_format`` ("png" or "jpeg") and a player id that
-    depends only on the content."""
+    """``anim.to_jshtml()`` with frames stored as ``frame_format`` ("png" or "jpeg"), a player id that depends
+    only on the content, and buttons drawn with text symbols instead of a web icon font (they show offline)."""
     from matplotlib import rc_context
 
     with rc_context({"animation.frame_format": frame_format}):
-        html = anim.to_jshtml()
+        html = _offline_buttons(anim.to_jshtml())
     match = _PLAYER_ID.search(html)
     if match is None:  # a matplotlib whose template changed: keep its own id
         return html

@@ -30,7 +30,7 @@ import numbers
 
 import numpy as np
 
-__all__ = ["TOL", "setup", "clean", "show", "agrees", "small", "fmt", "tolerance_text"]
+__all__ = ["TOL", "setup", "clean", "show", "agrees", "small", "fmt", "tolerance_text", "sweep_both_ways", "time_axes"]
 
 TOL = 1e-12
 """Below this magnitude a computed value is shown as 0 (round-off of an exact zero)."""
@@ -42,9 +42,11 @@ PRECISION = 4
 def tolerance_text(tol):
     """A tolerance as people write it: ``1e-12`` (not ``1e-12`` padded as ``1.0e-12`` or ``1e-012``).
 
-    >>> tolerance_text(1e-12), tolerance_text(5e-7), tolerance_text(0.001)
-    ('1e-12', '5e-7', '1e-3')
+    >>> tolerance_text(1e-12), tolerance_text(5e-7), tolerance_text(0.001), tolerance_text(0.5)
+    ('1e-12', '5e-7', '1e-3', '0.5')
     """
+    if tol >= 0.01:
+        return f"{tol:g}"
     mantissa, exponent = f"{tol:.0e}".split("e")
     return f"{mantissa}e{int(exponent)}"
 
@@ -187,3 +189,34 @@ def setup(language=None, *, precision=PRECISION):
     plain.for_type(np.ndarray, _plain_array)
     for kind in (float, np.floating):
         plain.for_type(kind, _plain_float)
+
+
+def sweep_both_ways(mech, backward, forward):
+    """Sweep a mechanism from t = 0 backwards and forwards until it stops assembling, as one time history.
+
+    Both sweeps start at t = 0, so they keep the assembly mode of the solution there (a sweep started at a limit
+    position may continue on either branch).
+
+    Parameters
+    ----------
+    mech : Mechanism
+    backward, forward : array_like
+        Instants from 0 down, and from 0 up (each starting at 0).
+
+    Returns
+    -------
+    SimulationResult
+        The solved instants in increasing time; ``failure`` is the forward sweep's.
+    """
+    from .analysis import SimulationResult
+
+    back = mech.simulate(backward, on_failure="truncate")
+    fwd = mech.simulate(forward, on_failure="truncate")
+    join = [np.r_[getattr(back, a)[:0:-1], getattr(fwd, a)] for a in ("t", "q", "qd", "qdd")]
+    return SimulationResult(mech, *join, failure=fwd.failure)
+
+
+def time_axes(*axes, unit="s"):
+    """Label the horizontal axis of each plot as time with its unit, ``t (s)``."""
+    for ax in axes:
+        ax.set_xlabel(f"$t$ ({unit})")

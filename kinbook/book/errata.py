@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
+import sympy as sp
 
 from ..notebook import agrees, clean, small, tolerance_text
 
@@ -73,51 +74,6 @@ def _rad(deg):
     return np.radians(deg)
 
 
-def _book_ex1_q():
-    """Example 1's printed solution at t = 0."""
-    return np.array([0, 0, 0, -0.7071, 0.7071, _rad(135), 1.5777, 1.9854, _rad(10.81),
-                     3.7849, 1.2783, _rad(238.45)])
-
-
-def _book_ex3_q():
-    """Example 3's printed solution at t = 0 (with its printed x_2 = +0.7071)."""
-    return np.array([0, 0, 0, 0.7071, 0.7071, _rad(135), 3.7849, 1.2783, _rad(238.45)])
-
-
-def _pair(kind, seed=0):
-    """A two-body mechanism with one joint of ``kind`` at random geometry and a sampler of random states.
-
-    Returns (mech, states) where states() yields (q, qd, values) with the book's point quantities.
-    """
-    from ..planar import Mechanism, Revolute, RevoluteRevolute, RevoluteTranslational, Translational
-
-    rng = np.random.default_rng(seed)
-    m = Mechanism(f"{kind} pair")
-    pts = lambda: {k: tuple(rng.uniform(-2, 2, 2).round(3)) for k in ("P", "Q")}
-    m.add_body("i", points=pts())
-    m.add_body("j", points=pts())
-    joint = {
-        "t": lambda: Translational("i", "j", axis=("P", "Q"), point_j="P", phi0=0.4),
-        "rr": lambda: RevoluteRevolute("i", "j", "P", "P", length=1.3),
-        "rt": lambda: RevoluteTranslational("i", "j", point_i="P", axis=("P", "Q")),
-        "r": lambda: Revolute("i", "j", point="P"),
-    }[kind]()
-    m.add(joint)
-
-    def states(count=20):
-        for _ in range(count):
-            q, qd = rng.uniform(-2, 2, 6), rng.uniform(-2, 2, 6)
-            v = {"q": q, "qd": qd}
-            for b, off in (("i", 0), ("j", 3)):
-                v[f"x_{b}"], v[f"y_{b}"], v[f"phi_{b}"] = q[off : off + 3]
-                v[f"dx_{b}"], v[f"dy_{b}"], v[f"w_{b}"] = qd[off : off + 3]
-                for p in ("P", "Q"):
-                    v[f"x_{b}{p}"], v[f"y_{b}{p}"] = m.point_position(q, b, p)
-            yield q, qd, v
-
-    return m, states
-
-
 def _compare(samples):
     """max |printed − reference| and max |corrected − reference| over (printed, corrected, reference) rows."""
     a = np.array(samples, dtype=float)
@@ -127,10 +83,12 @@ def _compare(samples):
 # ------------------------------------------------------------------------------------------- evidence
 def _ev_ex1_solution():
     m = _ex("ch13_example1")
-    qb = _book_ex1_q()
+    from .printed import EX1
+
+    qb = EX1["q"]
     res = m.Phi(qb, 0.0)
     A = m.point_position(qb, "crank", "A")
-    B = np.array([4.5697, 2.5566])
+    B = EX1["B"]
     q = m.solve_position(0.0)
     ok = np.abs(m.Phi(q, 0.0)).max()
     return Evidence(
@@ -144,7 +102,9 @@ def _ev_ex1_solution():
 
 def _ev_ex3_x2():
     m = _ex("ch13_example3")
-    qb = _book_ex3_q()
+    from .printed import EX3
+
+    qb = EX3["q"]
     res = m.Phi(qb, 0.0)
     fixed = qb.copy()
     fixed[3] = -0.7071
@@ -154,97 +114,113 @@ def _ev_ex3_x2():
 
 
 def _ev_ex4_phi8():
+    import sympy as sp
+
+    from . import printed
+
     m = _ex("ch13_example4")
-    rng = np.random.default_rng(1)
-    rows = []
-    for _ in range(20):
-        q = rng.uniform(-2, 2, 9)
-        x1, y1, p1, x3, y3, p3 = q[0], q[1], q[2], q[6], q[7], q[8]
-        printed = (x3 + 3 * np.cos(p3) - x1 * np.cos(p1)) * np.sin(p1) + (y3 + 3 * np.sin(p3) - y1 - np.sin(p1)) * np.cos(p1)
-        corrected = -(x3 + 3 * np.cos(p3) - x1 - np.cos(p1)) * np.sin(p1) + (y3 + 3 * np.sin(p3) - y1 - np.sin(p1)) * np.cos(p1)
-        rows.append((printed, corrected, m.Phi(q, 0.0)[7]))
+    x1, y1, p1, x3, y3, p3 = (m.q[m.index(c), 0] for c in ("x1", "y1", "phi1", "x3", "y3", "phi3"))
+    corrected = (-(x3 + 3 * sp.cos(p3) - x1 - sp.cos(p1)) * sp.sin(p1)
+                 + (y3 + 3 * sp.sin(p3) - y1 - sp.sin(p1)) * sp.cos(p1))
+    f = sp.lambdify(list(m.q), [printed.EX4["Phi8"], corrected], "numpy")
+    rows = [(*f(*q), m.Phi(q, 0.0)[7]) for q in np.random.default_rng(1).uniform(-2, 2, (20, 9))]
     e_p, e_c = _compare(rows)
     return Evidence(f"At 20 random configurations the printed Φ_8 differs from kinbook's by up to {e_p:.3f}; the "
                     f"corrected row {agrees(e_c)}.", e_p, e_c)
 
 
+def _printed_vs_kinbook(kind, quantity, printed_matrix, corrected_matrix, entry, equal=()):
+    """(printed error, corrected error) of one entry of a printed table (kinbook.book.printed), against kinbook's
+    derivation for the two-body joint ``kind`` at 20 random states (a printed row × −1 counts as the same row)."""
+    from . import notation, verify
+
+    m = notation.pair(kind)
+    derived = getattr(m.symbolic(), quantity)
+    r, c = entry
+    printed_c = verify.compare(printed_matrix, derived, m, equal=equal)
+    corrected_c = verify.compare(corrected_matrix, derived, m, equal=equal)
+    return float(printed_c.errors[r, c]), float(corrected_c.errors[r, c])
+
+
+def _with_entry(M, entry, value):
+    M = M.copy()
+    M[entry] = value
+    return M
+
+
 def _ev_table_13_2():
-    m, states = _pair("t")
-    rows = []
-    for q, _, v in states():
-        J = m.Phi_q(q)
-        # the book's Φ_1 is (r_i^P − r_i^Q) × (r_j^P − r_i^P) = −(kinbook's row)
-        sP = np.array([v["x_iP"] - v["x_iQ"], v["y_iP"] - v["y_iQ"]])
-        printed = (v["x_jP"] - v["x_i"]) * sP[0] + (v["y_jP"] - v["y_i"]) * sP[1]
-        corrected = (v["x_jP"] - v["x_j"]) * sP[0] + (v["y_jP"] - v["y_j"]) * sP[1]
-        rows.append((printed, corrected, -J[0, 5]))
-    e_p, e_c = _compare(rows)
+    from .notation import S
+    from .printed import TABLES
+
+    P = TABLES["13.2"][1]
+    fixed = (S.xP_j - S.x_j) * (S.xP_i - S.xQ_i) + (S.yP_j - S.y_j) * (S.yP_i - S.yQ_i)
+    e_p, e_c = _printed_vs_kinbook("t", "Phi_q", P, _with_entry(P, (0, 5), fixed), (0, 5))
     return Evidence(f"∂Φ_1/∂φ_j at 20 random configurations: the printed entry is off by up to {e_p:.3f}; with "
-                    f"x_j, y_j it matches kinbook's derivative: it {agrees(e_c)}.", e_p, e_c)
+                    f"x_j, y_j it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_table_13_3():
-    m, states = _pair("rr")
-    rows = []
-    for q, _, v in states():
-        J = m.Phi_q(q)
-        dx, dy = v["x_iP"] - v["x_jP"], v["y_iP"] - v["y_jP"]
-        printed = -2 * dx * dy + 2 * dy * dx  # the printed ∂/∂φ_i entry: identically zero
-        corrected = -2 * dx * (v["y_iP"] - v["y_i"]) + 2 * dy * (v["x_iP"] - v["x_i"])
-        rows.append((printed, corrected, J[0, 2]))
-    e_p, e_c = _compare(rows)
-    return Evidence(f"The printed ∂Φ/∂φ_i reduces to 0; kinbook's entry reaches {e_p:.3f} at random "
+    from .notation import S
+    from .printed import TABLES
+
+    P = TABLES["13.3"][1]
+    dx, dy = S.xP_i - S.xP_j, S.yP_i - S.yP_j
+    fixed = _with_entry(P, (0, 2), -2 * dx * (S.yP_i - S.y_i) + 2 * dy * (S.xP_i - S.x_i))
+    fixed[0, 5] = 2 * dx * (S.yP_j - S.y_j) - 2 * dy * (S.xP_j - S.x_j)
+    e_p, e_c = _printed_vs_kinbook("rr", "Phi_q", P, fixed, (0, 2))
+    return Evidence(f"The printed ∂Φ/∂φ_i reduces to 0; kinbook's entry reaches {e_p:.3f} at 20 random "
                     f"configurations; the corrected entry {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_table_13_4():
-    m, states = _pair("rt")
-    rows = []
-    for q, _, v in states():
-        J = m.Phi_q(q)
-        sx, sy = v["x_jP"] - v["x_jQ"], v["y_jP"] - v["y_jQ"]
-        printed = (v["y_iP"] - v["y_i"]) * sy + (v["x_iP"] - v["x_i"]) * sx
-        corrected = (v["y_iP"] - v["y_j"]) * sy + (v["x_iP"] - v["x_j"]) * sx
-        rows.append((printed, corrected, J[0, 5]))
-    e_p, e_c = _compare(rows)
-    return Evidence(f"∂Φ/∂φ_j of the r-t joint: printed entry off by up to {e_p:.3f}; with x_j, y_j it "
-                    f"{agrees(e_c)}.", e_p, e_c)
+    from .notation import S
+    from .printed import TABLES
+
+    P = TABLES["13.4"][1]
+    fixed = (S.yP_i - S.y_j) * (S.yP_j - S.yQ_j) + (S.xP_i - S.x_j) * (S.xP_j - S.xQ_j)
+    e_p, e_c = _printed_vs_kinbook("rt", "Phi_q", P, _with_entry(P, (0, 5), fixed), (0, 5))
+    return Evidence(f"∂Φ/∂φ_j of the r-t joint at 20 random configurations: printed entry off by up to {e_p:.3f}; "
+                    f"with x_j, y_j it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_gamma_rr():
-    m, states = _pair("rr")
-    rows = []
-    for q, qd, v in states():
-        g = m.gamma(q, qd)[0]
-        dx, dy = v["dx_i"] - v["dx_j"], v["dy_i"] - v["dy_j"]
-        ai = (v["x_iP"] - v["x_i"], v["y_iP"] - v["y_i"])
-        aj = (v["x_jP"] - v["x_j"], v["y_jP"] - v["y_j"])
-        wi, wj = v["w_i"], v["w_j"]
-        rest = (-2 * (ai[0] * (v["x_jP"] - v["x_i"]) + ai[1] * (v["y_jP"] - v["y_i"])) * wi**2
-                - 2 * (aj[0] * (v["x_iP"] - v["x_j"]) + aj[1] * (v["y_iP"] - v["y_j"])) * wj**2
-                + 4 * (ai[0] * aj[0] + ai[1] * aj[1]) * wi * wj
-                - 4 * (ai[0] * dy - ai[1] * dx) * wi + 4 * (aj[0] * dy - aj[1] * dx) * wj)
-        rows.append((-2 * dx**2 - 2 * dy + rest, -2 * dx**2 - 2 * dy**2 + rest, g))
-    e_p, e_c = _compare(rows)
+    from .notation import S
+    from .printed import TABLE_13_5_GAMMA
+
+    P = TABLE_13_5_GAMMA["rr"]
+    fixed = P + sp.Matrix([2 * (S.yd_i - S.yd_j) - 2 * (S.yd_i - S.yd_j) ** 2])
+    e_p, e_c = _printed_vs_kinbook("rr", "gamma", P, fixed, (0, 0))
     return Evidence(f"γ of the r-r joint at 20 random states: printed entry off by up to {e_p:.2f}; with "
                     f"(ẏ_i − ẏ_j)² it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_gamma_t():
-    m, states = _pair("t")
-    rows = []
-    for q, qd, v in states():
-        qd = qd.copy()
-        qd[5] = qd[2]  # the joint's second velocity equation: φ̇_j = φ̇_i
-        w = qd[2]
-        a, b = v["x_iP"] - v["x_iQ"], v["y_iP"] - v["y_iQ"]  # the book's O read as Q
-        vel = 2 * (a * (qd[0] - qd[3]) + b * (qd[1] - qd[4])) * w
-        quad = (a * (v["y_i"] - v["y_j"]) - b * (v["x_i"] - v["x_j"])) * w**2
-        # the book's Φ_1 is −1 × kinbook's, so its γ_1 is −1 × kinbook's
-        rows.append((vel - quad, -vel - quad, -m.gamma(q, qd)[0]))
-    e_p, e_c = _compare(rows)
+    from .notation import S
+    from .printed import TABLE_13_5_GAMMA
+
+    P = TABLE_13_5_GAMMA["t"]
+    sx, sy = S.xP_i - S.xQ_i, S.yP_i - S.yQ_i
+    velocity_term = 2 * (sx * (S.xd_i - S.xd_j) + sy * (S.yd_i - S.yd_j)) * S.w_i
+    fixed = _with_entry(P, (0, 0), P[0, 0] - 2 * velocity_term)
+    e_p, e_c = _printed_vs_kinbook("t", "gamma", P, fixed, (0, 0), equal=[(S.w_i, S.w_j)])
     return Evidence(f"γ_1 of the translational joint at 20 random states with φ̇_j = φ̇_i: printed entry off by up "
                     f"to {e_p:.2f}; with −2[…]φ̇_i it {agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_revolute_steps():
+    from .notation import S
+    from .printed import REVOLUTE_STEPS
+
+    P = REVOLUTE_STEPS["Phi_q qd"]
+    fixed = _with_entry(P, (1, 0), S.yd_i + (S.xP_i - S.x_i) * S.w_i - S.yd_j - (S.xP_j - S.x_j) * S.w_j)
+    from . import notation, verify
+
+    m = notation.pair("r")
+    derived = m.symbolic().Phi_q * m.qd
+    e_p = float(verify.compare(P, derived, m).errors[1, 0])
+    e_c = float(verify.compare(fixed, derived, m).errors[1, 0])
+    return Evidence(f"Row 2 of Φ_q q̇ for the revolute joint at 20 random states: the printed row is off by up to "
+                    f"{e_p:.2f}; ẏ_i + (x_i^P − x_i)φ̇_i − ẏ_j − (x_j^P − x_j)φ̇_j {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_eq37():
@@ -264,9 +240,9 @@ def _ev_eq37():
         corrected = ri * ((pi - pk) - (pi0 - pk0)) + rj * ((pj - pk) - (pj0 - pk0))
         rows.append((printed, corrected, m.Phi(q)[0]))
     e_p, e_c = _compare(rows)
-    return Evidence(f"With the carrier's initial angle φ_k⁰ = {pk0:.3f}, eq. 37 differs from kinbook's gear row by "
-                    f"(ρ_i + ρ_j) φ_k⁰ = {e_p:.3f}; measuring the initial angles relative to the carrier too (eq. 38) "
-                    f"{agrees(e_c)}.", e_p, e_c)
+    return Evidence(f"With ρ_i = {ri}, ρ_j = {rj} and the carrier's initial angle φ_k⁰ = {pk0:.3f}, eq. 37 as printed "
+                    f"differs from kinbook's gear row (eq. 38) by −(ρ_i + ρ_j) φ_k⁰ = {e_p:.3f} at 20 random "
+                    f"configurations; with φ'⁰ = φ⁰ − φ_k⁰ it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_ex5_velocity():
@@ -298,9 +274,9 @@ def _ev_ex6_acceleration():
 
 # ------------------------------------------------------------------------------------ chapter 14 evidence
 def _unit_ps(count=20, seed=14):
-    rng = np.random.default_rng(seed)
-    p = rng.normal(size=(count, 4))
-    return p / np.linalg.norm(p, axis=1, keepdims=True)
+    from ..spatial import random_p
+
+    return random_p(count, rng=seed)
 
 
 def _ev_elementary_rotation():
@@ -377,27 +353,57 @@ def _ev_G_row2():
                     f"0; kinbook's G gives |G p| {_below(e_c)}.", e_p, e_c)
 
 
-def _ev_p_from_A_180():
-    from ..spatial import A_from_p, p_from_A, p_from_axis_angle
+def _matrices_vs(reference, samples):
+    """(printed error, corrected error): ``reference(sample)`` returns (printed, corrected, kinbook's) arrays."""
+    rows = []
+    for sample in samples:
+        printed, corrected, ref = reference(*sample)
+        rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
+    return _compare(rows)
 
-    A = A_from_p(p_from_axis_angle([1, 2, 2], np.pi))
-    e0 = np.sqrt(max(np.trace(A) + 1, 0.0) / 4)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        e = np.array([A[2, 1] - A[1, 2], A[0, 2] - A[2, 0], A[1, 0] - A[0, 1]]) / (4 * e0)
-    book_ok = bool(np.all(np.isfinite(e)))
-    rebuilt = np.abs(A_from_p(p_from_A(A)) - A).max()
-    return Evidence(f"For a 180° turn about (1, 2, 2)/3, e0 = cos 90° {_below(e0, 1e-6)} and the book's recipe divides by it: "
-                    f"e = {np.array2string(e, precision=3)}; kinbook's largest-component branch gives "
-                    f"p = {np.array2string(clean(p_from_A(A)), precision=4)} and rebuilds A: it {agrees(rebuilt)}.",
-                    0.0 if book_ok else np.inf, float(rebuilt))
+
+def _ev_A_theta_second():
+    from ..spatial import A_from_euler
+
+    def matrices(psi, th):
+        c, s = np.cos(th), np.sin(th)
+        return (np.array([[1, 0, 0], [0, np.cos(psi), -s], [0, s, c]]), np.array([[1, 0, 0], [0, c, -s], [0, s, c]]),
+                A_from_euler(0.0, th, 0.0))  # the nutation alone, active (kinbook's convention)
+
+    e_p, e_c = _matrices_vs(matrices, np.random.default_rng(21).uniform(-3, 3, (20, 2)))
+    return Evidence(f"At 20 random (ψ, θ) the printed A^θ differs from the nutation matrix by up to {e_p:.3f} (it is "
+                    f"no rotation: det = cψ cθ + sθ²); with cos θ in row 2 it {agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_A21_row2_first():
+    from ..spatial import A_from_euler
+
+    def rows(psi, th, ph):
+        cps, sps, cth, sth, cph, sph = np.cos(psi), np.sin(psi), np.cos(th), np.sin(th), np.cos(ph), np.sin(ph)
+        return (np.array([cps * sph - sps * cth * cph, sps * sph + cps * cth * cph, sth * cph]),
+                np.array([-cps * sph - sps * cth * cph, -sps * sph + cps * cth * cph, sth * cph]),
+                A_from_euler(psi, th, ph).T[1])
+
+    e_p, e_c = _matrices_vs(rows, np.random.default_rng(22).uniform(-3, 3, (20, 3)))
+    return Evidence(f"Row 2 of A^φ A^θ A^ψ at 20 random angles: the first printed version is off by up to {e_p:.3f}; "
+                    f"with −cψ sφ and −sψ sφ (as the second version prints it) it {agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_a_bar_explicit():
+    from ..spatial import G, a_bar
+
+    rows = []
+    for p, a in zip(_unit_ps(seed=23), np.random.default_rng(23).uniform(-1, 1, (20, 3))):
+        a1, a2, a3 = a
+        printed = np.array([[0, -a1, -a2, -a3], [a1, 0, -a3, a2], [a2, a3, 0, -a1], [a3, -a2, a1, 0]])
+        rows.append((np.abs(printed @ p - G(p).T @ a).max(), np.abs(a_bar(a) @ p - G(p).T @ a).max(), 0.0))
+    e_p, e_c = _compare(rows)
+    return Evidence(f"ā p against Gᵀa at 20 random unit p and vectors a: the printed element-by-element ā is off by up "
+                    f"to {e_p:.3f}; the block form [0, −aᵀ; a, −ã] {agrees(e_c)}.", e_p, e_c)
 
 
 # ----------------------------------------------------------------------------------------------- the list
 ERRATA = [
-    Erratum("13.5-s-notation", "§13.5, eq. 5 and the revolute joint (eqs. 14–15)", r"s_i^P",
-            r"s_i^P \text{ (global components)},\ s'^P_i \text{ (local)}", "wording", None,
-            "The same name s_i^P is used for the vector O_iP in global components (fig. 13.18) and for the column "
-            "of local coordinates [ξ, η]ᵀ (after eq. 5); kinbook and the workbook write the local one with a prime."),
     Erratum("13.5-eq4-text", "§13.5, text after eq. 4", r"[x, y]_i \text{: coordinates of O in local axes}",
             r"[x, y]_i \text{: global coordinates of } O_i", "wording"),
     Erratum("13.5-q-elements", "§13.5, the sentence after q = [q_1ᵀ, q_2ᵀ, …, q_Nᵀ]ᵀ",
@@ -438,9 +444,13 @@ ERRATA = [
     Erratum("13.5-rt-collinearity", "§13.5, Par de Revolución-Traslación, last paragraph",
             r"\text{the translational joint required the collinearity of } s_i \text{ and } s_j",
             r"\text{of } s_i \text{ and } d \text{ (eq. 22)}", "wording"),
-    Erratum("13.5-eq37", "§13.5, gears: eq. 37", r"\rho_i(\varphi'_i - \varphi_i^0) + \rho_j(\varphi'_j - \varphi_j^0) = 0",
-            r"\rho_i(\varphi'_i - \varphi_i'^0) + \rho_j(\varphi'_j - \varphi_j'^0) = 0,\ \varphi'^0 = \varphi^0 - \varphi_k^0",
-            "formula", _ev_eq37, "Eq. 38, the constraint kinbook uses, is right; eq. 37 only holds when φ_k⁰ = 0."),
+    Erratum("13.5-eq37", "§13.5, Engranajes cilíndricos, eq. 37: the initial values of the relative angles",
+            r"\rho_i(\varphi'_i - \varphi_i^0) + \rho_j(\varphi'_j - \varphi_j^0) = 0",
+            r"\rho_i(\varphi'_i - \varphi_i'^0) + \rho_j(\varphi'_j - \varphi_j'^0) = 0,\quad "
+            r"\varphi'^0 = \varphi^0 - \varphi_k^0",
+            "formula", _ev_eq37, "A missing prime: the relative angles φ' start from φ'⁰, not from φ⁰. Undoing the "
+            "change of variables the book then writes eq. 38, which is right and is what kinbook uses; eq. 37 as "
+            "printed holds only when the carrier starts at φ_k⁰ = 0."),
     Erratum("13.5-joint-labels", "§13.5, examples 2 and 4: labels and references",
             r"\Phi^{(i,2)},\ \Phi^{(r,1)},\ \text{apartado 4.3 / 4.5},\ \text{“as in example 3”}",
             r"\Phi^{(t,2)},\ \Phi^{(r\text{-}t,1)},\ \text{the translational / r-t subsections of §13.5},\ \text{example 2}",
@@ -460,6 +470,18 @@ ERRATA = [
     Erratum("13.6-table-13.4", "§13.6, Tables 13.4 and 13.5 (revolute–translational joint), ∂Φ/∂φ_j",
             r"(y_i^P - y_i)(y_j^P - y_j^Q) + (x_i^P - x_i)(x_j^P - x_j^Q)",
             r"(y_i^P - y_j)(y_j^P - y_j^Q) + (x_i^P - x_j)(x_j^P - x_j^Q)", "formula", _ev_table_13_4),
+    Erratum("13.7-ex5-joint3-working", "§13.7, example 5, joint 3 (r-r): the values substituted into the general row",
+            r"(x_i^p - x_j^p) = (x^A - x^B) = -1.4142 + 0.7071,\ (y_i^p - y_j^p) = 1.4142 - 0.7071,\ "
+            r"(x_j^p - x_j^p) = (x^B - x^3),\ (y_j^p - y_j^p) = (y^B - y^3)",
+            r"(x_i^P - x_i) = x^A - x_2 = -1.4142 + 0.7071,\ (y_i^P - y_i) = y^A - y_2,\ (x_j^P - x_j) = x^B - x_3,"
+            r"\ (y_j^P - y_j) = y^B - y_3", "wording", None,
+            "The first four lines are the lever arms of the corrected Table 13.3 (points relative to the body "
+            "origins), labelled as differences of joint points; the numbers that follow (Φ_8's row) were computed "
+            "with the right ones."),
+    Erratum("13.8-revolute-Phiq-qd", "§13.8, the revolute joint worked step by step: row 2 of Φ_q q̇",
+            r"\dot x_j - (x_i^P - x_i)\dot\varphi_i - \dot y_j + (x_j^P - x_j)\dot\varphi_j",
+            r"\dot y_i + (x_i^P - x_i)\dot\varphi_i - \dot y_j - (x_j^P - x_j)\dot\varphi_j", "formula",
+            _ev_revolute_steps, "Row 2 of Table 13.1 times q̇; the next step, (Φ_q q̇)_q q̇, is printed right."),
     Erratum("13.8-gamma-sign", "§13.8, the revolute-joint walkthrough and example 6",
             r"\gamma = (\Phi_q\dot q)_q\dot q", r"\gamma = -(\Phi_q\dot q)_q\dot q - 2\Phi_{qt}\dot q - \Phi_{tt}",
             "wording", None, "The section first writes the minus sign, then drops it; its final γ rows use the right sign."),
@@ -496,7 +518,21 @@ ERRATA += [
     Erratum("14.2-A21-row3", "§14.2, the composed matrix A²¹ (both versions), row 3",
             r"[\sin\psi\sin\phi,\ -\cos\psi\sin\phi,\ \cos\theta]",
             r"[\sin\psi\sin\theta,\ -\cos\psi\sin\theta,\ \cos\theta]", "formula", _ev_a21_row3),
-    Erratum("14.2-omega-matrix", "§14.2, the matrix relating ω to the angle rates", r"3 \times 4\ \text{matrix}",
+    Erratum("14.2-A-theta-second", "§14.2, the second (corrected) set of elementary matrices: A^θ",
+            r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\psi&-\operatorname{sen}\theta\\ 0&\operatorname{sen}\theta&\cos\theta\end{bmatrix}",
+            r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\theta&-\operatorname{sen}\theta\\ 0&\operatorname{sen}\theta&\cos\theta"
+            r"\end{bmatrix}\ \text{(and transposed, to be passive like the printed } A^\psi, A^\phi\text{)}",
+            "formula", _ev_A_theta_second, "cos ψ stands for cos θ, and the signs are those of the active turn while the "
+            "printed A^ψ and A^φ are passive; with cos θ restored the product A^φ A^θ A^ψ is the passive matrix of the "
+            "opposite nutation −θ (notebook 14-2)."),
+    Erratum("14.2-A21-row2-first", "§14.2, the first (struck-through) A²¹, row 2",
+            r"[\,c\psi s\phi - s\psi c\theta c\phi,\ s\psi s\phi + c\psi c\theta c\phi,\ s\theta c\phi\,]",
+            r"[\,-c\psi s\phi - s\psi c\theta c\phi,\ -s\psi s\phi + c\psi c\theta c\phi,\ s\theta c\phi\,]",
+            "formula", _ev_A21_row2_first, "The second version prints this row right."),
+    Erratum("14.2-omega-matrix", "§14.2, the matrix relating ω to the angle rates (both versions)",
+            r"\begin{bmatrix}s\theta & s\phi & c\phi & 0\\ s\theta & c\phi & -s\phi & 0\\ c\theta & 0 & 1 & 1\end{bmatrix}"
+            r"\ \text{(a } 3\times 4 \text{ array; the first version has } +s\phi \text{ in row 2 and } c\theta, 0, 0, 1 "
+            r"\text{ in row 3)}",
             r"\omega' = \begin{bmatrix}s\theta s\phi & c\phi & 0\\ s\theta c\phi & -s\phi & 0\\ c\theta & 0 & 1\end{bmatrix}\begin{bmatrix}\dot\psi\\ \dot\theta\\ \dot\phi\end{bmatrix}",
             "wording", None, "The first version also prints +sin φ where −sin φ belongs in row 2 of the matrix and of "
             "its inverse; kinbook.spatial.omega_from_euler_rates(frame='body') is the corrected relation."),
@@ -504,16 +540,30 @@ ERRATA += [
             r"\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3-e_0e_2\\ e_1e_2-e_0e_3 & \cdots\end{bmatrix}",
             r"2\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3+e_0e_2\\ e_1e_2+e_0e_3 & e_0^2+e_2^2-\tfrac12 & e_2e_3-e_0e_1\\ e_1e_3-e_0e_2 & e_2e_3+e_0e_1 & e_0^2+e_3^2-\tfrac12\end{bmatrix}",
             "formula", _ev_A_of_p),
-    Erratum("14.3-p-from-A", "§14.3, the Euler parameters from A",
-            r"e_0^2 = (p+1)/4,\ e_1 = (a_{32}-a_{23})/(4e_0),\ \ldots\ \text{(no critical cases)}",
-            r"e_0^2 = (\operatorname{tr}A+1)/4;\ \text{divide by the largest of } e_0, e_1, e_2, e_3",
-            "number", _ev_p_from_A_180, "Every 180° rotation has e0 = 0."),
+    Erratum("14.3-p-from-A", "§14.3, Definición…, the Euler parameters from the direction cosines",
+            r"t = 2(3e_0^2 + e_1^2 + e_2^2 + e_3^2) - 3,\quad e_0^2 = \frac{p+1}{4}",
+            r"t = \operatorname{tr}\mathbf A = a_{11} + a_{22} + a_{33},\quad e_0^2 = \frac{t+1}{4}",
+            "wording", None,
+            "Two slips in the recipe: e_0² is printed with a p (undefined there) for t, and t is defined through the "
+            "parameters being sought; it is the same number as tr A, which is what the recipe must compute from the "
+            "known matrix. With e_0 ≠ 0, the condition the book states, its division by 4e_0 is right; kinbook's "
+            "p_from_A also covers e_0 = 0 (every half turn) by starting from the largest of e_0², …, e_3²."),
+    Erratum("14.3-p-dot", "§14.3, Derivadas…, first lines",
+            r"\mathbf p^T\mathbf p = e_0^2 + e_1^2 + e_2^2 + e_3^2 \ \Rightarrow\ \mathbf p^T\dot{\mathbf p} = 0",
+            r"\mathbf p^T\mathbf p = 1 \ \Rightarrow\ (\text{differentiating})\ \mathbf p^T\dot{\mathbf p} = 0",
+            "wording", None, "The conclusion is stated before the derivative that gives it."),
+    Erratum("14.3-A-ddot-a", "§14.3, Derivadas…, the last formula (Ä applied to a vector)",
+            r"\ddot A\bar a = 2\dot E\dot G^T a + 2E\ddot a", r"\ddot A a = 2\dot E\dot G^T a + 2E\bar a\,\ddot{\mathbf p}",
+            "wording", None, "The vector on the left is a, not ā, and ä (the second derivative of a constant vector: zero) "
+            "stands for ā p̈; the next paragraph's “sea ā un vector arbitrario” means a."),
+    Erratum("14.3-a-bar", "§14.3, Derivadas…, ā written element by element",
+            r"\bar a = \begin{bmatrix}0&-a_1&-a_2&-a_3\\ a_1&0&-a_3&a_2\\ a_2&a_3&0&-a_1\\ a_3&-a_2&a_1&0\end{bmatrix}",
+            r"\bar a = \begin{bmatrix}0&-\mathbf a^T\\ \mathbf a&-\tilde{\mathbf a}\end{bmatrix} = \begin{bmatrix}0&-a_1&-a_2&-a_3\\ "
+            r"a_1&0&a_3&-a_2\\ a_2&-a_3&0&a_1\\ a_3&a_2&-a_1&0\end{bmatrix}",
+            "formula", _ev_a_bar_explicit, "The block form next to it is printed right (with a stray b̄ for ã); "
+            "the element-by-element matrix has +ã in the lower right."),
     Erratum("14.3-G-row2", "§14.3, the matrix G, row 2", r"[-e_2,\ e_3,\ e_0,\ e_1]", r"[-e_2,\ -e_3,\ e_0,\ e_1]",
             "formula", _ev_G_row2),
-    Erratum("14.3-dAa-dp", "§14.3, ∂(Aa)/∂p", r"2(E\bar a + a p^T)\ \text{(form of A not stated)}",
-            r"2(E\bar a + a p^T) \text{ for } A = 2[(e_0^2-\tfrac12)I + ee^T + e_0\tilde e];\ 2E\bar a \text{ for } A = EG^T",
-            "wording", None, "Both forms agree on the unit sphere, not off it; kinbook.spatial.dAa_dp(p, a, form=...) "
-            "gives either."),
 ]
 
 
@@ -792,13 +842,6 @@ ERRATA += [
     Erratum("14.5-n1-rj", "§14.5, Jacobian of Φ^(n1,1), the sentence before Φ_{r_j} and Φ_{p_j}",
             r"\text{“respecto a } r_i \text{ y } p_j\text{”}", r"\text{with respect to } r_j \text{ and } p_j",
             "wording"),
-    Erratum("14.5-table-14.1", "§14.5, Tabla 14.1 (Jacobian blocks of the common constraints)",
-            r"\text{an empty table (arrows only)}",
-            r"\text{the blocks } \Phi_{r_i},\ \Phi_{p_i},\ \Phi_{r_j},\ \Phi_{p_j} \text{ of every constraint type}",
-            "wording", None,
-            "Rebuilt in chapters/14-5-spatial-analysis.ipynb (section 2) and in the docstring of "
-            "kinbook.spatial.constraints, checked against finite differences, sympy and the closed forms with B_k "
-            "and C_k. The definition of B_k under the table prints s^{1B}_k for s'^B_k."),
     Erratum("14.5-A-ddot-a", "§14.5, Ä a recalled from §14.3 for γ of Φ^(n1,1)",
             r"\ddot A a = 2\dot E\dot G^T a + 2E\ddot a\,\ddot p", r"\ddot A a = 2\dot E\dot G^T a + 2E\bar a\,\ddot p",
             "wording", None, "ä (the second derivative of a constant vector: zero) stands for ā; the §14.3 version "

@@ -25,7 +25,7 @@ import numpy as np
 import sympy as sp
 
 __all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "equations", "matrix", "names",
-           "book_gamma", "Math"]
+           "book_gamma", "Math", "local_points", "table"]
 
 
 def _sym(name, tex):
@@ -209,3 +209,31 @@ def Math(tex):
     from IPython.display import Math as _Math
 
     return _Math(tex)
+
+
+def local_points(mech):
+    """Every point of every body with its local coordinates (ξ, η) — the book lists them for each joint of
+    its examples — as a LaTeX array (body number, body, point, ξ_i^P, η_i^P)."""
+    rows = []
+    for b in mech.bodies:
+        for name, value in b.points.items():
+            xi, eta = (sp.nsimplify(v, rational=False) if not isinstance(v, sp.Basic) else v for v in value)
+            tex = f"{name[0]}_{{{name[1:]}}}" if len(name) == 2 and name[0] == "O" else name
+            rows.append(rf"{b.number} & \text{{{b.name}}} & {tex} & {sp.latex(xi)} & {sp.latex(eta)}")
+    return (r"\begin{array}{clcrr} i & \text{body} & P & \xi_i^P & \eta_i^P \\ \hline " + r" \\ ".join(rows)
+            + r"\end{array}")
+
+
+def table(M, row_labels, columns=None, mech=None, split=3):
+    """A symbolic matrix as the book's tables print it (rows = equations, columns = ∂/∂q), in blocks of
+    ``split`` columns to keep a page narrow; returns one LaTeX array per block."""
+    M = sp.Matrix(M)
+    columns = columns or S.columns
+    out = []
+    for start in range(0, M.cols, split):
+        cols = range(start, min(start + split, M.cols))
+        body = r" \\[4pt] ".join(lab + " & " + " & ".join(latex(M[r, c], mech) for c in cols)
+                                 for r, lab in enumerate(row_labels))
+        out.append(rf"\begin{{array}}{{c|{'c' * len(cols)}}} & " + " & ".join(columns[c] for c in cols)
+                   + r" \\ \hline " + body + r"\end{array}")
+    return out

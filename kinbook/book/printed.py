@@ -42,11 +42,20 @@ EX2 = {
 }
 """Example 2 (slider-crank, four bodies)."""
 
+_x1, _y1, _phi1, _x3, _y3, _phi3, _x4, _y4 = sp.symbols("x1 y1 phi1 x3 y3 phi3 x4 y4", real=True)
+EX2["Phi6"] = (_x4 - _x1) * sp.sin(_phi1) - (_y4 - _y1) * sp.cos(_phi1)
+"""Example 2's Φ_6 (the translational joint's collinearity row), in kinbook's symbols x1 … of that mechanism."""
+
 EX3 = {"q": q_book([0, 0, 0, 0.7071, 0.7071, 135, 3.7849, 1.2783, 238.45])}
 """Example 3 (four-bar with a revolute–revolute joint), printed with x_2 = +0.7071."""
 
-EX4 = {"q": q_book([0, 0, 0, 0.7071, 0.7071, 45, 4.3297, 0.7071, 346.37])}
-"""Example 4 (slider-crank with a revolute–translational joint)."""
+EX4 = {
+    "q": q_book([0, 0, 0, 0.7071, 0.7071, 45, 4.3297, 0.7071, 346.37]),
+    "Phi8": ((_x3 + 3 * sp.cos(_phi3) - _x1 * sp.cos(_phi1)) * sp.sin(_phi1)
+             + (_y3 + 3 * sp.sin(_phi3) - _y1 - sp.sin(_phi1)) * sp.cos(_phi1)),
+}
+"""Example 4 (slider-crank with a revolute–translational joint): the solution and the simplified Φ_8 as printed,
+in kinbook's symbols of that mechanism."""
 
 # ------------------------------------------------------------------------------------ §13.7, example 5
 EX5 = {

@@ -20,7 +20,7 @@ import sympy as sp
 from ..notebook import agrees, tolerance_text
 from .notation import S, from_book, latex
 
-__all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks"]
+__all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table", "zero_on_sphere", "rate"]
 
 
 def _free(mech, *exprs):
@@ -198,3 +198,88 @@ class Checks(list):
 def checks(*items):
     """A displayable table from (what, error, tol) triples."""
     return Checks(Check(*i) for i in items)
+
+
+class SolutionTable:
+    """kinbook's solution next to a printed one, coordinate by coordinate (angles in degrees in [0°, 360°), for
+    reading only), with the residual Φ(q_printed) that says whether the printed solution assembles."""
+
+    def __init__(self, mech, q, q_printed, t=0.0, digits=4):
+        self.mech, self.t, self.digits = mech, t, digits
+        self.q, self.q_printed = np.asarray(q, dtype=float), np.asarray(q_printed, dtype=float)
+        self.residual = mech.Phi(self.q_printed, t)
+
+    def _rows(self):
+        from ..notebook import fmt
+
+        for name, a, b in zip(self.mech.coordinate_names(), self.q, self.q_printed):
+            if name.startswith("phi"):
+                a, b = (np.round(np.degrees(v), 2) % 360 for v in (a, b))
+                yield name + " (°)", fmt(a, 2), fmt(b, 2), abs(a - b) > 0.011
+            else:
+                yield name, fmt(a, self.digits), fmt(b, self.digits), abs(a - b) > 1.1 * 10**-self.digits
+
+    def verdict(self):
+        from ..notebook import small
+
+        worst = int(np.argmax(np.abs(self.residual)))
+        size = float(np.abs(self.residual[worst]))
+        if size < 2e-4:  # the printed values carry four decimals
+            return "the printed solution satisfies Φ = 0 to its four printed decimals"
+        return (f"the printed solution does not assemble: max |Φ_k(q_printed)| = {small(size, 1e-4, 3)} "
+                f"(row Φ_{worst + 1})")
+
+    def __repr__(self):
+        lines = [f"{'':>9} {'kinbook':>10} {'book':>10}"]
+        lines += [f"{n:>9} {a:>10} {b:>10}{'  ←' if differ else ''}" for n, a, b, differ in self._rows()]
+        return "\n".join(lines + [self.verdict()])
+
+    def _repr_html_(self):
+        marked = " style='background:#fdecea'"
+        rows = "".join(f"<tr{marked if differ else ''}><td>{html.escape(n)}</td><td>{a}</td><td>{b}</td></tr>"
+                       for n, a, b, differ in self._rows())
+        return (f"<table><tr><th></th><th>kinbook</th><th>book</th></tr>{rows}</table>"
+                f"<p>{html.escape(self.verdict())}</p>")
+
+
+def solution_table(mech, q, q_printed, t=0.0):
+    """A :class:`SolutionTable` of kinbook's ``q`` and the book's printed ``q_printed``."""
+    return SolutionTable(mech, q, q_printed, t)
+
+
+_BASES = {}
+
+
+def zero_on_sphere(M, p, pd=None, pdd=None):
+    """True when every entry of the polynomial matrix ``M`` vanishes for all unit Euler parameters ``p`` (and,
+    if given, rates with pᵀṗ = 0 and pᵀp̈ = −ṗᵀṗ, as along any motion): the entries are reduced modulo a
+    Gröbner basis of those constraints. Fast where ``sympy.simplify`` with e_0 = √(1 − e_1² − e_2² − e_3²) is slow.
+
+    >>> import sympy as sp
+    >>> from kinbook.spatial import A_from_p
+    >>> p = sp.Matrix(sp.symbols("e0:4", real=True))
+    >>> zero_on_sphere(A_from_p(p).T * A_from_p(p) - sp.eye(3), p)
+    True
+    """
+    p = sp.Matrix(p)
+    ideal = [(p.T * p)[0] - 1]
+    gens = list(p)
+    if pd is not None:
+        pd = sp.Matrix(pd)
+        ideal.append((p.T * pd)[0])
+        gens += list(pd)
+        if pdd is not None:
+            pdd = sp.Matrix(pdd)
+            ideal.append((p.T * pdd)[0] + (pd.T * pd)[0])
+            gens += list(pdd)
+    key = tuple(gens)
+    if key not in _BASES:
+        _BASES[key] = sp.groebner(ideal, *gens, order="grevlex")
+    basis = _BASES[key]
+    return all(basis.reduce(sp.expand(e))[1] == 0 for e in sp.Matrix(M))
+
+
+def rate(M, p, pd):
+    """d/dt of a matrix of polynomials in p along ṗ (the chain rule Σ_k ∂M/∂e_k ṗ_k), with p, ṗ symbols."""
+    M = sp.Matrix(M)
+    return sum((M.diff(p[k]) * pd[k] for k in range(len(p))), sp.zeros(*M.shape))

@@ -28,8 +28,9 @@ from .constraints import (
     Translational,
     Universal,
 )
-from . import constraints, plotting, rotations, transforms
-from .plotting import draw_frame, draw_vector
+from . import constraints, plotting, random, rotations, transforms
+from .plotting import draw_frame, draw_vector, make_3d_axes
+from .random import random_p, random_p_rates
 from .transforms import point_acceleration, point_position, point_velocity
 from .mechanism import Body, ConstraintTable, Mechanism
 from .rotations import (
@@ -61,6 +62,9 @@ __all__ = [
     "plotting",
     "draw_vector",
     "draw_frame",
+    "make_3d_axes",
+    "random_p",
+    "random_p_rates",
     "Body",
     "Mechanism",
     "ConstraintTable",

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["Drawing", "draw", "animate", "animation_html", "equal_scales", "DrawnVector", "DrawnFrame", "draw_vector",
+__all__ = ["Drawing", "draw", "animate", "animation_html", "equal_scales", "make_3d_axes", "DrawnVector", "DrawnFrame", "draw_vector",
            "draw_frame"]
 
 _FRAME_COLOURS = ("tab:red", "tab:green", "tab:blue")
@@ -534,3 +534,41 @@ def draw_frame(ax, origin, A, size=1.0, label=None, names=(r"\xi", r"\eta", r"\z
                           ha="center", va="center")
                   for name, tip, colour in zip(names, tips, colors)]
     return DrawnFrame(axes, labels, origin, A, size)
+
+
+# ------------------------------------------------------------------------------------------------- layout
+def make_3d_axes(ax=None, *, figsize=(7.0, 5.6), view=(24, -60), title=None, global_frame=0.0, subplot=111,
+                 fig=None):
+    """A 3D axes ready for kinbook's drawings: created (or checked), viewed from ``view`` = (elevation, azimuth)
+    in degrees, titled, optionally with the global frame X, Y, Z drawn at the origin.
+
+    Parameters
+    ----------
+    ax : Axes3D, optional
+        Use this axes instead of a new figure.
+    figsize : (float, float)
+    view : (float, float)
+        ``ax.view_init(elev, azim)``.
+    title : str, optional
+    global_frame : float
+        Length of the global X, Y, Z arrows drawn at the origin (0: none).
+    subplot : int or (int, int, int)
+        Where in ``fig`` a new axes goes (several drawings side by side share one figure).
+    fig : matplotlib Figure, optional
+
+    Returns
+    -------
+    Axes3D
+    """
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        fig = fig if fig is not None else plt.figure(figsize=figsize)
+        ax = fig.add_subplot(*(subplot if isinstance(subplot, tuple) else (subplot,)), projection="3d")
+    _check_ax(ax)
+    ax.view_init(elev=view[0], azim=view[1])
+    if title:
+        ax.set_title(title)
+    if global_frame:
+        draw_frame(ax, [0, 0, 0], np.eye(3), size=global_frame, names=("X", "Y", "Z"), colors=("k", "k", "k"))
+    return ax
