@@ -8,7 +8,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinbook-installed
 PIN    := requirements/constraints.txt
 
-.PHONY: lab test install kernel lock clean notebooks test-cpu
+.PHONY: lab test install kernel lock clean notebooks test-cpu html
 
 install: $(STAMP)
 
@@ -50,6 +50,14 @@ NB ?= chapters/*.ipynb exercises/*.ipynb
 notebooks: $(STAMP)
 	$(BIN)/jupyter nbconvert --to notebook --execute --inplace --ExecutePreprocessor.kernel_name=kinbook \
 		--ExecutePreprocessor.record_timing=False --ExecutePreprocessor.timeout=300 $(wildcard $(NB))
+
+# The chapters as standalone HTML pages that work offline: MathJax comes from the jupyter-server-mathjax package
+# (copied next to the pages) instead of a CDN; the animation players need no icon font. Open build/html/*.html.
+MATHJAX_DIR = $(shell $(BIN)/python -c "import jupyter_server_mathjax, os; print(os.path.join(os.path.dirname(jupyter_server_mathjax.__file__), 'static'))" 2>/dev/null)
+html: $(STAMP)
+	mkdir -p build/html && rm -rf build/html/mathjax && cp -r $(MATHJAX_DIR) build/html/mathjax
+	$(BIN)/jupyter nbconvert --to html --output-dir build/html \
+		--HTMLExporter.mathjax_url="mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe" chapters/*.ipynb
 
 # Re-pin the environment after a dependency change (run on the reference machine class: Python 3.11, Linux).
 lock:

@@ -20,7 +20,7 @@ import sympy as sp
 from ..notebook import agrees, tolerance_text
 from .notation import S, from_book, latex
 
-__all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table", "zero_on_sphere", "rate"]
+__all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table", "zero_on_sphere", "rate", "relative_dof", "motion_table"]
 
 
 def _free(mech, *exprs):
@@ -176,8 +176,11 @@ class Check:
     def ok(self):
         return self.error < self.tol
 
+    def verdict(self):
+        return agrees(self.error, self.tol)
+
     def text(self):
-        return f"{'✓' if self.ok else '✗'} {self.what}: {agrees(self.error, self.tol)}"
+        return f"{'✓' if self.ok else '✗'} {self.what}: {self.verdict()}"
 
     def __repr__(self):
         return self.text()
@@ -191,7 +194,7 @@ class Checks(list):
 
     def _repr_html_(self):
         rows = "".join(f"<tr><td>{'✓' if c.ok else '✗'}</td><td style='text-align:left'>{html.escape(c.what)}</td>"
-                       f"<td style='text-align:left'>{html.escape(agrees(c.error, c.tol))}</td></tr>" for c in self)
+                       f"<td style='text-align:left'>{html.escape(c.verdict())}</td></tr>" for c in self)
         return f"<table>{rows}</table>"
 
 
@@ -276,10 +279,46 @@ def zero_on_sphere(M, p, pd=None, pdd=None):
     if key not in _BASES:
         _BASES[key] = sp.groebner(ideal, *gens, order="grevlex")
     basis = _BASES[key]
-    return all(basis.reduce(sp.expand(e))[1] == 0 for e in sp.Matrix(M))
+
+    def parts(e):  # other symbols (a vector's components …) are coefficients: reduce each coefficient
+        e = sp.expand(e)
+        extra = sorted(e.free_symbols - set(gens), key=str)
+        return sp.Poly(e, *extra).coeffs() if extra else [e]
+
+    return all(basis.reduce(c)[1] == 0 for e in sp.Matrix(M) for c in parts(e))
 
 
 def rate(M, p, pd):
     """d/dt of a matrix of polynomials in p along ṗ (the chain rule Σ_k ∂M/∂e_k ṗ_k), with p, ṗ symbols."""
     M = sp.Matrix(M)
     return sum((M.diff(p[k]) * pd[k] for k in range(len(p))), sp.zeros(*M.shape))
+
+
+def relative_dof(mech, q, body_dof=6):
+    """Relative degrees of freedom a joint leaves between two bodies at ``q``: n − rank(Φ_q) − ``body_dof``
+    (the free motion of the first body)."""
+    return int(mech.n - np.linalg.matrix_rank(mech.Phi_q(q)) - body_dof)
+
+
+def motion_table(mech, q, constraint, motions, body="j"):
+    """The constraint's rows after each rigid motion of ``body``: which motions the joint allows.
+
+    ``motions`` maps a description to (axis, angle, centre, shift), as :meth:`Mechanism.moved` takes them.
+    Returns a :class:`Checks`-like table: "allowed" where every row stays 0 (below 1e-9), "forbidden" otherwise.
+    """
+    rows = mech.constraint(constraint).rows
+    out = Checks()
+    for name, (axis, angle, centre, shift) in motions.items():
+        moved = mech.moved(q, body, axis, angle, about=centre, shift=shift)
+        out.append(_Motion(name, float(np.abs(mech.Phi(moved)[rows]).max())))
+    return out
+
+
+class _Motion(Check):
+    def __init__(self, what, error):
+        super().__init__(what, error, 1e-9)
+
+    def verdict(self):
+        from ..notebook import small
+
+        return "allowed: Φ stays 0" if self.ok else f"forbidden: max |Φ| = {small(self.error)}"

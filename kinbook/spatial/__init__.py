@@ -29,7 +29,7 @@ from .constraints import (
     Universal,
 )
 from . import constraints, plotting, random, rotations, transforms
-from .plotting import draw_frame, draw_vector, make_3d_axes
+from .plotting import draw_frame, draw_vector, joint_figure, make_3d_axes
 from .random import random_p, random_p_rates
 from .transforms import point_acceleration, point_position, point_velocity
 from .mechanism import Body, ConstraintTable, Mechanism
@@ -63,6 +63,7 @@ __all__ = [
     "draw_vector",
     "draw_frame",
     "make_3d_axes",
+    "joint_figure",
     "random_p",
     "random_p_rates",
     "Body",

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["Drawing", "draw", "animate", "animation_html", "equal_scales", "make_3d_axes", "DrawnVector", "DrawnFrame", "draw_vector",
+__all__ = ["Drawing", "draw", "animate", "animation_html", "equal_scales", "make_3d_axes", "joint_figure", "DrawnVector", "DrawnFrame", "draw_vector",
            "draw_frame"]
 
 _FRAME_COLOURS = ("tab:red", "tab:green", "tab:blue")
@@ -571,4 +571,37 @@ def make_3d_axes(ax=None, *, figsize=(7.0, 5.6), view=(24, -60), title=None, glo
         ax.set_title(title)
     if global_frame:
         draw_frame(ax, [0, 0, 0], np.eye(3), size=global_frame, names=("X", "Y", "Z"), colors=("k", "k", "k"))
+    return ax
+
+
+def joint_figure(mech, q, vectors=(), *, title=None, view=(24, -60), frame_size=0.45, figsize=(7.6, 6.0), zoom=1.15,
+                 ax=None):
+    """A joint between bodies as §14.4 draws it: the bodies with their point labels, each body's frame, and the
+    vectors the constraint speaks of.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    q : array_like, shape (n,)
+    vectors : sequence of (origin, vector, label, color) or (origin, vector, label, color, options)
+        Drawn with :func:`draw_vector` (options: its keyword arguments, e.g. ``label_offset``).
+    title : str, optional
+    view : (float, float)
+        Elevation and azimuth in degrees.
+    frame_size : float
+        Length of the body-frame arrows (0: no frames).
+    figsize, zoom, ax
+        As :func:`make_3d_axes` and :func:`equal_scales`.
+
+    Returns
+    -------
+    Axes3D
+    """
+    ax = make_3d_axes(ax, figsize=figsize, view=view, title=title)
+    draw(mech, q, ax=ax, labels=True)
+    for b in mech.bodies if frame_size else ():
+        draw_frame(ax, mech.r(q, b.name), mech.A(q, b.name), size=frame_size, label=b.name)
+    for origin, vector, label, color, *options in vectors:
+        draw_vector(ax, origin, vector, label, color, **(options[0] if options else {}))
+    equal_scales(ax, zoom=zoom)
     return ax

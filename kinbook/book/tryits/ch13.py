@@ -257,10 +257,10 @@ register("13-7/try-1", "my_gamma_1", check_gamma, lambda: _example("ch13_example
 
 def _s13_7_2(mech, q0, qd0):
     rA, rB = mech.point_position(q0, "crank", "A"), mech.point_position(q0, "rocker", "B")
-    vA, vB = mech.point_velocity(q0, qd0, "crank", "A"), mech.point_velocity(q0, qd0, "rocker", "B")
+    vel_A, vel_B = mech.point_velocity(q0, qd0, "crank", "A"), mech.point_velocity(q0, qd0, "rocker", "B")
     cA = mech.point_acceleration(q0, qd0, np.zeros(9), "crank", "A")      # the velocity-dependent part only
     cB = mech.point_acceleration(q0, qd0, np.zeros(9), "rocker", "B")
-    my_gamma_8 = -2 * (vA - vB) @ (vA - vB) - 2 * (rA - rB) @ (cA - cB)
+    my_gamma_8 = -2 * (vel_A - vel_B) @ (vel_A - vel_B) - 2 * (rA - rB) @ (cA - cB)
     return my_gamma_8
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...grading import check_euler_parameters, check_rotation, check_value
+from ...grading import check_euler_parameters, check_gamma, check_jacobian, check_phi, check_rotation, check_value
 from ...spatial import (A_from_axes, A_from_euler, A_from_p, euler_from_A, omega_from_euler_rates, omega_from_p_dot,
                         p_from_A, p_from_axis_angle, point_position)
 from . import register
@@ -123,3 +123,133 @@ def _s14_3_3():
 
 register("14-3/try-3", "my_omega", check_value,
          lambda: omega_from_p_dot([0.5, 0.5, 0.5, 0.5], [-0.1, 0.3, -0.1, -0.1]), _s14_3_3, {"name": "ω (rad/s)"})
+
+
+# ------------------------------------------------------------------------------------------------- 14-4
+def _two_spatial_bodies(points_i, points_j, constraint):
+    from ...spatial import Mechanism
+
+    m = Mechanism("two bodies")
+    m.add_body("i", points=points_i)
+    m.add_body("j", points=points_j)
+    m.add(constraint)
+    return m.constraints[-1]
+
+
+def _s14_4_1():
+    import sympy as sp
+
+    x1, y1, z1, e01, e11, e21, e31 = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True)   # body i
+    x2, y2, z2, e02, e12, e22, e32 = sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)   # body j
+    my_Phi_s = (sp.Matrix([x1, y1, z1]) + A_from_p([e01, e11, e21, e31]) * sp.Matrix([0, 0, 1])
+                - sp.Matrix([x2, y2, z2]) - A_from_p([e02, e12, e22, e32]) * sp.Matrix([-1, sp.Rational(1, 2), 0]))
+    return my_Phi_s
+
+
+def _t14_4_1():
+    from ...spatial import Spherical
+
+    return _two_spatial_bodies({"P": (0, 0, 1)}, {"P": (-1, 0.5, 0)}, Spherical("i", "j", point="P", name="ball"))
+
+
+register("14-4/try-1", "my_Phi_s", check_phi, _t14_4_1, _s14_4_1)
+
+
+def _s14_4_2():
+    import sympy as sp
+
+    from ...spatial import E, a_bar
+
+    p_i, p_j = sp.Matrix(sp.symbols("e01 e11 e21 e31", real=True)), sp.Matrix(sp.symbols("e02 e12 e22 e32", real=True))
+    a_i, a_j = sp.Matrix([0, 0, 1]), sp.Matrix([1, 0, 0])
+    C_i = 2 * (E(p_i) * a_bar(a_i) + a_i * p_i.T)            # ∂(A_i a_i)/∂p_i
+    C_j = 2 * (E(p_j) * a_bar(a_j) + a_j * p_j.T)
+    s_i, s_j = A_from_p(p_i) * a_i, A_from_p(p_j) * a_j
+    my_Phi_q_n1 = sp.Matrix.hstack(sp.zeros(1, 3), s_j.T * C_i, sp.zeros(1, 3), s_i.T * C_j)
+    return my_Phi_q_n1
+
+
+def _t14_4_2():
+    from ...spatial import Normal1
+
+    return _two_spatial_bodies({"O": (0, 0, 0), "C": (1.2, 0, 0), "B": (1.2, 0, 1.0)},
+                               {"O": (0, 0, 0), "C": (0.5, 0, 0), "B": (1.5, 0, 0)},
+                               Normal1("i", "j", vector_i=["C", "B"], vector_j=["C", "B"], name="n1"))
+
+
+register("14-4/try-2", "my_Phi_q_n1", check_jacobian, _t14_4_2, _s14_4_2)
+
+
+def _s14_4_3():
+    import sympy as sp
+
+    from ...spatial import skew
+
+    q_i, q_j = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True), sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)
+    A_1, A_2 = A_from_p(list(q_i[3:])), A_from_p(list(q_j[3:]))
+    a_i, a_j = sp.Matrix([0, 0, sp.Rational(4, 5)]), sp.Matrix([0, 0, sp.Rational(1, 2)])
+    cross_in_i = skew(list(a_i)) * A_1.T * A_2 * a_j            # s_i × s_j in body i's components: row 3 ≡ 0
+    ball_rows = sp.Matrix(q_i[:3]) + A_1 * sp.Matrix([sp.Rational(6, 5), 0, 0]) - sp.Matrix(q_j[:3])
+    my_Phi_r = ball_rows.col_join(cross_in_i[:2, :])
+    return my_Phi_r
+
+
+def _t14_4_3():
+    from ...spatial import Revolute
+
+    return _two_spatial_bodies({"O": (0, 0, 0), "P": (1.2, 0, 0), "Q": (1.2, 0, 0.8)},
+                               {"P": (0, 0, 0), "T": (1.4, 0, 0), "U": (1.4, 0, 0.5)},
+                               Revolute("i", "j", point="P", axis_i=["P", "Q"], axis_j=["T", "U"], name="r"))
+
+
+register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3)
+
+
+# ------------------------------------------------------------------------------------------------- 14-5
+def _fourbar():
+    from ... import examples
+
+    return examples.load("spatial_fourbar")
+
+
+def _s14_5_1():
+    my_gamma_norm = "-2*(de02**2 + de12**2 + de22**2 + de32**2)"      # −2 ṗᵀṗ
+    return my_gamma_norm
+
+
+register("14-5/try-1", "my_gamma_norm", check_gamma, lambda: _fourbar().constraint("normalization crank"), _s14_5_1)
+
+
+def _s14_5_2(mech):
+    import sympy as sp
+
+    from ...spatial import E, a_bar
+
+    p3, p4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
+    C = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)      # ∂(A a)/∂p: B_k or C_k
+    s3, s4 = A_from_p(p3) * sp.Matrix([0, 1, 0]), A_from_p(p4) * sp.Matrix([1, 0, 0])   # the cross arms, global
+    I3, O13 = sp.eye(3), sp.zeros(1, 3)
+    my_Phi_q_B = sp.Matrix.vstack(
+        sp.Matrix.hstack(I3, C(p3, [3.2, 0, 0]), -I3, -C(p4, [0, 1.5, 0])),          # (s,3):  I, B_i, −I, −B_j
+        sp.Matrix.hstack(O13, s4.T * C(p3, [0, 1, 0]), O13, s3.T * C(p4, [1, 0, 0])))  # (n1,1): 0, s_jᵀC_i, 0, s_iᵀC_j
+    return my_Phi_q_B
+
+
+register("14-5/try-2", "my_Phi_q_B", check_jacobian, lambda: _fourbar().constraint("B"), _s14_5_2,
+         context=lambda: {"mech": _fourbar()})
+
+
+def _s14_5_3(mech):
+    import sympy as sp
+
+    from ...spatial import E, a_bar
+
+    C = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)
+    k2, k3 = mech.index("e02"), mech.index("e03")
+    pd2, pd3 = sp.Matrix(mech.qd[k2:k2 + 4, 0]), sp.Matrix(mech.qd[k3:k3 + 4, 0])
+    my_gamma_A = -C(pd2, [1, 0, 0]) * pd2 + C(pd3, [0, 0, 0]) * pd3        # γ = −b_i + b_j, b_k = B_k(ṗ_k) ṗ_k
+    return my_gamma_A
+
+
+register("14-5/try-3", "my_gamma_A", check_gamma, lambda: _fourbar().constraint("A"), _s14_5_3,
+         context=lambda: {"mech": _fourbar()})
