@@ -52,7 +52,8 @@ def test_notebooks_and_registry_agree():
                 item = TRY_ITS[id_]
                 assert name == item.answer and re.search(rf"^{name} = \.\.\.", src, re.M), \
                     f"{id_}: the cell must start blank, `{item.answer} = ...`"
-                before = set().union(*(_assigned(s) for s in sources[:k]))
+                head = src[: re.search(rf"^{name} = \.\.\.", src, re.M).start()]  # lines above the blank
+                before = set().union(_assigned(head), *(_assigned(s) for s in sources[:k]))
                 missing = [p for p in item.solution.__code__.co_varnames[: item.solution.__code__.co_argcount]
                            if p not in before]
                 assert not missing, f"{id_}: the worked answer reads {missing}, not defined before its cell"

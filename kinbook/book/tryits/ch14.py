@@ -63,10 +63,10 @@ register("14-2/try-1", "my_A", check_rotation, lambda: A_from_euler(*_ANGLES_14_
 
 def _s14_2_2():
     a2, a3 = np.radians([25.0, -60.0])          # θ and φ; ψ does not enter ω'
-    rates = [2.0, 0.0, -1.0]                   # ψ̇, θ̇, φ̇ in rad/s
-    my_omega_body = np.array([np.sin(a2) * np.sin(a3) * rates[0] + np.cos(a3) * rates[1],
-                              np.sin(a2) * np.cos(a3) * rates[0] - np.sin(a3) * rates[1],
-                              np.cos(a2) * rates[0] + rates[2]])
+    psi_d, theta_d, phi_d = 2.0, 0.0, -1.0     # ψ̇, θ̇, φ̇ in rad/s
+    my_omega_body = np.array([np.sin(a2) * np.sin(a3) * psi_d + np.cos(a3) * theta_d,
+                              np.sin(a2) * np.cos(a3) * psi_d - np.sin(a3) * theta_d,
+                              np.cos(a2) * psi_d + phi_d])
     return my_omega_body
 
 
@@ -160,12 +160,12 @@ def _s14_4_2():
 
     from ...spatial import E, a_bar
 
-    p_i, p_j = sp.Matrix(sp.symbols("e01 e11 e21 e31", real=True)), sp.Matrix(sp.symbols("e02 e12 e22 e32", real=True))
-    a_i, a_j = sp.Matrix([0, 0, 1]), sp.Matrix([1, 0, 0])
-    C_i = 2 * (E(p_i) * a_bar(a_i) + a_i * p_i.T)            # ∂(A_i a_i)/∂p_i
-    C_j = 2 * (E(p_j) * a_bar(a_j) + a_j * p_j.T)
-    s_i, s_j = A_from_p(p_i) * a_i, A_from_p(p_j) * a_j
-    my_Phi_q_n1 = sp.Matrix.hstack(sp.zeros(1, 3), s_j.T * C_i, sp.zeros(1, 3), s_i.T * C_j)
+    par_i, par_j = sp.Matrix(sp.symbols("e01 e11 e21 e31", real=True)), sp.Matrix(sp.symbols("e02 e12 e22 e32", real=True))
+    loc_i, loc_j = sp.Matrix([0, 0, 1]), sp.Matrix([1, 0, 0])
+    dAa_i = 2 * (E(par_i) * a_bar(loc_i) + loc_i * par_i.T)            # ∂(A_i loc_i)/∂par_i
+    dAa_j = 2 * (E(par_j) * a_bar(loc_j) + loc_j * par_j.T)
+    glob_i, glob_j = A_from_p(par_i) * loc_i, A_from_p(par_j) * loc_j
+    my_Phi_q_n1 = sp.Matrix.hstack(sp.zeros(1, 3), glob_j.T * dAa_i, sp.zeros(1, 3), glob_i.T * dAa_j)
     return my_Phi_q_n1
 
 
@@ -185,11 +185,11 @@ def _s14_4_3():
 
     from ...spatial import skew
 
-    q_i, q_j = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True), sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)
-    A_1, A_2 = A_from_p(list(q_i[3:])), A_from_p(list(q_j[3:]))
-    a_i, a_j = sp.Matrix([0, 0, sp.Rational(4, 5)]), sp.Matrix([0, 0, sp.Rational(1, 2)])
-    cross_in_i = skew(list(a_i)) * A_1.T * A_2 * a_j            # s_i × s_j in body i's components: row 3 ≡ 0
-    ball_rows = sp.Matrix(q_i[:3]) + A_1 * sp.Matrix([sp.Rational(6, 5), 0, 0]) - sp.Matrix(q_j[:3])
+    sym_i, sym_j = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True), sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)
+    rot_1, rot_2 = A_from_p(list(sym_i[3:])), A_from_p(list(sym_j[3:]))
+    axis_i, axis_j = sp.Matrix([0, 0, sp.Rational(4, 5)]), sp.Matrix([0, 0, sp.Rational(1, 2)])
+    cross_in_i = skew(list(axis_i)) * rot_1.T * rot_2 * axis_j            # s_i × s_j in body i's components: row 3 ≡ 0
+    ball_rows = sp.Matrix(sym_i[:3]) + rot_1 * sp.Matrix([sp.Rational(6, 5), 0, 0]) - sp.Matrix(sym_j[:3])
     my_Phi_r = ball_rows.col_join(cross_in_i[:2, :])
     return my_Phi_r
 
@@ -225,13 +225,13 @@ def _s14_5_2(mech):
 
     from ...spatial import E, a_bar
 
-    p3, p4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
-    C = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)      # ∂(A a)/∂p: B_k or C_k
-    s3, s4 = A_from_p(p3) * sp.Matrix([0, 1, 0]), A_from_p(p4) * sp.Matrix([1, 0, 0])   # the cross arms, global
-    I3, O13 = sp.eye(3), sp.zeros(1, 3)
+    par_3, par_4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
+    dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)      # ∂(A a)/∂p: B_k or C_k
+    arm_3, arm_4 = A_from_p(par_3) * sp.Matrix([0, 1, 0]), A_from_p(par_4) * sp.Matrix([1, 0, 0])   # the cross arms, global
+    eye3, zero13 = sp.eye(3), sp.zeros(1, 3)
     my_Phi_q_B = sp.Matrix.vstack(
-        sp.Matrix.hstack(I3, C(p3, [3.2, 0, 0]), -I3, -C(p4, [0, 1.5, 0])),          # (s,3):  I, B_i, −I, −B_j
-        sp.Matrix.hstack(O13, s4.T * C(p3, [0, 1, 0]), O13, s3.T * C(p4, [1, 0, 0])))  # (n1,1): 0, s_jᵀC_i, 0, s_iᵀC_j
+        sp.Matrix.hstack(eye3, dAa(par_3, [3.2, 0, 0]), -eye3, -dAa(par_4, [0, 1.5, 0])),          # (s,3):  I, B_i, −I, −B_j
+        sp.Matrix.hstack(zero13, arm_4.T * dAa(par_3, [0, 1, 0]), zero13, arm_3.T * dAa(par_4, [1, 0, 0])))  # (n1,1): 0, s_jᵀC_i, 0, s_iᵀC_j
     return my_Phi_q_B
 
 
@@ -244,10 +244,10 @@ def _s14_5_3(mech):
 
     from ...spatial import E, a_bar
 
-    C = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)
-    k2, k3 = mech.index("e02"), mech.index("e03")
-    pd2, pd3 = sp.Matrix(mech.qd[k2:k2 + 4, 0]), sp.Matrix(mech.qd[k3:k3 + 4, 0])
-    my_gamma_A = -C(pd2, [1, 0, 0]) * pd2 + C(pd3, [0, 0, 0]) * pd3        # γ = −b_i + b_j, b_k = B_k(ṗ_k) ṗ_k
+    dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)
+    k_2, k_3 = mech.index("e02"), mech.index("e03")
+    pdot_2, pdot_3 = sp.Matrix(mech.qd[k_2:k_2 + 4, 0]), sp.Matrix(mech.qd[k_3:k_3 + 4, 0])
+    my_gamma_A = -dAa(pdot_2, [1, 0, 0]) * pdot_2 + dAa(pdot_3, [0, 0, 0]) * pdot_3        # γ = −b_i + b_j, b_k = B_k(ṗ_k) ṗ_k
     return my_gamma_A
 
 
