@@ -1,6 +1,7 @@
 # kinbook: two commands for a fresh machine that has python3 and make.
 #   make lab   - create .venv, install kinbook with its extras, register the 'kinbook' kernel, open JupyterLab
 #   make test  - create .venv if missing, install, run the unit tests, doctests and nbval on every notebook
+#   make test-lms - nbgrader and otter-grader grade docs/lms.md's notebooks, in their own venv (.lms-venv)
 
 PYTHON ?= python3
 VENV   := .venv
@@ -8,7 +9,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinbook-installed
 PIN    := requirements/constraints.txt
 
-.PHONY: lab test install kernel lock clean notebooks test-cpu html
+.PHONY: lab test test-lms install kernel lock clean notebooks test-cpu html
 
 install: $(STAMP)
 
@@ -45,6 +46,26 @@ test-cpu: $(STAMP)
 	$(CPU_PROFILE) $(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=120 chapters exercises \
 		$(if $(filter 1,$(JOBS)),,-n $(JOBS) --dist loadfile)
 
+# nbgrader 0.9.6 and otter-grader 7 pin jupyter packages on their own schedule: they get their own venv, pinned
+# in requirements/lms.txt (the whole closure, so --no-deps), with kinbook editable and its kernel registered.
+# uv installs the 150 pinned wheels in seconds where pip takes minutes.
+LMS       := .lms-venv
+LMS_PIN   := requirements/lms.txt
+LMS_STAMP := $(LMS)/.kinbook-installed
+UV        := uv==0.13.9
+
+$(LMS_STAMP): pyproject.toml $(LMS_PIN)
+	rm -rf $(LMS) && $(PYTHON) -m venv $(LMS)
+	$(LMS)/bin/python -m pip install --quiet --disable-pip-version-check $(UV)
+	$(LMS)/bin/uv pip install --quiet --python $(LMS)/bin/python --no-deps -r $(LMS_PIN)
+	$(LMS)/bin/uv pip install --quiet --python $(LMS)/bin/python --no-deps -e .
+	$(LMS)/bin/python -m ipykernel install --sys-prefix --name kinbook --display-name "Python (kinbook)" >/dev/null
+	touch $@
+
+# the nbgrader and the otter tests run side by side (one pytest worker each)
+test-lms: $(LMS_STAMP)
+	$(LMS)/bin/python -m pytest -p no:cacheprovider -n 2 --dist loadfile --durations=5 tests/lms/test_nbgrader.py tests/lms/test_otter.py
+
 # Re-execute stored notebooks in place after a library change (NB=path to do only some)
 NB ?= chapters/*.ipynb exercises/*.ipynb
 notebooks: $(STAMP)
@@ -67,4 +88,4 @@ lock:
 	mv $(PIN).new $(PIN) && rm -rf .lock-venv
 
 clean:
-	rm -rf $(VENV) build *.egg-info
+	rm -rf $(VENV) $(LMS) build *.egg-info

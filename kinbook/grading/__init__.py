@@ -9,13 +9,15 @@
 
 Public API: :func:`check_phi`, :func:`check_jacobian`, :func:`check_nu`, :func:`check_gamma`,
 :func:`check_value`, :func:`check_rotation`, :func:`check_euler_parameters`, :class:`CheckResult` and the
-mistake catalogue (:data:`MISTAKES`, :func:`explain`). Exercises (graded parts, per-student parameters) are
+mistake catalogue (:data:`MISTAKES`, :func:`explain`); :func:`nbgrader_score` and :func:`assert_passed` for
+nbgrader and otter-grader tests (:mod:`.lms`). Exercises (graded parts, per-student parameters) are
 declared in notebooks with :mod:`kinbook.classroom`.
 """
 
 from ._i18n import get_language, set_language
 from .catalogue import MISTAKES, explain
 from .checks import check_gamma, check_jacobian, check_nu, check_phi
+from .lms import assert_passed, nbgrader_score
 from .result import CheckResult, RowResult
 from .values import check_euler_parameters, check_rotation, check_value
 
@@ -27,6 +29,8 @@ __all__ = [
     "check_value",
     "check_rotation",
     "check_euler_parameters",
+    "nbgrader_score",
+    "assert_passed",
     "CheckResult",
     "RowResult",
     "MISTAKES",
