@@ -48,7 +48,8 @@ test-cpu: $(STAMP)
 
 # nbgrader 0.9.6 and otter-grader 7 pin jupyter packages on their own schedule: they get their own venv, pinned
 # in requirements/lms.txt (the whole closure, so --no-deps), with kinbook editable and its kernel registered.
-# uv installs the 150 pinned wheels in seconds where pip takes minutes.
+# uv installs the 150 pinned wheels in seconds where pip takes minutes; compiling their bytecode once at install
+# saves each nbgrader/otter/kernel process compiling its imports again (CI may set PYTHONDONTWRITEBYTECODE).
 LMS       := .lms-venv
 LMS_PIN   := requirements/lms.txt
 LMS_STAMP := $(LMS)/.kinbook-installed
@@ -57,7 +58,7 @@ UV        := uv==0.13.9
 $(LMS_STAMP): pyproject.toml $(LMS_PIN)
 	rm -rf $(LMS) && $(PYTHON) -m venv $(LMS)
 	$(LMS)/bin/python -m pip install --quiet --disable-pip-version-check $(UV)
-	$(LMS)/bin/uv pip install --quiet --python $(LMS)/bin/python --no-deps -r $(LMS_PIN)
+	$(LMS)/bin/uv pip install --quiet --python $(LMS)/bin/python --no-deps --compile-bytecode -r $(LMS_PIN)
 	$(LMS)/bin/uv pip install --quiet --python $(LMS)/bin/python --no-deps -e .
 	$(LMS)/bin/python -m ipykernel install --sys-prefix --name kinbook --display-name "Python (kinbook)" >/dev/null
 	touch $@
