@@ -54,6 +54,15 @@ def _refused(source, entry, status, message, isolation=""):
                             _all_parts(parts, status, message), 0.0, isolation)
 
 
+def _needs_a_real_machine():
+    """Grading runs each submission in sandboxed processes: a browser (Pyodide, JupyterLite) cannot start one."""
+    if sys.platform == "emscripten":
+        raise GradingError(
+            "grading needs a real machine: `kinbook grade` runs each submission in its own sandboxed process "
+            "(bubblewrap, on Linux), and a browser (Pyodide, JupyterLite) cannot start processes. In the browser, "
+            "kinbook's checkers (kinbook.grading.check_phi, …) still give feedback on your answers.")
+
+
 def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1000, generic=False,
                      reveal_hidden=False, isolation=True, sandbox=None):
     """Grade one submitted notebook.
@@ -87,6 +96,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     -------
     SubmissionResult
     """
+    _needs_a_real_machine()
     source = load_source(source)
     entries = collect([submission], source.exercise, max_bytes=MAX_NOTEBOOK_BYTES)
     entry = entries[0] if entries else Entry(str(submission), ".", (os.path.basename(str(submission)),), None,
@@ -249,6 +259,7 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     list of SubmissionResult
         The submissions graded in this run (not the skipped ones).
     """
+    _needs_a_real_machine()
     src = load_source(source)
     references(src)  # an exercise that cannot be graded stops here, before any submission is run
     if isolation:

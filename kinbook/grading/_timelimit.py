@@ -9,11 +9,14 @@ The timer is only armed where it is safe: in the main thread, on platforms with 
 Windows), and when no other interval timer is running (pytest-timeout, for example, may use one). Elsewhere
 the limit is not enforced and checkers rely on the size caps alone (``MAX_NODES`` in
 :mod:`kinbook.grading.answers`) and skip optional symbolic confirmations.
+
+In a browser (Pyodide, ``sys.platform == "emscripten"``) there are no signals: :mod:`signal` is imported only
+when a timer can be armed, so that importing :mod:`kinbook.grading` never touches it.
 """
 
 from __future__ import annotations
 
-import signal
+import sys
 import threading
 
 __all__ = ["TimeLimitExceeded", "can_limit", "run_limited"]
@@ -25,7 +28,11 @@ class TimeLimitExceeded(BaseException):
 
 def can_limit():
     """True when :func:`run_limited` can actually interrupt work in this thread."""
-    if not hasattr(signal, "setitimer") or threading.current_thread() is not threading.main_thread():
+    if sys.platform == "emscripten" or threading.current_thread() is not threading.main_thread():
+        return False
+    import signal
+
+    if not hasattr(signal, "setitimer"):
         return False
     return signal.getitimer(signal.ITIMER_REAL)[0] == 0.0
 
@@ -53,6 +60,8 @@ def run_limited(fn, seconds, on_timeout=None, required=False):
         if required:
             return fn()
         return on_timeout() if on_timeout else None
+    import signal
+
     old = signal.signal(signal.SIGALRM, _raise)
     try:
         try:
