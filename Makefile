@@ -9,7 +9,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinbook-installed
 PIN    := requirements/constraints.txt
 
-.PHONY: lab test test-lms install kernel lock clean notebooks test-cpu html
+.PHONY: lab test test-lms install kernel lock clean notebooks test-cpu html web-env book lite test-web lock-web chromium
 
 install: $(STAMP)
 
@@ -88,5 +88,49 @@ lock:
 	{ head -n 3 $(PIN); .lock-venv/bin/python -m pip freeze --exclude-editable | grep -iv '^kinbook'; } > $(PIN).new
 	mv $(PIN).new $(PIN) && rm -rf .lock-venv
 
+# --- The workbook as a static website (issue #16), built with its own tools in .venv-web --------------------
+#   make book      - the book (Jupyter Book 1), stored outputs as they are    -> build/site/
+#   make lite      - the same notebooks live in the browser (JupyterLite)    -> build/site/live/
+#   make test-web  - both, checked offline in Debian's chromium (Playwright)
+# Only web-env uses the network (pip, npm); book and lite build offline.
+WEB_VENV  := .venv-web
+WEB_BIN   := $(WEB_VENV)/bin
+WEB_STAMP := $(WEB_VENV)/.kinbook-web-installed
+WEB_PIN   := requirements/web.txt
+
+web-env: $(WEB_STAMP)
+
+$(WEB_STAMP): $(WEB_PIN) requirements/lite-kernel.txt web/package.json web/package-lock.json
+	test -x $(WEB_BIN)/python || $(PYTHON) -m venv $(WEB_VENV)
+	$(WEB_BIN)/python -m pip install --quiet --disable-pip-version-check -r $(WEB_PIN)
+	rm -rf $(WEB_VENV)/npm && mkdir -p $(WEB_VENV)/npm && cp web/package.json web/package-lock.json $(WEB_VENV)/npm/
+	cd $(WEB_VENV)/npm && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error
+	rm -rf $(WEB_VENV)/wheels && $(WEB_BIN)/python -m pip download --quiet --disable-pip-version-check --no-deps \
+		--require-hashes -r requirements/lite-kernel.txt -d $(WEB_VENV)/wheels
+	touch $@
+
+book: $(WEB_STAMP)
+	$(WEB_BIN)/python web/build.py book
+
+lite: $(WEB_STAMP)
+	$(WEB_BIN)/python web/build.py lite
+
+# Debian's chromium drives the browser tests (Playwright downloads no browser); as root, install it when missing.
+chromium:
+	@test -x /usr/bin/chromium || { test "$$(id -u)" = 0 || { echo "make test-web needs Debian's chromium: apt-get install chromium" >&2; exit 1; }; \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
+
+# The Pyodide test fixture (tests/web/fixture/prepare.py) is fetched once into .venv-web/pyodide-fixture.
+test-web: book lite chromium
+	$(WEB_BIN)/python tests/web/fixture/prepare.py $(WEB_VENV)/pyodide-fixture
+	KINBOOK_TEST_WEB=1 $(WEB_BIN)/python -m pytest tests/web --confcutdir=tests/web -p no:cacheprovider -v
+
+# Re-pin the website's tools (as `make lock` does for the lab/test environment).
+lock-web:
+	rm -rf .lock-web-venv && $(PYTHON) -m venv .lock-web-venv
+	.lock-web-venv/bin/python -m pip install --quiet -r requirements/web.in
+	{ head -n 2 $(WEB_PIN); .lock-web-venv/bin/python -m pip freeze --all | grep -v '^pip=='; } > $(WEB_PIN).new
+	mv $(WEB_PIN).new $(WEB_PIN) && rm -rf .lock-web-venv
+
 clean:
-	rm -rf $(VENV) $(LMS) build *.egg-info
+	rm -rf $(VENV) $(LMS) $(WEB_VENV) build *.egg-info

@@ -1,0 +1,240 @@
+"""Build kinbook's static website from the stored notebooks: the book and the live notebooks.
+
+    python web/build.py book    # Jupyter Book 1 (Sphinx)  -> build/site/        (make book)
+    python web/build.py lite    # JupyterLite + Pyodide    -> build/site/live/   (make lite)
+
+Both take whatever notebooks are in chapters/ as they are stored (never executed here: their outputs are
+kept true by nbval in `make test`), copy them into a staging folder under build/web/ and adapt the copies:
+
+* the book's pages get an "Open live" link to the same notebook in the live site (``../live/...``);
+* the live copies get the Pyodide kernel (kernelspec ``python``) and a first cell that installs kinbook
+  from the site's own package index (piplite);
+* matplotlib's animation players load Font Awesome from a CDN: the copies load the site's own copy instead.
+
+Everything a page needs is served by the site itself (MathJax, fonts, kinbook's wheel), except the Pyodide
+runtime of the live notebooks, which comes from the official Pyodide CDN (`PYODIDE_URL` in
+web/lite/jupyter-lite.json). Nothing here uses the network: the tools and assets are installed beforehand by
+`make web-env` (pip, requirements/web.txt; npm ci, web/package-lock.json).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+WEB = ROOT / "web"
+STAGE = ROOT / "build" / "web"
+SITE = ROOT / "build" / "site"
+LIVE = SITE / "live"
+VENV = Path(sys.prefix)
+NODE_MODULES = VENV / "npm" / "node_modules"   # npm ci of web/package.json (make web-env)
+WHEELS = VENV / "wheels"                       # pure-Python wheels for the browser kernel (make web-env)
+
+# Where matplotlib's jshtml animation player loads its icon font from, and where the site serves its copy.
+# Notebook pages are one folder below the site's root in both sites (book: chapters/, docs/; live: lab/,
+# notebooks/), so one relative path serves both.
+FONT_AWESOME_CDN = "https://maxcdn.bootstrapcdn.com/font-awesome/4.4.0/css/font-awesome.min.css"
+FONT_AWESOME_LOCAL = "../vendor/font-awesome/css/font-awesome.min.css"
+
+# The parts of MathJax's es5/ build the book loads: the TeX-to-HTML component and what it loads on demand
+# (TeX extensions, fonts, the accessibility menu); not the other combined components (SVG, MathML input).
+MATHJAX_PARTS = ("tex-chtml.js", "input", "output/chtml", "a11y", "sre", "ui", "adaptors")
+
+# The page of the live site that opens one notebook (JupyterLite's Notebook interface), from a book page.
+LIVE_NOTEBOOK = "../live/notebooks/index.html?path={name}"
+
+# What the first cell of each live notebook runs: kinbook (and its dependencies: numpy, scipy, sympy and
+# matplotlib from the Pyodide distribution) and ipywidgets for the sliders, from the site's piplite index.
+INSTALL_CELL = """\
+# Running in your browser (JupyterLite): this cell installs kinbook and ipywidgets from this site.
+%pip install -q kinbook ipywidgets"""
+
+LITE_KERNELSPEC = {"name": "python", "display_name": "Python (Pyodide)", "language": "python"}
+
+
+def notebooks():
+    """The chapter notebooks, in file-name order (the textbook's section order)."""
+    return sorted((ROOT / "chapters").glob("*.ipynb"))
+
+
+def _read(path):
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def _write(nb, path):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(nb, f, ensure_ascii=False, indent=1)
+        f.write("\n")
+
+
+def _cell(cell_type, source, cell_id):
+    cell = {"cell_type": cell_type, "id": cell_id, "metadata": {}, "source": source}
+    if cell_type == "code":
+        cell.update(execution_count=None, outputs=[])
+    return cell
+
+
+def _after_title(nb):
+    """Index just after the notebook's title cell (a first markdown cell), where inserted cells go."""
+    cells = nb["cells"]
+    return 1 if cells and cells[0]["cell_type"] == "markdown" else 0
+
+
+def _local_font_awesome(nb):
+    """Point every stored output at the site's Font Awesome instead of the CDN's."""
+    for cell in nb["cells"]:
+        for out in cell.get("outputs", []):
+            data = out.get("data", {})
+            html = data.get("text/html")
+            if html is None:
+                continue
+            text = "".join(html) if isinstance(html, list) else html
+            if FONT_AWESOME_CDN in text:
+                data["text/html"] = text.replace(FONT_AWESOME_CDN, FONT_AWESOME_LOCAL)
+    return nb
+
+
+def book_notebook(nb, name):
+    """A chapter notebook as a book page: local icon font, an "Open live" link under the title, and no stored
+    widget state (rendering it would load the widget manager from a CDN)."""
+    nb = _local_font_awesome(nb)
+    nb["metadata"].pop("widgets", None)
+    link = (f'<p class="kinbook-live"><a href="{LIVE_NOTEBOOK.format(name=name)}">▶ Open live</a> — run this '
+            "notebook in your browser: no install (JupyterLite; the first start downloads Python, then the "
+            "browser keeps it).</p>")
+    nb["cells"].insert(_after_title(nb), _cell("markdown", link, "kinbook-open-live"))
+    return nb
+
+
+def lite_notebook(nb):
+    """A chapter notebook for JupyterLite: the Pyodide kernel, kinbook installed by the first cell."""
+    nb = _local_font_awesome(nb)
+    nb["metadata"]["kernelspec"] = dict(LITE_KERNELSPEC)
+    nb["metadata"].pop("widgets", None)
+    nb["cells"].insert(_after_title(nb), _cell("code", INSTALL_CELL, "kinbook-install"))
+    return nb
+
+
+def _fresh(path):
+    if path.exists():
+        shutil.rmtree(path)
+    path.mkdir(parents=True)
+    return path
+
+
+def _copy_tree(src, dst):
+    shutil.copytree(src, dst, dirs_exist_ok=True)
+
+
+def _vendor(dst):
+    """The browser assets a site serves itself: Font Awesome (css + fonts) into dst/vendor/."""
+    fa = NODE_MODULES / "font-awesome"
+    if not fa.is_dir():
+        raise SystemExit(f"{fa} is missing: run `make web-env` (npm ci of web/package.json) first")
+    for sub in ("css", "fonts"):
+        _copy_tree(fa / sub, dst / "vendor" / "font-awesome" / sub)
+
+
+def _run(cmd, **kw):
+    print("+", " ".join(str(c) for c in cmd), flush=True)
+    subprocess.run([str(c) for c in cmd], check=True, **kw)
+
+
+def build_book():
+    src = _fresh(STAGE / "book")
+    for f in ("_config.yml", "_toc.yml", "intro.md"):
+        shutil.copy2(WEB / "book" / f, src / f)
+    _copy_tree(WEB / "book" / "_ext", src / "_ext")
+    for path in notebooks():
+        _write(book_notebook(_read(path), path.name), src / "chapters" / path.name)
+    (src / "docs").mkdir()
+    for path in sorted((ROOT / "docs").glob("*.md")):
+        shutil.copy2(path, src / "docs" / path.name)
+    # MathJax goes to <site>/mathjax/ through Sphinx's html_extra_path (see web/book/_config.yml)
+    mathjax = NODE_MODULES / "mathjax" / "es5"
+    if not mathjax.is_dir():
+        raise SystemExit(f"{mathjax} is missing: run `make web-env` (npm ci of web/package.json) first")
+    (src / "_extra" / "mathjax").mkdir(parents=True)
+    for part in MATHJAX_PARTS:
+        (shutil.copy2 if part.endswith(".js") else _copy_tree)(mathjax / part, src / "_extra" / "mathjax" / part)
+    _vendor(src / "_extra")
+
+    out = STAGE / "book-out"
+    if out.exists():
+        shutil.rmtree(out)
+    _run([VENV / "bin" / "jupyter-book", "build", src, "--path-output", out, "--builder", "html", "--quiet"])
+    html = out / "_build" / "html"
+    # build/site/ is the book; build/site/live/ (make lite) is left in place
+    SITE.mkdir(parents=True, exist_ok=True)
+    for entry in SITE.iterdir():
+        if entry.name != "live":
+            shutil.rmtree(entry) if entry.is_dir() and not entry.is_symlink() else entry.unlink()
+    for entry in html.iterdir():
+        shutil.move(str(entry), SITE / entry.name)
+    print(f"book: {SITE}/index.html ({_size(SITE, skip='live')})")
+
+
+def kinbook_wheel(dst):
+    """Build kinbook's wheel from a clean copy of the package (no stale build/lib, no network)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        for f in ("pyproject.toml", "README.md"):
+            shutil.copy2(ROOT / f, tmp / f)
+        shutil.copytree(ROOT / "kinbook", tmp / "kinbook", ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+        _run([sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps", "--no-build-isolation",
+              "--disable-pip-version-check", "--wheel-dir", dst, tmp])
+    return sorted(Path(dst).glob("kinbook-*.whl"))
+
+
+def build_lite():
+    lite = _fresh(STAGE / "lite")
+    for f in ("jupyter_lite_config.json", "jupyter-lite.json"):
+        shutil.copy2(WEB / "lite" / f, lite / f)
+    contents = lite / "contents"
+    for path in notebooks():
+        _write(lite_notebook(_read(path)), contents / path.name)
+    wheels = lite / "wheels"
+    wheels.mkdir()
+    if not list(WHEELS.glob("*.whl")):
+        raise SystemExit(f"{WHEELS} has no wheels: run `make web-env` first")
+    for whl in WHEELS.glob("*.whl"):
+        shutil.copy2(whl, wheels / whl.name)
+    kinbook_wheel(wheels)
+
+    if LIVE.exists():
+        shutil.rmtree(LIVE)
+    _run([VENV / "bin" / "jupyter", "lite", "build", "--lite-dir", lite, "--contents", contents,
+          "--piplite-wheels", wheels, "--output-dir", LIVE], cwd=lite)
+    _vendor(LIVE)
+    print(f"lite: {LIVE}/index.html ({_size(LIVE)})")
+
+
+def _size(path, skip=None):
+    total = n = 0
+    for dirpath, dirnames, filenames in os.walk(path):
+        if skip and Path(dirpath) == Path(path) and skip in dirnames:
+            dirnames.remove(skip)
+        for f in filenames:
+            total += os.path.getsize(os.path.join(dirpath, f))
+            n += 1
+    return f"{total / 1e6:.1f} MB in {n} files"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("what", choices=["book", "lite"])
+    args = parser.parse_args(argv)
+    {"book": build_book, "lite": build_lite}[args.what]()
+
+
+if __name__ == "__main__":
+    main()
