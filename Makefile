@@ -123,7 +123,7 @@ chromium:
 # The Pyodide test fixture (tests/web/fixture/prepare.py) is fetched once into .venv-web/pyodide-fixture.
 test-web: book lite chromium
 	$(WEB_BIN)/python tests/web/fixture/prepare.py $(WEB_VENV)/pyodide-fixture
-	KINBOOK_TEST_WEB=1 $(WEB_BIN)/python -m pytest tests/web --confcutdir=tests/web -p no:cacheprovider -v
+	KINBOOK_TEST_WEB=1 $(WEB_BIN)/python -m pytest tests/web --confcutdir=tests/web -p no:cacheprovider -v -s
 
 # Re-pin the website's tools (as `make lock` does for the lab/test environment).
 lock-web:

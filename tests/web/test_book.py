@@ -1,0 +1,132 @@
+"""The static book (make book) in a real browser, offline: every chapter is a page in the table of contents,
+its math is typeset by the site's own MathJax (no raw TeX left), its figures load, its animations play with
+their icons, and each page links to the same notebook in the live site."""
+
+import json
+import re
+from pathlib import Path
+from urllib.parse import parse_qs, urljoin, urlsplit
+
+import pytest
+
+from .conftest import ROOT, SITE, watch
+
+CHAPTERS = sorted(p.stem for p in (ROOT / "chapters").glob("*.ipynb"))
+
+# TeX left in the visible text of a page, outside code: a control word such as \frac or \Phi, or $$.
+RAW_TEX = re.compile(r"\\[A-Za-z]{2,}|\$\$")
+
+# The text a reader sees (rendered, not hidden), outside code and typeset math.
+VISIBLE_TEXT_OUTSIDE_CODE_AND_MATH = """() => {
+    const skip = 'pre, code, script, style, mjx-container, .highlight, textarea, noscript';
+    const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+    const out = [];
+    while (walker.nextNode()) {
+        const el = walker.currentNode.parentElement;
+        if (!el || el.closest(skip) || !el.getClientRects().length) continue;
+        if (getComputedStyle(el).visibility === 'hidden') continue;
+        out.push(walker.currentNode.textContent);
+    }
+    return out.join(' ');
+}"""
+
+# MathJax's entry points (a combined component such as tex-chtml.js, or MathJax 2's MathJax.js)
+MATHJAX_ENTRY = "script[src*='/tex-' i], script[src*='/mml-' i], script[src*='MathJax.js' i]"
+
+
+def open_page(browser, seen, url):
+    page = watch(browser.new_page(viewport={"width": 1280, "height": 900}), seen)
+    page.goto(url, wait_until="load")
+    page.wait_for_function("() => window.MathJax && MathJax.startup && MathJax.startup.promise")
+    page.evaluate("() => MathJax.startup.promise")
+    return page
+
+
+def test_every_chapter_is_a_page_in_the_table_of_contents(browser, site, offline):
+    page = open_page(browser, offline, f"{site.url}/index.html")
+    nav = page.eval_on_selector_all("nav.bd-docs-nav a.reference", "links => links.map(a => a.getAttribute('href'))")
+    pages = [Path(urlsplit(h).path).stem for h in nav]
+    assert [p for p in pages if p in CHAPTERS] == CHAPTERS, "chapters missing or out of the files' order"
+    assert pages.index("13-1-transformation-matrix") < pages.index("14-1-direction-cosines") < pages.index("errata")
+    assert "instructors" in pages
+    if (ROOT / "docs" / "glossary.md").exists() or (ROOT / "chapters" / "glossary.ipynb").exists():
+        assert "glossary" in pages
+    page.close()
+
+
+@pytest.mark.parametrize("chapter", CHAPTERS)
+def test_chapter_page_math_figures_and_live_link(browser, site, offline, chapter):
+    page = open_page(browser, offline, f"{site.url}/chapters/{chapter}.html")
+    # one MathJax, the site's own (MathJax 3 from <site>/mathjax/), and it typeset the page
+    entries = page.eval_on_selector_all(MATHJAX_ENTRY, "s => s.map(e => e.src)")
+    assert len(entries) == 1 and entries[0].startswith(f"{site.url}/mathjax/tex-chtml.js"), entries
+    assert page.evaluate("MathJax.version").startswith("3.")
+    notebook = json.loads((ROOT / "chapters" / f"{chapter}.ipynb").read_text())
+    sources = "".join("".join(c["source"]) for c in notebook["cells"] if c["cell_type"] == "markdown")
+    outputs = json.dumps([c.get("outputs", []) for c in notebook["cells"]])
+    has_math = "$" in sources or "text/latex" in outputs
+    n_math = page.locator("mjx-container").count()
+    assert n_math > 0 or not has_math, "the page has TeX but MathJax typeset none of it"
+    leftover = RAW_TEX.findall(page.evaluate(VISIBLE_TEXT_OUTSIDE_CODE_AND_MATH))
+    assert leftover == [], f"raw TeX on the page: {leftover[:10]}"
+    # every image (figures and animation frames) loaded
+    broken = page.eval_on_selector_all("main img", "imgs => imgs.filter(i => !(i.complete && i.naturalWidth > 0))"
+                                                   ".map(i => i.src.slice(0, 80))")
+    assert broken == []
+    n_png = outputs.count('"image/png"')
+    assert page.locator("main img").count() >= n_png
+    # "Open live" goes to this notebook in the live site
+    href = page.get_attribute("p.kinbook-live a", "href")
+    target = urlsplit(urljoin(page.url, href))
+    assert target.path == "/live/notebooks/index.html"
+    assert parse_qs(target.query)["path"] == [f"{chapter}.ipynb"]
+    if (SITE / "live").exists():
+        assert (SITE / "live" / "files" / f"{chapter}.ipynb").exists()
+    page.close()
+
+
+def animated_chapters():
+    out = []
+    for chapter in CHAPTERS:
+        text = (ROOT / "chapters" / f"{chapter}.ipynb").read_text()
+        if "anim_step_forward" in text:
+            out.append(chapter)
+    return out
+
+
+@pytest.mark.parametrize("chapter", animated_chapters()[:1])
+def test_animation_buttons_have_icons_and_play(browser, site, offline, screenshots, chapter):
+    page = open_page(browser, offline, f"{site.url}/chapters/{chapter}.html")
+    player = page.locator(".animation").first
+    player.scroll_into_view_if_needed()
+    # every button shows its icon: the theme's Font Awesome 6 (local) draws them as inline SVG; an icon it
+    # left alone is drawn by the site's Font Awesome 4 (vendor/), which must then have loaded
+    sizes = player.evaluate("a => [...a.querySelectorAll('.anim-buttons button')].map(b => {"
+                            " const i = b.querySelector('svg, i'); return i ? i.getBoundingClientRect().width : 0; })")
+    assert len(sizes) == 9 and min(sizes) > 4, f"animation buttons without icons: widths {sizes}"
+    if player.locator(".anim-buttons button i").count():
+        page.wait_for_function("() => [...document.fonts].some(f => f.family.replace(/[\"']/g, '') === "
+                               "'FontAwesome' && f.status === 'loaded')")
+    links = page.eval_on_selector_all("link[href*='font-awesome']", "ls => ls.map(l => l.href)")
+    assert all(h.startswith(f"{site.url}/vendor/font-awesome/") for h in links), links
+    # the buttons work: two steps forward, then play
+    img = player.locator("img").first
+    slider = player.locator("input[type=range]")
+    assert slider.input_value() == "0"
+    first = img.get_attribute("src")
+    player.locator("button[title='Next frame']").click()
+    player.locator("button[title='Next frame']").click()
+    assert slider.input_value() == "2"
+    assert img.get_attribute("src") != first
+    player.locator("button[title='Play']").click()
+    page.wait_for_function("s => Number(s.value) > 4", arg=slider.element_handle())
+    player.locator("button[title='Pause']").click()
+    page.screenshot(path=str(screenshots / "book-animation.png"))
+    page.close()
+
+
+def test_screenshot_of_a_page_with_math(browser, site, offline, screenshots):
+    page = open_page(browser, offline, f"{site.url}/chapters/{CHAPTERS[0]}.html")
+    page.locator("main mjx-container").nth(3).scroll_into_view_if_needed()
+    page.screenshot(path=str(screenshots / "book-page.png"))
+    page.close()

@@ -1,0 +1,163 @@
+"""The live notebooks (make lite) in a real browser, offline: a student opens a chapter notebook, runs the cell
+that installs kinbook, imports it, simulates a mechanism, gets a checker's feedback on a wrong answer and moves
+the explorer's slider. The Pyodide runtime and packages come from the test fixture put in live/static/pyodide/
+(see conftest.site); everything else is the site as built."""
+
+import re
+
+from .conftest import SCREENSHOTS, Clock, watch
+
+NOTEBOOK = "13-3-position-analysis.ipynb"
+
+# What the student types, cell by cell, after the install cell. Each prints a line the test reads back.
+SIMULATE = """\
+# [live test] simulate
+import numpy as np
+import kinbook
+mech = kinbook.examples.load("ch13_example2")
+sweep = mech.simulate(np.linspace(0, 2 * np.pi / 100, 361))
+print("stroke end:", round(float(sweep.position("slider", "B")[:, 0].max()), 6))"""
+# the slider-crank's stroke ends where crank (2) and rod (6) are aligned: x_B = 2 + 6 = 8
+STROKE_END = "stroke end: 8.0"
+
+CHECK_WRONG = """\
+# [live test] a wrong answer
+from kinbook.grading import check_phi
+m1 = kinbook.examples.load("ch13_example1")
+result = check_phi(["x1 - x2 - cos(phi2)", "y1 - y2 + sin(phi2)"], m1.constraint("1"))
+display(result)
+print("mistakes:", result.mistakes)"""
+# the answer is the revolute joint's Φ with the sign of one term flipped (the right one has + cos(phi2))
+MISTAKE = "sign_flip"
+
+EXPLORER = """\
+# [live test] explorer
+from kinbook.planar import plotting
+explorer = plotting.explorer(m1)
+explorer"""
+
+# The issue's budget: the first notebook is interactive (kinbook installed and imported) within 60 s of the
+# page load. The figures are printed (wall clock, and the browser's CPU time, which does not depend on what else
+# shares the machine), not asserted: no verdict here depends on the clock.
+
+
+def code_cell(page, marker):
+    """The code cell whose text contains `marker` (cells are found by their text, not their position: the
+    notebook renders only the cells near the viewport)."""
+    return page.locator(".jp-Notebook .jp-CodeCell", has_text=marker).first
+
+
+def select(page, cell):
+    cell.locator(".jp-InputPrompt").click()
+    page.wait_for_function("c => c.classList.contains('jp-mod-active')", arg=cell.element_handle())
+
+
+def toolbar(page, command):
+    page.locator(f".jp-Toolbar [data-command='{command}']").first.click()
+
+
+def run_and_wait(page, cell, timeout):
+    """Run `cell` (the toolbar's run button) and wait until its prompt shows an execution count."""
+    select(page, cell)
+    toolbar(page, "notebook:run-cell-and-select-next")
+    prompt = cell.locator(".jp-InputPrompt")
+    try:
+        page.wait_for_function("p => /\\[\\d+\\]/.test(p.textContent)", arg=prompt.element_handle(),
+                               timeout=timeout * 1000)
+    except Exception:
+        cell.scroll_into_view_if_needed()
+        page.screenshot(path=str(SCREENSHOTS / "live-timeout.png"))
+        raise
+    return cell.locator(".jp-OutputArea")
+
+
+def add_cell_below(page, cell, code, timeout=300):
+    """Insert a code cell below `cell` (command mode `b`), type `code`, run it; returns the new cell.
+    `code` starts with a comment naming it, by which the cell is found again."""
+    marker = code.splitlines()[0]
+    select(page, cell)
+    toolbar(page, "notebook:insert-cell-below")
+    page.locator(".jp-Notebook .jp-Cell.jp-mod-active .cm-content").click()
+    page.keyboard.insert_text(code)
+    new = code_cell(page, marker)
+    run_and_wait(page, new, timeout)
+    return new
+
+
+def open_notebook(context, site, seen):
+    page = watch(context.new_page(), seen)
+    page.set_default_timeout(120_000)
+    clock = Clock()
+    page.goto(f"{site.url}/live/notebooks/index.html?path={NOTEBOOK}")
+    install = code_cell(page, "%pip install")
+    install.wait_for()
+    # the kernel (Pyodide in a web worker) has started
+    page.locator(".jp-Notebook-ExecutionIndicator[data-status='idle']").wait_for(timeout=600_000)
+    return page, clock, install
+
+
+def install_and_import(page, install):
+    """Run the notebook's first code cell (it installs kinbook from the site) and import kinbook."""
+    run_and_wait(page, install, timeout=600)
+    probe = add_cell_below(page, install, '# probe\nimport kinbook\nprint("kinbook", kinbook.__version__)')
+    text = probe.locator(".jp-OutputArea").inner_text()
+    assert re.search(r"kinbook \d+\.\d+", text), text
+    return probe
+
+
+def test_a_student_runs_the_live_notebook(profile, site, offline, screenshots):
+    page, clock, install = open_notebook(profile, site, offline)
+    t_open = clock()
+    last = install_and_import(page, install)
+    t_interactive, cpu = clock(), clock.cpu()
+    pyodide = site.bytes_sent("/live/static/pyodide/")
+    print(f"\nfirst visit: notebook shown {t_open:.1f} s and kinbook installed and imported {t_interactive:.1f} s "
+          f"after the page load ({cpu:.1f} s of browser CPU); served {(site.bytes_sent() - pyodide) / 1e6:.1f} MB "
+          f"of the site + {pyodide / 1e6:.1f} MB of Pyodide (the CDN's part)")
+
+    last = add_cell_below(page, last, SIMULATE)
+    assert STROKE_END in last.locator(".jp-OutputArea").inner_text()
+
+    last = add_cell_below(page, last, CHECK_WRONG)
+    feedback = last.locator(".jp-OutputArea")
+    assert feedback.locator("table").count() >= 1, "no feedback table"
+    assert MISTAKE in feedback.inner_text()
+    feedback.scroll_into_view_if_needed()
+    page.screenshot(path=str(screenshots / "live-checker.png"))
+
+    last = add_cell_below(page, last, EXPLORER)
+    out = last.locator(".jp-OutputArea")
+    status = out.locator(".widget-html-content").first
+    status.wait_for()
+    page.wait_for_function("s => s.textContent.includes('cond')", arg=status.element_handle())
+    before_status = status.inner_text()
+    image = out.locator(".widget-image").first
+    before_image = image.get_attribute("src")
+    handle = out.locator(".widget-slider .noUi-handle").first
+    box = handle.bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    page.mouse.down()
+    page.mouse.move(box["x"] + box["width"] / 2 - 60, box["y"] + box["height"] / 2, steps=6)
+    page.mouse.up()
+    page.wait_for_function("([s, old]) => s.textContent !== old && s.textContent.includes('cond')",
+                           arg=[status.element_handle(), before_status], timeout=120_000)
+    page.wait_for_function("([i, old]) => i.src !== old", arg=[image.element_handle(), before_image],
+                           timeout=120_000)
+    print(f"explorer: {before_status!r} -> {status.inner_text()!r}")
+    out.scroll_into_view_if_needed()
+    page.screenshot(path=str(screenshots / "live-slider.png"))
+    page.close()
+
+
+def test_a_second_visit_uses_the_browser_cache(profile, site, offline):
+    """After the first visit (previous test, same browser profile), the site's files come from the cache."""
+    served_before, log_before = site.bytes_sent(), len(site.log)
+    page, clock, install = open_notebook(profile, site, offline)
+    install_and_import(page, install)
+    t, cpu = clock(), clock.cpu()
+    again = site.bytes_sent() - served_before
+    print(f"\nsecond visit: kinbook installed and imported {t:.1f} s after the page load ({cpu:.1f} s of browser "
+          f"CPU); {again / 1e6:.2f} MB served")
+    again_files = sorted(((n, path) for path, kind, n in site.log[log_before:] if kind == "body"), reverse=True)
+    assert again < 1e6, f"{again / 1e6:.1f} MB served again: the browser cache was not used: {again_files[:8]}"
+    page.close()
