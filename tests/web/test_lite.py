@@ -106,13 +106,15 @@ def install_and_import(page, install):
 
 
 def test_a_student_runs_the_live_notebook(profile, site, offline, screenshots):
+    site_before, pyodide_before = site.bytes_sent(), site.bytes_sent("/live/static/pyodide/")
     page, clock, install = open_notebook(profile, site, offline)
     t_open = clock()
     last = install_and_import(page, install)
     t_interactive, cpu = clock(), clock.cpu()
-    pyodide = site.bytes_sent("/live/static/pyodide/")
+    pyodide = site.bytes_sent("/live/static/pyodide/") - pyodide_before
+    own = site.bytes_sent() - site_before - pyodide
     print(f"\nfirst visit: notebook shown {t_open:.1f} s and kinbook installed and imported {t_interactive:.1f} s "
-          f"after the page load ({cpu:.1f} s of browser CPU); served {(site.bytes_sent() - pyodide) / 1e6:.1f} MB "
+          f"after the page load ({cpu:.1f} s of browser CPU); served {own / 1e6:.1f} MB "
           f"of the site + {pyodide / 1e6:.1f} MB of Pyodide (the CDN's part)")
 
     last = add_cell_below(page, last, SIMULATE)
