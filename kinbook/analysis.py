@@ -18,6 +18,7 @@ from .errors import (
     ConvergenceError,
     DeadPointError,
     DriverCountError,
+    DriverValueError,
     InputError,
     RedundantConstraintsError,
 )
@@ -454,7 +455,11 @@ def _driver_text(mech, name, value):
 
 
 def _driver_values(mech, t):
-    return {c.name: float(c.f.subs(mech.t, t)) for c in mech.drivers}
+    values = {}
+    for c in mech.drivers:
+        v = complex(c.f.subs(mech.t, t).evalf())
+        values[c.name] = v.real if v.imag == 0 else float("nan")
+    return values
 
 
 def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=512):
@@ -591,7 +596,7 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=5
         try:
             lead = simulate(mech, np.linspace(0.0, T[0], 257), q0=mech.q0, tol=tol, anchor_every=anchor_every)
             q0 = lead.q[-1]
-        except AssemblyError:
+        except (AssemblyError, DriverValueError):  # f(t) may be undefined between 0 and times[0]
             q0 = None
     err = solve_one(0, [None if q0 is None else np.asarray(q0, dtype=float)])
     if err is not None:

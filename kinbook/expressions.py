@@ -556,7 +556,27 @@ _COMPLEX = {
 
 
 # ------------------------------------------------------------------------------------------------ numbers
-def read_constant(value, *, where, limits=None):
+class _Parameters(Mapping):
+    """Any plain name as a sympy Symbol of that name: the symbolic parameters (ξ, l, ρ …) a derivation may
+    keep in a mechanism's data. Function and constant names keep their meaning."""
+
+    def __contains__(self, name):
+        return isinstance(name, str) and name.isidentifier() and not name.startswith("_") and \
+            name not in FUNCTIONS and name not in ALIASES and name not in CONSTANTS and name not in _HINTS
+
+    def __getitem__(self, name):
+        if name not in self:
+            raise KeyError(name)
+        return sp.Symbol(name)
+
+    def __iter__(self):
+        return iter(())
+
+    def __len__(self):
+        return 0
+
+
+def read_constant(value, *, where, symbolic=False, limits=None):
     """A finite real number, kept exact as a sympy number: ``3``, ``0.5`` or a string such as ``"3*pi/4"``
     (read by :func:`read_expression` with no symbols).
 
@@ -566,11 +586,14 @@ def read_constant(value, *, where, limits=None):
         Not a bool.
     where : str
         Named in the messages.
+    symbolic : bool
+        Also accept symbolic parameters: a sympy expression with symbols, or text naming them (``"xi"``,
+        ``"l/2"``), for symbolic derivations; numeric analyses then refuse the mechanism.
 
     Returns
     -------
     sympy.Expr
-        A number (``sp.pi/4`` stays exact, so symbolic displays show π).
+        A number (``sp.pi/4`` stays exact, so symbolic displays show π), or with ``symbolic`` an expression.
 
     Raises
     ------
@@ -591,7 +614,7 @@ def read_constant(value, *, where, limits=None):
                                   reason="not finite")
         return sp.Float(value)
     if isinstance(value, str):
-        expr = read_expression(value, symbols={}, where=where, limits=limits)
+        expr = read_expression(value, symbols=_Parameters() if symbolic else {}, where=where, limits=limits)
     elif isinstance(value, sp.Basic):
         check_expression(value, where=where, limits=limits)
         expr = value
@@ -605,6 +628,11 @@ def read_constant(value, *, where, limits=None):
         raise ExpressionError(f"{where}: expected a number or the text of one (such as \"pi/4\"), got "
                               f"{type(value).__name__} {_short(value)}", where=where, text=None,
                               reason="not a number")
+    if symbolic and isinstance(expr, sp.Expr) and expr.free_symbols:
+        if expr.has(sp.I, sp.zoo, sp.oo, -sp.oo, sp.nan):
+            raise ExpressionError(f"{where}: expected a real parameter, got {_short(value)}", where=where,
+                                  text=value if isinstance(value, str) else None, reason="not real")
+        return expr
     if not isinstance(expr, sp.Expr) or expr.free_symbols:
         names = ", ".join(sorted(map(str, getattr(expr, "free_symbols", ())))) or type(expr).__name__
         raise ExpressionError(f"{where}: expected a number, got an expression of {names}: {_short(value)}",

@@ -20,7 +20,7 @@ import sympy as sp
 
 from . import analysis, kernels
 from .errors import InputError, ModelError, UnknownBodyError, UnknownPointError
-from .symbolic import derive, t as t_symbol, time_derivatives
+from .symbolic import derive, t as t_symbol, time_derivatives, time_function as read_time_function
 
 __all__ = [
     "ConstraintBase",
@@ -38,16 +38,10 @@ __all__ = [
 
 
 def time_function(f, owner):
-    """A driver's prescribed function of time as a sympy expression of ``t`` (a string or an expression)."""
-    try:
-        expr = sp.sympify(f, locals={"t": t_symbol})
-    except (sp.SympifyError, TypeError, SyntaxError):
-        raise ModelError(f"{type(owner).__name__}: cannot read the function of time {f!r}") from None
-    extra = expr.free_symbols - {t_symbol}
-    if extra:
-        names = ", ".join(sorted(str(s) for s in extra))
-        raise ModelError(f"{type(owner).__name__}: the function of time {f!r} uses unknown symbols {names}")
-    return expr
+    """A driver's prescribed function of time as a sympy expression of ``t`` (text, a number or a sympy
+    expression), validated by :func:`kinbook.symbolic.time_function`."""
+    bodies = ", ".join(f"'{b}'" for b in owner.body_names)
+    return read_time_function(f, f"{owner.type_name} on bod{'y' if len(owner.body_names) == 1 else 'ies'} {bodies}, f")
 
 
 def lookup_point(body, name, context=None):
@@ -814,7 +808,8 @@ class MechanismBase:
         for c in self.constraints:
             kernel, params = c.numeric(compiled=compiled)
             groups.setdefault((kernel, len(c.bodies), c.n_eq), []).append((c, params))
-        drivers = [(c.rows.stop - 1, *time_derivatives(c.f)) for c in self.constraints if c.f is not None]
+        drivers = [(c.rows.stop - 1, *time_derivatives(c.f, where=c.describe()))
+                   for c in self.constraints if c.f is not None]
         wrap = [(c.rows.start + r, float(period)) for c in self.constraints for r, period in sorted(c.wrap.items())]
         wrap = (np.array([r for r, _ in wrap], dtype=int), np.array([p for _, p in wrap], dtype=float))
         ncoord = len(self.COORDS)

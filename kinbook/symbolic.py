@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-__all__ = ["Derivation", "derive", "time_derivatives", "lambdify_vector"]
+__all__ = ["Derivation", "derive", "time_function", "time_derivatives", "lambdify_vector"]
 
 t = sp.Symbol("t", real=True)
 """The time symbol shared by every mechanism."""
@@ -93,26 +93,127 @@ def derive(Phi, q, qd, time=t):
     return Derivation(Phi=Phi, Phi_q=Phi_q, nu=nu, gamma=gamma, q=q, qd=qd, t=time)
 
 
-def time_derivatives(expr, time=t):
+_NOT_SMOOTH = ("Heaviside", "DiracDelta", "floor", "ceiling", "frac", "Piecewise", "Min", "Max", "sign", "Mod")
+
+
+def time_function(f, where, time=t):
+    """A prescribed function of time, read and validated once, when the driver is built.
+
+    Parameters
+    ----------
+    f : str, number or sympy expression
+        Text is read by :func:`kinbook.expressions.read_expression` with the one symbol ``t``; a sympy
+        expression may use any symbol *named* ``t`` (with or without assumptions).
+    where : str
+        Named in the messages ("driver on body 'crank', f").
+
+    Returns
+    -------
+    sympy.Expr
+        A real expression of ``time`` only, finite, continuous, whose first and second derivatives sympy
+        can write and numpy can evaluate.
+
+    Raises
+    ------
+    ExpressionError
+        What is wrong and what to write instead: unreadable text, other symbols, complex or infinite
+        values, steps and jumps (``sign``, ``floor``, ``Heaviside``, ``Piecewise``: a prescribed motion needs
+        two continuous derivatives for ν and γ). ``Abs`` is accepted: its kink is reported, as a
+        :class:`~kinbook.errors.DriverValueError`, only at an instant an analysis asks f'' there.
+    """
+    from .errors import ExpressionError
+    from .expressions import check_expression, read_constant, read_expression
+
+    if isinstance(f, str):
+        expr = read_expression(f, symbols={"t": time}, where=where)
+    elif isinstance(f, sp.Basic):
+        check_expression(f, where=where)
+        if not isinstance(f, sp.Expr):
+            raise ExpressionError(f"{where}: expected an expression of t, got {type(f).__name__} {f}", where=where)
+        expr = f.xreplace({s: time for s in f.free_symbols if isinstance(s, sp.Symbol) and s.name == time.name})
+        if expr.has(sp.I):
+            raise ExpressionError(f"{where}: the function of time {f} is complex; expected a real function of t",
+                                  where=where)
+    else:
+        expr = read_constant(f, where=where)
+    text = f if isinstance(f, str) else str(f)
+    extra = sorted(str(s) for s in expr.free_symbols - {time})
+    if extra:
+        raise ExpressionError(f"{where}: the function of time {text!r} uses unknown symbols {', '.join(extra)}; "
+                              "expected an expression of t alone", where=where, text=text)
+    if expr.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
+        raise ExpressionError(f"{where}: the function of time {text!r} is not finite; expected a finite function "
+                              "of t", where=where, text=text)
+    jumps = sorted({type(a).__name__ for a in sp.preorder_traversal(expr)
+                    if isinstance(a, sp.Basic) and type(a).__name__ in _NOT_SMOOTH and a.has(time)})
+    if jumps:
+        raise ExpressionError(
+            f"{where}: the function of time {text!r} uses {', '.join(jumps)}, which jumps: a prescribed motion "
+            "needs two continuous derivatives (for ν and γ); write a smooth function (a blend such as "
+            "(1 - cos(pi*t))/2), or drive each phase in its own sweep", where=where, text=text)
+    for k in (1, 2):
+        d = sp.diff(expr, time, k)
+        if d.has(sp.Derivative, sp.Subs):
+            raise ExpressionError(f"{where}: sympy cannot differentiate the function of time {text!r} twice; "
+                                  "expected a function built from + - * / ^ and sin, cos, exp …", where=where,
+                                  text=text)
+    return expr
+
+
+def time_derivatives(expr, time=t, where="the prescribed function f(t)"):
     """Compile a prescribed function f(t) with its first two derivatives.
 
     Returns three callables accepting a float or an ndarray of times, each returning an array of the same
-    shape (a constant f broadcasts).
+    shape (a constant f broadcasts). Each raises :class:`~kinbook.errors.DriverValueError`, naming ``where``
+    and the first such instant, when its value is not a finite real number (``sqrt(t - 5)`` before t = 5;
+    f'' at the kink of an ``Abs``, where it does not exist).
     """
-    expr = sp.sympify(expr)
+    if not isinstance(expr, sp.Basic):  # a number, or text: read (and validated) as a driver would be
+        expr = time_function(expr, where, time)
     funcs = []
     for k in range(3):
         e = sp.diff(expr, time, k)
-        f = sp.lambdify(time, e, modules="numpy")
-        funcs.append(_broadcasting(f, e.free_symbols))
+        f = sp.lambdify(time, e, modules=[{"DiracDelta": _delta}, "numpy"])
+        funcs.append(_checked(_broadcasting(f, e.free_symbols), k, expr, where))
     return tuple(funcs)
+
+
+def _delta(u, order=0):
+    """DiracDelta for numpy: 0 away from its point; not a number at it (f'' of a kink does not exist)."""
+    u = np.asarray(u, dtype=float)
+    return np.where(u == 0, np.nan, 0.0)
+
+
+_WHAT = ("the value", "the first derivative", "the second derivative")
+
+
+def _checked(f, k, expr, where):
+    def call(tt):
+        with np.errstate(all="ignore"):
+            v = f(tt)
+        if not np.all(np.isfinite(v)):
+            from .errors import DriverValueError
+
+            v = np.asarray(v, dtype=float)
+            first = int(np.flatnonzero(~np.isfinite(v))[0])
+            t_bad = float(np.broadcast_to(np.asarray(tt, dtype=float), v.shape).flat[first])
+            got = float(v.flat[first])
+            why = ("has no real value" if np.isnan(got) else "is infinite") + f" at t = {t_bad:.6g}"
+            if np.isnan(got) and k == 2:
+                why = f"does not exist at t = {t_bad:.6g} (a kink: the slope jumps there)"
+            raise DriverValueError(
+                f"{where}: {_WHAT[k]} of f(t) = {expr} {why}; expected a finite real value at every instant "
+                "analysed: analyse only instants where f is smooth, or write a smooth f", t=t_bad)
+        return v
+
+    return call
 
 
 def _broadcasting(f, free):
     if free:
         return lambda tt: np.asarray(f(tt), dtype=float) + np.zeros_like(tt, dtype=float)
-    value = float(f(0.0))
-    return lambda tt: np.full(np.shape(tt), value)
+    value = f(0.0)
+    return lambda tt: np.full(np.shape(tt), value, dtype=float)
 
 
 def lambdify_vector(exprs, args):

@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import ModelError
+from ..expressions import read_constant
 from ..model import ConstraintBase, constraint_types, lookup_point
 from ..symbolic import t as t_symbol
 from .transforms import A as A_matrix
@@ -94,13 +95,16 @@ class Constraint(ConstraintBase):
         if isinstance(point, str):
             return lookup_point(body, point, self)
         try:
-            xi, eta = (sp.sympify(v) for v in point)
-        except (TypeError, ValueError, sp.SympifyError):
+            if isinstance(point, (bytes, dict)):
+                raise TypeError
+            xi, eta = point
+        except (TypeError, ValueError):
             raise ModelError(
                 f"{self.describe()}: a point on body '{body.name}' must be a point name or a pair (ξ, η), "
                 f"got {point!r}"
             ) from None
-        return (xi, eta)
+        where = f"{self.describe()}: a point on body '{body.name}'"
+        return (read_constant(xi, where=where, symbolic=True), read_constant(eta, where=where, symbolic=True))
 
     def _read_point(self, role_index, spec, key):
         return self._local(role_index, spec)
@@ -128,11 +132,20 @@ class Constraint(ConstraintBase):
         return sp.Matrix(Qb[:2]) + A_matrix(Qb[2]) * sp.Matrix(s)
 
 
-def _angle_default(value, body, coord="phi"):
-    """An initial value given explicitly, or taken from the body's q0."""
+def _angle_default(value, body, coord="phi", where="an initial value"):
+    """An initial value given explicitly (a number, text such as "pi/4" or a sympy parameter), or taken from
+    the body's q0."""
     if value is not None:
-        return sp.sympify(value)
+        return read_constant(value, where=where, symbolic=True)
     return body.q0[_COORDS.index(coord)]
+
+
+def _sequence(value, n, where):
+    """``value`` as a tuple of ``n`` items (a list or tuple, not text or a table)."""
+    if not isinstance(value, (list, tuple)) or len(value) != n:
+        got = f"{len(value)} values" if isinstance(value, (list, tuple)) else f"{type(value).__name__} {value!r}"
+        raise ModelError(f"{where}: expected a list of {n} values, got {got}")
+    return tuple(value)
 
 
 def _f(v):
@@ -184,7 +197,8 @@ class Simple(_Linear):
         super().__init__((body,), name=name)
         self.coordinate = coordinate
         self.measures = ("angle",) if coordinate == "phi" else ("length",)
-        self.value = None if value is None else sp.sympify(value)
+        where = f"simple constraint on body '{body}' ({coordinate}), value"
+        self.value = None if value is None else read_constant(value, where=where, symbolic=True)
 
     def name_stems(self):
         return (f"simple {self.body_names[0]} {self.coordinate}",)
@@ -215,7 +229,11 @@ class Ground(_Linear):
 
     def __init__(self, body, q=None, name=None):
         super().__init__((body,), name=name)
-        self.value = None if q is None else tuple(sp.sympify(v) for v in q)
+        if q is not None:
+            q = _sequence(q, 3, f"ground constraint on body '{body}', q (x, y, phi)")
+            q = tuple(read_constant(v, where=f"ground constraint on body '{body}', q ({c})", symbolic=True)
+                      for v, c in zip(q, _COORDS))
+        self.value = q
 
     def _bind_points(self):
         if self.value is None:
@@ -246,14 +264,18 @@ class Gear(_Linear):
 
     def __init__(self, i, j, k, radius_i, radius_j, phi0=None, name=None):
         super().__init__((i, j, k), name=name)
-        self.radius_i, self.radius_j = sp.sympify(radius_i), sp.sympify(radius_j)
-        self.phi0 = phi0
+        where = f"gear between '{i}' and '{j}'"
+        self.radius_i = read_constant(radius_i, where=f"{where}, radius_i", symbolic=True)
+        self.radius_j = read_constant(radius_j, where=f"{where}, radius_j", symbolic=True)
+        self.phi0 = None if phi0 is None else _sequence(phi0, 3, f"{where}, phi0 (initial angles of i, j, k)")
 
     def _bind_points(self):
         given = self.phi0 if self.phi0 is not None else (None, None, None)
-        self.phi0 = tuple(_angle_default(v, b) for v, b in zip(given, self.bodies))
+        self.phi0 = tuple(_angle_default(v, b, where=f"{self.describe()}: phi0 of body '{b.name}'")
+                          for v, b in zip(given, self.bodies))
         if self.radius_i == 0 or self.radius_j == 0:
-            raise ModelError(f"{self.describe()}: pitch radii must be nonzero")
+            raise ModelError(f"{self.describe()}: pitch radii must be nonzero, got radius_i = {self.radius_i}, "
+                             f"radius_j = {self.radius_j}")
 
     def phi(self, Q, t=t_symbol):
         pi0, pj0, pk0 = self.phi0
@@ -279,18 +301,30 @@ class RackPinion(_Linear):
 
     def __init__(self, i, j, radius, sliding=False, initial=None, name=None):
         super().__init__((i, j), name=name)
-        self.radius = sp.sympify(radius)
+        where = f"rack-pinion between '{i}' and '{j}'"
+        self.radius = read_constant(radius, where=f"{where}, radius", symbolic=True)
+        if not isinstance(sliding, (bool, np.bool_)):
+            raise ModelError(f"{where}: `sliding` must be true or false, got {sliding!r}")
         self.sliding = bool(sliding)
+        if initial is not None:
+            if not isinstance(initial, dict):
+                raise ModelError(f"{where}: `initial` must be a table of x_i, phi_i, x_j, got {initial!r}")
+            unknown = sorted(set(initial) - {"x_i", "phi_i", "x_j"})
+            if unknown:
+                raise ModelError(f"{where}: `initial` has unknown key '{unknown[0]}' (accepted: x_i, phi_i, x_j)")
         self.initial = initial
 
     def _bind_points(self):
         bi, bj = self.bodies
         given = dict(self.initial or {})
+        where = f"{self.describe()}: initial"
         self.initial = {
-            "x_i": _angle_default(given.get("x_i"), bi, "x"),
-            "phi_i": _angle_default(given.get("phi_i"), bi, "phi"),
-            "x_j": _angle_default(given.get("x_j"), bj, "x"),
+            "x_i": _angle_default(given.get("x_i"), bi, "x", f"{where} x_i"),
+            "phi_i": _angle_default(given.get("phi_i"), bi, "phi", f"{where} phi_i"),
+            "x_j": _angle_default(given.get("x_j"), bj, "x", f"{where} x_j"),
         }
+        if self.radius == 0:
+            raise ModelError(f"{self.describe()}: the pinion's pitch radius must be nonzero")
 
     def phi(self, Q, t=t_symbol):
         e = (Q[0][2] - self.initial["phi_i"]) * self.radius - (Q[1][0] - self.initial["x_j"])
@@ -450,9 +484,10 @@ class Translational(Constraint):
 
     def __init__(self, i, j, axis, point_j, phi0=None, name=None):
         super().__init__((i, j), name=name)
-        self.axis = tuple(axis)
+        self.axis = _sequence(axis, 2, f"translational joint between '{i}' and '{j}': axis (two points of '{i}')")
         self.point_j = point_j
-        self.phi0 = None if phi0 is None else sp.sympify(phi0)
+        where = f"translational joint between '{i}' and '{j}', phi0"
+        self.phi0 = None if phi0 is None else read_constant(phi0, where=where, symbolic=True)
 
     def _bind_points(self):
         if len(self.axis) != 2:
@@ -511,13 +546,14 @@ class RevoluteRevolute(Constraint):
     def __init__(self, i, j, point_i, point_j, length, name=None):
         super().__init__((i, j), name=name)
         self.point_i, self.point_j = point_i, point_j
-        self.length = sp.sympify(length)
+        where = f"revolute-revolute joint between '{i}' and '{j}', length"
+        self.length = read_constant(length, where=where, symbolic=True)
+        if self.length.is_positive is False:  # a number ≤ 0, or a symbol known not to be positive
+            raise ModelError(f"{where} must be a positive number, got {self.length}")
 
     def _bind_points(self):
         self.s_i = self._local(0, self.point_i)
         self.s_j = self._local(1, self.point_j)
-        if not (self.length.is_real and self.length > 0):
-            raise ModelError(f"{self.describe()}: length must be a positive number, got {self.length}")
 
     def phi(self, Q, t=t_symbol):
         d = self._r(Q[0], self.s_i) - self._r(Q[1], self.s_j)
@@ -571,7 +607,7 @@ class RevoluteTranslational(Constraint):
     def __init__(self, i, j, point_i, axis, name=None):
         super().__init__((i, j), name=name)
         self.point_i = point_i
-        self.axis = tuple(axis)
+        self.axis = _sequence(axis, 2, f"revolute-translational joint between '{i}' and '{j}': axis (two points of '{j}')")
 
     def _bind_points(self):
         if len(self.axis) != 2:
@@ -632,7 +668,7 @@ class DistanceDriver(Constraint):
 
     def __init__(self, i, j, axis, point_j, f, name=None):
         super().__init__((i, j), name=name, f=f)
-        self.axis = tuple(axis)
+        self.axis = _sequence(axis, 2, f"distance driver between '{i}' and '{j}': axis (two points of '{i}')")
         self.point_j = point_j
 
     def _bind_points(self):

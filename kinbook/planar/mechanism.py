@@ -9,10 +9,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-import numpy as np
-import sympy as sp
 
 from ..errors import ModelError
+from ..expressions import read_constant
 from ..model import ConstraintTable, MechanismBase
 from . import transforms
 from .constraints import Constraint
@@ -41,25 +40,20 @@ class Body:
         q0 = tuple(self.q0)
         if len(q0) != 3:
             raise ModelError(f"body '{self.name}': q0 must have 3 values (x, y, phi), got {len(q0)}")
-        self.q0 = tuple(_number(v, f"q0 of body '{self.name}'") for v in q0)
+        self.q0 = tuple(_number(v, f"q0 of body '{self.name}' ({c})") for v, c in zip(q0, _COORDS))
 
 
 def _number(v, what, symbols=False):
     """A finite real number as a sympy number; with ``symbols``, a symbolic parameter such as ξ_i is accepted
-    too (for symbolic derivations; numeric evaluation then refuses the mechanism)."""
-    try:
-        e = sp.sympify(v)
-    except (sp.SympifyError, TypeError, SyntaxError):
-        raise ModelError(f"{what}: cannot read {v!r} as a number") from None
-    if symbols and e.free_symbols and isinstance(e, sp.Expr):
-        return e
-    if e.free_symbols or not e.is_number or not e.is_finite or not e.is_real:
-        raise ModelError(f"{what}: expected a finite real number, got {v!r}")
-    return e
+    too (for symbolic derivations; numeric evaluation then refuses the mechanism). Text is read by
+    :func:`kinbook.expressions.read_constant`."""
+    return read_constant(v, where=what, symbolic=symbols)
 
 
 def _pair(v, what):
     try:
+        if isinstance(v, (str, bytes, dict)):
+            raise TypeError
         a, b = v
     except (TypeError, ValueError):
         raise ModelError(f"{what}: expected a pair (ξ, η), got {v!r}") from None
@@ -92,6 +86,8 @@ class Mechanism(MechanismBase):
         """Add a body; its coordinates follow those of the bodies already added. Returns ``None``."""
         name = str(name)
         try:
+            if isinstance(q0, (str, bytes, dict)):
+                raise TypeError
             q0 = tuple(q0)
         except TypeError:
             raise ModelError(f"body '{name}': q0 must be a list (x, y, phi), got {q0!r}") from None

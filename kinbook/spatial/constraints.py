@@ -47,6 +47,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import ModelError, UnknownPointError
+from ..expressions import read_number
 from ..model import ConstraintBase, constraint_types, lookup_point, stack_params
 from ..symbolic import t as t_symbol
 from .rotations import A_from_p as _A_sym, E as _E_sym, _mv
@@ -453,13 +454,9 @@ class Constraint(ConstraintBase):
 
 
 def _triple(v, message):
-    try:
-        a = np.array([float(sp.sympify(x)) for x in v], dtype=float)
-    except (TypeError, ValueError, sp.SympifyError):
-        raise ModelError(f"{message}, got {v!r}") from None
-    if a.shape != (3,) or not np.all(np.isfinite(a)):
+    if not isinstance(v, (list, tuple, np.ndarray)) or len(v) != 3:
         raise ModelError(f"{message}, got {v!r}")
-    return a
+    return np.array([read_number(x, where=message.split(" must ")[0]) for x in v], dtype=float)
 
 
 def _two_points(cls_name, i, j, point, point_i, point_j):
@@ -526,6 +523,9 @@ class Ground(Constraint):
 
     def __init__(self, body, q=None, name=None):
         super().__init__((body,), name=name)
+        if q is not None and not isinstance(q, (list, tuple, np.ndarray)):
+            raise ModelError(f"ground constraint on body '{body}': `q` must be a list of 7 values "
+                             f"(x, y, z, e0, e1, e2, e3), got {q!r}")
         self.value = None if q is None else list(q)
 
     def _bind_points(self):
@@ -536,7 +536,8 @@ class Ground(Constraint):
             if len(self.value) != NCOORD:
                 raise ModelError(f"{self.describe()}: `q` needs 7 values (x, y, z, e0, e1, e2, e3), "
                                  f"got {len(self.value)}")
-            value = _floats([sp.sympify(v) for v in self.value])
+            value = np.array([read_number(v, where=f"{self.describe()}: q ({c})")
+                              for v, c in zip(self.value, ("x", "y", "z", "e0", "e1", "e2", "e3"))])
             n = np.linalg.norm(value[3:])
             if n < 1e-12:
                 raise ModelError(f"{self.describe()}: the Euler parameters of `q` are zero")
@@ -872,11 +873,8 @@ class SphericalSpherical(Constraint):
     def _bind_points(self):
         self.P_i = self._point(0, self.point_i, "point_i")
         self.P_j = self._point(1, self.point_j, "point_j")
-        try:
-            self.l = float(sp.sympify(self.length))
-        except (TypeError, ValueError, sp.SympifyError):
-            self.l = float("nan")
-        if not (np.isfinite(self.l) and self.l > 0):
+        self.l = read_number(self.length, where=f"{self.describe()}: length")
+        if not self.l > 0:
             raise ModelError(f"{self.describe()}: length must be a positive number, got {self.length!r}")
 
     def phi(self, Q, t=t_symbol):

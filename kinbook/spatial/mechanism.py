@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import InputError, ModelError
+from ..expressions import read_constant
 from ..model import ConstraintTable, MechanismBase
 from . import rotations, transforms
 from .constraints import NCOORD, Constraint, Normalization
@@ -29,17 +30,13 @@ _IDENTITY = (0, 0, 0, 1, 0, 0, 0)
 
 
 def _number(v, what):
-    try:
-        e = sp.sympify(v)
-    except (sp.SympifyError, TypeError, SyntaxError):
-        raise ModelError(f"{what}: cannot read {v!r} as a number") from None
-    if e.free_symbols or not e.is_number or not e.is_finite or not e.is_real:
-        raise ModelError(f"{what}: expected a finite real number, got {v!r}")
-    return e
+    return read_constant(v, where=what)
 
 
 def _triple(v, what):
     try:
+        if isinstance(v, (str, bytes, dict)):
+            raise TypeError
         a, b, c = v
     except (TypeError, ValueError):
         raise ModelError(f"{what}: expected three numbers (ξ, η, ζ), got {v!r}") from None
@@ -63,15 +60,18 @@ class Body:
     number: int = 0
 
     def __post_init__(self):
+        for what, table in (("points", self.points), ("vectors", self.vectors)):
+            if not isinstance(table, dict):
+                raise ModelError(f"body '{self.name}': `{what}` must be a table of name = [ξ, η, ζ], got {table!r}")
         self.points = {str(k): _triple(v, f"point '{k}' of body '{self.name}'") for k, v in dict(self.points).items()}
         self.vectors = {str(k): _triple(v, f"vector '{k}' of body '{self.name}'") for k, v in dict(self.vectors).items()}
         for k, v in self.vectors.items():
             if all(x == 0 for x in v):
                 raise ModelError(f"vector '{k}' of body '{self.name}' is zero")
-        q0 = tuple(self.q0)
-        if len(q0) != NCOORD:
-            raise ModelError(f"body '{self.name}': q0 must have 7 values (x, y, z, e0, e1, e2, e3), got {len(q0)}")
-        q0 = [_number(v, f"q0 of body '{self.name}'") for v in q0]
+        if not isinstance(self.q0, (list, tuple, np.ndarray)) or len(self.q0) != NCOORD:
+            got = f"{len(self.q0)}" if isinstance(self.q0, (list, tuple, np.ndarray)) else repr(self.q0)
+            raise ModelError(f"body '{self.name}': q0 must have 7 values (x, y, z, e0, e1, e2, e3), got {got}")
+        q0 = [_number(v, f"q0 of body '{self.name}' ({c})") for v, c in zip(self.q0, _COORDS)]
         norm = sp.sqrt(sum(v**2 for v in q0[3:]))
         if float(norm) < 1e-12:
             raise ModelError(f"body '{self.name}': the Euler parameters of q0 are all zero (they describe no rotation)")
@@ -120,7 +120,8 @@ class Mechanism(MechanismBase):
             Named body-fixed vectors (axes of joints), local components.
         """
         name = str(name)
-        self._new_body(Body(name, dict(points or {}), tuple(q0), dict(vectors or {}), number=len(self.bodies) + 1))
+        self._new_body(Body(name, {} if points is None else points, q0, {} if vectors is None else vectors,
+                            number=len(self.bodies) + 1))
         self._add(Normalization(name, name=f"normalization {name}"))
 
     def add(self, constraint):

@@ -10,6 +10,7 @@ import kinbook
 from kinbook import examples
 from kinbook.errors import (
     DriverCountError,
+    ExpressionError,
     InputError,
     MechanismFileError,
     ModelError,
@@ -97,7 +98,7 @@ def test_errors_name_the_body_point_vector_and_constraint():
         m.add(Spherical("bar", "bar", point="O"))
     with pytest.raises(ModelError, match="expected a spatial constraint"):
         m.add(PlanarRevolute("ground", "bar", point="O"))
-    with pytest.raises(ModelError, match="unknown symbols w"):
+    with pytest.raises(ExpressionError, match="revolute-driver on bodies 'ground', 'bar', f: unknown name 'w'"):
         RevoluteDriver("ground", "bar", axis_i="z", f="w*t")
     assert m.m == 13  # failed additions left no rows behind
 
