@@ -2,11 +2,19 @@
 
 Each command takes its defaults from the library function it wraps, so behaviour is defined once and the library
 is usable without the CLI.
+
+Every argument is validated before any work (finite or positive numbers, paths that exist, student ids that are
+safe file names): a bad one gets one line, ``kinbook <command>: error: …``, and exit status 2; so does any
+:class:`~kinbook.errors.KinbookError`. No traceback is shown unless ``--debug`` is given (an unexpected error, a
+bug, exits with status 1 and says so).
 """
 
 from __future__ import annotations
 
 import argparse
+import math
+import os
+import re
 import sys
 
 import numpy as np
@@ -15,7 +23,103 @@ from . import examples
 from .errors import KinbookError
 from .io import load
 
-__all__ = ["main"]
+__all__ = ["main", "build_parser", "student_id"]
+
+STUDENT_ID = re.compile(r"[A-Za-z0-9][A-Za-z0-9._@+-]{0,127}")
+"""A student identifier: letters, digits and ``. _ @ + -``, starting with a letter or digit, at most 128
+characters — so that it is always one safe file name (no ``/``, no ``..`` on its own, no hidden file)."""
+
+
+class _UsageError(Exception):
+    """A bad command line: reported in one line, exit status 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise _UsageError(f"{self.prog}: error: {message} (see {self.prog} --help)")
+
+
+# ----------------------------------------------------------------------------------------- argument types
+def _number(text, expected):
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}")
+    return value
+
+
+def finite(text):
+    """A finite number (argparse type)."""
+    return _number(text, "a finite number")
+
+
+def positive(text):
+    """A positive finite number (argparse type)."""
+    value = _number(text, "a positive finite number")
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"expected a positive finite number, got {text!r}")
+    return value
+
+
+def count(text):
+    """A whole number from 1 to 1024 (argparse type)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number from 1 to 1024, got {text!r}") from None
+    if not 1 <= value <= 1024:
+        raise argparse.ArgumentTypeError(f"expected a whole number from 1 to 1024, got {value}")
+    return value
+
+
+def student_id(text):
+    """A student identifier that is one safe file name (see :data:`STUDENT_ID`)."""
+    if not STUDENT_ID.fullmatch(text):
+        raise argparse.ArgumentTypeError(
+            f"a student id must be letters, digits and . _ @ + - (starting with a letter or digit, at most 128 "
+            f"characters), got {text[:80]!r}")
+    return text
+
+
+def existing_file(text):
+    """The path of an existing file (argparse type)."""
+    if not text or "\0" in text:
+        raise argparse.ArgumentTypeError(f"not a file name: {text!r}")
+    if not os.path.isfile(text):
+        raise argparse.ArgumentTypeError(f"no such file: {text!r}" if not os.path.exists(text)
+                                         else f"not a file: {text!r}")
+    return text
+
+
+def existing_path(text):
+    """The path of an existing file or directory (argparse type)."""
+    if not text or "\0" in text:
+        raise argparse.ArgumentTypeError(f"not a file name: {text!r}")
+    if not os.path.exists(text):
+        raise argparse.ArgumentTypeError(f"no such file or directory: {text!r}")
+    return text
+
+
+def output_dir(text):
+    """A directory to write into: missing (it is created) or an existing directory."""
+    if not text or "\0" in text:
+        raise argparse.ArgumentTypeError(f"not a directory name: {text!r}")
+    if os.path.exists(text) and not os.path.isdir(text):
+        raise argparse.ArgumentTypeError(f"exists and is not a directory: {text!r}")
+    return text
+
+
+def mechanism_arg(text):
+    """A shipped example's name or the path of a mechanism file."""
+    if text in examples.names():
+        return text
+    try:
+        return existing_file(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is neither a mechanism file nor a shipped example ({', '.join(examples.names())})") from None
 
 
 def _mechanism(name):
@@ -82,38 +186,44 @@ def _cmd_grade(args):
 
 
 def build_parser():
-    parser = argparse.ArgumentParser(prog="kinbook", description="Kinematics of mechanisms in body coordinates.")
-    sub = parser.add_subparsers(dest="command", required=True)
+    parser = _Parser(prog="kinbook", description="Kinematics of mechanisms in body coordinates.")
+    parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     p = sub.add_parser("examples", help="list the shipped example mechanisms")
     p.set_defaults(func=_cmd_examples)
     p = sub.add_parser("table", help="print a mechanism's constraint table")
-    p.add_argument("mechanism", help="a mechanism file or the name of a shipped example")
+    p.add_argument("mechanism", type=mechanism_arg, help="a mechanism file or the name of a shipped example")
     p.set_defaults(func=_cmd_table)
     p = sub.add_parser("solve", help="solve position, velocity and acceleration at one instant")
-    p.add_argument("mechanism", help="a mechanism file or the name of a shipped example")
-    p.add_argument("-t", type=float, default=0.0, help="time (default 0)")
+    p.add_argument("mechanism", type=mechanism_arg, help="a mechanism file or the name of a shipped example")
+    p.add_argument("-t", type=finite, default=0.0, help="time (default 0)")
     p.set_defaults(func=_cmd_solve)
 
     from .classroom import grade, release, write_variant
 
     p = sub.add_parser("release", help="write the students' versions of exercise notebooks")
-    p.add_argument("source", nargs="+", help="instructor source notebooks")
-    p.add_argument("-o", "--output", default=_default(release, "outdir"), help="output directory (default: %(default)s)")
+    p.add_argument("source", nargs="+", type=existing_file, help="instructor source notebooks")
+    p.add_argument("-o", "--output", type=output_dir, default=_default(release, "outdir"),
+                   help="output directory (default: %(default)s)")
     p.set_defaults(func=_cmd_release)
     p = sub.add_parser("variant", help="write one student's version, with their own parameters")
-    p.add_argument("source", help="instructor source notebook")
-    p.add_argument("--student", required=True, help="student identifier (as in the collected submissions)")
-    p.add_argument("-o", "--output", default=_default(write_variant, "outdir"), help="output directory (default: %(default)s)")
+    p.add_argument("source", type=existing_file, help="instructor source notebook")
+    p.add_argument("--student", required=True, type=student_id,
+                   help="student identifier (as in the collected submissions): letters, digits, . _ @ + -")
+    p.add_argument("-o", "--output", type=output_dir, default=_default(write_variant, "outdir"),
+                   help="output directory (default: %(default)s)")
     p.set_defaults(func=_cmd_variant)
     p = sub.add_parser("grade", help="grade submitted notebooks in sandboxes and write the gradebook")
-    p.add_argument("source", help="instructor source notebook")
-    p.add_argument("submissions", nargs="+", help="submitted notebooks or directories of them")
-    p.add_argument("-o", "--output", default=_default(grade, "outdir"), help="output directory (default: %(default)s)")
-    p.add_argument("--timeout", type=float, default=_default(grade, "timeout"),
+    p.add_argument("source", type=existing_file, help="instructor source notebook")
+    p.add_argument("submissions", nargs="+", type=existing_path, help="submitted notebooks or directories of them")
+    p.add_argument("-o", "--output", type=output_dir, default=_default(grade, "outdir"),
+                   help="output directory (default: %(default)s)")
+    p.add_argument("--timeout", type=positive, default=_default(grade, "timeout"),
                    help="wall-clock seconds per notebook (default: %(default)s)")
-    p.add_argument("--memory", type=float, default=_default(grade, "memory"),
+    p.add_argument("--memory", type=positive, default=_default(grade, "memory"),
                    help="megabytes a notebook may allocate (default: %(default)s)")
-    p.add_argument("--jobs", type=int, default=_default(grade, "jobs"), help="notebooks graded in parallel (default: %(default)s)")
+    p.add_argument("--jobs", type=count, default=_default(grade, "jobs"),
+                   help="notebooks graded in parallel, 1 to 1024 (default: %(default)s)")
     p.add_argument("--force", action="store_true", help="grade again submissions already in the gradebook")
     p.add_argument("--generic", action="store_true",
                    help="students got the generic release (default parameters), not per-student variants")
@@ -126,15 +236,39 @@ def build_parser():
 
 
 def main(argv=None):
-    """Entry point of the ``kinbook`` console script. Returns the exit status."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    """Entry point of the ``kinbook`` console script. Returns the exit status: 0, 2 for a bad command line or
+    input (one line on stderr), 1 for an unexpected error (a bug: the traceback with ``--debug``)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    debug = "--debug" in argv
+    argv = [a for a in argv if a != "--debug"]  # accepted anywhere on the line
     try:
+        args = build_parser().parse_args(argv)
         args.func(args)
-    except KinbookError as exc:
-        print(f"kinbook: error: {exc}", file=sys.stderr)
+    except _UsageError as exc:
+        print(exc, file=sys.stderr)
         return 2
+    except SystemExit as exc:  # --help, --version
+        return exc.code if isinstance(exc.code, int) else 0
+    except KeyboardInterrupt:
+        print("kinbook: interrupted", file=sys.stderr)
+        return 130
+    except (KinbookError, OSError, UnicodeError) as exc:
+        if debug:
+            raise
+        print(f"kinbook: error: {_one_line(exc)}", file=sys.stderr)
+        return 2
+    except Exception as exc:  # a bug: say so in one line, the traceback with --debug
+        if debug:
+            raise
+        print(f"kinbook: internal error: {type(exc).__name__}: {_one_line(exc)} (run with --debug for the "
+              "traceback, and please report it)", file=sys.stderr)
+        return 1
     return 0
+
+
+def _one_line(exc):
+    text = " ".join(str(exc).split())
+    return text if len(text) <= 2000 else text[:1999] + "…"
 
 
 if __name__ == "__main__":

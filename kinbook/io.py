@@ -7,6 +7,7 @@ A file names its kind (``kind = "planar"`` by default, or ``"spatial"``); each `
 
 from __future__ import annotations
 
+import functools
 import importlib
 import inspect
 import os
@@ -25,6 +26,16 @@ __all__ = ["load", "loads"]
 _KINDS = {"planar": "kinbook.planar", "spatial": "kinbook.spatial"}
 
 
+MAX_FILE_BYTES = 16 * 2**20
+"""Largest mechanism file :func:`load` reads (16 MiB: some 60,000 bodies)."""
+
+MAX_BODIES = 100_000
+"""Most bodies (and, times four, constraints) in one mechanism file."""
+
+_META = {"name", "title", "source", "kind"}
+_BODY_NAMES = {"i", "j", "k", "body"}  # keys of a constraint that name a body
+
+
 def load(path):
     """Read a mechanism file.
 
@@ -40,23 +51,43 @@ def load(path):
     Raises
     ------
     MechanismFileError
-        The file is missing, is not valid TOML, or describes something kinbook cannot build; the message names
-        the file and the key.
+        The file is missing, unreadable, larger than :data:`MAX_FILE_BYTES`, not UTF-8, not valid TOML, or
+        describes something kinbook cannot build; the message names the file and the key.
     """
-    path = Path(os.fspath(path))
     try:
-        text = path.read_text(encoding="utf-8")
+        path = Path(os.fspath(path))
+    except TypeError:
+        raise MechanismFileError(f"expected the path of a mechanism file, got {type(path).__name__}") from None
+    try:
+        with path.open("rb") as fh:
+            raw = fh.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
-        raise MechanismFileError(f"{path}: cannot read the mechanism file ({exc.strerror})") from None
+        raise MechanismFileError(f"{path}: cannot read the mechanism file ({exc.strerror or exc})") from None
+    except ValueError as exc:  # a path with a NUL byte
+        raise MechanismFileError(f"{path!r}: not a usable file name ({exc})") from None
+    if len(raw) > MAX_FILE_BYTES:
+        raise MechanismFileError(f"{path}: the mechanism file is larger than {MAX_FILE_BYTES // 2**20} MiB")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise MechanismFileError(f"{path}: not UTF-8 text (byte {exc.start} is 0x{raw[exc.start]:02x}); "
+                                 "save the file as UTF-8") from None
     return loads(text, source=str(path))
 
 
 def loads(text, source="<string>"):
     """Build a mechanism from the text of a mechanism file (see :func:`load`)."""
+    source = str(source)
+    if not isinstance(text, str):
+        raise MechanismFileError(f"{source}: expected the text of a mechanism file, got {type(text).__name__}")
+    if len(text) > MAX_FILE_BYTES:
+        raise MechanismFileError(f"{source}: the mechanism file is larger than {MAX_FILE_BYTES // 2**20} MiB")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise MechanismFileError(f"{source}: not valid TOML: {exc}") from None
+    except RecursionError:  # arrays nested thousands deep
+        raise MechanismFileError(f"{source}: not valid TOML: nested too deeply") from None
     return build(data, source)
 
 
@@ -66,52 +97,120 @@ def _table(value, where, source):
     return value
 
 
+def _text(value, where, source, default=None):
+    if value is None:
+        return default
+    if not isinstance(value, str):
+        raise MechanismFileError(f"{source}: `{where}` must be a string, got {type(value).__name__} {value!r:.60}")
+    return value
+
+
+def _array_of_tables(value, where, source, required):
+    if value is None or (isinstance(value, list) and not value):
+        if required:
+            raise MechanismFileError(f"{source}: needs at least one [[{where}]] table")
+        return []
+    if not isinstance(value, list):
+        raise MechanismFileError(f"{source}: `{where}` must be an array of tables ([[{where}]]), got "
+                                 f"{type(value).__name__}")
+    most = MAX_BODIES if where == "bodies" else 4 * MAX_BODIES
+    if len(value) > most:
+        raise MechanismFileError(f"{source}: {len(value)} [[{where}]] tables, more than the {most} kinbook reads")
+    return value
+
+
 def build(data, source="<data>"):
     """Build a mechanism from the parsed contents of a mechanism file (a dict)."""
+    source = str(source)
+    data = _table(data, "the file", source)
     meta = _table(data.get("mechanism", {}), "mechanism", source)
     unknown = set(data) - {"mechanism", "bodies", "constraints"}
     if unknown:
         raise MechanismFileError(f"{source}: unknown top-level key(s) {', '.join(sorted(unknown))} "
                                  "(expected: mechanism, bodies, constraints)")
-    kind = meta.get("kind", "planar")
+    unknown = sorted(set(meta) - _META)
+    if unknown:
+        raise MechanismFileError(f"{source}: unknown key 'mechanism.{unknown[0]}' (accepted keys: "
+                                 f"{', '.join(sorted(_META))})")
+    kind = _text(meta.get("kind"), "mechanism.kind", source, "planar")
     if kind not in _KINDS:
         raise MechanismFileError(f"{source}: `mechanism.kind` must be one of {', '.join(_KINDS)}, got {kind!r}")
     try:
         module = importlib.import_module(_KINDS[kind])
     except ModuleNotFoundError:
         raise MechanismFileError(f"{source}: {kind} mechanisms are not available in this version") from None
-    name = meta.get("name", Path(source).stem if source.endswith(".toml") else "mechanism")
-    mech = module.Mechanism(name, title=meta.get("title"))
-    mech.source = meta.get("source")
+    default_name = Path(source).stem if source.endswith(".toml") else "mechanism"
+    name = _text(meta.get("name"), "mechanism.name", source, default_name)
+    mech = module.Mechanism(name, title=_text(meta.get("title"), "mechanism.title", source))
+    mech.source = _text(meta.get("source"), "mechanism.source", source)
 
-    bodies = data.get("bodies")
-    if not isinstance(bodies, list) or not bodies:
-        raise MechanismFileError(f"{source}: needs at least one [[bodies]] table")
-    add_body = inspect.signature(mech.add_body).parameters
+    bodies = _array_of_tables(data.get("bodies"), "bodies", source, required=True)
+    add_body = _parameters(type(mech).add_body)
     for k, body in enumerate(bodies):
-        where = f"bodies[{k}]" + (f" ('{body.get('name')}')" if isinstance(body, dict) and "name" in body else "")
+        label = body.get("name") if isinstance(body, dict) else None
+        where = f"bodies[{k}]" + (f" ('{label}')" if isinstance(label, str) else "")
         body = _table(body, where, source)
-        _check_keys(body, add_body, where, source, skip=())
+        _check_keys(body, add_body, where, source, skip=("self",))
+        _text(body["name"], f"{where}.name", source)
         try:
             mech.add_body(**body)
         except KinbookError as exc:
             raise MechanismFileError(f"{source}: {where}: {exc}") from None
 
-    for k, spec in enumerate(data.get("constraints", [])):
+    for k, spec in enumerate(_array_of_tables(data.get("constraints"), "constraints", source, required=False)):
         where = f"constraints[{k}]"
         spec = dict(_table(spec, where, source))
         ctype = spec.pop("type", None)
+        if not isinstance(ctype, str):
+            raise MechanismFileError(f"{source}: {where}: `type` must be the name of a constraint type, got "
+                                     f"{type(ctype).__name__} {ctype!r}")
         try:
             cls = constraint_class(kind, ctype, files=True)
         except KinbookError as exc:
             raise MechanismFileError(f"{source}: {where}: {exc}") from None
         where += f" (type '{ctype}')"
-        _check_keys(spec, inspect.signature(cls.__init__).parameters, where, source, skip=("self",))
+        _check_keys(spec, _parameters(cls.__init__), where, source, skip=("self",))
+        for key in sorted(_BODY_NAMES.intersection(spec)) + (["name"] if "name" in spec else []):
+            _text(spec[key], f"{where}.{key}", source)
         try:
             mech.add(cls(**spec))
         except KinbookError as exc:
             raise MechanismFileError(f"{source}: {where}: {exc}") from None
+    _check_links(mech, source)
     return mech
+
+
+def _check_links(mech, source):
+    """Refuse a planar body joined to two or more bodies only by revolute joints, all at one point: a link of
+    zero length (a zero-length crank), which transmits no motion and makes Φ_q singular."""
+    if mech.kind != "planar":
+        return
+    from .planar.constraints import Revolute
+
+    joints = {}
+    for c in mech.constraints:
+        for role, body in enumerate(c.bodies or ()):
+            joints.setdefault(body.name, []).append((c, role))
+    for body in mech.bodies:
+        held = joints.get(body.name, [])
+        pins = [(c, role) for c, role in held if isinstance(c, Revolute)]
+        others = [c for c, _ in held if not isinstance(c, Revolute) and c.kind != "driver"]
+        if len(pins) < 2 or others:
+            continue
+        points = {tuple(c.s_i if role == 0 else c.s_j) for c, role in pins}
+        partners = {c.bodies[1 - role].name for c, role in pins}
+        if len(points) == 1 and len(partners) > 1:
+            where = ", ".join(f"'{c.name}'" for c, _ in pins)
+            (xi, eta), = points
+            raise MechanismFileError(
+                f"{source}: body '{body.name}' is a link of zero length: its revolute joints {where} (to bodies "
+                f"{', '.join(sorted(repr(p) for p in partners))}) are all at its point ({xi}, {eta}); a link "
+                "transmits motion only between joints set apart — give the points their distinct coordinates")
+
+
+@functools.lru_cache(maxsize=None)
+def _parameters(function):
+    return inspect.signature(function).parameters
 
 
 def _check_keys(table, params, where, source, skip):

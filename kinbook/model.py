@@ -574,11 +574,12 @@ class MechanismBase:
         self._add(constraint)
 
     def _add(self, constraint):
-        start = self.m
+        start = self.constraints[-1].rows.stop if self.constraints else 0
         constraint.rows = slice(start, start + constraint.n_eq)
         if constraint.name is None:
             constraint.name = self._default_name(constraint)
-        if any(c.name == constraint.name for c in self.constraints):
+        index = self._constraint_index
+        if constraint.name in index["names"]:
             constraint.rows = None
             raise ModelError(f"mechanism '{self.name}' already has a constraint named '{constraint.name}'")
         try:
@@ -587,13 +588,27 @@ class MechanismBase:
             constraint.rows = None
             raise
         self.constraints.append(constraint)
+        index["names"][constraint.name] = constraint
+        index["kinds"][constraint.kind] = index["kinds"].get(constraint.kind, 0) + 1
         self._changed()
+
+    @property
+    def _constraint_index(self):
+        """The constraints by name and their number by kind, updated by each addition (so that adding a
+        constraint costs O(1) and loading is linear in the size of the mechanism); rebuilt after a removal."""
+        if "_cindex" not in self.__dict__:
+            kinds = {}
+            for c in self.constraints:
+                kinds[c.kind] = kinds.get(c.kind, 0) + 1
+            self.__dict__["_cindex"] = {"names": {c.name: c for c in self.constraints}, "kinds": kinds}
+        return self.__dict__["_cindex"]
 
     def remove(self, name):
         """Remove the constraint called ``name``; the rows of the constraints after it move up. Returns it."""
         c = self.constraint(name)
         self._check_removable(c)
         self.constraints.remove(c)
+        self.__dict__.pop("_cindex", None)
         c.rows = None
         start = 0
         for k in self.constraints:
@@ -606,11 +621,12 @@ class MechanismBase:
         """Hook: raise ModelError for constraints that belong to a body."""
 
     def _default_name(self, c):
+        index = self._constraint_index
         if c.kind == "joint":
-            return str(sum(1 for k in self.constraints if k.kind == "joint") + 1)
+            return str(index["kinds"].get("joint", 0) + 1)
         if c.kind == "driver":
-            return f"driver {sum(1 for k in self.constraints if k.kind == 'driver') + 1}"
-        taken = {k.name for k in self.constraints}
+            return f"driver {index['kinds'].get('driver', 0) + 1}"
+        taken = index["names"]
         stems = c.name_stems()
         for name in stems:
             if name not in taken:
@@ -634,9 +650,9 @@ class MechanismBase:
 
     def constraint(self, name):
         """The constraint called ``name``."""
-        for c in self.constraints:
-            if c.name == str(name):
-                return c
+        c = self._constraint_index["names"].get(str(name))
+        if c is not None:
+            return c
         known = ", ".join(repr(c.name) for c in self.constraints)
         raise ModelError(f"mechanism '{self.name}' has no constraint '{name}' (its constraints: {known})")
 

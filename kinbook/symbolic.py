@@ -12,6 +12,7 @@ its Φ once (a list of sympy expressions); everything else is derived here::
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -124,6 +125,9 @@ def time_function(f, where, time=t):
     from .errors import ExpressionError
     from .expressions import check_expression, read_constant, read_expression
 
+    key = (f if isinstance(f, (str, sp.Basic)) else None, time)
+    if key[0] is not None and key in _VALID:  # a mechanism of many bodies repeats the same few functions
+        return _VALID[key]
     if isinstance(f, str):
         expr = read_expression(f, symbols={"t": time}, where=where)
     elif isinstance(f, sp.Basic):
@@ -157,7 +161,14 @@ def time_function(f, where, time=t):
             raise ExpressionError(f"{where}: sympy cannot differentiate the function of time {text!r} twice; "
                                   "expected a function built from + - * / ^ and sin, cos, exp …", where=where,
                                   text=text)
+    if key[0] is not None:
+        if len(_VALID) > 4096:
+            _VALID.clear()
+        _VALID[key] = expr
     return expr
+
+
+_VALID = {}  # (text or expression, time symbol) -> the validated expression
 
 
 def time_derivatives(expr, time=t, where="the prescribed function f(t)"):
@@ -170,11 +181,17 @@ def time_derivatives(expr, time=t, where="the prescribed function f(t)"):
     """
     if not isinstance(expr, sp.Basic):  # a number, or text: read (and validated) as a driver would be
         expr = time_function(expr, where, time)
+    return tuple(_checked(f, k, expr, where) for k, f in enumerate(_compiled_derivatives(expr, time)))
+
+
+@functools.lru_cache(maxsize=1024)
+def _compiled_derivatives(expr, time):
+    """f, f', f'' compiled by lambdify, once per expression (a mechanism of many bodies repeats a few)."""
     funcs = []
     for k in range(3):
         e = sp.diff(expr, time, k)
         f = sp.lambdify(time, e, modules=[{"DiracDelta": _delta}, "numpy"])
-        funcs.append(_checked(_broadcasting(f, e.free_symbols), k, expr, where))
+        funcs.append(_broadcasting(f, e.free_symbols))
     return tuple(funcs)
 
 

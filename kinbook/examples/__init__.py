@@ -23,6 +23,8 @@ def names():
 
 def path(name):
     """Path of a shipped example's mechanism file (to read it or copy it as a template)."""
+    if not isinstance(name, str) or name not in names():  # never a path outside the package
+        raise MechanismFileError(f"no example mechanism {name!r} (available: {', '.join(names())})")
     p = resources.files(__name__) / f"{name}.toml"
     if not p.is_file():
         raise MechanismFileError(f"no example mechanism '{name}' (available: {', '.join(names())})")
