@@ -31,11 +31,32 @@ __all__ = [
     "simulate",
     "diagnose",
     "Diagnosis",
+    "NewtonHistory",
     "SimulationResult",
+    "length_scale",
+    "RCOND_MIN",
+    "STEP_TOL",
 ]
 
 SPARSE_ABOVE = 150
 """Systems with more coordinates than this are assembled and factorized as sparse matrices."""
+
+RCOND_MIN = 1e-8
+"""Φ_q counts as singular when σ_min / σ_max of the *scaled* Φ_q is below this: the coordinates of positions
+measured in units of the mechanism's length scale L (:func:`length_scale`), angles and Euler parameters as they
+are, then every row divided by its norm. Scaled so, the ratio is the same for a mechanism drawn in metres or in
+millimetres; below 1e-8 a velocity would carry relative errors of order 1e-8 / (position error), and the
+configuration is within about 1e-8 L of a dead point or a redundancy. Such a configuration is diagnosed
+(:class:`~kinbook.errors.DeadPointError`, :class:`~kinbook.errors.RedundantConstraintsError`), never returned as
+numbers."""
+
+STEP_TOL = 1e-8
+"""Newton–Raphson has converged when max |Φ| ≤ ``tol`` *and* the Newton step from the iterate, the estimate of
+its distance to the solution, is at most this (positions in units of L, angles in radians, Euler parameters as
+they are): near a singular configuration a small |Φ| alone can leave q far from the solution."""
+
+MAX_SWEEP_VALUES = 20_000_000
+"""Most instants × coordinates in one :func:`simulate` (each of q, q̇, q̈ then takes 160 MB)."""
 
 
 # --------------------------------------------------------------------------------------------- helpers
@@ -115,6 +136,90 @@ def _jacobian(mech, q, t):
     return mech.evaluate(q, t, sparse=mech.n > SPARSE_ABOVE)
 
 
+# --------------------------------------------------------------------------------------------- scale
+def length_scale(mech):
+    """The mechanism's length scale L: the largest distance of a named body point from its body's origin
+    (1 when no point has a numeric nonzero distance). Computed once per number of bodies (bodies are only ever
+    added, and their points do not change)."""
+    cached = mech.__dict__.get("_length_scale")
+    if cached is not None and cached[0] == len(mech.bodies):
+        return cached[1]
+    L = 0.0
+    for b in mech.bodies:
+        for point in b.points.values():
+            try:
+                L = max(L, float(np.sqrt(sum(float(v) ** 2 for v in point))))
+            except (TypeError, ValueError):  # a symbolic parameter
+                continue
+    L = L if np.isfinite(L) and L > 0 else 1.0
+    mech.__dict__["_length_scale"] = (len(mech.bodies), L)
+    return L
+
+
+def _column_scale(mech):
+    """Factors that measure each coordinate in units of the scale: L for positions, 1 for the others."""
+    L = length_scale(mech)
+    return np.tile([L if c in ("x", "y", "z") else 1.0 for c in mech.COORDS], len(mech.bodies))
+
+
+def _scaled(J, cols):
+    """D_r J D_c: columns times ``cols``, then each row divided by its norm (a zero row stays zero)."""
+    if hasattr(J, "tocsc"):
+        import scipy.sparse as sps
+
+        Jc = J @ sps.diags(cols)
+        rn = np.sqrt(np.asarray(Jc.multiply(Jc).sum(axis=1)).ravel())
+        return (sps.diags(1.0 / np.where(rn > 0, rn, 1.0)) @ Jc).tocsc()
+    Jc = J * cols
+    rn = np.linalg.norm(Jc, axis=-1, keepdims=True)
+    return Jc / np.where(rn > 0, rn, 1.0)
+
+
+def _rcond(mech, J, cols=None):
+    """σ_min / σ_max of the scaled Φ_q (see :data:`RCOND_MIN`): exact, by SVD, for a dense Φ_q; for a sparse
+    one estimated by a few steps of (inverse) power iteration from a seeded start, deterministic."""
+    cols = _column_scale(mech) if cols is None else cols
+    Js = _scaled(J, cols)
+    if not hasattr(Js, "tocsc"):
+        if not np.all(np.isfinite(Js)):
+            return 0.0
+        s = np.linalg.svd(Js, compute_uv=False)
+        return float(s[-1] / s[0]) if s.size and s[0] > 0 else 0.0
+    import scipy.sparse.linalg as spla
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            lu = spla.splu(Js)
+    except RuntimeError:  # exactly singular
+        return 0.0
+    x = np.random.default_rng(0).standard_normal(Js.shape[1])
+    y = x.copy()
+    big = small = 1.0
+    for _ in range(6):
+        x /= np.linalg.norm(x)
+        x = Js.T @ (Js @ x)
+        big = np.linalg.norm(x)
+        y /= np.linalg.norm(y)
+        y = lu.solve(lu.solve(y, trans="T"))
+        if not np.all(np.isfinite(y)):
+            return 0.0
+        small = np.linalg.norm(y)
+    return float(np.sqrt(1.0 / (small * big))) if small > 0 and big > 0 else 0.0
+
+
+def _cond(J):
+    """2-norm condition number of Φ_q as it is (for the Newton history), nan when too large to compute."""
+    if hasattr(J, "toarray"):
+        if J.shape[1] > 2000:
+            return np.nan
+        J = J.toarray()
+    if not np.all(np.isfinite(J)):
+        return np.nan
+    s = np.linalg.svd(J, compute_uv=False)
+    return float(s[0] / s[-1]) if s.size and s[-1] > 0 else np.inf
+
+
 # --------------------------------------------------------------------------------------------- diagnosis
 @dataclass(frozen=True)
 class Diagnosis:
@@ -135,6 +240,8 @@ class Diagnosis:
     constraints : list of str
         Their constraints' names.
     message : str
+    rcond : float
+        σ_min / σ_max of the scaled Φ_q, the quantity the verdict compares with :data:`RCOND_MIN`.
     """
 
     kind: str
@@ -144,6 +251,7 @@ class Diagnosis:
     rows: list = field(default_factory=list)
     constraints: list = field(default_factory=list)
     message: str = ""
+    rcond: float = np.nan
 
     @property
     def singular(self):
@@ -164,20 +272,26 @@ def _left_null_rows(J, rank, rtol=1e-6):
     return [int(r) for r in np.nonzero(weight > rtol)[0]]
 
 
-def _rank(s, shape, rtol=1e-9):
+def _rank(s, shape, rtol=RCOND_MIN):
     if s.size == 0:
         return 0
-    return int(np.sum(s > rtol * max(s[0], 1e-300) * max(shape) ** 0.5))
+    return int(np.sum(s > rtol * max(s[0], 1e-300)))
 
 
-def diagnose(mech, q, t=0.0, rtol=1e-9):
-    """Rank analysis of Φ_q(q, t): regular, redundant constraints, or a dead point. Returns a :class:`Diagnosis`."""
+def diagnose(mech, q, t=0.0, rtol=RCOND_MIN):
+    """Rank analysis of Φ_q(q, t): regular, redundant constraints, or a dead point. Returns a :class:`Diagnosis`.
+
+    The rank is that of the scaled Φ_q (see :data:`RCOND_MIN`): singular values below ``rtol`` times the largest
+    do not count, so a configuration within about ``rtol`` L of a dead point is diagnosed as one."""
     t = _t(t)
-    J = np.asarray(mech.evaluate(q, t)["Phi_q"])
-    m, n = J.shape
+    J0 = np.asarray(mech.evaluate(q, t)["Phi_q"])
+    m, n = J0.shape
+    s0 = np.linalg.svd(J0, compute_uv=False)
+    cond = float(s0[0] / s0[-1]) if (m == n and s0[-1] > 0) else (np.inf if m == n else np.nan)
+    J = _scaled(J0, _column_scale(mech))
     s = np.linalg.svd(J, compute_uv=False)
     rank = _rank(s, J.shape, rtol)
-    cond = float(s[0] / s[-1]) if (m == n and s[-1] > 0) else (np.inf if m == n else np.nan)
+    rcond = float(s[-1] / s[0]) if s.size and s[0] > 0 and m == n else (0.0 if m == n else np.nan)
     geo = [r for c in mech.constraints if c.kind != "driver" for r in range(c.rows.start, c.rows.stop)]
     Jg = J[geo]
     sg = np.linalg.svd(Jg, compute_uv=False) if len(geo) else np.zeros(0)
@@ -206,7 +320,7 @@ def diagnose(mech, q, t=0.0, rtol=1e-9):
         c = _row_owner(mech, r)
         if c is not None and c.name not in names:
             names.append(c.name)
-    return Diagnosis(kind, rank, m, cond, [r + 1 for r in rows], names, msg)
+    return Diagnosis(kind, rank, m, cond, [r + 1 for r in rows], names, msg, rcond)
 
 
 def _fmt_rows(rows):
@@ -217,14 +331,72 @@ def _raise_singular(mech, q, t, context):
     d = diagnose(mech, q, t)
     if d.kind == "regular":  # numerically singular for the LU but not by the SVD's tolerance
         d = Diagnosis("dead-point", d.rank, d.size, d.cond, [], [],
-                      f"Φ_q is numerically singular at t = {t:.6g} (condition number {d.cond:.3g})")
+                      f"Φ_q is numerically singular at t = {t:.6g} (condition number {d.cond:.3g}, scaled "
+                      f"σ_min/σ_max = {d.rcond:.3g})", d.rcond)
     cls = RedundantConstraintsError if d.kind == "redundant" else DeadPointError
     raise cls(f"{context}: {d.message}", rows=d.rows, constraints=d.constraints, rank=d.rank, size=d.size,
               q=np.array(q, dtype=float), t=t)
 
 
 # --------------------------------------------------------------------------------------------- solvers
-def solve_position(mech, t=0.0, q0=None, tol=1e-10, max_iter=50):
+@dataclass(frozen=True)
+class NewtonHistory:
+    """The iterations of one Newton–Raphson solution (:func:`solve_position` with ``history=True``), one
+    entry per iterate q_k — the last is the solution returned.
+
+    Attributes
+    ----------
+    q : ndarray, shape (k, n)
+        The iterates, from the initial guess on.
+    residual : ndarray, shape (k,)
+        max |Φ(q_k, t)|.
+    step : ndarray, shape (k,)
+        max |Δq_k| of the Newton step Φ_q Δq = −Φ from q_k (for the last iterate: the step not taken, the
+        estimate of its distance to the exact solution).
+    cond : ndarray, shape (k,)
+        2-norm condition number of Φ_q(q_k) (nan for a sparse system of more than 2000 coordinates).
+    t : float
+    """
+
+    q: np.ndarray
+    residual: np.ndarray
+    step: np.ndarray
+    cond: np.ndarray
+    t: float = 0.0
+
+    def __len__(self):
+        return len(self.residual)
+
+    def _rows(self):
+        return [(str(k), f"{r:.3e}", f"{s:.3e}", f"{c:.4g}") for k, (r, s, c) in
+                enumerate(zip(self.residual, self.step, self.cond))]
+
+    def __repr__(self):
+        head = f"Newton–Raphson at t = {self.t:.6g}: {len(self)} iterates\n"
+        lines = [f"{'k':>3} {'max |Φ|':>10} {'max |Δq|':>10} {'cond(Φ_q)':>10}"]
+        lines += [f"{k:>3} {r:>10} {s:>10} {c:>10}" for k, r, s, c in self._rows()]
+        return head + "\n".join(lines)
+
+    def _repr_html_(self):
+        head = "".join(f"<th>{h}</th>" for h in ("k", "max |Φ|", "max |Δq|", "cond(Φ_q)"))
+        body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in self._rows())
+        return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def _check_tol(tol, max_iter):
+    try:
+        tol_ok = isinstance(tol, (int, float, np.floating, np.integer)) and not isinstance(tol, bool) \
+            and np.isfinite(tol) and tol > 0
+    except TypeError:
+        tol_ok = False
+    if not tol_ok:
+        raise InputError(f"`tol` must be a positive finite number (max |Φ| at convergence), got {tol!r}")
+    if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or not 1 <= max_iter <= 10_000:
+        raise InputError(f"`max_iter` must be a whole number from 1 to 10000, got {max_iter!r}")
+    return float(tol), int(max_iter)
+
+
+def solve_position(mech, t=0.0, q0=None, tol=1e-10, max_iter=50, history=False):
     """Solve Φ(q, t) = 0 by Newton–Raphson.
 
     Parameters
@@ -233,48 +405,78 @@ def solve_position(mech, t=0.0, q0=None, tol=1e-10, max_iter=50):
     q0 : array_like, shape (n,), optional
         Initial guess; default: the bodies' q0.
     tol : float
-        Convergence when max |Φ_k| ≤ tol.
+        Positive and finite. Convergence when max |Φ_k| ≤ tol and the Newton step from the iterate is at most
+        :data:`STEP_TOL` (positions in units of the mechanism's length scale).
     max_iter : int
+        From 1 to 10000.
+    history : bool
+        Also return the iterations, a :class:`NewtonHistory` (q, max |Φ|, step, cond(Φ_q) per iterate), for a
+        notebook to show how Newton–Raphson converges (quadratically, or slowly near a singular configuration).
 
     Returns
     -------
     q : ndarray, shape (n,)
+    history : NewtonHistory
+        Only with ``history=True``: the function returns ``(q, history)``.
 
     Raises
     ------
     DriverCountError
         Φ is not square.
     ConvergenceError
-        No convergence within ``max_iter`` iterations; the message gives the residual and the worst rows.
+        No convergence within ``max_iter`` iterations; the message gives the residual and the worst rows (its
+        ``history`` attribute holds the iterations when ``history=True``).
     RedundantConstraintsError, DeadPointError
-        Φ_q is singular at an iterate.
+        Φ_q is singular at an iterate, or nearly singular at the solution (scaled σ_min/σ_max below
+        :data:`RCOND_MIN`), or Newton–Raphson only creeps towards a solution where Φ_q is nearly singular.
     """
     check_drivers(mech)
     t = _t(t)
+    tol, max_iter = _check_tol(tol, max_iter)
     q = mech.q0 if q0 is None else np.array(mech._check_q(q0, "q0"), dtype=float)
     if q.ndim != 1:
         raise InputError(f"`q0` must have shape ({mech.n},), got {q.shape}")
-    res = np.inf
+    cols = _column_scale(mech)
+    context = f"Newton–Raphson for mechanism '{mech.name}'"
+    record = [] if history else None
+    res, it = np.inf, 0
     for it in range(max_iter + 1):
         ev = _jacobian(mech, q, t)
-        Phi = ev["Phi"]
+        Phi, J = ev["Phi"], ev["Phi_q"]
         res = float(np.max(np.abs(Phi))) if Phi.size else 0.0
-        if res <= tol:
-            return q
-        if it == max_iter or not np.isfinite(res) or res > 1e12:
+        if not np.isfinite(res) or res > 1e12:
             break
-        dq = _solve(ev["Phi_q"], -Phi)
+        dq = _solve(J, -Phi)
         if dq is None:
-            _raise_singular(mech, q, t, f"Newton–Raphson iteration {it + 1} for mechanism '{mech.name}'")
+            _raise_singular(mech, q, t, f"{context}, iteration {it + 1}")
+        step = float(np.max(np.abs(dq / cols))) if dq.size else 0.0
+        if record is not None:
+            record.append((q.copy(), res, float(np.max(np.abs(dq))) if dq.size else 0.0, _cond(J)))
+        if res <= tol and step <= STEP_TOL:
+            if _rcond(mech, J, cols) < RCOND_MIN:
+                _raise_singular(mech, q, t, f"{context}: the solution at t = {t:.6g}")
+            return (q, _history(record, t)) if history else q
+        if it == max_iter:
+            break
         q = q + dq
+    if np.all(np.isfinite(q)) and np.isfinite(res) and res <= 1e12 and _rcond(mech, J, cols) < 1e2 * RCOND_MIN:
+        _raise_singular(mech, q, t, f"{context} creeps towards a solution after {it} iterations "
+                                    f"(max |Φ| = {res:.3g}) where Φ_q is nearly singular")
     worst = np.argsort(-np.abs(Phi))[:3] if np.all(np.isfinite(Phi)) else np.nonzero(~np.isfinite(Phi))[0][:3]
     detail = "; ".join(f"row {r + 1} = {Phi[r]:.3g} ({_row_owner(mech, r).describe()})" for r in worst)
-    raise ConvergenceError(
+    err = ConvergenceError(
         f"Newton–Raphson did not converge for mechanism '{mech.name}' at t = {t:.6g}: after {it} iterations "
-        f"max |Φ| = {res:.3g} > tol = {tol:g}. Largest residuals: {detail}. The mechanism may not assemble "
+        f"max |Φ| = {res:.3g} (tol = {tol:g}). Largest residuals: {detail}. The mechanism may not assemble "
         f"there, or q0 is too far from a solution.",
         iterations=it, residual=res, q=q,
     )
+    err.history = _history(record, t) if history else None
+    raise err
+
+
+def _history(record, t):
+    q, res, step, cond = zip(*record) if record else ((), (), (), ())
+    return NewtonHistory(np.array(q), np.array(res), np.array(step), np.array(cond), t)
 
 
 def solve_velocity(mech, q, t=0.0):
@@ -283,7 +485,7 @@ def solve_velocity(mech, q, t=0.0):
     t = _t(t)
     ev = _jacobian(mech, q, t)
     qd = _solve(ev["Phi_q"], ev["nu"])
-    if qd is None:
+    if qd is None or _rcond(mech, ev["Phi_q"]) < RCOND_MIN:
         _raise_singular(mech, q, t, f"velocity analysis of mechanism '{mech.name}'")
     return qd
 
@@ -294,7 +496,7 @@ def solve_acceleration(mech, q, qd, t=0.0):
     t = _t(t)
     ev = mech.evaluate(q, t, qd, sparse=mech.n > SPARSE_ABOVE)
     qdd = _solve(ev["Phi_q"], ev["gamma"])
-    if qdd is None:
+    if qdd is None or _rcond(mech, ev["Phi_q"]) < RCOND_MIN:
         _raise_singular(mech, q, t, f"acceleration analysis of mechanism '{mech.name}'")
     return qdd
 
@@ -375,6 +577,7 @@ def _batch_solve(mech, guess, T, tol, max_iter=8):
     rows, cols = red if red is not None else (np.arange(mech.m), np.arange(n))  # ``reduced=True`` Φ_q's
     J = np.empty((Bn, len(rows), len(cols)))
     nu = np.empty((Bn, mech.m))
+    P = np.empty((Bn, mech.m))  # Φ at the converged iterate, for the step test
     conv = np.zeros(Bn, dtype=bool)
     act = np.arange(Bn)
     with np.errstate(all="ignore"):
@@ -385,12 +588,13 @@ def _batch_solve(mech, guess, T, tol, max_iter=8):
             res = np.max(np.abs(Phi), axis=1)
             done = res <= tol
             if whole and done.all():  # the usual last iteration: no copies
-                conv[:], J, nu = True, Jr, ev["nu"]
+                conv[:], J, nu, P = True, Jr, ev["nu"], Phi
                 break
             k = act[done]
             conv[k] = True
             J[k] = Jr[done]
             nu[k] = ev["nu"][done]
+            P[k] = Phi[done]
             keep = ~done & np.isfinite(res)
             act, Phi = act[keep], Phi[keep]
             if act.size == 0:
@@ -426,11 +630,28 @@ def _batch_solve(mech, guess, T, tol, max_iter=8):
                 return full
 
             whole = k.size == Bn
-            v = solve(nu if whole else nu[k])
+            # one factorization, three right-hand sides: ν gives q̇; Φ gives the Newton step from the iterate
+            # (its distance to the solution: at most STEP_TOL, as in solve_position); a seeded random vector b
+            # gives ‖J̃⁻¹ b‖ ≳ 1/(√n σ_min) of the scaled Φ_q — instants that may be near a singular configuration
+            # are left unsolved, for solve_position's exact test
+            scale = _column_scale(mech)[cols]
+            rn = np.sqrt(np.einsum("bij,bij,j->bi", Jk, Jk, scale * scale))
+            probe = np.random.default_rng(0).standard_normal(len(rows))
+            rhs = np.stack([(nu if whole else nu[k])[:, rows], (P if whole else P[k])[:, rows],
+                            probe * rn], -1)
+            try:
+                X = np.linalg.solve(Jk, rhs)
+            except np.linalg.LinAlgError:
+                X = np.full(rhs.shape, np.nan)
+            v = np.zeros((len(k), n))  # a fixed body's rows have ν = γ = 0: its q̇ and q̈ are zero
+            v[:, cols] = X[..., 0]
+            step = np.max(np.abs(X[..., 1] / scale), axis=1)
+            grow = np.linalg.norm(X[..., 2] / scale, axis=1) / np.linalg.norm(probe)
+            sound = (step <= STEP_TOL) & (grow * 1e-2 * RCOND_MIN * np.sqrt(len(cols)) < 1)
             v_ok = np.where(np.isfinite(v), v, 0.0)
             a = solve(mech.evaluate(q if whole else q[k], T if whole else T[k], v_ok, jacobian=False)["gamma"])
             qd[k], qdd[k] = v, a
-            conv[k] = np.all(np.isfinite(v), axis=1) & np.all(np.isfinite(a), axis=1)
+            conv[k] = np.all(np.isfinite(v), axis=1) & np.all(np.isfinite(a), axis=1) & sound
     return q, qd, qdd, conv
 
 
@@ -496,11 +717,23 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=5
     if on_failure not in ("raise", "truncate"):
         raise InputError(f"`on_failure` must be 'raise' or 'truncate', got {on_failure!r}")
     check_drivers(mech)
-    T = np.asarray(times, dtype=float)
-    if T.ndim != 1 or T.size == 0:
-        raise InputError(f"`times` must be a non-empty 1-D array, got shape {T.shape}")
+    tol, _ = _check_tol(tol, 1)
+    if isinstance(anchor_every, bool) or not isinstance(anchor_every, (int, np.integer)) or anchor_every < 1:
+        raise InputError(f"`anchor_every` must be a whole number ≥ 1, got {anchor_every!r}")
+    if np.ndim(times) != 1 or np.size(times) == 0:
+        raise InputError(f"`times` must be a non-empty 1-D array of instants, got shape {np.shape(times)}")
+    if np.size(times) * mech.n > MAX_SWEEP_VALUES:
+        raise InputError(
+            f"`times` has {np.size(times):,} instants × {mech.n} coordinates = {np.size(times) * mech.n:.3g} values, "
+            f"more than the {MAX_SWEEP_VALUES:.0e} one sweep holds (each of q, q̇, q̈ would take "
+            f"{8 * np.size(times) * mech.n / 1e9:.2g} GB): sweep fewer instants, or in pieces")
+    try:
+        T = np.asarray(times, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError("`times` must be an array of numbers") from None
     if not np.all(np.isfinite(T)):
-        raise InputError("`times` must be finite")
+        k = int(np.flatnonzero(~np.isfinite(T))[0])
+        raise InputError(f"`times` must be finite, got times[{k}] = {T[k]}")
     N, n = len(T), mech.n
     Q, QD, QDD = np.zeros((N, n)), np.zeros((N, n)), np.zeros((N, n))
     solved = np.zeros(N, dtype=bool)

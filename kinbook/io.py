@@ -19,7 +19,7 @@ except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
 from .errors import KinbookError, MechanismFileError
-from .model import constraint_class
+from .model import MAX_BODIES, constraint_class
 
 __all__ = ["load", "loads"]
 
@@ -29,8 +29,6 @@ _KINDS = {"planar": "kinbook.planar", "spatial": "kinbook.spatial"}
 MAX_FILE_BYTES = 16 * 2**20
 """Largest mechanism file :func:`load` reads (16 MiB: some 60,000 bodies)."""
 
-MAX_BODIES = 100_000
-"""Most bodies (and, times four, constraints) in one mechanism file."""
 
 _META = {"name", "title", "source", "kind"}
 _BODY_NAMES = {"i", "j", "k", "body"}  # keys of a constraint that name a body

@@ -37,6 +37,10 @@ __all__ = [
 ]
 
 
+MAX_BODIES = 100_000
+"""Most bodies in one mechanism (a mechanism file that lists more is refused before it is built)."""
+
+
 def time_function(f, owner):
     """A driver's prescribed function of time as a sympy expression of ``t`` (text, a number or a sympy
     expression), validated by :func:`kinbook.symbolic.time_function`."""
@@ -561,6 +565,8 @@ class MechanismBase:
 
     # ------------------------------------------------------------------------------------------- building
     def _new_body(self, body):
+        if len(self.bodies) >= MAX_BODIES:
+            raise ModelError(f"mechanism '{self.name}' already has {MAX_BODIES} bodies, the most kinbook handles")
         if body.name in self._by_name:
             raise ModelError(f"mechanism '{self.name}' already has a body named '{body.name}'")
         self.bodies.append(body)
@@ -1033,10 +1039,10 @@ class MechanismBase:
         as degrees of freedom."""
         analysis.check_drivers(self)
 
-    def solve_position(self, t=0.0, q0=None, tol=1e-10, max_iter=50):
-        """Newton–Raphson solution of Φ(q, t) = 0 from ``q0`` (default: the bodies' q0). See
-        :func:`kinbook.analysis.solve_position`."""
-        return analysis.solve_position(self, t, q0=q0, tol=tol, max_iter=max_iter)
+    def solve_position(self, t=0.0, q0=None, tol=1e-10, max_iter=50, history=False):
+        """Newton–Raphson solution of Φ(q, t) = 0 from ``q0`` (default: the bodies' q0); with ``history``,
+        ``(q, NewtonHistory)``. See :func:`kinbook.analysis.solve_position`."""
+        return analysis.solve_position(self, t, q0=q0, tol=tol, max_iter=max_iter, history=history)
 
     def solve_velocity(self, q, t=0.0):
         """Solve Φ_q q̇ = ν for q̇."""

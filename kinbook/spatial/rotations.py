@@ -475,10 +475,12 @@ def axis_angle_from_p(p):
 def normalize_p(p):
     """Euler parameters divided by their norm, shape (..., 4). Raises InputError for p = 0."""
     p = _p(p, check=False)
-    n = np.linalg.norm(p, axis=-1, keepdims=True)
-    if np.any(n < 1e-12):
+    big = np.max(np.abs(p), axis=-1, keepdims=True)  # divide by it first: |p|² of p = 1e300 overflows
+    unit = p / np.where(big > 0, big, 1.0)
+    n = np.linalg.norm(unit, axis=-1, keepdims=True)
+    if np.any(big * n < 1e-12):
         raise InputError("`p` = 0 cannot be normalized: it describes no rotation")
-    return p / n
+    return unit / n
 
 
 def normalization(p):
