@@ -139,27 +139,28 @@ def _jacobian(mech, q, t):
 # --------------------------------------------------------------------------------------------- scale
 def length_scale(mech):
     """The mechanism's length scale L: the largest distance of a named body point from its body's origin
-    (1 when no point has a numeric nonzero distance). Computed once per number of bodies (bodies are only ever
-    added, and their points do not change)."""
-    cached = mech.__dict__.get("_length_scale")
-    if cached is not None and cached[0] == len(mech.bodies):
-        return cached[1]
-    L = 0.0
-    for b in mech.bodies:
-        for point in b.points.values():
-            try:
-                L = max(L, float(np.sqrt(sum(float(v) ** 2 for v in point))))
-            except (TypeError, ValueError):  # a symbolic parameter
-                continue
-    L = L if np.isfinite(L) and L > 0 else 1.0
-    mech.__dict__["_length_scale"] = (len(mech.bodies), L)
-    return L
+    (1 when no point has a numeric nonzero distance). Kept in the mechanism's cache."""
+
+    def build():
+        L = 0.0
+        for b in mech.bodies:
+            for point in b.points.values():
+                try:
+                    L = max(L, float(np.sqrt(sum(float(v) ** 2 for v in point))))
+                except (TypeError, ValueError):  # a symbolic parameter
+                    continue
+        return L if np.isfinite(L) and L > 0 else 1.0
+
+    return mech.cached(("analysis", "length scale"), build)
 
 
 def _column_scale(mech):
     """Factors that measure each coordinate in units of the scale: L for positions, 1 for the others."""
-    L = length_scale(mech)
-    return np.tile([L if c in ("x", "y", "z") else 1.0 for c in mech.COORDS], len(mech.bodies))
+    def build():
+        L = length_scale(mech)
+        return np.tile([L if c in ("x", "y", "z") else 1.0 for c in mech.COORDS], len(mech.bodies))
+
+    return mech.cached(("analysis", "column scale"), build)
 
 
 def _scaled(J, cols):

@@ -20,6 +20,7 @@ import sympy as sp
 
 from . import analysis, kernels
 from .errors import InputError, ModelError, UnknownBodyError, UnknownPointError
+from .expressions import check_expression, read_constant, read_expression, read_number
 from .symbolic import derive, t as t_symbol, time_derivatives, time_function as read_time_function
 
 __all__ = [
@@ -264,11 +265,7 @@ class ConstraintBase(abc.ABC):
 
     def _read_number(self, value, key):
         """A finite real number from a file key (a number, or text read by the safe reader)."""
-        if isinstance(value, str):
-            try:
-                from .expressions import read_number  # the one reader of untrusted text
-            except ImportError:  # pragma: no cover - until the reader lands
-                raise ModelError(f"{self.describe()}: `{key}` must be a number, got {value!r}") from None
+        if isinstance(value, str):  # the one reader of untrusted text
             return sp.Float(read_number(value, where=f"{self.describe()}, key {key}"), 17)
         if isinstance(value, sp.Number):
             e = value
@@ -287,18 +284,20 @@ class ConstraintBase(abc.ABC):
         Python callable building one; returns a sympy Lambda."""
         x = sp.Symbol(var, real=True)
         where = f"{self.describe()}, key {key}"
-        if isinstance(value, str):
-            try:
-                from .expressions import read_expression  # the one reader of untrusted text
-            except ImportError:  # pragma: no cover - until the reader lands
-                raise ModelError(f"{where}: functions written as text need kinbook.expressions") from None
+        if isinstance(value, str):  # the one reader of untrusted text
             expr = read_expression(value, symbols={var: x}, where=where)
         elif isinstance(value, sp.Lambda):
             expr = value(x)
         elif isinstance(value, sp.Expr):
             expr = value.subs({s: x for s in value.free_symbols if s.name == var})
-        elif callable(value):
-            expr = sp.S(value(x))
+        elif callable(value):  # Python code of the caller's own: what it returns is still checked
+            expr = value(x)
+            if isinstance(expr, str):
+                expr = read_expression(expr, symbols={var: x}, where=where)
+            elif isinstance(expr, sp.Basic):
+                check_expression(expr, where=where)
+            else:
+                expr = read_constant(expr, where=where)
         else:
             raise ModelError(f"{where}: expected an expression in {var}, got {value!r}")
         extra = expr.free_symbols - {x}
