@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._arrays import real_array
 from .errors import (
     AssemblyError,
     ConvergenceError,
@@ -101,13 +102,10 @@ def check_drivers(mech):
 
 
 def _t(t):
-    try:
-        t = float(t)
-    except (TypeError, ValueError):
-        raise InputError(f"`t` must be a number, got {t!r}") from None
-    if not np.isfinite(t):
-        raise InputError(f"`t` must be finite, got {t}")
-    return t
+    t = real_array(t, "t", "a number (seconds)")
+    if t.ndim != 0:
+        raise InputError(f"`t` must be one number, got an array of shape {t.shape}")
+    return float(t)
 
 
 def _solve(J, b):

@@ -175,7 +175,7 @@ def _template(c):
                              "numbers before a numeric evaluation") from None
     nb, nc = len(c.bodies), len(c.COORDS)
     Q = [sp.Matrix([sp.Symbol(f"_q{b}_{j}", real=True) for j in range(nc)]) for b in range(nb)]
-    exprs = [sp.S(e) for e in tmpl.phi(Q, t_symbol)]
+    exprs = [sp.Add(e) for e in tmpl.phi(Q, t_symbol)]  # an int row (0) as sympy; text is refused, not eval'd
     if len(exprs) != c.n_eq:
         raise ModelError(f"{c.describe()}: phi() returns {len(exprs)} rows, the type declares n_eq = {c.n_eq}")
     if any(e.has(t_symbol) for e in exprs):

@@ -19,6 +19,7 @@ import numpy as np
 import sympy as sp
 
 from . import analysis, kernels
+from ._arrays import real_array
 from .errors import InputError, ModelError, UnknownBodyError, UnknownPointError
 from .expressions import check_expression, read_constant, read_expression, read_number
 from .symbolic import derive, t as t_symbol, time_derivatives, time_function as read_time_function
@@ -880,10 +881,7 @@ class MechanismBase:
         return self._check_q(q, name)
 
     def _check_q(self, q, name="q"):
-        try:
-            q = np.asarray(q, dtype=float)
-        except (TypeError, ValueError):
-            raise InputError(f"`{name}` must be an array of {self.n} numbers") from None
+        q = real_array(q, name, f"an array of {self.n} numbers", finite=False)  # the coordinate named below
         if q.shape[-1:] != (self.n,) or q.ndim > 2:
             raise InputError(
                 f"`{name}` must have shape ({self.n},) or (N, {self.n}) for mechanism '{self.name}' "
@@ -896,12 +894,7 @@ class MechanismBase:
         return q
 
     def _check_t(self, t, batch):
-        try:
-            t = np.asarray(t, dtype=float)
-        except (TypeError, ValueError):
-            raise InputError(f"`t` must be a number or an array of numbers, got {t!r}") from None
-        if not np.all(np.isfinite(t)):
-            raise InputError(f"`t` must be finite, got {t}")
+        t = real_array(t, "t", "a number or an array of numbers")
         if t.ndim > 1 or (t.ndim == 1 and t.shape[0] != batch):
             raise InputError(f"`t` must be a number or have shape ({batch},), got {t.shape}")
         return np.broadcast_to(t, (batch,))
@@ -1009,8 +1002,8 @@ class MechanismBase:
         if isinstance(point, str):
             return np.array([float(v) for v in lookup_point(b, point)])
         try:
-            s = np.asarray(point, dtype=float)
-        except (TypeError, ValueError):
+            s = real_array(point, "point")
+        except InputError:
             s = None
         if s is None or s.shape != (self.POINT_DIM,) or not np.all(np.isfinite(s)):
             raise InputError(f"a point on body '{b.name}' must be a point name or {self.POINT_DIM} finite numbers, "

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from .._arrays import no_overflow, real_array
 from ..errors import InputError
 
 __all__ = ["A", "B", "point_position", "point_velocity", "point_acceleration"]
@@ -24,12 +25,10 @@ def _is_symbolic(*values):
 
 
 def _angles(phi, name="phi"):
-    phi = np.asarray(phi, dtype=float)
-    if not np.all(np.isfinite(phi)):
-        raise InputError(f"`{name}` must be finite, got {phi}")
-    return phi
+    return real_array(phi, name, "angles in radians")
 
 
+@no_overflow
 def A(phi):
     """Rotation (transformation) matrix A(φ), eq. 6.
 
@@ -57,6 +56,7 @@ def A(phi):
     return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
 
 
+@no_overflow
 def B(phi):
     """Derivative matrix B(φ) = dA/dφ, eq. 11.
 
@@ -73,11 +73,9 @@ def B(phi):
 def _vec(v, name):
     if _is_symbolic(v):
         return sp.Matrix(v)
-    v = np.asarray(v, dtype=float)
+    v = real_array(v, name)
     if v.shape[-1:] != (2,):
         raise InputError(f"`{name}` must have shape (..., 2), got {v.shape}")
-    if not np.all(np.isfinite(v)):
-        raise InputError(f"`{name}` must be finite, got {v}")
     return v
 
 
@@ -87,6 +85,7 @@ def _matvec(M, v):
     return np.einsum("...ij,...j->...i", M, v)
 
 
+@no_overflow
 def point_position(r, phi, s_local):
     """Global position of a body point, eq. 5: r^P = r + A s'^P.
 
@@ -107,6 +106,7 @@ def point_position(r, phi, s_local):
     return _vec(r, "r") + _matvec(A(phi), _vec(s_local, "s_local"))
 
 
+@no_overflow
 def point_velocity(r_dot, phi, phi_dot, s_local):
     """Global velocity of a body point, eq. 10: ṙ^P = ṙ + B s'^P φ̇."""
     sym = _is_symbolic(r_dot, phi, phi_dot, s_local)
@@ -114,6 +114,7 @@ def point_velocity(r_dot, phi, phi_dot, s_local):
     return _vec(r_dot, "r_dot") + _matvec(B(phi), _vec(s_local, "s_local")) * phi_dot
 
 
+@no_overflow
 def point_acceleration(r_ddot, phi, phi_dot, phi_ddot, s_local):
     """Global acceleration of a body point, eq. 13: r̈^P = r̈ + B s'^P φ̈ − A s'^P φ̇²."""
     sym = _is_symbolic(r_ddot, phi, phi_dot, phi_ddot, s_local)

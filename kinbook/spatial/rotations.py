@@ -26,6 +26,7 @@ import warnings
 import numpy as np
 import sympy as sp
 
+from .._arrays import no_overflow, real_array
 from ..errors import InputError, KinbookError, SingularityWarning
 
 __all__ = [
@@ -75,14 +76,9 @@ def _symbolic(*values):
 
 
 def _array(v, name, last=None):
-    try:
-        a = np.asarray(v, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"`{name}` must be numeric, got {v!r}") from None
+    a = real_array(v, name)
     if last is not None and (a.ndim < len(last) or a.shape[a.ndim - len(last):] != tuple(last)):
         raise InputError(f"`{name}` must have shape (..., {', '.join(map(str, last))}), got {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise InputError(f"`{name}` must be finite (no NaN or inf), got {_show(a)}")
     return a
 
 
@@ -93,7 +89,8 @@ def _show(a):
 def _p(p, name="p", check=True):
     p = _array(p, name, (4,))
     if check:
-        norm = np.linalg.norm(p, axis=-1)
+        with np.errstate(over="ignore"):  # |p| of p = 1e300 is inf: not unit, refused below
+            norm = np.linalg.norm(p, axis=-1)
         bad = np.abs(norm - 1.0) > P_TOL
         if np.any(bad):
             worst = float(np.ravel(norm)[np.argmax(np.ravel(np.abs(norm - 1.0)))])
@@ -112,6 +109,7 @@ def _shapes(func):
     """Turn numpy's broadcasting errors (arguments of incompatible shapes) into InputError."""
 
     @functools.wraps(func)
+    @no_overflow
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
