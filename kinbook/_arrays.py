@@ -9,7 +9,7 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["real_array", "no_overflow"]
+__all__ = ["real_array", "no_overflow", "symbolic_leaves"]
 
 
 def real_array(value, name, what="numeric", finite=True):
@@ -58,3 +58,34 @@ def no_overflow(func):
             raise InputError(f"{func.__name__}: the arguments are too large, the result overflows") from None
 
     return wrapper
+
+
+def symbolic_leaves(*values):
+    """True when any of ``values`` (or an entry of a list, tuple, matrix or array of them) is a sympy object —
+    the caller then takes its symbolic path — after checking that no entry is text: sympy's Matrix, cos …
+    would evaluate text as Python (``sp.Matrix([x, "__import__('os')…"])`` runs it). Sympy entries get the
+    bounds of :func:`kinbook.expressions.check_expression`."""
+    import sympy as sp
+
+    leaves, stack = [], list(values)
+    while stack:
+        v = stack.pop()
+        if isinstance(v, sp.MatrixBase):
+            leaves.extend(v)
+        elif isinstance(v, (list, tuple)) or (isinstance(v, np.ndarray) and v.dtype.kind == "O"):
+            if len(leaves) + len(stack) > 100_000:
+                break
+            stack.extend(v)
+        else:
+            leaves.append(v)
+    if not any(isinstance(v, sp.Basic) for v in leaves):
+        return False
+    from .expressions import check_expression
+
+    for v in leaves:
+        if isinstance(v, (str, bytes)):
+            raise InputError(f"a sympy expression mixed with text {_show(v)}: text is never evaluated; build the "
+                             "expression with sympy, or read the text with kinbook.expressions.read_expression")
+        if isinstance(v, sp.Basic):
+            check_expression(v, where="a symbolic argument")
+    return True

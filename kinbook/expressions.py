@@ -435,7 +435,7 @@ class _Reader:
         except (ValueError, TypeError):  # atan2 or sign of a complex number, or a domain error
             r = complex(math.nan, math.nan)
         if math.isnan(r.real) or math.isnan(r.imag):
-            self.fail("a part of the expression has no real value", "real numbers", node)
+            self.fail("a part of the expression has no finite real value", "real numbers", node)
         if not (math.isfinite(r.real) and math.isfinite(r.imag)) or abs(r) > big:
             self.fail(too_large, node=node)
         if abs(r.imag) > 1e-9 * max(1.0, abs(r.real)):

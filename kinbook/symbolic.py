@@ -84,6 +84,9 @@ def derive(Phi, q, qd, time=t):
     >>> d.Phi_q, d.nu, d.gamma
     (Matrix([[2*x]]), Matrix([[cos(t)]]), Matrix([[-2*dx**2 - sin(t)]]))
     """
+    from ._arrays import symbolic_leaves
+
+    symbolic_leaves(Phi, q, qd)  # refuses text, which sympy's Matrix would evaluate as Python
     Phi = sp.Matrix(Phi)
     q = sp.Matrix(q)
     qd = sp.Matrix(qd)

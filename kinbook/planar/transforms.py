@@ -12,16 +12,14 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from .._arrays import no_overflow, real_array
+from .._arrays import no_overflow, real_array, symbolic_leaves
 from ..errors import InputError
 
 __all__ = ["A", "B", "point_position", "point_velocity", "point_acceleration"]
 
 
 def _is_symbolic(*values):
-    return any(isinstance(v, (sp.Basic, sp.MatrixBase)) for v in values) or any(
-        isinstance(v, (list, tuple)) and any(isinstance(e, sp.Basic) for e in v) for v in values
-    )
+    return symbolic_leaves(*values)
 
 
 def _angles(phi, name="phi"):

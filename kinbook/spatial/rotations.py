@@ -26,7 +26,7 @@ import warnings
 import numpy as np
 import sympy as sp
 
-from .._arrays import no_overflow, real_array
+from .._arrays import no_overflow, real_array, symbolic_leaves
 from ..errors import InputError, KinbookError, SingularityWarning
 
 __all__ = [
@@ -67,12 +67,7 @@ SINGULAR_TOL = 1e-9
 
 # ----------------------------------------------------------------------------------------------- validation
 def _symbolic(*values):
-    for v in values:
-        if isinstance(v, (sp.Basic, sp.MatrixBase)):
-            return True
-        if isinstance(v, (list, tuple)) and any(isinstance(e, sp.Basic) for e in v):
-            return True
-    return False
+    return symbolic_leaves(*values)
 
 
 def _array(v, name, last=None):

@@ -1,0 +1,110 @@
+"""The bad-input corpus (tests/inputs/corpus.py), each case run in a worker process under a hard timeout.
+
+Every case asserts the exact exception class (from kinbook.errors) and words of its message that name the
+thing concerned, or the value / exit status the input must give. A case that does not answer within its
+timeout fails as a hang (the worker is killed and a new one started); one that ends the worker fails as such;
+one that creates the canary file fails as code execution.
+"""
+
+import json
+import os
+import selectors
+import subprocess
+import sys
+
+import pytest
+
+from . import corpus
+
+WORKER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "worker.py")
+CASES = corpus.cases()
+
+
+class Worker:
+    """One long-lived worker process (imports once; cases take milliseconds), restarted after a hang."""
+
+    def __init__(self, directory):
+        self.directory = directory
+        self.proc = None
+
+    def start(self):
+        log = open(os.path.join(self.directory, "worker-stderr.log"), "ab")
+        self.proc = subprocess.Popen([sys.executable, WORKER], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     stderr=log, cwd=self.directory, text=True, bufsize=1)
+        log.close()
+        ready = self._line(180)
+        if ready is None or "ready" not in ready:
+            raise RuntimeError(f"the corpus worker did not start: {ready!r}")
+
+    def _line(self, timeout):
+        sel = selectors.DefaultSelector()
+        sel.register(self.proc.stdout, selectors.EVENT_READ)
+        try:
+            if not sel.select(timeout):
+                return None
+        finally:
+            sel.close()
+        line = self.proc.stdout.readline()
+        return json.loads(line) if line else {"outcome": "died", "returncode": self.proc.wait(10)}
+
+    def run(self, cid, timeout):
+        if self.proc is None or self.proc.poll() is not None:
+            self.start()
+        self.proc.stdin.write(cid + "\n")
+        self.proc.stdin.flush()
+        out = self._line(timeout)
+        if out is None:
+            self.stop()
+            return {"outcome": "hang", "timeout": timeout}
+        if out.get("outcome") == "died":
+            self.proc = None
+        return out
+
+    def stop(self):
+        if self.proc is not None and self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait(10)
+        self.proc = None
+
+
+@pytest.fixture(scope="module")
+def worker(tmp_path_factory):
+    w = Worker(str(tmp_path_factory.mktemp("corpus")))
+    yield w
+    w.stop()
+
+
+def test_the_corpus_is_large_seeded_and_covers_every_group():
+    assert len(CASES) >= 500
+    assert [c.id for c in corpus.cases()] == [c.id for c in CASES]  # the same list every time (seeded)
+    groups = {c.group for c in CASES}
+    assert groups >= {"code execution", "hang", "syntax and names", "wrong types", "sympy trees", "drivers",
+                      "file keys", "file structure", "python api", "public functions", "singular configurations",
+                      "command line", "checkers (h14)"}
+
+
+@pytest.mark.parametrize("case", [
+    pytest.param(c, id=c.id, marks=[pytest.mark.xfail(strict=True, reason=c.xfail)] if c.xfail else [])
+    for c in CASES
+])
+def test_case(case, worker):
+    res = worker.run(case.id, case.timeout)
+    assert res["outcome"] not in ("hang", "died"), f"{case.id}: {res}"
+    assert not res["canary"], f"{case.id}: the input ran code (the canary file was written)"
+    if case.expect == "ok":
+        assert res["outcome"] == "returned", f"{case.id} raised {res.get('cls')}: {res.get('message')}"
+        assert res["checked"], f"{case.id}: wrong value {res['value']}"
+        return
+    if case.expect == "cli":
+        assert res["outcome"] == "returned", f"{case.id} raised {res.get('cls')}: {res.get('message')}"
+        err = res["stderr"].strip()
+        assert res["status"] == 2, f"{case.id}: exit status {res['status']}, stderr {err!r}"
+        assert "\n" not in err and "Traceback" not in err, f"{case.id}: not one line: {err!r}"
+        for w in case.words:
+            assert w in err, f"{case.id}: {w!r} not in {err!r}"
+        return
+    assert res["outcome"] == "raised", f"{case.id}: no error, returned {res.get('value')}"
+    assert res["module"] == "kinbook.errors", f"{case.id}: raw {res['cls']}: {res['message']}\n{res.get('traceback')}"
+    assert res["cls"] == case.expect, f"{case.id}: {res['cls']} instead of {case.expect}: {res['message']}"
+    for w in case.words:
+        assert w in res["message"], f"{case.id}: {w!r} not in {res['message']!r}"
