@@ -253,9 +253,9 @@ def read_expression(text, *, symbols, where, functions=None, limits=None):
     if not isinstance(text, str):
         raise ExpressionError(f"{where}: expected the text of an expression, got {type(text).__name__}",
                               where=where, text=None, reason="not a string")
+    if len(text) > limits.length:  # before anything that reads the whole text
+        _fail(where, text, f"the text is too long ({len(text)} characters, at most {limits.length})")
     reader = _Reader(text, symbols, where, functions, limits)
-    if len(text) > limits.length:
-        reader.fail(f"the text is too long ({len(text)} characters, at most {limits.length})")
     if not reader.source:
         reader.fail("the text is empty", reader.expected())
     try:

@@ -7,7 +7,9 @@ A file names its kind (``kind = "planar"`` by default, or ``"spatial"``); each `
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import gc
 import importlib
 import inspect
 import os
@@ -81,7 +83,8 @@ def loads(text, source="<string>"):
     if len(text) > MAX_FILE_BYTES:
         raise MechanismFileError(f"{source}: the mechanism file is larger than {MAX_FILE_BYTES // 2**20} MiB")
     try:
-        data = tomllib.loads(text)
+        with _no_gc():
+            data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise MechanismFileError(f"{source}: not valid TOML: {exc}") from None
     except RecursionError:  # arrays nested thousands deep
@@ -117,8 +120,26 @@ def _array_of_tables(value, where, source, required):
     return value
 
 
+@contextlib.contextmanager
+def _no_gc():
+    """Python's cyclic garbage collector rescans every live object at each full collection: parsing and building
+    tens of thousands of bodies then costs time growing with their square. Nothing made here is garbage."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
 def build(data, source="<data>"):
     """Build a mechanism from the parsed contents of a mechanism file (a dict)."""
+    with _no_gc():
+        return _build(data, source)
+
+
+def _build(data, source):
     source = str(source)
     data = _table(data, "the file", source)
     meta = _table(data.get("mechanism", {}), "mechanism", source)
@@ -149,7 +170,9 @@ def build(data, source="<data>"):
         where = f"bodies[{k}]" + (f" ('{label}')" if isinstance(label, str) else "")
         body = _table(body, where, source)
         _check_keys(body, add_body, where, source, skip=("self",))
-        _text(body["name"], f"{where}.name", source)
+        if not isinstance(body["name"], str):
+            raise MechanismFileError(f"{source}: {where}: `name` must be a string, got "
+                                     f"{type(body['name']).__name__} {body['name']!r:.60}")
         try:
             mech.add_body(**body)
         except KinbookError as exc:
@@ -169,7 +192,10 @@ def build(data, source="<data>"):
         where += f" (type '{ctype}')"
         _check_keys(spec, _parameters(cls.__init__), where, source, skip=("self",))
         for key in sorted(_BODY_NAMES.intersection(spec)) + (["name"] if "name" in spec else []):
-            _text(spec[key], f"{where}.{key}", source)
+            if not isinstance(spec[key], str):
+                what = "a body name" if key in _BODY_NAMES else "a name"
+                raise MechanismFileError(f"{source}: {where}: `{key}` must be a string ({what}), got "
+                                         f"{type(spec[key]).__name__} {spec[key]!r:.60}")
         try:
             mech.add(cls(**spec))
         except KinbookError as exc:
