@@ -12,7 +12,6 @@ bug, exits with status 1 and says so).
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import re
 import sys
@@ -41,17 +40,17 @@ class _Parser(argparse.ArgumentParser):
 
 # ----------------------------------------------------------------------------------------- argument types
 def _number(text, expected):
+    """A number from the command line, read by the one reader of untrusted text (so ``-t pi/4`` works)."""
+    from .expressions import ExpressionError, read_number
+
     try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}")
-    return value
+        return read_number(text, where="the argument")
+    except ExpressionError:
+        raise argparse.ArgumentTypeError(f"expected {expected}, got {text[:80]!r}") from None
 
 
 def finite(text):
-    """A finite number (argparse type)."""
+    """A finite number (argparse type): ``2.5``, ``pi/4``."""
     return _number(text, "a finite number")
 
 
@@ -196,7 +195,7 @@ def build_parser():
     p.set_defaults(func=_cmd_table)
     p = sub.add_parser("solve", help="solve position, velocity and acceleration at one instant")
     p.add_argument("mechanism", type=mechanism_arg, help="a mechanism file or the name of a shipped example")
-    p.add_argument("-t", type=finite, default=0.0, help="time (default 0)")
+    p.add_argument("-t", type=finite, default=0.0, help="time, a number or an expression such as pi/4 (default 0)")
     p.set_defaults(func=_cmd_solve)
 
     from .classroom import grade, release, write_variant

@@ -164,6 +164,14 @@ def time_function(f, where, time=t):
             raise ExpressionError(f"{where}: sympy cannot differentiate the function of time {text!r} twice; "
                                   "expected a function built from + - * / ^ and sin, cos, exp …", where=where,
                                   text=text)
+    try:  # printable to numpy: compiled here (cached), evaluated once so that a printer gap shows now
+        with np.errstate(all="ignore"):
+            for f in _compiled_derivatives(expr, time):
+                f(np.array([0.0]))
+    except (NameError, TypeError, AttributeError, KeyError) as exc:
+        raise ExpressionError(f"{where}: the function of time {text!r} or a derivative cannot be evaluated by "
+                              f"numpy ({type(exc).__name__}: {exc}); write it with + - * / ^ and sin, cos, exp …",
+                              where=where, text=text) from None
     if key[0] is not None:
         if len(_VALID) > 4096:
             _VALID.clear()

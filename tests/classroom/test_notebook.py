@@ -198,14 +198,16 @@ def test_cli_variant(tmp_path, capsys):
 
 def test_cli_errors_are_reported_not_raised(tmp_path, capsys):
     assert main(["release", str(tmp_path / "nope.ipynb"), "-o", str(tmp_path)]) == 2
-    assert "does not exist" in capsys.readouterr().err
+    assert "no such file" in capsys.readouterr().err
 
 
 def test_cli_release(tmp_path, capsys):
     assert main(["release", SOURCE, "-o", str(tmp_path)]) == 0
     assert (tmp_path / "tiny.ipynb").exists()
     extra = [] if BWRAP else ["--no-isolation"]
-    assert main(["grade", SOURCE, str(tmp_path / "missing.ipynb"), "-o", str(tmp_path / "g")] + extra) == 0
+    corrupt = tmp_path / "corrupt.ipynb"  # a missing path is a usage error (exit 2); a corrupt file is graded
+    corrupt.write_text("{not a notebook")
+    assert main(["grade", SOURCE, str(corrupt), "-o", str(tmp_path / "g")] + extra) == 0
     assert "refused" in (tmp_path / "g" / "grades.csv").read_text()
 
 
