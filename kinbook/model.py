@@ -821,6 +821,11 @@ class MechanismBase:
         for c in self.constraints:
             params = {s for b in c.bodies for p in b.points.values() for v in p
                       for s in getattr(v, "free_symbols", ())}
+            # and the constraint's own numbers (a radius, phi0, a length given as a symbol for a derivation)
+            own = [getattr(c, name, None) for name in type(c).parameters]
+            for v in own:
+                for x in (v.values() if isinstance(v, dict) else v if isinstance(v, (tuple, list)) else (v,)):
+                    params |= set(getattr(x, "free_symbols", ()))
             if params:
                 names = ", ".join(sorted(map(str, params)))
                 raise ModelError(f"{c.describe()} has symbolic parameters ({names}): substitute numbers "

@@ -649,8 +649,22 @@ def file_structure_cases(tmpdir_name="corpus-files"):
         ("ground-q-huge", lambda: _build(_mutated(good, ("constraints", 0, "q", 0), "9**9**9**9"), "m.toml"),
          ("m.toml", "constraints[0]", "too large")),
     ]
-    return [Case(f"file-structure-{label}", "file structure", fn, "MechanismFileError", words, timeout=10)
-            for label, fn, words in rows]
+    out = [Case(f"file-structure-{label}", "file structure", fn, "MechanismFileError", words, timeout=10)
+           for label, fn, words in rows]
+    # a symbolic parameter (for a derivation) loads; a numeric analysis names it instead of a raw TypeError
+    for k, (path, value, who) in enumerate([
+        (("constraints", 2, "radius_i"), "rho", "gear joint"), (("constraints", 4, "phi0"), "c", "translational"),
+        (("constraints", 5, "length"), "l", "revolute-revolute"), (("constraints", 6, "point_i"), ["xi", 0],
+                                                                     "revolute-translational"),
+        (("constraints", 1, "value"), "v", "simple constraint"), (("constraints", 3, "radius"), "r", "rack-pinion"),
+        (("constraints", 0, "q"), [0, "y0", 0], "ground constraint"), (("bodies", 1, "points", "M"), ["xi", 0], ""),
+    ]):
+        name = value if isinstance(value, str) else next(v for v in value if isinstance(v, str))
+        out.append(Case(f"file-symbolic-{k}-{path[-1]}", "file keys",
+                        lambda path=path, value=value: (lambda m: m.Phi(m.q0))(
+                            _build(_mutated(good, path, value), "zoo.toml")),
+                        "ModelError", (who, f"symbolic parameters ({name})")))
+    return out
 
 
 def _mutated(data, path, value):
