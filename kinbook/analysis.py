@@ -22,6 +22,7 @@ from .errors import (
     DriverValueError,
     InputError,
     RedundantConstraintsError,
+    SingularJacobianError,
 )
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "length_scale",
     "RCOND_MIN",
     "STEP_TOL",
+    "DIAGNOSE_MAX",
 ]
 
 SPARSE_ABOVE = 150
@@ -55,6 +57,10 @@ STEP_TOL = 1e-8
 """Newton–Raphson has converged when max |Φ| ≤ ``tol`` *and* the Newton step from the iterate, the estimate of
 its distance to the solution, is at most this (positions in units of L, angles in radians, Euler parameters as
 they are): near a singular configuration a small |Φ| alone can leave q far from the solution."""
+
+DIAGNOSE_MAX = 2000
+"""Largest number of coordinates for which :func:`diagnose` computes a dense SVD (its cost grows as n³: minutes
+beyond a few thousand); larger mechanisms get the sparse estimate of σ_min/σ_max only."""
 
 MAX_SWEEP_VALUES = 20_000_000
 """Most instants × coordinates in one :func:`simulate` (each of q, q̇, q̈ then takes 160 MB)."""
@@ -226,10 +232,12 @@ class Diagnosis:
 
     Attributes
     ----------
-    kind : {"regular", "redundant", "dead-point"}
+    kind : {"regular", "redundant", "dead-point", "singular"}
         "redundant": the geometric (non-driver) rows of Φ_q are dependent — some constraints repeat others.
         "dead-point": the geometric rows are independent but a driver row depends on them — the driver cannot
         move the mechanism any further in this configuration.
+        "singular": Φ_q is singular, and the mechanism is too large (more than :data:`DIAGNOSE_MAX`
+        coordinates) for the dense rank analysis that would tell which rows depend on which.
     rank, size : int
         Numerical rank of Φ_q and its number of rows.
     cond : float
@@ -283,6 +291,8 @@ def diagnose(mech, q, t=0.0, rtol=RCOND_MIN):
     The rank is that of the scaled Φ_q (see :data:`RCOND_MIN`): singular values below ``rtol`` times the largest
     do not count, so a configuration within about ``rtol`` L of a dead point is diagnosed as one."""
     t = _t(t)
+    if mech.n > DIAGNOSE_MAX:
+        return _diagnose_large(mech, q, t, rtol)
     J0 = np.asarray(mech.evaluate(q, t)["Phi_q"])
     m, n = J0.shape
     s0 = np.linalg.svd(J0, compute_uv=False)
@@ -322,6 +332,19 @@ def diagnose(mech, q, t=0.0, rtol=RCOND_MIN):
     return Diagnosis(kind, rank, m, cond, [r + 1 for r in rows], names, msg, rcond)
 
 
+def _diagnose_large(mech, q, t, rtol):
+    J = mech.evaluate(q, t, sparse=True)["Phi_q"]
+    m, n = J.shape
+    rcond = _rcond(mech, J) if m == n else np.nan
+    if m == n and rcond >= rtol:
+        return Diagnosis("regular", m, m, np.nan, [], [], f"Φ_q is regular at t = {t:.6g}: scaled σ_min/σ_max ≈ "
+                         f"{rcond:.3g} (estimated; n = {n} coordinates)", rcond=rcond)
+    return Diagnosis("singular", -1, m, np.inf, [], [],
+                     f"Φ_q is singular at t = {t:.6g} (scaled σ_min/σ_max ≈ {rcond:.3g}, estimated): with n = {n} "
+                     f"coordinates, more than {DIAGNOSE_MAX}, the rank analysis that names the dependent rows is "
+                     "skipped; diagnose a smaller part of the mechanism to find them", rcond=rcond)
+
+
 def _fmt_rows(rows):
     return ", ".join(str(r + 1) for r in rows[:20]) + (" …" if len(rows) > 20 else "")
 
@@ -332,7 +355,7 @@ def _raise_singular(mech, q, t, context):
         d = Diagnosis("dead-point", d.rank, d.size, d.cond, [], [],
                       f"Φ_q is numerically singular at t = {t:.6g} (condition number {d.cond:.3g}, scaled "
                       f"σ_min/σ_max = {d.rcond:.3g})", d.rcond)
-    cls = RedundantConstraintsError if d.kind == "redundant" else DeadPointError
+    cls = {"redundant": RedundantConstraintsError, "singular": SingularJacobianError}.get(d.kind, DeadPointError)
     raise cls(f"{context}: {d.message}", rows=d.rows, constraints=d.constraints, rank=d.rank, size=d.size,
               q=np.array(q, dtype=float), t=t)
 

@@ -913,12 +913,29 @@ def singular_cases():
     out = [Case(f"singular-{lbl}", "singular configurations", fn, expect, words, timeout=30)
            for lbl, fn, expect, words in rows]
 
+    def large_singular():  # 700 bodies (2,100 coordinates): the sparse path, no dense SVD
+        from kinbook.planar import Simple
+
+        lines = ['[[bodies]]\nname = "ground"\npoints = { O = [0, 0] }\n']
+        lines += [f'[[bodies]]\nname = "b{k}"\nq0 = [{k - 0.5}, 0, 0]\npoints = {{ L = [-0.5, 0], R = [0.5, 0] }}\n'
+                  for k in range(1, 700)]
+        lines.append('[[constraints]]\ntype = "ground"\nbody = "ground"\n')
+        lines += [f'[[constraints]]\ntype = "revolute"\ni = "{"ground" if k == 1 else f"b{k - 1}"}"\nj = "b{k}"\n'
+                  f'point_i = "{"O" if k == 1 else "R"}"\npoint_j = "L"\n' for k in range(1, 700)]
+        lines += [f'[[constraints]]\ntype = "driver"\nbody = "b{k}"\ncoordinate = "phi"\nf = "0.1*t"\n'
+                  for k in range(1, 699)]
+        m = kinbook.loads("".join(lines), source="chain.toml")
+        m.add(Simple("b1", "phi", 0, name="phi1 again"))  # the same row as driver 1: Φ_q is singular
+        return m.solve_position(0.0)
+
     def diagnose_dead_point():
         m = dead_centre()
         q = m.q0
         q[:] = [0, 0, 0, 1, 0, 0, 5, 0, 0, 8, 0, 0]  # the dead centre itself: crank and rod along x
         return m.diagnose(q, 0.0).kind
 
+    out.append(Case("singular-large", "singular configurations", large_singular, "SingularJacobianError",
+                    ("chain", "n = 2100 coordinates", "rank analysis"), timeout=60))
     out.append(Case("singular-diagnose-dead-centre", "singular configurations", diagnose_dead_point, "ok",
                     check=lambda kind: kind == "dead-point"))
     def exact_crank_angle(x):
