@@ -208,7 +208,7 @@ def test_cli_release(tmp_path, capsys):
     corrupt = tmp_path / "corrupt.ipynb"  # a missing path is a usage error (exit 2); a corrupt file is graded
     corrupt.write_text("{not a notebook")
     assert main(["grade", SOURCE, str(corrupt), "-o", str(tmp_path / "g")] + extra) == 0
-    assert "refused" in (tmp_path / "g" / "grades.csv").read_text()
+    assert "corrupt-notebook" in (tmp_path / "g" / "grades.csv").read_text()
 
 
 def test_collected_directories_yield_this_exercise_only(tmp_path):
