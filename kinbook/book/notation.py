@@ -28,6 +28,25 @@ __all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "equation
            "book_gamma", "Math", "local_points", "table"]
 
 
+
+def as_sympy(expr):
+    """A sympy object of kinbook's own making, as it is (numbers become sympy numbers, lists a Matrix).
+
+    Text is refused: these helpers read the library's expressions, never a reader's text
+    (untrusted text goes through :mod:`kinbook.expressions`)."""
+    if isinstance(expr, (sp.Basic, sp.MatrixBase)):
+        return expr
+    if isinstance(expr, bool) or isinstance(expr, str):
+        raise TypeError(f"expected a sympy expression, got {type(expr).__name__} {expr!r}")
+    if isinstance(expr, int):
+        return sp.Integer(expr)
+    if isinstance(expr, (float, np.floating)):
+        return sp.Float(float(expr))
+    if isinstance(expr, (list, tuple)):
+        return sp.Matrix([as_sympy(e) for e in expr]) if not any(isinstance(e, (list, tuple)) for e in expr) \
+            else sp.Matrix([[as_sympy(x) for x in row] for row in expr])
+    raise TypeError(f"expected a sympy expression, got {type(expr).__name__}")
+
 def _sym(name, tex):
     """A real symbol whose LaTeX is ``tex`` (sympy prints a Symbol by its name)."""
     return sp.Symbol(tex if tex else name, real=True)
@@ -124,14 +143,14 @@ def to_book(expr, mech):
     and η = y_i^P − y_i; :func:`kinbook.book.verify.compare` confirms the result at random configurations.
     """
     (trig, read), _ = _maps(mech)
-    return sp.sympify(expr).subs(trig).subs(read, simultaneous=True)
+    return as_sympy(expr).subs(trig).subs(read, simultaneous=True)
 
 
 def from_book(expr, mech):
     """An expression in the book's notation (:data:`S`) in the kinbook symbols of :func:`pair` ``mech``, at
     any angle (x_i^P → x_i + ξ cos φ_i − η sin φ_i, …)."""
     _, back = _maps(mech)
-    return sp.sympify(expr).subs(back, simultaneous=True)
+    return as_sympy(expr).subs(back, simultaneous=True)
 
 
 def book_gamma(expr, mech):
@@ -157,7 +176,7 @@ def names(expr, mech=None):
     if mech is not None:
         letters = {str(b.number): b.name for b in mech.bodies if len(b.name) == 1 and b.name.isalpha()}
     out = {}
-    for s in sp.sympify(expr).free_symbols:
+    for s in as_sympy(expr).free_symbols:
         m = _COORD.match(s.name)
         if not m:
             continue
@@ -173,7 +192,7 @@ def names(expr, mech=None):
 
 def latex(expr, mech=None, **kwargs):
     """LaTeX of a kinbook expression in the book's notation (see :func:`names`)."""
-    expr = sp.sympify(expr)
+    expr = as_sympy(expr)
     return sp.latex(expr, symbol_names=names(expr, mech), **kwargs)
 
 

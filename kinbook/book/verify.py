@@ -18,7 +18,7 @@ import numpy as np
 import sympy as sp
 
 from ..notebook import agrees, tolerance_text
-from .notation import S, from_book, latex
+from .notation import S, as_sympy, from_book, latex
 
 __all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table", "zero_on_sphere", "rate", "relative_dof", "motion_table"]
 
@@ -26,7 +26,7 @@ __all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path"
 def _free(mech, *exprs):
     syms = set(mech.q) | set(mech.qd)
     for e in exprs:
-        syms |= sp.sympify(e).free_symbols
+        syms |= as_sympy(e).free_symbols
     return sorted(syms, key=str)
 
 
