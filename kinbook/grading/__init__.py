@@ -1,4 +1,4 @@
-"""Auto-grading of students' hand-built Φ, Φ_q, ν, γ and numeric answers (issue #4).
+"""Auto-grading of students' hand-built Φ, Φ_q, ν, γ and numeric answers.
 
 >>> import kinbook
 >>> from kinbook.grading import check_phi
@@ -8,18 +8,35 @@
 (True, 1.0)
 
 Public API: :func:`check_phi`, :func:`check_jacobian`, :func:`check_nu`, :func:`check_gamma`,
-:func:`check_value`, :func:`check_rotation`, :func:`check_euler_parameters`, :class:`CheckResult` and the
-mistake catalogue (:data:`MISTAKES`, :func:`explain`); :func:`nbgrader_score` and :func:`assert_passed` for
-nbgrader and otter-grader tests (:mod:`.lms`). Exercises (graded parts, per-student parameters) are
+:func:`check_value`, :func:`check_rotation`, :func:`check_euler_parameters`, :data:`CHECKERS` (the checkers by
+name), :class:`CheckResult`, :mod:`expected` (expected numbers that name their mistakes), the mistake
+catalogue (:data:`MISTAKES`, :func:`explain`), the feedback language (:func:`set_language`), and
+:func:`nbgrader_score` and :func:`assert_passed` for nbgrader and otter-grader tests (:mod:`.lms`). Exercises
+(graded parts, per-student parameters) are
 declared in notebooks with :mod:`kinbook.classroom`.
+
+A check runs one way through small stages, each its own module: read (the safe reader) → sample → evaluate
+→ match (the one equivalence rule) → diagnose (the mistake catalogue) → report (:mod:`kinbook.grading.checks`).
 """
 
+from . import expected
 from ._i18n import get_language, set_language
 from .catalogue import MISTAKES, explain
 from .checks import check_gamma, check_jacobian, check_nu, check_phi
 from .lms import assert_passed, nbgrader_score
 from .result import CheckResult, RowResult
 from .values import check_euler_parameters, check_rotation, check_value
+
+CHECKERS = {
+    "phi": check_phi,
+    "jacobian": check_jacobian,
+    "nu": check_nu,
+    "gamma": check_gamma,
+    "value": check_value,
+    "rotation": check_rotation,
+    "euler_parameters": check_euler_parameters,
+}
+"""The checkers by the names exercises use for them."""
 
 __all__ = [
     "check_phi",
@@ -31,10 +48,12 @@ __all__ = [
     "check_euler_parameters",
     "nbgrader_score",
     "assert_passed",
+    "CHECKERS",
     "CheckResult",
     "RowResult",
     "MISTAKES",
     "explain",
+    "expected",
     "set_language",
     "get_language",
 ]

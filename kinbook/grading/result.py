@@ -2,12 +2,16 @@
 
 Modelled on otter-grader's test results: small frozen dataclasses that render themselves in a notebook
 (``_repr_html_``: a table with one coloured line per row of Φ, Φ_q, ν or γ) and print plainly in a terminal.
+Their texts are kept as :class:`~kinbook.grading._i18n.Msg` objects and written in the current language
+when shown (``messages``, ``repr``, HTML), so switching the language re-renders an existing result.
 """
 
 from __future__ import annotations
 
 import html
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+
+from ._i18n import Msg, render
 
 __all__ = ["CheckResult", "RowResult"]
 
@@ -15,33 +19,50 @@ _COLOURS = {"ok": "#d4edda", "wrong": "#f8d7da", "missing": "#fff3cd", "extra": 
 _SYMBOL = {"ok": "✓", "wrong": "✗", "missing": "∅", "extra": "+", "info": "·"}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class RowResult:
     """Verdict on one row of the answer (one equation of Φ, one row of Φ_q, one entry of ν or γ).
 
     Attributes
     ----------
     label : str
-        The book's name of the row the answer row was matched to ("Φ_4"), or the answer's own row.
+        The book's name of the row the answer row stands for ("Φ_4"), or the answer's own row.
     status : {"ok", "wrong", "missing", "extra"}
     message : str
+        In the current language.
     mistake : str or None
         Catalogue code of the mistake found in this row.
-    entries : tuple of str, optional
-        For Φ_q: one status per column ("ok", "wrong" or a mistake code).
+    entries : tuple of str
+        For Φ_q: one status per column ("ok" or a mistake code).
     score : float
         Credit for this row, in [0, 1].
     """
 
-    label: str
+    _label: object
     status: str
-    message: str = ""
-    mistake: str | None = None
-    entries: tuple = ()
-    score: float = 0.0
+    _message: object
+    mistake: str | None
+    entries: tuple
+    score: float
+
+    def __init__(self, label, status, message="", mistake=None, entries=(), score=0.0):
+        object.__setattr__(self, "_label", label)
+        object.__setattr__(self, "status", status)
+        object.__setattr__(self, "_message", message)
+        object.__setattr__(self, "mistake", mistake)
+        object.__setattr__(self, "entries", tuple(entries))
+        object.__setattr__(self, "score", float(score))
+
+    @property
+    def label(self):
+        return render(self._label)
+
+    @property
+    def message(self):
+        return render(self._message) if self._message else ""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class CheckResult:
     """The verdict of a checker.
 
@@ -66,19 +87,33 @@ class CheckResult:
 
     passed: bool
     score: float
-    messages: list = field(default_factory=list)
-    mistakes: list = field(default_factory=list)
-    rows: tuple = ()
-    quantity: str = ""
-    columns: tuple = ()
+    notes: tuple
+    mistakes: list
+    rows: tuple
+    quantity: str
+    columns: tuple
+
+    def __init__(self, passed, score, messages=(), mistakes=(), rows=(), quantity="", columns=()):
+        object.__setattr__(self, "passed", bool(passed))
+        object.__setattr__(self, "score", float(score))
+        object.__setattr__(self, "notes", tuple(messages))
+        object.__setattr__(self, "mistakes", list(mistakes))
+        object.__setattr__(self, "rows", tuple(rows))
+        object.__setattr__(self, "quantity", quantity)
+        object.__setattr__(self, "columns", tuple(columns))
+
+    @property
+    def messages(self):
+        return [render(m) for m in self.notes]
 
     def __bool__(self):
         return bool(self.passed)
 
     def __repr__(self):
-        head = f"CheckResult({self.quantity}: {'passed' if self.passed else 'failed'}, score={self.score:.2f}"
+        word = render(Msg("h.passed" if self.passed else "h.failed"))
+        head = f"CheckResult({render(self.quantity)}: {word}, {render(Msg('h.score'))}={self.score:.2f}"
         if self.mistakes:
-            head += f", mistakes={self.mistakes}"
+            head += f", {render(Msg('h.mistakes'))}={self.mistakes}"
         lines = [head + ")"]
         lines += [f"  {m}" for m in self.messages]
         return "\n".join(lines)
@@ -86,32 +121,34 @@ class CheckResult:
     def _repr_html_(self):
         colour = "#155724" if self.passed else "#721c24"
         verdict = "✓" if self.passed else "✗"
+        esc = html.escape
         out = [
-            f'<div><p style="color:{colour};font-weight:bold">{verdict} {html.escape(self.quantity)} — '
-            f"score {self.score:.2f}</p>"
+            f'<div><p style="color:{colour};font-weight:bold">{verdict} {esc(render(self.quantity))} — '
+            f"{esc(render(Msg('h.score')))} {self.score:.2f}</p>"
         ]
-        if self.messages:
-            out.append("<ul>" + "".join(f"<li>{html.escape(m)}</li>" for m in self.messages) + "</ul>")
+        if self.notes:
+            out.append("<ul>" + "".join(f"<li>{esc(m)}</li>" for m in self.messages) + "</ul>")
         if self.rows:
             with_entries = any(r.entries for r in self.rows) and self.columns
-            head = "<th>row</th>"
+            head = f"<th>{esc(render(Msg('h.row')))}</th>"
             if with_entries:
-                head += "".join(f"<th>{html.escape(c)}</th>" for c in self.columns)
-            head += "<th>verdict</th>"
+                head += "".join(f"<th>{esc(c)}</th>" for c in self.columns)
+            head += f"<th>{esc(render(Msg('h.verdict')))}</th>"
             body = []
             for r in self.rows:
                 bg = _COLOURS.get(r.status, "#ffffff")
-                cells = f"<td>{html.escape(r.label)}</td>"
+                cells = f"<td>{esc(r.label)}</td>"
                 if with_entries:
                     for e in (r.entries or ("",) * len(self.columns)):
                         c = _COLOURS["ok"] if e == "ok" else (_COLOURS["wrong"] if e else "#ffffff")
                         mark = "✓" if e == "ok" else ("✗" if e else "")
-                        cells += f'<td style="background:{c};text-align:center" title="{html.escape(e)}">{mark}</td>'
-                cells += f"<td>{_SYMBOL.get(r.status, '')} {html.escape(r.message)}</td>"
+                        cells += f'<td style="background:{c};text-align:center" title="{esc(e)}">{mark}</td>'
+                cells += f"<td>{_SYMBOL.get(r.status, '')} {esc(r.message)}</td>"
                 body.append(f'<tr style="background:{bg}">{cells}</tr>')
             out.append(f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>")
         if self.mistakes:
-            out.append("<p>mistakes: " + ", ".join(f"<code>{html.escape(m)}</code>" for m in self.mistakes) + "</p>")
+            out.append(f"<p>{esc(render(Msg('h.mistakes')))}: "
+                       + ", ".join(f"<code>{esc(m)}</code>" for m in self.mistakes) + "</p>")
         out.append("</div>")
         return "".join(out)
 

@@ -1,70 +1,112 @@
 """Checkers for numeric answers: numbers, vectors and matrices (:func:`check_value`), rotation matrices
 (:func:`check_rotation`) and Euler parameters (:func:`check_euler_parameters`).
 
-The expected value is computed by the caller with kinbook (``kinbook.planar`` or ``kinbook.spatial``); these
-checkers compare and diagnose: wrong shape, transposed, sign, a constant factor, degrees for radians, a
-non-orthogonal A, p vs −p (both valid), p not normalized.
+The expected value is computed by the caller with kinbook — a plain number or array, or an
+:class:`~kinbook.grading.expected.Expected` (``kinbook.grading.expected.A_from_euler(ψ, θ, φ)`` …) that also
+knows the other right answers (−p, the second triple of Euler angles) and the wrong answers students give,
+each computed with kinbook's functions. The checkers compare and diagnose, the same way for every number:
+the Expected's named mistakes first; then, for any value, degrees for radians (wherever the answer is the
+expected angle in degrees: no flag needed), a transposed matrix, the sign, a plausible factor (2, ½, π …),
+and for matrices and parameters their own conditions (orthogonality, det = +1, pᵀp = 1).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ._i18n import tr
-from .catalogue import explain
-from .result import CheckResult, RowResult, failed
+from ._i18n import Msg
+from .expected import DEG, Expected
+from .read import Refused, _as_numbers
+from .report import fmt, hints
+from .result import CheckResult, RowResult
 
 __all__ = ["check_value", "check_rotation", "check_euler_parameters"]
 
-
-def _hint(code):
-    title, hint = explain(code)
-    return tr("hint", title=title, hint=hint)
+_PLAUSIBLE = (2.0, 0.5, -2.0, -0.5, np.pi, 1 / np.pi, 2 * np.pi, 1 / (2 * np.pi), np.pi / 180, 3.0, 1 / 3)
 
 
-def _array(x):
-    """Float array from numbers / nested lists / sympy matrices; None if impossible or empty."""
+def _fmt_array(a):
+    """Numbers as they are shown: 6 significant digits, no round-off noise, nested brackets."""
+    a = np.asarray(a, float)
+    if a.ndim == 0 or a.size == 1:
+        return fmt(a.ravel()[0])
+    if a.ndim == 1:
+        return "[" + ", ".join(fmt(x) for x in a) + "]"
+    return "[" + ", ".join(_fmt_array(r) for r in a) + "]"
+
+
+def _close(a, b, rtol, atol, periodic=None):
+    d = a - b
+    if periodic is not None and periodic.any():
+        d = np.where(periodic, (d + np.pi) % (2 * np.pi) - np.pi, d)
+    return bool(np.all(np.abs(d) <= atol + rtol * np.max(np.abs(b), initial=0.0)))
+
+
+def _read(answer, name):
+    """The answer as a float array of its own shape (refuses bools, complex values, text, objects)."""
     try:
-        if hasattr(x, "evalf") and hasattr(x, "shape"):
-            x = x.evalf()
-        a = np.array(x, dtype=float)
+        arr = _as_numbers(answer, Msg("answer"))
+    except Refused as exc:
+        return None, exc
+    try:
+        raw = np.asarray(answer, dtype=float)
+    except (TypeError, ValueError):  # a sympy matrix of numbers: as read
+        raw = arr
+    return (raw if raw.size == arr.size and raw.ndim <= 2 else arr), None
+
+
+def _failed(name, msg, code):
+    return CheckResult(False, 0.0, [msg], [code], (), name)
+
+
+def _expected(expected):
+    if isinstance(expected, Expected):
+        return expected
+    try:
+        value = np.asarray(expected, dtype=float)
     except (TypeError, ValueError):
         return None
-    return a
+    if value.dtype.kind != "f" or value.size == 0:
+        return None
+    return Expected(value)
 
 
-def _close(a, b, rtol, atol):
-    return bool(np.all(np.abs(a - b) <= atol + rtol * np.max(np.abs(b), initial=0.0)))
+def _shape(a, e, name):
+    """``a`` reshaped to ``e``'s shape when only singleton axes differ; (a, None) or (None, failed result)."""
+    if a.shape == e.shape:
+        return a, None
+    if a.size == e.size and a.squeeze().shape == e.squeeze().shape:
+        return a.reshape(e.shape), None
+    if a.ndim == 2 and a.T.shape == e.shape:
+        return a, "transposed"
+    return None, _failed(name, Msg("wrong_shape", expected=e.shape, got=a.shape), "wrong_shape")
 
 
-def _fmt(a):
-    return np.array2string(np.asarray(a), precision=5, suppress_small=True, separator=", ",
-                           max_line_width=10_000).replace("\n", "")
-
-
-def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name="value", angles=False, periodic=()):
+def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name="value", angles=None, periodic=()):
     """Check a number, vector or matrix against the expected value.
 
     Parameters
     ----------
-    answer : number, array_like, sympy Matrix
-    expected : number or array_like
-        Computed by the caller with kinbook.
+    answer : number, array_like, sympy Matrix of numbers
+        Real numbers; True/False, complex numbers and text are refused.
+    expected : number, array_like or :class:`~kinbook.grading.expected.Expected`
+        Computed by the caller with kinbook (an Expected also names the mistakes of that computation).
     rtol, atol : float
-        Tolerances: |answer − expected| ≤ atol + rtol · max|expected| entry-wise (the book prints 4–6
-        significant digits, hence the default rtol = 1e-3).
+        |answer − expected| ≤ atol + rtol · max|expected| entry-wise (the book prints 4–6 significant
+        digits, hence the default rtol = 1e-3).
     name : str
         How to call the value in messages ("q̈", "Φ_q at t = 0" …).
-    angles : bool
-        The value holds angles or angular velocities: degrees instead of radians is diagnosed.
+    angles : bool, optional
+        Kept for compatibility: degrees for radians are diagnosed wherever they occur (``angles=False`` turns
+        that off for values that cannot be angles).
     periodic : sequence of int
-        Flat indices of entries that are angles: they are compared modulo 2π (φ = −π/2 and 3π/2 are the
-        same orientation).
+        Flat indices of entries that are angles, compared modulo 2π (φ = −π/2 and 3π/2 are the same
+        orientation).
 
     Returns
     -------
     CheckResult
-        One row per entry (flattened) when the shapes agree.
+        One row per entry (flattened; 1-based positions).
 
     Examples
     --------
@@ -73,128 +115,173 @@ def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name="value", angles=
     >>> check_value([[1, 3], [2, 4]], [[1, 2], [3, 4]]).mistakes
     ['transposed']
     """
-    exp = _array(expected)
+    exp = _expected(expected)
     if exp is None:
-        return failed(name, f"`expected` must be numbers, got {expected!r}", "malformed")
-    a = _array(answer)
-    if a is None:
-        return failed(name, tr("bad_type", expected=f"numbers of shape {exp.shape}", type=type(answer).__name__),
-                      "malformed")
-    if a.shape != exp.shape:
-        if a.size == exp.size and (a.squeeze().shape == exp.squeeze().shape):
-            a = a.reshape(exp.shape)
-        elif a.ndim == 2 and a.T.shape == exp.shape:
-            ok = _close(a.T, exp, rtol, atol)
-            msg = tr("transposed", expected=exp.shape, got=a.shape) + ("; " + tr("transposed_right") if ok else "")
-            return CheckResult(False, 0.5 if ok else 0.0, [msg, _hint("transposed")], ["transposed"], (), name)
-        else:
-            return failed(name, tr("wrong_shape", expected=exp.shape, got=a.shape), "wrong_shape")
+        return _failed(name, Msg("bad_type", expected="numbers", type=type(expected).__name__), "malformed")
+    return _check(answer, exp, rtol, atol, name, angles is not False, periodic)
+
+
+def _check(answer, exp, rtol, atol, name, degrees=True, periodic=(), extra=None):
+    e = np.asarray(exp.value, dtype=float)
+    a, refused = _read(answer, name)
+    if refused is not None:
+        return _failed(name, Msg(refused.key, **refused.fields), refused.code)
+    a, problem = _shape(a, e, name)
+    if isinstance(problem, CheckResult):
+        return problem
     if not np.all(np.isfinite(a)):
-        return failed(name, tr("not_finite", where=name), "not_finite")
-    if len(periodic):
-        flat, ref = a.ravel().copy(), exp.ravel()
-        idx = np.asarray(periodic, dtype=int)
-        flat[idx] = ref[idx] + (flat[idx] - ref[idx] + np.pi) % (2 * np.pi) - np.pi
-        a = flat.reshape(a.shape)
-    if _close(a, exp, rtol, atol):
-        return CheckResult(True, 1.0, [tr("value_ok")], [], (), name)
-    mistakes, messages = [], []
-    if a.ndim == 2 and a.shape[0] == a.shape[1] and _close(a.T, exp, rtol, atol):
-        mistakes.append("transposed")
-        messages.append(tr("transposed_right"))
-    elif angles and _close(a, np.degrees(exp), rtol, atol):
-        mistakes.append("degrees")
-    elif np.max(np.abs(exp)) > atol and _close(a, -exp, rtol, atol):
-        mistakes.append("sign_flip")
-    else:
-        flat_a, flat_e = a.ravel(), exp.ravel()
-        ee = float(flat_e @ flat_e)
-        c = float(flat_a @ flat_e) / ee if ee > 0 else 0.0
-        if c != 0 and _close(a, c * exp, rtol, atol):
-            mistakes.append("scaled")
-            messages.append(tr("value_scaled", c=c))
-    err = np.abs(a - exp)
+        return _failed(name, Msg("not_finite", where=name), "not_finite")
+    per = np.zeros(e.size, bool)
+    per[list(periodic or exp.periodic)] = True
+    per = per.reshape(e.shape)
+    if problem == "transposed":
+        ok = _close(a.T, e, rtol, atol)
+        msg = Msg("transposed", expected=e.shape, got=a.shape)
+        notes = [msg] + ([Msg("transposed_right")] if ok else [])
+        return CheckResult(False, 0.5 if ok else 0.0, notes + hints(["transposed"], {"transposed": (exp.kind,)}),
+                           ["transposed"], (), name)
+    if _close(a, e, rtol, atol, per):
+        return CheckResult(True, 1.0, [Msg("value_ok")], [], _rows(a, e, rtol, atol, per, name, None), name)
+    for value, why in exp.equivalents:
+        if _close(a, np.asarray(value, float).reshape(e.shape), rtol, atol, per):
+            return CheckResult(True, 1.0, [why], [], (), name)
+    code, detail, erratum, note = _diagnose(a, e, exp, rtol, atol, per, degrees, extra)
+    err = np.abs(a - e)
+    if per.any():
+        err = np.where(per, np.abs((a - e + np.pi) % (2 * np.pi) - np.pi), err)
     where = np.unravel_index(int(np.argmax(err)), err.shape) if err.ndim else ()
-    messages.insert(0, tr("value_wrong", expected=_fmt(exp), got=_fmt(a), err=float(err.max()),
-                          where=str(tuple(int(i) for i in where)) if where else name))
+    where_text = name + ("[" + ", ".join(str(int(i) + 1) for i in where) + "]" if where else "")
+    head = Msg("value_wrong", expected=_fmt_array(e), got=_fmt_array(a), err=fmt(err.max()), where=where_text)
+    notes = [head]
+    if note is not None:
+        notes.append(note)
+    if erratum:
+        notes.append(Msg("book_misprint", id=erratum))
+    if detail is not None:
+        notes.append(detail)
+    rows = _rows(a, e, rtol, atol, per, name, code)
+    global_codes = code not in ("wrong_value",)
+    good = sum(1 for r in rows if r.status == "ok")
+    score = 0.0 if global_codes or not rows else good / len(rows)
+    codes = [code]
+    return CheckResult(False, round(score, 6), notes + hints(codes, {c: (exp.kind,) for c in codes}), codes,
+                       tuple(rows), name)
+
+
+def _rows(a, e, rtol, atol, per, name, code):
+    if a.size > 64:
+        return []
+    scale = np.max(np.abs(e), initial=0.0)
     rows = []
-    if a.ndim <= 1 and a.size <= 64:
-        scale = np.max(np.abs(exp), initial=0.0)
-        for i, (x, y) in enumerate(zip(np.atleast_1d(a), np.atleast_1d(exp))):
-            good = abs(x - y) <= atol + rtol * scale
-            code = None if good else (mistakes or ["wrong_value"])[0]
-            rows.append(RowResult(f"{name}[{i + 1}]", "ok" if good else "wrong",
-                                  "" if good else f"{x:.6g} ≠ {y:.6g}", code, score=1.0 if good else 0.0))
-    good = 1.0 - float(np.mean(err > atol + rtol * np.max(np.abs(exp), initial=0.0)))
-    score = 0.0 if mistakes else good
-    mistakes = mistakes or ["wrong_value"]
-    return CheckResult(False, round(score, 6), messages + [_hint(c) for c in mistakes], mistakes, tuple(rows), name)
+    for idx in np.ndindex(e.shape):
+        x, y = a[idx], e[idx]
+        d = x - y
+        if per[idx]:
+            d = (d + np.pi) % (2 * np.pi) - np.pi
+        good = abs(d) <= atol + rtol * scale
+        label = name + ("[" + ", ".join(str(i + 1) for i in idx) + "]" if idx else "")
+        rows.append(RowResult(label, "ok" if good else "wrong", "" if good else
+                              Msg("value_entry", got=fmt(x), expected=fmt(y)), None if good else (code or "wrong_value"),
+                              (), 1.0 if good else 0.0))
+    return rows
 
 
-def _zxz(psi, theta, phi):
-    """A = Rz(ψ) Rx(θ) Rz(φ), the book's z-x-z Euler angles (kinbook.spatial.rotations.A_from_euler)."""
-    try:
-        from ..spatial.rotations import A_from_euler
+def _diagnose(a, e, exp, rtol, atol, per, degrees, extra):
+    """(code, detail, erratum, note) of a wrong answer."""
+    for code, value, detail, erratum in exp.variants:
+        v = np.asarray(value, float)
+        if v.shape != e.shape and v.size == e.size:
+            v = v.reshape(e.shape)
+        if v.shape == e.shape and not _close(v, e, rtol, atol, per) and _close(a, v, rtol, atol, per):
+            return code, detail, erratum, None
+    if extra is not None:
+        found = extra(a, e)
+        if found is not None:
+            return found
+    if a.ndim == 2 and a.shape[0] == a.shape[1] and _close(a.T, e, rtol, atol):
+        return "transposed", None, None, Msg("transposed_right")
+    nz = np.abs(e) > max(atol, 1e-12)
+    if degrees and nz.any():
+        # the answer in degrees where it differs (angles among other entries: q = [x, y, φ])
+        wrong = ~np.isclose(a, e, rtol=rtol, atol=atol)
+        deg = np.isclose(a, e * DEG, rtol=rtol, atol=atol * DEG)
+        if per.any():
+            deg |= per & np.isclose(np.mod(a, 360.0), np.mod(e * DEG, 360.0), rtol=rtol, atol=1e-3)
+        if wrong.any() and np.all(deg[wrong]) and np.all(nz[wrong]):
+            return "degrees", None, None, None
+    if nz.any() and _close(a, -e, rtol, atol):
+        return "sign_flip", None, None, None
+    flat_a, flat_e = a.ravel(), e.ravel()
+    ee = float(flat_e @ flat_e)
+    c = float(flat_a @ flat_e) / ee if ee > 0 else 0.0
+    if c not in (0.0, 1.0) and np.isfinite(c) and _close(a, c * e, rtol, atol):
+        several = int(nz.sum()) >= 2
+        if several or any(abs(c - p) <= 1e-3 * abs(p) for p in _PLAUSIBLE):
+            return "scaled", Msg("value_scaled", c=fmt(c)), None, None
+    return "wrong_value", None, None, None
 
-        return np.asarray(A_from_euler(psi, theta, phi), dtype=float)
-    except Exception:  # kinbook.spatial missing or changed: the same product, written out
-        def rz(a):
-            c, s = np.cos(a), np.sin(a)
-            return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
 
-        def rx(a):
-            c, s = np.cos(a), np.sin(a)
-            return np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])
-
-        return rz(psi) @ rx(theta) @ rz(phi)
-
-
+# ================================================================================================ rotations
 def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name="A"):
     """Check a 3×3 rotation (direction-cosine) matrix.
 
     Parameters
     ----------
     answer : array_like, shape (3, 3)
-    expected : array_like, shape (3, 3)
-        Computed with kinbook.spatial (it maps local to global components: s = A s').
+    expected : array_like, shape (3, 3), or Expected
+        Computed with kinbook.spatial (it maps local to global components: s = A s'); an Expected
+        (``expected.A_from_euler``, ``expected.A_from_p``, ``expected.A_from_axes``) names its mistakes.
     angles : (ψ, θ, φ), optional
-        The z-x-z Euler angles (radians) the exercise gave; with them, an A computed from the angles in
-        degrees is diagnosed as ``degrees``.
+        The z-x-z Euler angles (radians) the exercise gave: the same as passing
+        ``expected.A_from_euler(ψ, θ, φ)``.
 
     Returns
     -------
     CheckResult
-        Mistakes: ``wrong_shape``, ``not_orthogonal``, ``transposed`` (Aᵀ for A: the inverse rotation),
-        ``degrees``, ``wrong_value``.
+        Mistakes: ``wrong_shape``, ``transposed``, ``degrees``, ``extrinsic_order``, ``factor_2_missing``,
+        ``book_misprint``, ``not_orthogonal``, ``left_handed``, ``wrong_value``.
     """
-    a, exp = _array(answer), _array(expected)
-    if exp is None or exp.shape != (3, 3):
-        return failed(name, f"`expected` must be a 3×3 matrix, got {expected!r}", "malformed")
-    if a is None:
-        return failed(name, tr("bad_type", expected="a 3×3 matrix", type=type(answer).__name__), "malformed")
-    if a.shape != (3, 3):
-        return failed(name, tr("wrong_shape", expected="(3, 3)", got=a.shape), "wrong_shape")
-    if not np.all(np.isfinite(a)):
-        return failed(name, tr("not_finite", where=name), "not_finite")
-    if _close(a, exp, rtol, atol):
-        return CheckResult(True, 1.0, [tr("value_ok")], [], (), name)
-    mistakes, messages = [], []
-    orth = float(np.max(np.abs(a.T @ a - np.eye(3))))
-    det = float(np.linalg.det(a))
-    if _close(a.T, exp, rtol, atol):
-        mistakes.append("transposed")
-        messages.append(tr("transposed_right"))
-    elif angles is not None and _close(a, _zxz(*np.degrees(np.asarray(angles, float))), rtol, atol):
-        mistakes.append("degrees")
-    if orth > 1e3 * rtol or abs(det - 1.0) > 1e3 * rtol:
-        mistakes.append("not_orthogonal")
-        messages.append(tr("orthogonal_fail", err=orth) if orth > 1e3 * rtol else tr("det_fail", det=det))
-    if not mistakes:
-        mistakes.append("wrong_value")
-    err = np.abs(a - exp)
-    messages.insert(0, tr("value_wrong", expected=_fmt(exp), got=_fmt(a), err=float(err.max()),
-                          where=str(tuple(int(i) for i in np.unravel_index(int(np.argmax(err)), err.shape)))))
-    return CheckResult(False, 0.0, messages + [_hint(c) for c in mistakes], mistakes, (), name)
+    from .expected import A_from_euler
+
+    if angles is not None and not isinstance(expected, Expected):
+        exp = A_from_euler(*np.asarray(angles, float))
+        exp.value = np.asarray(expected, float) if _expected(expected) is not None else exp.value
+    else:
+        exp = _expected(expected)
+    if exp is None or np.asarray(exp.value).shape != (3, 3):
+        return _failed(name, Msg("wrong_shape", expected="(3, 3)", got=np.shape(expected)), "malformed")
+    exp.kind = "rotation"
+    if not any(v[0] == "book_misprint" for v in exp.variants):
+        exp.variants = list(exp.variants) + _from_matrix(exp.value)
+
+    def properties(a, e):
+        if a.shape != (3, 3):
+            return None
+        orth = float(np.max(np.abs(a.T @ a - np.eye(3))))
+        det = float(np.linalg.det(a))
+        if orth <= 1e3 * rtol and det < 0:
+            return "left_handed", Msg("det_fail", det=fmt(det)), None, None
+        if orth > 1e3 * rtol:
+            return "not_orthogonal", Msg("orthogonal_fail", err=fmt(orth)), None, None
+        return None
+
+    a, refused = _read(answer, name)
+    if refused is None and a.shape != (3, 3):
+        return _failed(name, Msg("wrong_shape", expected="(3, 3)", got=a.shape), "wrong_shape")
+    return _check(answer, exp, rtol, atol, name, True, (), properties)
+
+
+def _from_matrix(A_):
+    """Variants of any rotation matrix: the book's A(p) misprint and ½A, at the p of A."""
+    try:
+        from .expected import _book_A_of_p
+        from ..spatial.rotations import p_from_A
+
+        p = np.asarray(p_from_A(np.asarray(A_, float)), float)
+    except Exception:  # not a rotation matrix: no p
+        return []
+    return [("factor_2_missing", 0.5 * np.asarray(A_), None, "14.3-A-of-p"),
+            ("book_misprint", _book_A_of_p(p), None, "14.3-A-of-p")]
 
 
 def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None, angle=None, name="p"):
@@ -203,50 +290,52 @@ def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None,
     Parameters
     ----------
     answer, expected : array_like, shape (4,)
-        ``expected`` computed with kinbook.spatial. p and −p describe the same orientation: both pass.
+        ``expected`` computed with kinbook.spatial (or an Expected: ``expected.p_from_axis_angle(u, χ)``,
+        ``expected.p_from_A(A)``). p and −p describe the same orientation: both pass.
     axis, angle : optional
-        The rotation the exercise gave (unit axis u, angle χ in radians); with them, p computed from χ in
-        degrees is diagnosed as ``degrees``.
+        The rotation the exercise gave (axis u, angle χ in radians): the same as passing
+        ``expected.p_from_axis_angle(u, χ)``. Without them the axis and angle are read from ``expected``.
 
     Returns
     -------
     CheckResult
-        Mistakes: ``wrong_shape``, ``not_normalized`` (right direction, pᵀp ≠ 1), ``degrees``,
+        Mistakes: ``wrong_shape``, ``not_normalized``, ``degrees``, ``full_angle``, ``scalar_last``,
         ``wrong_value``.
     """
-    a, exp = _array(answer), _array(expected)
-    if exp is None or exp.shape not in ((4,), (4, 1)):
-        return failed(name, f"`expected` must have 4 entries, got {expected!r}", "malformed")
-    exp = exp.reshape(4)
-    if a is None:
-        return failed(name, tr("bad_type", expected="4 numbers [e0, e1, e2, e3]", type=type(answer).__name__),
-                      "malformed")
-    if a.size != 4:
-        return failed(name, tr("wrong_shape", expected="(4,)", got=a.shape), "wrong_shape")
-    a = a.reshape(4)
-    if not np.all(np.isfinite(a)):
-        return failed(name, tr("not_finite", where=name), "not_finite")
-    if _close(a, exp, rtol, atol):
-        return CheckResult(True, 1.0, [tr("value_ok")], [], (), name)
-    if _close(a, -exp, rtol, atol):
-        return CheckResult(True, 1.0, [tr("p_negated")], [], (), name)
-    norm = float(a @ a)
-    mistakes, messages = [], []
-    if norm > 0 and abs(norm - 1.0) > 1e3 * rtol:
-        u = a / np.sqrt(norm)
-        if _close(u, exp, rtol, atol) or _close(u, -exp, rtol, atol):
-            mistakes.append("not_normalized")
-        messages.append(tr("norm_fail", norm=norm))
-    if not mistakes and axis is not None and angle is not None:
-        chi = np.degrees(float(angle))
-        u = np.asarray(axis, float) / np.linalg.norm(axis)
-        p_deg = np.concatenate([[np.cos(chi / 2)], u * np.sin(chi / 2)])
-        if _close(a, p_deg, rtol, atol) or _close(a, -p_deg, rtol, atol):
-            mistakes.append("degrees")
-    if not mistakes and "norm_fail" not in messages:
-        mistakes.append("wrong_value")
-    if not mistakes:
-        mistakes.append("wrong_value")
-    messages.insert(0, tr("value_wrong", expected=_fmt(exp), got=_fmt(a), err=float(np.max(np.abs(a - exp))),
-                          where=name))
-    return CheckResult(False, 0.0, messages + [_hint(c) for c in mistakes], mistakes, (), name)
+    from .expected import p_from_axis_angle
+
+    base = _expected(expected)
+    if base is None or np.asarray(base.value).size != 4:
+        return _failed(name, Msg("wrong_shape", expected="(4,)", got=np.shape(expected)), "malformed")
+    value = np.asarray(base.value, float).reshape(4)
+    if isinstance(expected, Expected):
+        exp = expected
+    else:
+        if axis is None or angle is None:
+            e0, e = value[0], value[1:]
+            chi = 2 * np.arctan2(np.linalg.norm(e), e0)
+            axis = e / np.linalg.norm(e) if np.linalg.norm(e) > 1e-12 else np.array([0.0, 0.0, 1.0])
+            angle = chi
+        exp = p_from_axis_angle(axis, angle)
+        exp.value = value
+        exp.equivalents = [(-value, Msg("p_negated"))]
+    exp.kind = "parameters"
+
+    def normalization(a, e):
+        a = a.reshape(-1)
+        norm = float(a @ a)
+        if norm > 0 and abs(norm - 1.0) > 1e3 * rtol:
+            u = a / np.sqrt(norm)
+            if np.allclose(u, e.reshape(-1), rtol=rtol, atol=atol) or np.allclose(u, -e.reshape(-1), rtol=rtol,
+                                                                                   atol=atol):
+                return "not_normalized", Msg("norm_fail", norm=fmt(norm)), None, None
+        return None
+
+    a, refused = _read(answer, name)
+    if refused is None and a.size != 4:
+        return _failed(name, Msg("wrong_shape", expected="(4,)", got=a.shape), "wrong_shape")
+    if refused is None:
+        answer = a.reshape(4)
+    exp.value = value
+    return _check(answer, exp, rtol, atol, name, True, (), normalization)
+

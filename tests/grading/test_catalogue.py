@@ -13,7 +13,7 @@ DOC = Path(__file__).resolve().parents[2] / "docs" / "mistakes.md"
 
 def test_every_code_is_documented_and_bilingual():
     text = DOC.read_text(encoding="utf-8")
-    documented = set(re.findall(r"^\| `([a-zA-Z_]+)` \|", text, flags=re.M))
+    documented = set(re.findall(r"^\| `([a-zA-Z0-9_]+)` \|", text, flags=re.M))
     assert documented == set(MISTAKES)
     for code, m in MISTAKES.items():
         assert m.title["en"] and m.title["es"] and m.hint["en"] and m.hint["es"], code
@@ -26,11 +26,12 @@ def test_corpus_codes_are_catalogued_and_cover_the_planar_catalogue():
     # covered elsewhere: test_checks (missing_qt_term, wrong_value), test_spatial (missing_normalization),
     # test_values (scaled, not_orthogonal, not_normalized)
     elsewhere = {"missing_qt_term", "wrong_value", "missing_normalization", "scaled", "not_orthogonal",
-                 "not_normalized"}
+                 "not_normalized", "dependent_row", "eg_jacobian", "book_misprint", "left_handed", "factor_2_missing",
+                 "full_angle", "G_for_E", "wrong_frame", "extrinsic_order", "A_for_AT", "scalar_last", "extra_row"}
     assert set(MISTAKES) - seen <= elsewhere, set(MISTAKES) - seen - elsewhere
 
 
 def test_public_api():
     for name in ("check_phi", "check_jacobian", "check_nu", "check_gamma", "check_value", "check_rotation",
-                 "check_euler_parameters", "CheckResult", "set_language"):
+                 "check_euler_parameters", "CheckResult", "set_language", "CHECKERS", "expected"):
         assert name in grading.__all__

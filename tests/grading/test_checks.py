@@ -1,6 +1,6 @@
 """Error carried forward, numeric answers, robustness, language and rendering of the checkers."""
 
-import time
+import dataclasses
 
 import numpy as np
 import pytest
@@ -88,13 +88,26 @@ def test_numeric_answers_at_the_stated_configuration():
     qd = mech.solve_velocity(q, 0.0)
     at = {"q": q, "qd": qd, "t": 0.0}
     assert check_jacobian(np.round(mech.Phi_q(q, 0.0), 4), mech, at=at).passed
-    assert check_jacobian(np.round(mech.Phi_q(q, 0.0), 4), mech).passed  # default: assembled at t = 0
+    r = check_jacobian(np.round(mech.Phi_q(q, 0.0), 4), mech)  # numbers without their configuration
+    assert (r.passed, r.mistakes) == (False, ["malformed"]) and "give the configuration" in r.messages[0]
     g = mech.gamma(q, qd, 0.0)
     assert check_gamma(np.round(g, 2), mech, at=at).passed
     r = check_gamma(np.round(-g, 2), mech, at=at)
     assert r.mistakes == ["gamma_sign"]
     r = check_nu([0] * 11 + [100.0], mech, at=at)
     assert r.passed
+
+
+def test_numbers_without_a_configuration_are_refused_for_every_checker():
+    """γ = [0] for a driver 0.3 + 0.5 sin 4t used to pass (graded at t = 0 only)."""
+    driver = target("pendulum", "driver 1")
+    for check, numbers in ((check_phi, [0.0]), (check_jacobian, [[0, 0, 0]]), (check_nu, [0.0]), (check_gamma, [0.0])):
+        r = check(numbers, driver)
+        assert (r.passed, r.mistakes) == (False, ["malformed"]), (check, r)
+        assert "give the configuration" in r.messages[0]
+    # numbers that are right everywhere are constants: ν = 0 of a joint, Φ_q of a driver
+    assert check_nu([0, 0], target("ch13_example1", "1")).passed
+    assert check_jacobian([[0, 0, 1]], driver).passed
 
 
 # ------------------------------------------------------------------------------- robustness
@@ -104,25 +117,21 @@ def test_pathological_expression_returns_quickly():
     e = x1
     for _ in range(40):
         e = sp.sin(e + x1) ** 2 + sp.cos(e)
-    t0 = time.perf_counter()
     r = check_phi([e, e], joint)
-    assert time.perf_counter() - t0 < 5.0
-    assert not r.passed and r.mistakes in (["malformed"], ["wrong_value"])
+    assert not r.passed and r.mistakes == ["malformed"]
 
 
 def test_huge_string_is_refused():
     joint = target("ch13_example1", "1")
     r = check_phi(["+".join(["x1"] * 20000), "y1"], joint)
     assert (r.passed, r.mistakes) == (False, ["malformed"])
-    assert "too large" in r.messages[0]
+    assert "too long" in r.messages[0] or "too large" in r.messages[0]
 
 
 def test_deeply_nested_string_does_not_crash():
     joint = target("ch13_example1", "1")
-    t0 = time.perf_counter()
     r = check_phi(["(" * 3000 + "x1" + ")" * 3000, "y1"], joint)
-    assert time.perf_counter() - t0 < 5.0
-    assert not r.passed
+    assert (r.passed, r.mistakes) == (False, ["malformed"])
 
 
 @pytest.mark.parametrize("answer", [
@@ -151,6 +160,17 @@ def test_spanish_feedback():
         assert "par de revolución 3" in r.messages[1]
         assert "puntos locales intercambiados" in r.messages[1]
         assert check_phi(EX1_PHI_SIMPLE, mechanism("ch13_example1")).messages[0].startswith("Φ es correcto")
+        html = r._repr_html_()
+        assert "puntuación" in html and "fila" in html and "veredicto" in html and "errores" in html
+        assert "score" not in html and "verdict" not in html
+        assert "puntuación=" in repr(r) and "incorrecto" in repr(r)
+    finally:
+        kinbook.set_language("en")
+    # translated last: a result made in English reads in Spanish after switching
+    r = check_phi(JOINT3_SWAPPED_PHI, joint)
+    try:
+        kinbook.set_language("es")
+        assert "puntos locales intercambiados" in r.messages[1]
     finally:
         kinbook.set_language("en")
     with pytest.raises(kinbook.InputError, match="`lang`"):
@@ -169,13 +189,14 @@ def test_html_and_repr():
     assert "<table>" in html and "φ2" in html and "missing_row" in html
     text = repr(r)
     assert text.startswith("CheckResult(Φ_q: failed, score=0.92") and "Φ_12" in text
+    assert "11 of 12 rows" in text
     ok = check_phi(EX1_PHI_SIMPLE, mechanism("ch13_example1"))
     assert "✓" in ok._repr_html_() and bool(ok)
 
 
 def test_result_is_frozen():
     r = check_phi(EX1_PHI_SIMPLE, mechanism("ch13_example1"))
-    with pytest.raises(Exception):
+    with pytest.raises(dataclasses.FrozenInstanceError):
         r.passed = False
 
 
@@ -190,7 +211,8 @@ def test_symbols_are_matched_by_name():
     ([sp.zoo, 0], "not_finite"), ([sp.I * sp.Symbol("x1"), 0], "not_finite"), (["sqrt(-1 - x1**2)", "y1"], "not_finite"),
     ([sp.Function("f")(sp.Symbol("x1")), 0], "malformed"), (["x1 < 2", "y1"], "malformed"), ("x1 == 2", "malformed"),
     ([True, False], "malformed"), (["", "y1"], "malformed"), ([[1, 2], [3]], "wrong_shape"),
-    ([sp.Matrix([1, 2]), "y1"], "wrong_shape"), (["x1**1e10", "y1"], "not_finite"),
+    ([sp.Matrix([1, 2]), "y1"], "wrong_shape"), (["x1**1e10", "y1"], "malformed"), (["x1", 3 + 2j], "malformed"),
+    (["__import__('os').system('echo hi')", "y1"], "malformed"), (["x1.real", "y1"], "malformed"),
 ])
 def test_odd_inputs(answer, code):
     r = check_phi(answer, target("ch13_example1", "1"))
@@ -216,8 +238,21 @@ def test_checks_work_outside_the_main_thread():
     th = threading.Thread(target=work)
     th.start()
     th.join(60)
-    assert out["r"].passed  # no time limit there: the symbolic confirmation is skipped, not run unbounded
-    assert "could not confirm" in out["r"].messages[-1]
+    assert out["r"].passed  # no signal or timer anywhere: the same verdict in any thread
+    assert out["r"].messages[-1] == "sympy confirmed the equivalence symbolically"
+
+
+def test_the_grading_package_uses_no_signals_or_clocks():
+    """kinbook.grading must be importable where there is no `signal` (Pyodide) and no verdict may depend on
+    a wall-clock budget."""
+    import pathlib
+
+    root = pathlib.Path(grading.__file__).parent
+    for path in root.glob("*.py"):
+        text = path.read_text(encoding="utf-8")
+        for word in ("import signal", "setitimer", "SIGALRM", "perf_counter", "time.time(", "sympify(", "eval(",
+                     "exec(", "type_name =="):
+            assert word not in text, (path.name, word)
 
 
 def test_entries_of_a_jacobian_row():
@@ -229,23 +264,15 @@ def test_entries_of_a_jacobian_row():
     assert "∂/∂φ2" in r.messages[1]
 
 
-def test_a_function_that_never_returns_is_abandoned():
-    def forever(q, t):
-        while True:
-            pass
-
-    t0 = time.perf_counter()
-    r = check_phi(forever, target("ch13_example1", "1"))
-    assert time.perf_counter() - t0 < 8.0
-    assert (r.passed, r.mistakes) == (False, ["malformed"]) and "longer than" in r.messages[0]
+def test_a_function_returning_too_many_numbers_is_refused():
+    r = check_phi(lambda q, t: np.zeros(10**6), target("ch13_example1", "1"))
+    assert (r.passed, r.mistakes) == (False, ["malformed"]) and "numbers" in r.messages[0]
 
 
 @pytest.mark.parametrize("text", ["9**9**9**9", "x1**123456789 + 1", "(2)**(99999)"])
 def test_huge_integer_powers_are_refused(text):
-    t0 = time.perf_counter()
     r = check_phi([text, "y1"], target("ch13_example1", "1"))
-    assert time.perf_counter() - t0 < 3.0
-    assert not r.passed
+    assert (r.passed, r.mistakes) == (False, ["malformed"])
 
 
 def test_graded_mechanisms_can_be_freed():

@@ -1,0 +1,405 @@
+"""Naming the mistake (fifth stage of a check): every wrong row is compared with the catalogue's generated
+mistakes (:mod:`kinbook.grading.mistakes`) and gets the code of the one it equals — or "wrong_value".
+
+One mistake gets one name across the rows it touches: the variants of a constraint are tried on all of its
+wrong rows at once, and the variant that explains the most of them names them all (a sign error on ξ_j that
+spoils both rows of a revolute joint is one "sign error", not a "sign error" and an "Aᵀ for A").
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from . import mistakes as M
+from ._i18n import Msg
+from .match import same, scale_match, scale_of
+
+__all__ = ["phi", "derived", "MAX_TERMS"]
+
+MAX_TERMS = 16
+"""Rows with more terms than this are not searched term by term (a size budget, not a time limit)."""
+_MAX_OPS = 400
+
+
+# ================================================================================================ Φ
+def phi(target, answer, data, matching, rtol):
+    """Diagnose the wrong rows of a Φ answer in place: each gets the reference row it was meant to be (when
+    one is missing) and a code."""
+    rows = matching.rows
+    wrong = [r for r in rows if r.status == "wrong"]
+    free = list(matching.missing)
+    if wrong and free:
+        _structural_phi(target, data, wrong, free, rtol)
+    wrong = [r for r in wrong if r.code is None]
+    if wrong and free:
+        _terms_phi(target, data, wrong, free, rtol)
+    wrong = [r for r in wrong if r.code is None]
+    if wrong:
+        for r, j in _pair(target, answer, wrong, free):
+            r.ref = j
+            if j is not None:
+                free.remove(j)
+                r.code = "wrong_value"
+            else:
+                r.status, r.code = "extra", "extra_row"
+    matching.missing = free
+    for r in rows:
+        if r.status == "wrong" and r.ref is not None:
+            r.context = M.contexts_of(target.owner(r.ref))
+
+
+def _variant_values(target, v, which, quantity="Phi"):
+    key = (which, quantity)
+    if key not in v.cache:
+        s = target.samples(which)
+        tape = target.tape(v.exprs)
+        if quantity == "Phi":
+            v.cache[key] = tape(s.Q, s.QD, s.T)["value"]
+        else:
+            d = tape.derived(s.Q, s.QD, s.T)
+            v.cache[key] = d
+    return v.cache[key]
+
+
+def _structural_phi(target, data, wrong, free, rtol):
+    owners = []
+    for j in free:
+        c = target.owner(j)
+        if c not in owners:
+            owners.append(c)
+    for c in owners:
+        block = target.block(c)
+        while True:
+            todo = [j for j in block if j in free]
+            left = [r for r in wrong if r.code is None]
+            if not todo or not left:
+                break
+            best = None
+            for v in M.structural(target, c):
+                try:
+                    V = _variant_values(target, v, "generic")
+                except Exception:  # pragma: no cover - an odd variant is skipped
+                    continue
+                hits = {}
+                used = set()
+                for pos, j in enumerate(block):
+                    if j not in todo or not np.all(np.isfinite(V[:, pos])):
+                        continue
+                    if scale_match(V[:, pos], data.R_G[:, j], rtol) is not None:
+                        continue  # the variant equals the reference on this row
+                    for r in left:
+                        if r.k in used:
+                            continue
+                        if scale_match(data.S_G[:, r.k], V[:, pos], rtol) is not None:
+                            hits[j] = r
+                            used.add(r.k)
+                            break
+                if hits and (best is None or len(hits) > len(best[1])):
+                    best = (v, hits)
+            if best is None:
+                break
+            v, hits = best
+            for j, r in hits.items():
+                r.ref, r.code, r.detail, r.erratum = j, v.code, v.detail, v.erratum
+                free.remove(j)
+
+
+def term_variants(expr):
+    """Single and double sign flips ("sign_flip") and single dropped terms ("missing_term") of one expression,
+    each with the term concerned; none for rows of more than :data:`MAX_TERMS` terms."""
+    import sympy as sp
+
+    if sp.count_ops(expr) > _MAX_OPS:
+        return []
+    terms = sp.Add.make_args(sp.expand(expr))
+    k = len(terms)
+    if k < 2 or k > MAX_TERMS:
+        return []
+    total = sp.Add(*terms)
+    out = [("sign_flip", total - 2 * terms[a], terms[a]) for a in range(k)]
+    if k <= 8:
+        out += [("sign_flip", total - 2 * terms[a] - 2 * terms[b], None) for a, b in itertools.combinations(range(k), 2)]
+    out += [("missing_term", total - terms[a], terms[a]) for a in range(k)]
+    return out
+
+
+def _term_detail(code, term):
+    if term is None:
+        return None
+    import sympy as sp
+
+    text = sp.sstr(term).replace("phi", "φ").replace("**", "^")
+    return Msg("d.sign_of_term" if code == "sign_flip" else "d.missing_term", term=text)
+
+
+def _terms_phi(target, data, wrong, free, rtol):
+    Phi = target.symbolic_phi()
+    G = target.samples("generic")
+    for j in list(free):
+        left = [r for r in wrong if r.code is None]
+        if not left:
+            return
+        cands = term_variants(Phi[j])
+        if not cands:
+            continue
+        vals = target.tape([e for _, e, _ in cands])(G.Q, G.QD, G.T)["value"]
+        for i, (code, _, term) in enumerate(cands):
+            hit = next((r for r in left if scale_match(data.S_G[:, r.k], vals[:, i], rtol) is not None), None)
+            if hit is not None:
+                hit.ref, hit.code, hit.detail = j, code, _term_detail(code, term)
+                free.remove(j)
+                break
+
+
+def _pair(target, answer, wrong, free):
+    """Which reference rows the remaining wrong rows were meant to be: by the coordinates they use (symbolic
+    answers), else in order; rows left over are extra."""
+    free = list(free)
+    if answer.kind == "symbolic" and free:
+        Phi = target.symbolic_phi()
+        cand = []
+        for r in wrong:
+            sk = answer.matrix[r.k, 0].free_symbols
+            for j in free:
+                sj = Phi[j].free_symbols
+                overlap = len(sk & sj) / max(1, len(sk | sj))
+                cand.append((-overlap, abs(r.k - j), j, r.k))
+        out, used_j, used_k = {}, set(), set()
+        for _, _, j, k in sorted(cand):
+            if j not in used_j and k not in used_k:
+                out[k] = j
+                used_j.add(j)
+                used_k.add(k)
+        return [(r, out.get(r.k)) for r in wrong]
+    pairs = []
+    for r in wrong:
+        pairs.append((r, free.pop(0) if free else None))
+    return pairs
+
+
+# ================================================================================================ Φ_q, ν, γ
+class _Expected:
+    """What each wrong row is graded against and the candidates (generated mistakes) for it."""
+
+    def __init__(self, target, quantity, data, samples):
+        self.target, self.quantity, self.data, self.s = target, quantity, data, samples
+        self._ref_rules = None
+        self._hdiag = {}
+
+    def ref_tape(self):
+        return self.target.tape(list(self.target.symbolic_phi()), key="phi")
+
+    def rule_values(self, tape_key, tape, rule, frozen=()):
+        key = ("rule", tape_key, rule, tuple(frozen))
+        store = self.target.store
+        if key not in store:
+            s = self.s
+            store[key] = tape.derived(s.Q, s.QD, s.T, rule=rule, frozen=frozen, parts=True)
+        return store[key]
+
+    def pick(self, d, row):
+        """Row ``row`` of a derived dict, in the answer's columns: (N, w)."""
+        q = self.quantity
+        if q == "Phi_q":
+            return d["Phi_q"][:, row, :][:, self.data.cols]
+        return d[q][:, row][:, None]
+
+
+def _p_columns(target):
+    """Columns (into q) of every body's Euler parameters (spatial)."""
+    if target.kind != "spatial":
+        return []
+    return [7 * b + k for b in range(target.n // 7) for k in range(3, 7)]
+
+
+def derived(target, quantity, answer, data, matching, rtol, own=None):
+    """Diagnose the wrong rows of a Φ_q, ν or γ answer in place (code, entries, score).
+
+    ``own``: with the student's Φ, a dict with its "tape" (or None for a function), "values" (its derived
+    quantities at the samples) — derivation mistakes are then made on it as well.
+    """
+    s = data_samples = target.samples("assembled")
+    ex = _Expected(target, quantity, data, s)
+    wrong = [r for r in matching.rows if r.status == "wrong"]
+    if not wrong:
+        return
+    # derivation mistakes first (a Jacobian without the chain rule is named so, even where it equals the
+    # Jacobian of a Φ written without A), then structural mistakes carried through, one name per constraint
+    cands = {}
+    for r in wrong:
+        r.context = M.contexts_of(target.owner(r.ref), quantity) if r.ref is not None and \
+            not isinstance(r.ref, tuple) else (quantity,)
+        expected = _expected_row(ex, r, own)
+        cands[r.k] = (expected, _candidates(target, ex, r, own, expected))
+        S = data.S[:, r.k]
+        hit = next(((code, detail, err) for code, V, detail, err in cands[r.k][1]
+                    if _finite(V) and not same(V, expected, rtol) and same(S, V, rtol)), None)
+        if hit is not None:
+            r.code, r.detail, r.erratum = hit
+    by_owner = {}
+    for r in wrong:
+        if r.code is None and r.ref is not None and not isinstance(r.ref, tuple) and r.how != "own":
+            by_owner.setdefault(target.owner(r.ref), []).append(r)
+    for c, rows in by_owner.items():
+        _structural_derived(target, ex, c, rows, rtol)
+    for r in wrong:
+        expected, cand = cands[r.k]
+        S = data.S[:, r.k]
+        if quantity != "Phi_q":
+            if r.code is None:
+                hit = _terms_derived(target, ex, r, own, S, expected, rtol)
+                r.code, r.detail, r.erratum = hit if hit is not None else ("wrong_value", None, None)
+            r.score = 0.0
+            continue
+        r.entries, r.score = _entries(S, expected, rtol, r.code, cand)
+        if r.code is None:
+            named = [e for e in r.entries if e not in ("ok", "wrong_value")]
+            r.code = named[0] if named else "wrong_value"
+
+
+def _finite(V):
+    return V is not None and np.all(np.isfinite(V))
+
+
+def _expected_row(ex, r, own):
+    if r.how in ("own",) or (own is not None and r.ref is None):
+        return own["values"][ex.quantity][:, r.k][:, None] if ex.quantity != "Phi_q" else \
+            own["values"]["Phi_q"][:, r.k, :][:, ex.data.cols]
+    f = 1.0 if r.factor is None or (isinstance(r.factor, float) and np.isnan(r.factor)) else r.factor
+    return f * ex.data.R[:, r.ref]
+
+
+def _candidates(target, ex, r, own, expected):
+    """(code, values (N, w), detail, erratum) of the derivation mistakes for row r, most specific first."""
+    q = ex.quantity
+    out = []
+    sign_code = {"nu": "nu_sign", "gamma": "gamma_sign", "Phi_q": "sign_flip"}[q]
+    late = [(sign_code, -expected, None, None)]
+    f = 1.0 if r.factor is None or (isinstance(r.factor, float) and np.isnan(r.factor)) else r.factor
+    sources = []
+    if own is not None and own.get("tape") is not None and r.k < own["values"]["Phi"].shape[1]:
+        sources.append(("own", own["tape"], r.k, 1.0))
+    if r.ref is not None:
+        try:
+            sources.append(("phi", ex.ref_tape(), r.ref, f))
+        except Exception:  # pragma: no cover - a reference that cannot be taped
+            pass
+    for key, tape, row, factor in sources:
+        rules = [("chain_dropped", "missing_chain_rule", ())]
+        if target.kind == "planar":
+            rules.append(("A_for_B", "A_for_B", ()))
+        else:
+            rules = [("exact", "missing_chain_rule", tuple(_p_columns(target)))]
+        exact = ex.rule_values(key, tape, "exact")
+        for rule, code, frozen in rules:
+            d = ex.rule_values(key, tape, rule, frozen)
+            out.append((code, factor * ex.pick(d, row), None, None))
+        if q == "nu":
+            out.append(("nu_missing", np.zeros_like(expected), None, None))
+        if q == "gamma":
+            quad = factor * exact["quad"][:, row][:, None]
+            qt = factor * exact["qt"][:, row][:, None]
+            tt = factor * exact["tt"][:, row][:, None]
+            late.insert(0, ("gamma_sign", -quad + qt + tt, None, "13.8-gamma-sign"))
+            out.append(("missing_qt_term", quad + tt, None, None))
+            out.append(("missing_tt_term", quad + qt, None, None))
+            H = _hdiag(ex, key, tape)
+            QD = ex.s.QD
+            unsq = factor * (np.einsum("bkn,bn->bk", H, QD**2) - np.einsum("bkn,bn->bk", H, QD))[:, row][:, None]
+            out.append(("missing_square", expected + unsq, None, None))
+    return late + out
+
+
+def _hdiag(ex, key, tape):
+    """H_kk = ∂²Φ/∂q_k² at the samples (N, rows, n): the diagonal of (Φ_q q̇)_q."""
+    if key not in ex._hdiag:
+        s = ex.s
+        N, n = s.Q.shape
+        H = np.zeros((N, len(tape.outputs), n))
+        for k in range(n):
+            e = np.zeros_like(s.Q)
+            e[:, k] = 1.0
+            H[:, :, k] = tape(s.Q, e, s.T, order=2, dt=0.0, velocities=s.QD)["d2"]
+        ex._hdiag[key] = H
+    return ex._hdiag[key]
+
+
+def _structural_derived(target, ex, c, rows, rtol):
+    """Structural variants of constraint c carried through the derivation, tried on its wrong rows at once."""
+    block = target.block(c)
+    best = None
+    for v in M.structural(target, c):
+        try:
+            d = _variant_values(target, v, "assembled", ex.quantity)
+        except Exception:  # pragma: no cover
+            continue
+        hits = []
+        for r in rows:
+            pos = block.index(r.ref)
+            f = 1.0 if r.factor is None or np.isnan(r.factor) else r.factor
+            V = f * ex.pick(d, pos)
+            if not _finite(V) or same(V, f * ex.data.R[:, r.ref], rtol):
+                continue
+            if same(ex.data.S[:, r.k], V, rtol):
+                hits.append(r)
+        if hits and (best is None or len(hits) > len(best[1])):
+            best = (v, hits)
+    if best is not None:
+        v, hits = best
+        for r in hits:
+            r.code, r.detail, r.erratum = v.code, v.detail, v.erratum
+
+
+def _terms_derived(target, ex, r, own, S, expected, rtol):
+    """Sign flips and dropped terms of the symbolic expected row, derived with sympy only for small rows."""
+    if r.ref is None or own is not None:
+        return None
+    import sympy as sp
+
+    Phi = target.symbolic_phi()[r.ref]
+    if sp.count_ops(Phi) > 60:
+        return None
+    mech = target.mech
+    q, qd, t = list(mech.q), list(mech.qd), mech.t
+    syms = [x for x in q if x in Phi.free_symbols]
+    D = lambda e: sum(sp.diff(e, x) * qd[q.index(x)] for x in syms) + sp.diff(e, t)  # noqa: E731
+    expr = -sp.diff(Phi, t) if ex.quantity == "nu" else -D(D(Phi))
+    f = 1.0 if r.factor is None or np.isnan(r.factor) else r.factor
+    cands = term_variants(f * expr)
+    if not cands:
+        return None
+    s = ex.s
+    vals = target.tape([e for _, e, _ in cands])(s.Q, s.QD, s.T)["value"]
+    for i, (code, _, term) in enumerate(cands):
+        V = vals[:, i][:, None]
+        if not same(V, expected, rtol) and same(S, V, rtol):
+            return code, _term_detail(code, term), None
+    return None
+
+
+def _entries(S, E, rtol, row_code, cands):
+    """Per entry of a Φ_q row: "ok", or the code of the candidate that reproduces it; and the row's credit
+    (the fraction of its nonzero entries that are right)."""
+    w = S.shape[1]
+    scale = max(scale_of(E), scale_of(S))
+    out = []
+    for i in range(w):
+        si, ei = S[:, i], E[:, i]
+        if np.all(np.abs(si - ei) <= rtol * scale + 1e-12):
+            out.append("ok")
+            continue
+        code = "wrong_value"
+        if scale_of(ei) > 1e-12 and same(si, -ei, rtol):
+            code = "sign_flip"
+        for ccode, V, _, _ in cands:
+            if V is not None and V.shape == S.shape and same(si, V[:, i], rtol) and not same(V[:, i], ei, rtol):
+                code = ccode
+                break
+        if row_code is not None and code == "wrong_value":
+            code = row_code
+        out.append(code)
+    relevant = [i for i in range(w) if scale_of(E[:, i]) > 1e-12 or scale_of(S[:, i]) > 1e-12]
+    good = sum(1 for i in relevant if out[i] == "ok")
+    return tuple(out), (good / len(relevant) if relevant else 0.0)

@@ -1,0 +1,127 @@
+"""Evaluating the answer and the reference at the samples (third stage of a check).
+
+The answer (a :class:`~kinbook.grading.read.Answer`) is evaluated at the target's sample instants, shaped
+as the quantity asks (a column of m rows for Φ, ν and γ; m rows of the constraint's body columns or of all
+n columns for Φ_q), and put beside kinbook's reference from the numeric kernels. Nothing is derived
+symbolically: a student's own Φ (for error carried forward) is differentiated by the jets of its tape, or by
+finite differences when it is a function.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .read import Refused
+
+__all__ = ["PhiData", "DerivedData", "phi_data", "derived_data", "orient"]
+
+
+@dataclass
+class PhiData:
+    """An answer Φ and the reference at the generic (G) and assembled (M) samples."""
+
+    S_G: np.ndarray
+    S_M: np.ndarray
+    R_G: np.ndarray
+    R_M: np.ndarray
+    gR_M: np.ndarray
+    F_M: np.ndarray
+    grads: object  # callable: "assembled" | "generic" -> (N, ms, n)
+    on_manifold: bool
+
+
+@dataclass
+class DerivedData:
+    """An answer Φ_q, ν or γ and the reference at the assembled samples; ``cols`` are the coordinates of Φ_q's
+    columns in the answer's order; ``transposed`` when the answer was given n × m."""
+
+    S: np.ndarray
+    R: np.ndarray
+    cols: list
+    transposed: bool = False
+
+
+def _finite(S, target, what):
+    bad = ~np.isfinite(S)
+    if bad.any():
+        k = int(np.argwhere(bad.reshape(bad.shape[0], bad.shape[1], -1).any(axis=(0, 2)))[0][0])
+        raise Refused("not_finite", "not_finite", where=_row_where(target, k, S.shape[1]))
+
+
+def _row_where(target, k, ms):
+    from ._i18n import Msg
+
+    return Msg("your_row", k=k + 1)
+
+
+def column(V, target, what):
+    """Values (N, r, c) of a vector quantity as (N, r): a row vector is accepted for a column."""
+    if V.ndim == 3 and V.shape[2] == 1:
+        return V[:, :, 0]
+    if V.ndim == 3 and V.shape[1] == 1:
+        return V[:, 0, :]
+    raise Refused("wrong_shape", "wrong_shape", expected=f"({target.m},)", got=tuple(V.shape[1:]))
+
+
+def phi_data(target, answer):
+    """Evaluate an answer Φ at both sample sets."""
+    G, M = target.samples("generic"), target.samples("assembled")
+    S_G = column(answer.values(target, G), target, "Phi")
+    _finite(S_G[:, :, None], target, "Phi")
+    S_M = column(answer.values(target, M), target, "Phi")
+    _finite(S_M[:, :, None], target, "Phi")
+    RG, RM = target.reference("generic"), target.reference("assembled")
+    cache = {}
+
+    def grads(which):
+        if which not in cache:
+            s = G if which == "generic" else M
+            g = answer.derived(target, s)["Phi_q"]
+            cache[which] = np.where(np.isfinite(g), g, 0.0)
+        return cache[which]
+
+    return PhiData(S_G, S_M, RG["Phi"], RM["Phi"], RM["Phi_q"], RM["free_q"], grads, M.on_manifold)
+
+
+def orient(V, target, quantity):
+    """Values (N, r, c) of Φ_q shaped (N, rows, columns): returns (V, transposed)."""
+    sub, n = len(target.cols), target.n
+    r, c = V.shape[1:]
+    if c in (sub, n):
+        return V, False
+    if r in (sub, n):
+        return np.swapaxes(V, 1, 2), True
+    raise Refused("wrong_shape", "wrong_shape", expected=f"({target.m}, {sub})" if sub != n else f"({target.m}, {n})",
+                  got=(r, c))
+
+
+def best_columns(target, S, R_full, rtol):
+    """Columns of a single constraint's Φ_q: its bodies in role order (i, j, k — the book's tables) or in the
+    mechanism's order, whichever the answer follows better."""
+    roles = list(target.cols)
+    ordered = sorted(roles)
+    if ordered == roles or S.shape[2] != len(roles):
+        return roles if S.shape[2] == len(roles) else list(range(target.n))
+
+    def fit(cols):
+        Rc = R_full[:, :, cols]
+        k = min(S.shape[1], Rc.shape[1])
+        d = np.abs(S[:, :k] - Rc[:, :k])
+        return int(np.sum(np.all(d <= rtol * (np.abs(Rc[:, :k]).max(axis=0) + 1e-12), axis=0)))
+
+    return ordered if fit(ordered) > fit(roles) else roles
+
+
+def derived_data(target, answer, quantity, samples, reference, rtol):
+    """Evaluate an answer Φ_q, ν or γ at ``samples`` beside the reference values there."""
+    V = answer.values(target, samples)
+    if quantity == "Phi_q":
+        V, transposed = orient(V, target, quantity)
+        _finite(V, target, quantity)
+        cols = best_columns(target, V, reference["Phi_q"], rtol)
+        return DerivedData(V, reference["Phi_q"][:, :, cols], cols, transposed)
+    S = column(V, target, quantity)
+    _finite(S[:, :, None], target, quantity)
+    return DerivedData(S[:, :, None], reference[quantity][:, :, None], [])

@@ -1,0 +1,443 @@
+"""The one equivalence rule (fourth stage of a check): which rows of an answer stand for which rows of
+kinbook's reference, which are dependent on others, which reference rows are missing.
+
+The rule, for all four checkers (issue #14 item 2, issue #13 item 4):
+
+* An answer **row is right** when it is a reference row multiplied by a nonzero constant — the same
+  constant at every sample. For Φ any constant (Φ is a set of equations: −Φ_4 or 2Φ_4 is the same
+  constraint). For Φ_q, ν and γ the constant is the one of the row of Φ they come from: given by the
+  student's own Φ (``phi=``) when there is one; otherwise 1 for ν and γ (a negated ν or γ *is* the
+  classic sign mistake), while a Φ_q row, whose entries show their factor, may carry any constant.
+* A **Φ row** that is not such a multiple is still right when it is an *equivalent formulation*: it vanishes
+  wherever the mechanism is assembled (the assembled samples) and its gradient there lies in the span of the
+  reference rows' gradients (and, in space, of the bodies' normalization rows) — the same zero set, locally,
+  as √(Δx² + Δy²) − l for (Δx² + Δy²) − l², or the book's cross-product rows s̃_i s_j of a parallel
+  constraint for kinbook's two h-rows.
+* The **answer set** must have the reference's rank on the manifold: every reference row must be a multiple
+  of an answer row, or its gradient must lie in the span of the accepted answer rows' gradients. A row that
+  adds nothing is **dependent** and named ("row k depends on row j"): a repeated row or a multiple of one
+  (Φ_4 twice, 2·Φ_4), a row that vanishes with its gradient on the manifold (Φ_4², Φ_4·Φ_5), a constant
+  combination of other rows. A row whose dependence on others changes from configuration to configuration
+  (the book's third cross-product row) is not: it is part of a regular formulation with the right rank.
+
+Everything here works on arrays (samples × rows × columns); nothing reads answers or knows constraint types.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["RTOL", "RTOL_NUMBERS", "Row", "Matching", "scale_of", "scale_matrix", "match_phi", "match_rows",
+           "nice"]
+
+RTOL = 1e-6
+"""Relative tolerance of every comparison of symbolic answers and functions."""
+RTOL_NUMBERS = 2e-3
+"""Relative tolerance for numbers typed from a calculator (the book prints 4-6 significant digits)."""
+_NICE = (1.0, -1.0, 2.0, -2.0, 0.5, -0.5, 3.0, -3.0)
+
+
+def nice(c):
+    """``c`` rounded to a simple factor when it is one to rounding (1, −1, 2, ½ …)."""
+    for r in _NICE:
+        if abs(c - r) < 1e-9 * max(1.0, abs(c)):
+            return r
+    return float(c)
+
+
+def scale_of(a):
+    """Magnitude of a row over the samples (max |value|)."""
+    return float(np.max(np.abs(a))) if a.size else 0.0
+
+
+def _wrap(x, period):
+    return (x + period / 2) % period - period / 2
+
+
+def same(a, b, rtol, period=None):
+    """a ≈ b entry-wise over all samples, relative to the larger magnitude of the two."""
+    d = a - b
+    if period:
+        d = _wrap(d, period)
+    scale = max(scale_of(a), scale_of(b))
+    return bool(np.all(np.abs(d) <= rtol * scale + 1e-12 * max(scale, 1.0) * rtol))
+
+
+def scale_match(a, b, rtol, free=True, period=None, atol=0.0, zeros=False):
+    """The constant c ≠ 0 with a ≈ c·b at every sample (arrays of shape (N,) or (N, w)), or None.
+
+    ``free``: any constant; otherwise only c = 1. A ``period`` (a wrapped angle row) allows c = ±1 only,
+    compared modulo the period. ``atol``: differences this small are zero. ``zeros``: a reference row that is
+    zero at every sample is matched (c = 1) by an answer row that is zero too.
+    """
+    if period:
+        for c in ((1.0, -1.0) if free else (1.0,)):
+            if same(a, c * b, rtol, period):
+                return c
+        return None
+    sb = scale_of(b)
+    if sb <= atol:
+        return 1.0 if zeros and scale_of(a) <= max(atol, 1e-12) else None
+    if not free:
+        d = np.max(np.abs(a - b))
+        return 1.0 if d <= rtol * max(scale_of(a), sb) + atol else None
+    bb = float(np.sum(b * b))
+    c = float(np.sum(a * b)) / bb
+    if c == 0 or not np.isfinite(c):
+        return None
+    if np.max(np.abs(a - c * b)) <= rtol * max(scale_of(a), abs(c) * sb) + atol:
+        return nice(c)
+    return None
+
+
+def scale_matrix(S, R, rtol, free=True, wrap=None, atol=0.0, zeros=False):
+    """Constants C[k, j] with S[:, k] ≈ C·R[:, j] (NaN where there is none). S (N, ms, …), R (N, m, …)."""
+    wrap = wrap or {}
+    ms, m = S.shape[1], R.shape[1]
+    C = np.full((ms, m), np.nan)
+    for k in range(ms):
+        for j in range(m):
+            c = scale_match(S[:, k], R[:, j], rtol, free, wrap.get(j), atol, zeros)
+            if c is not None:
+                C[k, j] = c
+    return C
+
+
+def atol_of(R, rtol):
+    """The absolute tolerance of a quantity: rtol × its largest entry (at least rounding level)."""
+    return rtol * max(scale_of(R), 1e-9)
+
+
+@dataclass
+class Row:
+    """The verdict on one answer row (or, with ``k`` None, on a reference row the answer lacks).
+
+    Attributes
+    ----------
+    k : int or None
+        Position of the row in the answer (0-based).
+    ref : int or None
+        Position of the reference row it stands for (0-based, among the graded rows).
+    status : {"ok", "wrong", "dependent", "extra", "missing", "moved"}
+    factor : float or None
+        The constant c of answer = c·reference.
+    how : str
+        "multiple", "equivalent" (a different formulation), "own" (follows from the student's Φ), "both".
+    depends_on : list
+        For "dependent": the answer rows (ints) or reference rows ("Φ_j" labels built later) it depends on,
+        and how ("repeat", "function", "combination").
+    covers : list of int
+        Reference rows an equivalent row stands for.
+    code, detail, erratum, entries, score : filled by the diagnosis and the report.
+    """
+
+    k: int | None
+    ref: int | None
+    status: str
+    factor: float | None = None
+    how: str = "multiple"
+    depends_on: list = field(default_factory=list)
+    dependence: str = ""
+    covers: list = field(default_factory=list)
+    code: str | None = None
+    detail: tuple | None = None
+    erratum: str | None = None
+    entries: tuple = ()
+    score: float = 0.0
+
+
+@dataclass
+class Matching:
+    rows: list
+    missing: list  # reference rows (0-based) nobody stands for
+
+    def answer_rows(self, status=None):
+        return [r for r in self.rows if r.k is not None and (status is None or r.status == status)]
+
+
+# ================================================================================================ Φ
+def match_phi(S_G, R_G, S_M, R_M, gR_M, F_M, grads, rtol, order="any", wrap=None, on_manifold=True):
+    """Match the rows of an answer Φ to the reference's.
+
+    Parameters
+    ----------
+    S_G, R_G : ndarray (N_G, ms), (N_G, m)
+        Answer and reference at the generic samples.
+    S_M, R_M : ndarray (N_M, ms), (N_M, m)
+        The same at the assembled samples.
+    gR_M : ndarray (N_M, m, n)
+        Gradients of the reference rows at the assembled samples.
+    F_M : ndarray (N_M, f, n)
+        Gradients of rows that hold anyway (the normalization rows of a joint graded alone).
+    grads : callable
+        ``grads(which)`` → the answer's gradients (N, ms, n) at "assembled" or "generic" samples; called only
+        when a row is not a multiple of a reference row.
+    order : {"any", "book"}
+    wrap : dict
+        {reference row: period} of wrapped angle rows.
+
+    Returns
+    -------
+    Matching
+    """
+    wrap = wrap or {}
+    ms, m = S_G.shape[1], R_G.shape[1]
+    C = scale_matrix(S_G, R_G, rtol, True, wrap)
+    rows = [Row(k, None, "wrong") for k in range(ms)]
+    taken = {}
+    # 1. multiples of a reference row: in book order the diagonal first, then the first free candidate
+    prefer = [(k, k) for k in range(min(ms, m)) if not np.isnan(C[k, k])] if order == "book" else []
+    for k, j in prefer:
+        rows[k].ref, rows[k].status, rows[k].factor = j, "ok", C[k, j]
+        taken[j] = k
+    for k in range(ms):
+        if rows[k].status == "ok":
+            continue
+        cands = [j for j in range(m) if not np.isnan(C[k, j])]
+        free = [j for j in cands if j not in taken]
+        if free:
+            j = free[0]
+            rows[k].ref, rows[k].status, rows[k].factor = j, "ok", C[k, j]
+            taken[j] = k
+        elif cands:  # a repeat, or a multiple, of a row already given
+            j = cands[0]
+            rows[k].status, rows[k].ref, rows[k].factor = "dependent", j, C[k, j]
+            rows[k].depends_on, rows[k].dependence = [taken[j]], "repeat"
+    # 2. the other rows: zero set and gradient on the manifold
+    rest = [r for r in rows if r.status == "wrong"]
+    gS_M = gS_G = None
+    if rest and on_manifold:
+        gS_M = grads("assembled")
+        basis = np.concatenate([gR_M, F_M], axis=1) if F_M is not None and F_M.size else gR_M
+        for r in rest:
+            k = r.k
+            if gS_G is None:
+                gS_G = grads("generic")
+            g = gS_M[:, k, :]
+            gnorm = np.linalg.norm(g, axis=1)
+            gscale = max(float(np.max(np.linalg.norm(gS_G[:, k, :], axis=1))), float(np.max(gnorm)))
+            magnitude = max(scale_of(S_G[:, k]), gscale)  # a row zero off the manifold too (pᵀp − 1 on the sphere)
+            if magnitude == 0.0:
+                continue  # identically zero: wrong
+            if scale_of(S_M[:, k]) > 1e3 * rtol * magnitude:
+                continue  # not zero where the mechanism is assembled: wrong (diagnosed later)
+            if np.all(gnorm <= 1e3 * rtol * gscale):
+                r.status, r.dependence = "dependent", "function"
+                r.depends_on = _function_of(S_G[:, k], R_G, rtol)
+                continue
+            alpha, inspan = _in_span(g, basis, rtol)
+            if not inspan:
+                continue
+            contrib = np.abs(alpha[:, : R_G.shape[1]]) * np.linalg.norm(gR_M, axis=2)
+            covers = sorted({int(j) for j in range(m) if np.any(contrib[:, j] > 1e-3 * gnorm)})
+            if not covers:  # a combination of the always-true rows only (a normalization row, given again)
+                r.status, r.dependence, r.depends_on = "dependent", "free", []
+                continue
+            r.status, r.how, r.covers = "ok", "equivalent", covers
+            r.ref = next((j for j in covers if j not in taken), covers[0])
+    # 3. constant combinations among the accepted rows
+    accepted = [r for r in rows if r.status == "ok"]
+    for r in accepted:
+        if r.how != "equivalent":
+            continue
+        others = [o for o in accepted if o is not r and o.status == "ok"]
+        related = [o for o in others if (o.ref in r.covers) or (set(o.covers) & set(r.covers))]
+        if related and S_G.shape[0] > len(related) + 3:
+            A = S_G[:, [o.k for o in related]]
+            coef, *_ = np.linalg.lstsq(A, S_G[:, r.k], rcond=None)
+            if np.max(np.abs(A @ coef - S_G[:, r.k])) <= rtol * max(scale_of(S_G[:, r.k]), 1e-300):
+                r.status, r.dependence = "dependent", "combination"
+                r.depends_on = [o.k for o, c in zip(related, coef) if abs(c) > 1e-9]
+    # 4. coverage: every reference row a multiple of an answer row, or in the span of the accepted rows
+    accepted = [r for r in rows if r.status == "ok"]
+    covered = {r.ref for r in accepted if r.how == "multiple"}
+    missing = [j for j in range(m) if j not in covered]
+    if missing and any(r.how == "equivalent" for r in accepted) and on_manifold:
+        parts = [gR_M[:, [r.ref for r in accepted if r.how == "multiple"], :]]
+        eq = [r.k for r in accepted if r.how == "equivalent"]
+        if gS_M is None:
+            gS_M = grads("assembled")
+        parts.append(gS_M[:, eq, :])
+        if F_M is not None and F_M.size:
+            parts.append(F_M)
+        basis = np.concatenate(parts, axis=1)
+        still = []
+        for j in missing:
+            _, ok = _in_span(gR_M[:, j, :], basis, rtol)
+            if not ok:
+                still.append(j)
+        missing = still
+    # 5. book order
+    if order == "book":
+        _mark_moved(rows, m)
+    return Matching(rows, missing)
+
+
+def _in_span(g, basis, rtol):
+    """Per sample, the least-squares coefficients of g (N, n) on the rows of basis (N, b, n), and whether
+    the residual is at rounding level at every sample."""
+    N = g.shape[0]
+    alpha = np.zeros((N, basis.shape[1]))
+    ok = True
+    for i in range(N):
+        B = basis[i].T  # (n, b)
+        coef, *_ = np.linalg.lstsq(B, g[i], rcond=1e-10)
+        res = np.linalg.norm(B @ coef - g[i])
+        alpha[i] = coef
+        if res > 1e3 * rtol * max(np.linalg.norm(g[i]), 1e-300):
+            ok = False
+    return alpha, ok
+
+
+def _function_of(s, R, rtol):
+    """For a row that vanishes with its gradient on the manifold: the reference rows it is a power or a
+    product of (["Φ_j"] as 0-based reference positions), found at the generic samples."""
+    m = R.shape[1]
+    for j in range(m):
+        for p in (2, 3):
+            if scale_match(s, R[:, j] ** p, rtol) is not None:
+                return [("ref", j)]
+    for a in range(m):
+        for b in range(a + 1, m):
+            if scale_match(s, R[:, a] * R[:, b], rtol) is not None:
+                return [("ref", a), ("ref", b)]
+    return []
+
+
+def _mark_moved(rows, m):
+    """order="book": a right row in another position than the book's is "moved" (half credit)."""
+    accepted = [r for r in rows if r.status == "ok"]
+    if len(accepted) == len(rows) == m and all(r.how == "multiple" for r in accepted):
+        for r in accepted:
+            if r.ref != r.k:
+                r.status = "moved"
+        return
+    top = -1
+    for r in rows:
+        if r.status != "ok":
+            continue
+        key = r.ref if r.how == "multiple" else min(r.covers)
+        if key < top or (r.how == "multiple" and key == top):
+            r.status = "moved"
+        else:
+            top = key
+
+
+# ================================================================================================ Φ_q, ν, γ
+def match_rows(S, R, rtol, order="book", free=False, factors=None, own=None, atol=None):
+    """Match the rows of a derived quantity (Φ_q, ν or γ) to the reference.
+
+    Parameters
+    ----------
+    S, R : ndarray (N, ms, w), (N, m, w)
+        Answer and reference at the assembled samples (w columns: 1 for ν and γ).
+    order : {"book", "any"}
+        Without the student's Φ: "book" pairs answer row k with reference row k (aligning when the counts
+        differ); "any" pairs by value.
+    free : bool
+        Any constant factor per row (Φ_q); otherwise the factor of ``factors`` or 1.
+    factors : dict, optional
+        {answer row: (reference row, factor)} from the student's Φ (``phi=``): row k must be factor × that
+        reference row (or follow from the student's Φ: ``own``).
+    own : ndarray (N, ms', w), optional
+        The student's own derivation: the rows of Φ_q / ν / γ that follow from their Φ.
+
+    Returns
+    -------
+    Matching
+        Rows with status "ok" (how: "multiple", "own" or "both"), "wrong" (ref set: the row it should have
+        been), "extra"; ``missing`` reference rows.
+    """
+    ms, m = S.shape[1], R.shape[1]
+    atol = atol_of(R, rtol) if atol is None else atol
+    rows = []
+    if factors is not None or own is not None:
+        for k in range(ms):
+            ref, c = (factors or {}).get(k, (None, None))
+            ok_ref = False
+            if ref is not None:
+                if free:
+                    c2 = scale_match(S[:, k], R[:, ref], rtol, True, atol=atol, zeros=True)
+                    ok_ref, c = c2 is not None, (c2 if c2 is not None else c)
+                elif c is not None:
+                    ok_ref = scale_match(S[:, k], c * R[:, ref], rtol, False, atol=atol, zeros=True) is not None
+            ok_own = own is not None and k < own.shape[1] and \
+                scale_match(S[:, k], own[:, k], rtol, False, atol=atol, zeros=True) is not None
+            if ok_ref or ok_own:
+                how = "both" if ok_ref and ok_own else ("own" if ok_own else "multiple")
+                rows.append(Row(k, ref, "ok", c, how))
+            elif ref is None and (own is None or k >= own.shape[1]):
+                rows.append(Row(k, None, "extra"))
+            else:
+                rows.append(Row(k, ref, "wrong", c))
+        count = own.shape[1] if own is not None else m
+        return Matching(rows, [("own", k) for k in range(ms, count)])
+    C = scale_matrix(S, R, rtol, free, atol=atol, zeros=True)
+    if order == "any":
+        taken = {}
+        for k in range(ms):
+            cands = [j for j in range(m) if not np.isnan(C[k, j]) and j not in taken]
+            if cands:
+                taken[cands[0]] = k
+                rows.append(Row(k, cands[0], "ok", C[k, cands[0]]))
+            else:
+                rows.append(Row(k, None, "wrong"))
+        free_refs = [j for j in range(m) if j not in taken]
+        for r in rows:  # rows matching nothing: diagnosed against the rows left, in order
+            if r.status == "wrong" and free_refs:
+                r.ref = free_refs.pop(0)
+                r.factor = 1.0
+        for r in rows:
+            if r.status == "wrong" and r.ref is None:
+                r.status = "extra"
+        return Matching(rows, free_refs)
+    # book order
+    pairs = _align(C, ms, m) if ms != m else {k: k for k in range(m)}
+    used = set()
+    for k in range(ms):
+        j = pairs.get(k)
+        if j is None:
+            rows.append(Row(k, None, "extra"))
+            continue
+        used.add(j)
+        c = C[k, j]
+        rows.append(Row(k, j, "ok", c) if not np.isnan(c) else Row(k, j, "wrong", 1.0))
+    missing = [j for j in range(m) if j not in used]
+    if all(r.status != "ok" for r in rows) or any(r.status == "wrong" for r in rows):
+        # right rows in another order: the student's Φ was ordered differently
+        perm = _permutation(C)
+        if perm is not None and ms == m and any(perm[k] != k for k in perm):
+            for r in rows:
+                if r.status == "wrong" and r.k in perm:
+                    r.status, r.ref, r.factor = "moved", perm[r.k], C[r.k, perm[r.k]]
+    return Matching(rows, missing)
+
+
+def _align(C, ms, m):
+    """Book order with rows missing or extra: answer rows to reference rows keeping their order."""
+    out, j = {}, 0
+    for k in range(ms):
+        found = next((jj for jj in range(j, m) if not np.isnan(C[k, jj])), None)
+        if found is not None:
+            out[k] = found
+            j = found + 1
+        elif j < m and (ms - k) >= (m - j):
+            out[k] = j
+            j += 1
+    return out
+
+
+def _permutation(C):
+    """A one-to-one assignment of every answer row to a reference row it is a multiple of, or None."""
+    ms, m = C.shape
+    out, taken = {}, set()
+    for k in range(ms):
+        cands = [j for j in range(m) if not np.isnan(C[k, j]) and j not in taken]
+        if not cands:
+            return None
+        j = k if k in cands else cands[0]
+        out[k] = j
+        taken.add(j)
+    return out

@@ -1,0 +1,436 @@
+"""Wrong answers generated from the reference: how the mistake catalogue is detected.
+
+Every catalogued mistake is *made* here, on kinbook's own constraint, and the student's answer is compared
+with the result: a code is reported only when the answer is that mistake. Two families:
+
+* **Structural** variants re-write one constraint's Φ the way a student gets it wrong, by changing what goes
+  into the constraint's own :meth:`phi` — never by re-typing its formula: the local points of bodies i and j
+  exchanged, the bodies exchanged, Aᵀ for A (φ → −φ in A(φ); e → −e in A(p)), A omitted (φ = 0; p =
+  [1, 0, 0, 0]), the sign of one local coordinate, of a whole A s' or of a coordinate term, l for l², a
+  pitch radius with the wrong sign, angles in degrees, the book's misprinted forms (with their erratum id).
+  Their Φ_q, ν and γ come from the jets of their tapes: a student who carried such a Φ through a correct
+  derivation is recognised in every quantity.
+* **Derivation** variants take a Φ (kinbook's, or the student's own for error carried forward) and derive
+  Φ_q, ν or γ the way a student gets *the derivation* wrong: the chain-rule term ∂(A s')/∂φ dropped, A where
+  B belongs, ν = +Φ_t, γ with the wrong sign, without 2Φ_qt q̇ or Φ_tt, φ̇ without its square.
+
+What a constraint class offers to the catalogue (its points and vectors by body role, its angles, radii and
+lengths, its book forms) is registered by class in :data:`SPECS` — looked up along the class's MRO, never by
+type name; a class without an entry gets the generic variants only.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._i18n import Msg
+
+__all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "contexts_of", "register"]
+
+DEG = 180.0 / np.pi
+
+
+@dataclass
+class Spec:
+    """What the catalogue knows about a constraint class.
+
+    Attributes
+    ----------
+    points : tuple of (attribute, role index)
+        Local points read by :meth:`phi` (planar (ξ, η), spatial (ξ, η, ζ)).
+    vectors : tuple of (attribute, role index)
+        Local vectors (spatial: axes, arms, the h vectors of a parallel constraint).
+    swap_points : tuple of (attribute, attribute)
+        Pairs of points of bodies i and j that a student may exchange.
+    swap_bodies : bool
+        The roles of i and j are not symmetric: exchanging the bodies is a mistake of its own.
+    angles : tuple of str
+        Attributes holding angles (a number, a tuple, a dict entry "attr[key]").
+    radii : tuple of str
+        Attributes holding pitch radii (a sign mistake per radius).
+    lengths : tuple of str
+        Attributes holding a length l that Φ squares (l for l² is a mistake).
+    driver_angle : bool
+        The driver prescribes an angle: f(t) in degrees is a mistake.
+    frame : {"planar", "spatial", None}
+        Aᵀ for A and A omitted are generated (for classes with points or vectors).
+    context : tuple of str
+        Hint contexts of the class (catalogue contexts: "gear", "rack", "driver" …).
+    book : tuple of callables
+        ``f(c) -> (changes, erratum id)``: the book's misprinted forms as attribute changes.
+    """
+
+    points: tuple = ()
+    vectors: tuple = ()
+    swap_points: tuple = ()
+    swap_bodies: bool = False
+    angles: tuple = ()
+    radii: tuple = ()
+    lengths: tuple = ()
+    driver_angle: bool = False
+    frame: str | None = None
+    context: tuple = ()
+    book: tuple = ()
+    extra: tuple = ()
+
+
+SPECS = {}
+"""Constraint class → :class:`Spec` (filled by :func:`register` and :func:`_defaults`)."""
+
+
+def register(cls, spec):
+    """Declare what the catalogue may do with the constraints of ``cls`` (and its subclasses)."""
+    SPECS[cls] = spec
+
+
+def spec_of(c):
+    """The Spec of a constraint: its class's, or the nearest base class's, or an empty one."""
+    if not SPECS:
+        _defaults()
+    for cls in type(c).__mro__:
+        if cls in SPECS:
+            return SPECS[cls]
+    return Spec(context=("driver",) if c.kind == "driver" else ())
+
+
+def contexts_of(c, quantity=None):
+    """Hint contexts for a mistake found in a row of ``c``: the class's, then the quantity's, then the chapter."""
+    ctx = list(spec_of(c).context)
+    if c.kind == "driver" and "driver" not in ctx:
+        ctx.append("driver")
+    if quantity == "nu":
+        ctx.append("speed")
+    elif quantity == "gamma":
+        ctx.append("accel")
+    ctx.append(getattr(c, "chapter", None) or ("spatial" if len(getattr(c, "COORDS", ())) == 7 or
+                                               _is_spatial(c) else "planar"))
+    return tuple(ctx)
+
+
+def _is_spatial(c):
+    mech = getattr(c, "mechanism", None)
+    return getattr(mech, "kind", "planar") == "spatial"
+
+
+@dataclass
+class Variant:
+    """One generated mistake of one constraint.
+
+    Attributes
+    ----------
+    code : str
+        Catalogue code.
+    exprs : list of sympy expressions
+        The variant's Φ rows (the constraint's rows, in order), in the mechanism's symbols.
+    detail : Msg or None
+        What exactly (named after the title: "the sign of η_j").
+    erratum : str or None
+        Id of the book's erratum when the variant is the book's printed (wrong) formula.
+    """
+
+    code: str
+    exprs: list
+    detail: object = None
+    erratum: str | None = None
+    cache: dict = field(default_factory=dict, repr=False)
+
+
+# ============================================================================================ structural
+def structural(target, c):
+    """The structural variants of constraint ``c`` (cached on the target)."""
+    key = ("variants", tuple(target.block(c)))
+    if key in target.store:
+        return target.store[key]
+    out = []
+    try:
+        out = list(_structural(target, c))
+    finally:
+        target.store[key] = out
+    return out
+
+
+def _phi(target, c, Q=None, **changes):
+    """Φ rows of a copy of ``c`` with attributes changed, at body coordinates ``Q`` (default: the mechanism's
+    symbols of c's bodies)."""
+    mech = target.mech
+    cc = copy.copy(c)
+    cc.__dict__.pop("_views", None)
+    cc.__dict__.pop("_template", None)
+    for name, value in changes.items():
+        if "[" in name:
+            attr, k = name[:-1].split("[")
+            d = dict(getattr(cc, attr))
+            d[k] = value
+            setattr(cc, attr, d)
+        else:
+            setattr(cc, name, value)
+    if Q is None:
+        Q = [mech.body_symbols(b.name) for b in c.bodies]
+    return list(cc.phi(Q, mech.t))
+
+
+def _neg(v, k=None):
+    out = list(v) if not isinstance(v, np.ndarray) else v.copy()
+    if isinstance(out, np.ndarray):
+        if k is None:
+            return -out
+        out[k] = -out[k]
+        return out
+    if k is None:
+        return tuple(-x for x in out)
+    out[k] = -out[k]
+    return tuple(out)
+
+
+def _is_zero(x):
+    try:
+        return float(x) == 0.0
+    except (TypeError, ValueError):
+        return False
+
+
+def _coords(c):
+    return ("ξ", "η", "ζ")
+
+
+def _structural(target, c):
+    import sympy as sp
+
+    spec = spec_of(c)
+    mech = target.mech
+    Q = [mech.body_symbols(b.name) for b in c.bodies]
+    names = [b.name for b in c.bodies]
+    roles = "ijk"
+
+    def add(code, exprs, detail=None, erratum=None):
+        yield Variant(code, exprs, detail, erratum)
+
+    def safe(fn):
+        try:
+            return fn()
+        except Exception:  # a variant that cannot be built for this constraint is skipped
+            return None
+
+    # exchanged points / bodies
+    for a, b in spec.swap_points:
+        e = safe(lambda a=a, b=b: _phi(target, c, **{a: getattr(c, b), b: getattr(c, a)}))
+        if e is not None:
+            yield from add("swapped_points", e)
+    if spec.swap_bodies and len(Q) >= 2:
+        e = safe(lambda: list(c.phi([Q[1], Q[0]] + Q[2:], mech.t)))
+        if e is not None:
+            yield from add("swapped_bodies", e)
+    if len(spec.radii) == 2:
+        a, b = spec.radii
+        e = safe(lambda: _phi(target, c, **{a: getattr(c, b), b: getattr(c, a)}))
+        if e is not None:
+            yield from add("swapped_bodies", e)
+    # Aᵀ for A, A omitted
+    if spec.frame and (spec.points or spec.vectors):
+        if spec.frame == "planar":
+            QT = [sp.Matrix([q[0], q[1], -q[2]]) for q in Q]
+            QL = [sp.Matrix([q[0], q[1], 0]) for q in Q]
+        else:
+            QT = [sp.Matrix([*q[:4], -q[4], -q[5], -q[6]]) for q in Q]
+            QL = [sp.Matrix([*q[:3], 1, 0, 0, 0]) for q in Q]
+        e = safe(lambda: _phi_points_only(target, c, QT, spec))
+        if e is not None:
+            yield from add("A_transposed", e)
+        e = safe(lambda: _phi_points_only(target, c, QL, spec))
+        if e is not None:
+            yield from add("local_vector", e)
+    # the sign of one local coordinate, of a whole A s', of a coordinate term
+    for attr, role in spec.points + spec.vectors:
+        v = getattr(c, attr, None)
+        if v is None:
+            continue
+        for k, x in enumerate(v):
+            if _is_zero(x):
+                continue
+            e = safe(lambda attr=attr, k=k: _phi(target, c, **{attr: _neg(getattr(c, attr), k)}))
+            if e is not None:
+                coord = f"{_coords(c)[k]}_{roles[role]}"
+                yield from add("sign_flip", e, Msg("d.sign_of", what=Msg("d.coordinate", name=coord,
+                                                                              body=names[role])))
+        if sum(1 for x in v if not _is_zero(x)) > 1:
+            e = safe(lambda attr=attr: _phi(target, c, **{attr: _neg(getattr(c, attr))}))
+            if e is not None:
+                yield from add("sign_flip", e, Msg("d.sign_of", what=f"A_{roles[role]} s'_{roles[role]}"))
+    if spec.points:
+        nxyz = 2 if spec.frame == "planar" else 3
+        for role, q in enumerate(Q):
+            for k in range(nxyz):
+                Qs = [sp.Matrix(x) for x in Q]
+                Qs[role][k] = -Qs[role][k]
+                e = safe(lambda Qs=Qs: list(c.phi(Qs, mech.t)))
+                if e is not None:
+                    coord = "xyz"[k] + "_" + roles[role]
+                    yield from add("sign_flip", e, Msg("d.sign_of", what=coord))
+    for attr in spec.radii:
+        e = safe(lambda attr=attr: _phi(target, c, **{attr: -getattr(c, attr)}))
+        if e is not None:
+            yield from add("sign_flip", e, Msg("d.sign_of", what=Msg("d.radius", body=names[spec.radii.index(attr)])))
+    for attr in spec.lengths:
+        e = safe(lambda attr=attr: _phi(target, c, **{attr: sp.sqrt(getattr(c, attr))}))
+        if e is not None:
+            yield from add("missing_square", e, Msg("d.length_not_squared"))
+    # degrees
+    for attr in spec.angles:
+        e = safe(lambda attr=attr: _degrees(target, c, attr))
+        if e is not None:
+            yield from add("degrees", e, Msg("d.constant_degrees", name=_angle_name(attr)))
+    if c.kind == "driver" and spec.driver_angle and getattr(c, "f", None) is not None:
+        f = c.f
+        f0 = f.subs(mech.t, 0)
+        for g, detail in ((f * DEG, Msg("d.function_degrees")), (f - f0 + f0 * DEG, Msg("d.constant_degrees",
+                                                                                         name="φ⁰"))):
+            e = safe(lambda g=g: _phi(target, c, f=sp.expand(g)))
+            if e is not None:
+                yield from add("degrees", e, detail)
+        e = safe(lambda: _phi(target, c, f=-f))
+        if e is not None:
+            yield from add("sign_flip", e, Msg("d.sign_of", what="f(t)"))
+    # the book's printed forms
+    for book in spec.book:
+        made = safe(lambda book=book: book(c))
+        if not made:
+            continue
+        changes, erratum, code = made
+        e = safe(lambda changes=changes: _phi(target, c, **changes))
+        if e is not None:
+            yield from add(code, e, None, erratum)
+    for extra in spec.extra:
+        for item in safe(lambda extra=extra: list(extra(target, c, Q))) or ():
+            yield from add(*item)
+
+
+def _phi_points_only(target, c, Qmod, spec):
+    """Φ of ``c`` with A replaced in its points and vectors only: rows that read the bodies' angles directly
+    (a translational joint's φ_i − φ_j) keep them."""
+    mech = target.mech
+    Q = [mech.body_symbols(b.name) for b in c.bodies]
+    rows_mod = list(c.phi(Qmod, mech.t))
+    rows = list(c.phi(Q, mech.t))
+    if spec.frame != "planar":
+        return rows_mod
+    out = []
+    for r0, r1 in zip(rows, rows_mod):
+        # a row that only moved by φ → −φ in linear terms (no trig of φ) keeps its reference form
+        out.append(r0 if not r0.has(*_trig()) and r0 != r1 else r1)
+    return out
+
+
+def _trig():
+    import sympy as sp
+
+    return (sp.sin, sp.cos)
+
+
+def _angle_name(attr):
+    return {"phi0": "φ⁰", "value[2]": "φ⁰", "value": "φ⁰"}.get(attr, attr)
+
+
+def _degrees(target, c, attr):
+    """Φ with the angle attribute ``attr`` (phi0, value, value[2], a tuple entry, initial[phi_i]) in degrees."""
+    if attr.endswith("]") and "[" in attr:
+        base, key = attr[:-1].split("[")
+        cur = getattr(c, base)
+        if isinstance(cur, dict):
+            if _is_zero(cur[key]):
+                return None
+            return _phi(target, c, **{attr: cur[key] * DEG})
+        k = int(key)
+        cur = list(cur)
+        if _is_zero(cur[k]):
+            return None
+        cur[k] = cur[k] * DEG
+        return _phi(target, c, **{base: tuple(cur)})
+    cur = getattr(c, attr)
+    if isinstance(cur, (tuple, list)):
+        if all(_is_zero(x) for x in cur):
+            return None
+        return _phi(target, c, **{attr: tuple(x * DEG for x in cur)})
+    if _is_zero(cur):
+        return None
+    return _phi(target, c, **{attr: cur * DEG})
+
+
+# ============================================================================================ the registry
+def _defaults():
+    from .. import planar as P
+    from .. import spatial as S
+
+    register(P.Revolute, Spec(points=(("s_i", 0), ("s_j", 1)), swap_points=(("s_i", "s_j"),), frame="planar"))
+    register(P.Translational, Spec(points=(("s_Pi", 0), ("s_Qi", 0), ("s_Pj", 1)), swap_bodies=True,
+                                   angles=("phi0",), frame="planar", book=(_book_translational_origin,)))
+    register(P.RevoluteRevolute, Spec(points=(("s_i", 0), ("s_j", 1)), swap_points=(("s_i", "s_j"),),
+                                      lengths=("length",), frame="planar"))
+    register(P.RevoluteTranslational, Spec(points=(("s_Pi", 0), ("s_Pj", 1), ("s_Qj", 1)), swap_bodies=True,
+                                           frame="planar"))
+    register(P.Gear, Spec(radii=("radius_i", "radius_j"), angles=("phi0",), context=("gear",),
+                          book=(_book_gear_eq37,), extra=(_gear_fixed_carrier,)))
+    register(P.RackPinion, Spec(radii=("radius",), swap_bodies=True, angles=("initial[phi_i]",), context=("rack",),
+                                extra=(_rack_sliding,)))
+    register(P.Driver, Spec(driver_angle=True, context=("driver",)))
+    register(P.RelativeAngleDriver, Spec(swap_bodies=True, driver_angle=True, context=("driver",)))
+    register(P.DistanceDriver, Spec(points=(("s_Pi", 0), ("s_Qi", 0), ("s_Pj", 1)), swap_bodies=True,
+                                    frame="planar", context=("driver",)))
+    register(P.Ground, Spec(angles=("value[2]",)))
+    register(P.Simple, Spec(extra=(_simple_degrees,)))
+    register(S.Spherical, Spec(points=(("P_i", 0), ("P_j", 1)), swap_points=(("P_i", "P_j"),), frame="spatial"))
+    register(S.SphericalSpherical, Spec(points=(("P_i", 0), ("P_j", 1)), swap_points=(("P_i", "P_j"),),
+                                        frame="spatial"))
+    register(S.Universal, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_i", 0), ("a_j", 1)),
+                               swap_points=(("P_i", "P_j"),), frame="spatial"))
+    register(S.Revolute, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_j", 1),),
+                              swap_points=(("P_i", "P_j"),), frame="spatial"))
+    register(S.Normal1, Spec(vectors=(("a_i", 0), ("a_j", 1)), frame="spatial"))
+    register(S.Normal2, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_i", 0),), swap_bodies=True,
+                             frame="spatial"))
+    register(S.Parallel1, Spec(vectors=(("a_j", 1),), frame="spatial"))
+    register(S.Parallel2, Spec(points=(("P_i", 0), ("P_j", 1)), swap_bodies=True, frame="spatial"))
+    register(S.Cylindrical, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_j", 1),), swap_bodies=True,
+                                 frame="spatial"))
+    register(S.Translational, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_j", 1),), swap_bodies=True,
+                                   frame="spatial"))
+    register(S.RevoluteDriver, Spec(driver_angle=True, swap_bodies=True, context=("driver",)))
+    register(S.DistanceDriver, Spec(points=(("P_i", 0), ("P_j", 1)), swap_bodies=True, frame="spatial",
+                                    context=("driver",)))
+
+
+def _book_translational_origin(c):
+    """Eqs. 23.a-26 print s_i = r_i^P − r_i^O: the body origin O for the second axis point Q."""
+    if all(_is_zero(x) for x in c.s_Qi):
+        return None
+    return {"s_Qi": (0, 0)}, "13.5-eq25", "book_misprint"
+
+
+def _book_gear_eq37(c):
+    """Eq. 37: the carrier's initial angle left out of the initial angles."""
+    pi0, pj0, pk0 = c.phi0
+    if _is_zero(pk0):
+        return None
+    return {"phi0": (pi0, pj0, 0)}, "13.5-eq37", "book_misprint"
+
+
+def _gear_fixed_carrier(target, c, Q):
+    """Eq. 36 (a fixed carrier) used with a moving one: the carrier's turn missing."""
+    import sympy as sp
+
+    Qs = [sp.Matrix(x) for x in Q]
+    Qs[2][2] = c.phi0[2]
+    yield ("missing_term", list(c.phi(Qs, target.mech.t)), None, None)
+
+
+def _rack_sliding(target, c, Q):
+    """The sliding pinion's x_i − x_i⁰ (eq. 42) forgotten."""
+    if c.sliding:
+        yield ("missing_term", _phi(target, c, sliding=False), None, None)
+
+
+def _simple_degrees(target, c, Q):
+    if getattr(c, "coordinate", None) == "phi" and not _is_zero(c.value):
+        yield ("degrees", _phi(target, c, value=c.value * DEG), Msg("d.constant_degrees", name="φ⁰"), None)

@@ -1,0 +1,416 @@
+"""Reading a student's answer (first stage of a check): text, sympy objects, a Python function, or numbers.
+
+:func:`read` turns any accepted form into an :class:`Answer`, or raises :class:`Refused` — with a catalogue
+code and a message saying what was expected — which the checker turns into a failed result.
+
+* **Text** is read by the team's one safe reader, :func:`kinbook.expressions.read_expression`: an
+  allow-list of names (the mechanism's coordinates, velocities and t, in any of the spellings of
+  :meth:`~kinbook.grading.target.Target.symbols`: ``phi2``, ``phi_2``, ``φ2``; ``dphi2``, ``phi2_dot``),
+  numbers, + − × ÷ ^ and the reader's functions; bounds on size checked before any arithmetic. Never
+  ``sympify``, ``eval`` or ``exec``.
+* **sympy objects** a student built in Python are checked against the same bounds
+  (:func:`kinbook.expressions.check_expression`) and their symbols are matched *by name*: a student who
+  writes ``sp.symbols("x1 phi2")`` (without ``real=True``) gets the mechanism's x1 and phi2.
+* **A function** ``f(q, t)`` (``f(q, qd, t)`` for γ, or ``f(q)``) is called once per sample instant with
+  copies of the coordinates; what it returns must be real numbers of a bounded size. It runs as it is (in a
+  notebook, the student's own code in the student's own kernel): nothing times it out.
+* **Numbers** (a number, a vector, a matrix) are the values at one configuration: they are only graded
+  with ``at=`` (the checker refuses them otherwise: "give the configuration").
+
+Symbolic answers are evaluated by a :class:`~kinbook.grading.jets.Tape` (no code generation); the same tape
+gives, for a student's Φ, its Φ_q, ν and γ exactly. A function's are taken by finite differences with
+Richardson extrapolation (relative error ~1e-10).
+"""
+
+from __future__ import annotations
+
+import inspect
+import numbers
+
+import numpy as np
+
+__all__ = ["Answer", "Refused", "read"]
+
+MAX_OUTPUT = 100_000
+"""The most numbers a student's function may return per call (a guard, not a time limit)."""
+
+
+def _reader():
+    try:  # the team's safe reader (kinbook/expressions.py)
+        from .. import expressions as ex
+    except ImportError:  # pragma: no cover - until the reader is merged
+        from . import _interim_reader as ex
+    return ex
+
+
+def _limits():
+    """The bounds on one entry of an answer: text up to 20 000 characters, trees up to 120 000 nodes, 400
+    deep (a Jacobian entry of a spatial joint that sympy derived is large, but bounded)."""
+    return _reader().Limits(length=20_000, nodes=120_000, depth=400)
+
+
+class Refused(Exception):
+    """An answer that cannot be graded: a catalogue code, and a message (a text key of
+    :mod:`kinbook.grading._i18n` with its fields, translated when shown)."""
+
+    def __init__(self, code, key, **fields):
+        super().__init__(key)
+        self.code, self.key, self.fields = code, key, fields
+
+
+class Answer:
+    """A readable answer.
+
+    Attributes
+    ----------
+    kind : {"symbolic", "function", "numbers"}
+    matrix : sympy.Matrix or None
+        The answer as sympy (kind "symbolic").
+    array : ndarray or None
+        The numbers (kind "numbers"), 2-D.
+    """
+
+    def __init__(self, kind, matrix=None, array=None, function=None, nargs=2):
+        self.kind, self.matrix, self.array, self.function, self.nargs = kind, matrix, array, function, nargs
+        self._tapes = {}
+
+    @property
+    def shape(self):
+        """(rows, columns), or None for a function (known after its first call)."""
+        if self.matrix is not None:
+            return tuple(self.matrix.shape)
+        if self.array is not None:
+            return self.array.shape
+        return None
+
+    def transposed(self):
+        """The same answer with rows and columns exchanged (a row vector given for a column)."""
+        if self.kind == "symbolic":
+            return Answer("symbolic", matrix=self.matrix.T)
+        if self.kind == "numbers":
+            return Answer("numbers", array=self.array.T)
+        f = self.function
+        return Answer("function", function=lambda *a: np.asarray(f(*a)).T, nargs=self.nargs)
+
+    # ------------------------------------------------------------------------------------------- numbers
+    def tape(self, target):
+        key = id(target)
+        if key not in self._tapes:
+            from .jets import UnsupportedExpression
+
+            try:
+                self._tapes[key] = target.tape(list(self.matrix))
+            except UnsupportedExpression as exc:
+                raise Refused("malformed", "unsupported", what=str(exc)) from None
+        return self._tapes[key]
+
+    def values(self, target, s):
+        """The answer at the instants of ``s``: (N, rows, columns)."""
+        if self.kind == "numbers":
+            return np.broadcast_to(self.array, (s.N,) + self.array.shape).copy()
+        if self.kind == "symbolic":
+            rows, cols = self.matrix.shape
+            v = self.tape(target)(s.Q, s.QD, s.T)["value"]
+            return v.reshape(s.N, rows, cols)
+        return np.stack([self._call(s.Q[k], s.QD[k], s.T[k], target) for k in range(s.N)])
+
+    def derived(self, target, s):
+        """Φ, Φ_q (all n columns), ν and γ of this answer read as Φ(q, t), at the instants of ``s``.
+
+        Returns
+        -------
+        dict of "Phi" (N, k), "Phi_q" (N, k, n), "nu" (N, k), "gamma" (N, k)
+        """
+        if self.kind == "symbolic":
+            return self.tape(target).derived(s.Q, s.QD, s.T)
+        if self.kind == "function":
+            return _finite_differences(lambda Q, T: self._batch(Q, T, target), s)
+        raise Refused("malformed", "needs_expression")
+
+    def _batch(self, Q, T, target):
+        return np.stack([self._call(Q[k], np.zeros_like(Q[k]), T[k], target)[:, 0] for k in range(len(Q))])
+
+    def _call(self, q, qd, t, target):
+        f, nargs = self.function, self.nargs
+        sig = "f(q, qd, t)" if nargs >= 3 else ("f(q, t)" if nargs == 2 else "f(q)")
+
+        def call(qq, qqd):
+            if nargs >= 3:
+                return f(qq.copy(), qqd.copy(), float(t))
+            return f(qq.copy(), float(t)) if nargs == 2 else f(qq.copy())
+
+        try:
+            out = call(q, qd)
+        except Exception as exc:  # a student's function may raise anything
+            cols = target.cols
+            if len(cols) == len(q):
+                raise Refused("malformed", "callable_failed", error=f"{type(exc).__name__}: {exc}",
+                              signature=sig) from None
+            try:  # a function of the coordinates of the constraint's own bodies only
+                out = call(q[cols], qd[cols])
+            except Exception:
+                raise Refused("malformed", "callable_failed", error=f"{type(exc).__name__}: {exc}",
+                              signature=sig) from None
+        return _as_numbers(out, "callable_result", signature=sig)
+
+
+# ================================================================================================ reading
+def read(answer, target, quantity):
+    """Read an answer for ``quantity`` ("Phi", "Phi_q", "nu" or "gamma") of ``target``.
+
+    Returns
+    -------
+    Answer
+
+    Raises
+    ------
+    Refused
+    """
+    if answer is None:
+        raise Refused("malformed", "expect_answer", signature=_signature(quantity))
+    if callable(answer) and not _is_sympy(answer):
+        return Answer("function", function=answer, nargs=_nargs(answer, quantity))
+    if isinstance(answer, (bool, np.bool_)):
+        raise Refused("malformed", "bool_answer")
+    if _plain_numbers(answer):
+        return Answer("numbers", array=_as_numbers(answer, "answer"))
+    if not isinstance(answer, (str, list, tuple, np.ndarray)) and not _is_sympy(answer):
+        from ._i18n import Msg
+
+        raise Refused("malformed", "bad_type", expected=Msg(f"expect_{quantity}"), type=type(answer).__name__)
+    symbols = target.symbols()
+    return Answer("symbolic", matrix=_matrix(answer, symbols, quantity))
+
+
+def _signature(quantity):
+    return "f(q, qd, t)" if quantity == "gamma" else "f(q, t)"
+
+
+def _nargs(f, quantity):
+    try:
+        params = [p for p in inspect.signature(f).parameters.values()
+                  if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+        return max(1, len(params))
+    except (TypeError, ValueError):
+        return 3 if quantity == "gamma" else 2
+
+
+def _is_sympy(x):
+    import sys
+
+    sp = sys.modules.get("sympy")
+    return sp is not None and isinstance(x, (sp.Basic, sp.MatrixBase))
+
+
+def _flat(a):
+    if isinstance(a, (list, tuple)):
+        for x in a:
+            yield from _flat(x)
+    elif isinstance(a, np.ndarray):
+        yield from a.ravel().tolist()
+    elif _is_sympy(a) and hasattr(a, "shape"):
+        yield from a
+    else:
+        yield a
+
+
+def _is_number(x):
+    return isinstance(x, (numbers.Number, np.number)) and not isinstance(x, (bool, np.bool_))
+
+
+def _plain_numbers(a):
+    """True for a number or (nested) lists / arrays of numbers only (never evaluates a sympy object)."""
+    if _is_number(a):
+        return True
+    if isinstance(a, np.ndarray) and a.dtype != object:
+        return a.size > 0
+    if isinstance(a, (list, tuple, np.ndarray)):
+        items = list(_flat(a))
+        return bool(items) and all(_is_number(x) for x in items)
+    return False
+
+
+def _as_numbers(value, what, **fields):
+    """Real finite-or-not numbers as a 2-D float array; refuses bools, complex values, ragged or huge data."""
+    if _is_sympy(value):
+        import sympy as sp
+
+        if isinstance(value, sp.MatrixBase):
+            value = [[_sympy_number(e) for e in value.row(k)] for k in range(value.rows)]
+        else:
+            value = _sympy_number(value)
+    if isinstance(value, (bool, np.bool_)) or (isinstance(value, (list, tuple)) and
+                                                 any(isinstance(x, (bool, np.bool_)) for x in _flat(value))):
+        raise Refused("malformed", "bool_answer")
+    try:
+        arr = np.asarray(value)
+    except (ValueError, TypeError):
+        raise Refused("wrong_shape", "ragged") from None
+    if arr.dtype == object:
+        try:
+            arr = arr.astype(complex)
+        except (TypeError, ValueError):
+            raise Refused("malformed", "not_numbers", what=what, **fields) from None
+    if arr.dtype.kind == "b":
+        raise Refused("malformed", "bool_answer")
+    if arr.dtype.kind == "c":
+        if np.any(arr.imag != 0):
+            raise Refused("malformed", "complex_answer")
+        arr = arr.real
+    if arr.dtype.kind not in "iuf":
+        raise Refused("malformed", "not_numbers", what=what, **fields)
+    if arr.size > MAX_OUTPUT:
+        raise Refused("malformed", "too_many_numbers", size=arr.size, limit=MAX_OUTPUT)
+    if arr.ndim > 2:
+        squeezed = arr.squeeze()
+        if squeezed.ndim > 2:
+            raise Refused("wrong_shape", "too_many_axes", shape=arr.shape)
+        arr = squeezed
+    arr = np.asarray(arr, float)
+    if arr.ndim == 0:
+        arr = arr.reshape(1, 1)
+    elif arr.ndim == 1:
+        arr = arr.reshape(-1, 1)
+    return arr
+
+
+def _sympy_number(e):
+    if getattr(e, "is_number", False) and not e.free_symbols:
+        try:
+            c = complex(e)
+        except (TypeError, ValueError, OverflowError):
+            return np.nan
+        return c if c.imag else c.real
+    raise Refused("malformed", "returns_symbols")
+
+
+def _matrix(answer, symbols, quantity):
+    """A sympy Matrix from text, sympy objects or (nested) lists of those and numbers."""
+    import sympy as sp
+
+    if isinstance(answer, sp.MatrixBase):
+        rows = [list(answer.row(k)) for k in range(answer.rows)]
+    elif isinstance(answer, np.ndarray):
+        rows = _rows(answer.tolist())
+    elif isinstance(answer, (list, tuple)):
+        rows = _rows(list(answer))
+    else:
+        rows = [[answer]]
+    entries = []
+    for i, row in enumerate(rows):
+        out = []
+        for j, e in enumerate(row):
+            where = f"answer row {i + 1}" if len(row) == 1 else f"answer row {i + 1}, entry {j + 1}"
+            out.append(_entry(e, symbols, where))
+        entries.append(out)
+    M = sp.Matrix(entries)
+    if M.rows == 1 and M.cols > 1 and quantity != "Phi_q":
+        M = M.T  # a row vector for a column quantity
+    return M
+
+
+def _rows(items):
+    if not items:
+        raise Refused("wrong_shape", "empty_answer")
+    nested = [isinstance(r, (list, tuple, np.ndarray)) or (_is_sympy(r) and hasattr(r, "shape")) for r in items]
+    if all(nested):
+        rows = [list(_flat_row(r)) for r in items]
+        widths = {len(r) for r in rows}
+        if len(widths) != 1 or 0 in widths:
+            raise Refused("wrong_shape", "ragged")
+        return rows
+    if any(nested):
+        raise Refused("wrong_shape", "ragged")
+    return [[x] for x in items]
+
+
+def _flat_row(r):
+    if isinstance(r, np.ndarray):
+        return r.ravel().tolist()
+    if _is_sympy(r):
+        return list(r)
+    for x in r:
+        if isinstance(x, (list, tuple, np.ndarray)) or (_is_sympy(x) and hasattr(x, "shape")):
+            raise Refused("wrong_shape", "nested_deeper")
+    return list(r)
+
+
+def _entry(e, symbols, where):
+    import sympy as sp
+
+    ex = _reader()
+    if isinstance(e, str):
+        if not e.strip():
+            raise Refused("malformed", "empty_text", where=where)
+        try:
+            return ex.read_expression(e, symbols=symbols, where=where, limits=_limits())
+        except ex.ExpressionError as err:
+            unknown = str(getattr(err, "reason", "") or "").startswith("unknown name")
+            raise Refused("unknown_symbol" if unknown else "malformed", "reader", message=str(err)) from None
+    if isinstance(e, (bool, np.bool_)):
+        raise Refused("malformed", "bool_answer")
+    if _is_number(e):
+        if isinstance(e, (complex, np.complexfloating)):
+            if e.imag != 0:
+                raise Refused("malformed", "complex_answer")
+            e = e.real
+        value = float(e)
+        if not np.isfinite(value):
+            raise Refused("not_finite", "not_finite", where=where)
+        return sp.Integer(int(e)) if isinstance(e, (numbers.Integral, np.integer)) else sp.Float(value)
+    if not isinstance(e, sp.Basic):
+        raise Refused("malformed", "bad_entry", where=where, type=type(e).__name__)
+    if not isinstance(e, sp.Expr) or isinstance(e, sp.MatrixBase):
+        raise Refused("malformed", "not_an_expression", where=where, type=type(e).__name__)
+    try:
+        ex.check_expression(e, where=where, limits=_limits())
+    except ex.ExpressionError as err:
+        code = "not_finite" if "not a finite number" in str(err) else "malformed"
+        raise Refused(code, "reader", message=str(err)) from None
+    return _rebind(e, symbols, where)
+
+
+def _rebind(e, symbols, where):
+    """The student's own symbols replaced, by name, with the mechanism's."""
+    free = e.free_symbols
+    repl, unknown = {}, []
+    targets = set(symbols.values())
+    for s in free:
+        if s in targets:
+            continue
+        if s.name in symbols:
+            repl[s] = symbols[s.name]
+        else:
+            unknown.append(s.name)
+    if unknown:
+        raise Refused("unknown_symbol", "unknown_symbols", names=", ".join(sorted(unknown)), where=where)
+    return e.xreplace(repl) if repl else e
+
+
+# ================================================================================================ derivatives
+def _finite_differences(F, s, h=1e-3):
+    """Φ, Φ_q, ν, γ of a numeric Φ(q, t) (vectorized F(Q, T) -> (N, k)) by central differences with one
+    Richardson extrapolation (error O(h⁴))."""
+    Q, QD, T = s.Q, s.QD, s.T
+    N, n = Q.shape
+    phi = F(Q, T)
+    k = phi.shape[1]
+
+    def d1(direction_q, direction_t, step):
+        return (F(Q + step * direction_q, T + step * direction_t)
+                - F(Q - step * direction_q, T - step * direction_t)) / (2 * step)
+
+    def rich1(dq, dt):
+        return (4 * d1(dq, dt, h / 2) - d1(dq, dt, h)) / 3
+
+    def d2(step):
+        return (F(Q + step * QD, T + step) - 2 * phi + F(Q - step * QD, T - step)) / (step * step)
+
+    jac = np.zeros((N, k, n))
+    for j in range(n):
+        e = np.zeros((N, n))
+        e[:, j] = 1.0
+        jac[:, :, j] = rich1(e, np.zeros(N))
+    phi_t = rich1(np.zeros((N, n)), np.ones(N))
+    gamma = -(4 * d2(h / 2) - d2(h)) / 3
+    return {"Phi": phi, "Phi_q": jac, "nu": -phi_t, "gamma": gamma}

@@ -1,0 +1,269 @@
+"""The verdict, written (last stage of a check): a :class:`~kinbook.grading.result.CheckResult` from the
+matching and the diagnosis.
+
+Counts and scores come from the same rows: the headline's "k of n rows" counts the rows of the table, and
+the score is the mean credit of those rows (half for a right row out of the book's order; for Φ_q the
+fraction of a row's nonzero entries that are right). Positions are 1-based everywhere. Texts stay
+:class:`~kinbook.grading._i18n.Msg` objects until shown, so they are written in the language of the moment.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._i18n import Msg, both, constraint_label
+from .catalogue import MISTAKES, explain
+from .result import CheckResult, RowResult
+
+__all__ = ["phi_result", "derived_result", "failed", "hints", "fmt"]
+
+QUANTITY = {"Phi": "Φ", "Phi_q": "Φ_q", "nu": "ν", "gamma": "γ"}
+
+
+def fmt(x):
+    """A number as it is shown: 6 significant digits, round-off to zero (never 2.22045e-16)."""
+    x = float(x)
+    if abs(x) < 1e-12:
+        x = 0.0
+    return f"{x:.6g}"
+
+
+def failed(quantity, message, code):
+    """A failed result with one message and one code (an answer that cannot be graded)."""
+    return CheckResult(False, 0.0, [message], [code] if code else [], (), QUANTITY.get(quantity, quantity))
+
+
+def owner_text(target, j):
+    return both(lambda lang: constraint_label(target.owner(j), lang))
+
+
+def hints(codes, contexts):
+    """One line per distinct mistake code: "Hint (title): hint", the hint in the notation of its context."""
+    out = []
+    for code in codes:
+        ctx = contexts.get(code, ())
+        out.append(both(lambda lang, code=code, ctx=ctx: _hint_line(code, lang, ctx)))
+    return out
+
+
+def _hint_line(code, lang, ctx):
+    from ._i18n import render
+
+    title, hint = explain(code, lang, ctx)
+    return render(Msg("hint", title=title, hint=hint), lang)
+
+
+def _title(code):
+    return both(lambda lang: explain(code, lang)[0])
+
+
+def mistake_message(row):
+    """"wrong — title[: detail]" for a diagnosed row (with the erratum when the answer is the book's misprint)."""
+    detail = row.detail
+    if row.erratum:
+        extra = Msg("book_misprint", id=row.erratum)
+        detail = extra if detail is None else [detail, extra]
+    if detail is None:
+        return Msg("row_mistake", title=_title(row.code))
+    return Msg("row_mistake_detail", title=_title(row.code), detail=detail)
+
+
+def _unique(codes):
+    out = []
+    for c in codes:
+        if c and c not in out:
+            out.append(c)
+    return out
+
+
+# ================================================================================================ Φ
+def phi_result(target, matching, order):
+    """The CheckResult of a Φ check."""
+    rows, messages, codes, contexts = [], [], [], {}
+    labels = {}
+    for r in matching.rows:
+        label = target.label(r.ref) if r.ref is not None else Msg("your_row", k=r.k + 1)
+        if r.status == "ok":
+            if r.how == "equivalent":
+                refs = ", ".join(target.label(j) for j in r.covers)
+                label = refs if len(r.covers) <= 2 else f"{target.label(r.covers[0])}…"
+                msg = Msg("row_equivalent", refs=refs)
+            elif r.factor not in (None, 1.0):
+                msg = Msg("row_ok_scaled", c=fmt(r.factor))
+            else:
+                msg = ""
+            rows.append(RowResult(label, "ok", msg, None, (), 1.0))
+        elif r.status == "moved":
+            rows.append(RowResult(label, "wrong", Msg("row_moved", ref=target.label(r.ref)), "row_order", (), 0.5))
+            codes.append("row_order")
+        elif r.status == "dependent":
+            msg = _dependence(target, r)
+            rows.append(RowResult(Msg("your_row", k=r.k + 1), "extra", msg, "dependent_row", (), 0.0))
+            messages.append(msg)
+            codes.append("dependent_row")
+        elif r.status == "extra" or (r.status == "wrong" and r.ref is None and r.code in (None, "extra_row")):
+            rows.append(RowResult(Msg("your_row", k=r.k + 1), "extra", Msg("row_extra"), "extra_row", (), 0.0))
+            messages.append(Msg("row_extra_at", k=r.k + 1))
+            codes.append("extra_row")
+        else:  # wrong
+            code = r.code or "wrong_value"
+            msg = mistake_message(r) if r.code else Msg("row_wrong", ref=target.label(r.ref),
+                                                        owner=owner_text(target, r.ref))
+            rows.append(RowResult(label, "wrong", msg, code, (), 0.0))
+            messages.append(Msg("row_line", label=label, owner=owner_text(target, r.ref), text=msg))
+            codes.append(code)
+            contexts.setdefault(code, r.entries_context if hasattr(r, "entries_context") else ())
+        labels[r.k] = label
+    for j in matching.missing:
+        code = "missing_normalization" if target.owner(j).kind == "normalization" else "missing_row"
+        msg = Msg("row_missing", ref=target.label(j), owner=owner_text(target, j))
+        rows.append(RowResult(target.label(j), "missing", msg, code, (), 0.0))
+        messages.append(Msg("row_line_short", label=target.label(j), text=msg))
+        codes.append(code)
+    return _finish("Phi", rows, messages, codes, contexts, target, matching)
+
+
+def _dependence(target, r):
+    if r.dependence == "repeat":
+        return Msg("row_depends_repeat", k=r.k + 1, j=r.depends_on[0] + 1, c=fmt(r.factor or 1.0))
+    if r.dependence == "combination":
+        return Msg("row_depends_combination", k=r.k + 1, rows=", ".join(str(j + 1) for j in r.depends_on))
+    if r.dependence == "free":
+        return Msg("row_depends_free", k=r.k + 1, what=both(lambda lang: _free_what(target, lang)))
+    refs = [target.label(j) for _, j in r.depends_on] if r.depends_on else []
+    return Msg("row_depends_function", k=r.k + 1, rows=", ".join(refs) if refs else "?")
+
+
+def _free_what(target, lang):
+    from ._i18n import constraint_label as cl
+
+    mech = target.mech
+    names = [cl(c, lang) for c in mech.constraints if c.kind == "normalization"
+             and set(range(c.rows.start, c.rows.stop)) & set(target.free_rows)]
+    return names[0] if len(names) == 1 else " / ".join(names)
+
+
+def _finish(quantity, rows, messages, codes, contexts, target, matching=None, entries=False, transposed=False,
+            columns=(), notes_after=()):
+    what = QUANTITY[quantity]
+    total = len(rows)
+    score = sum(r.score for r in rows) / total if total else 0.0
+    codes = _unique(codes)
+    passed = not codes and total > 0 and score >= 1.0 - 1e-12
+    n_ok = sum(1 for r in rows if r.status == "ok")
+    half = sum(1 for r in rows if r.mistake == "row_order")
+    if passed:
+        equivalent = matching is not None and any(getattr(r, "how", "") == "equivalent" for r in matching.rows)
+        own = matching is not None and sum(1 for r in matching.rows if getattr(r, "how", "") == "own")
+        if equivalent:
+            head = Msg("all_correct_equivalent", what=what, n=total, m=target.m)
+        elif own:
+            head = Msg("all_consistent", what=what, n=total, k=own)
+        else:
+            head = Msg("all_correct", what=what, n=total)
+    elif transposed:
+        head = Msg("summary_transposed", what=what, n=total, score=score)
+    elif entries:
+        eok, en = entries
+        head = Msg("summary_entries", what=what, ok=n_ok, n=total, eok=eok, en=en, score=score)
+    elif half:
+        head = Msg("summary_half", what=what, ok=n_ok, n=total, half=half, score=score)
+    else:
+        head = Msg("summary", what=what, ok=n_ok, n=total, score=score)
+    notes = [head] + list(messages) + list(notes_after) + hints(codes, contexts)
+    return CheckResult(passed, round(score, 6), notes, codes, tuple(rows), what, tuple(columns))
+
+
+# ================================================================================================ Φ_q, ν, γ
+def derived_result(target, quantity, matching, data, rtol, transposed=False, notes=(), extra_codes=()):
+    """The CheckResult of a Φ_q, ν or γ check."""
+    rows, messages, codes, contexts = [], [], list(extra_codes), {}
+    columns = tuple(_book(target.names[c]) for c in data.cols) if quantity == "Phi_q" else ()
+    e_ok = e_n = 0
+    for r in matching.rows:
+        label = target.label(r.ref) if r.ref is not None and not isinstance(r.ref, tuple) else Msg("your_row", k=r.k + 1)
+        width = data.S.shape[2]
+        if r.status == "ok":
+            if r.how == "own":
+                msg = Msg("consistent_not_correct")
+                messages.append(Msg("row_line_short", label=label, text=msg))
+            elif r.how == "both":
+                msg = Msg("consistent_correct")
+            elif quantity == "Phi_q" and r.factor not in (None, 1.0):
+                msg = Msg("row_ok_jacobian_scaled", c=fmt(r.factor), ref=target.label(r.ref))
+            else:
+                msg = ""
+            entries = ("ok",) * width if quantity == "Phi_q" else ()
+            if quantity == "Phi_q":
+                nz = _nonzero(data.R[:, r.ref] if r.ref is not None else data.S[:, r.k])
+                e_ok += nz
+                e_n += nz
+            rows.append(RowResult(label, "ok", msg, None, entries, 1.0))
+        elif r.status == "moved":
+            rows.append(RowResult(label, "wrong", Msg("row_moved", ref=target.label(r.ref)), "row_order", (), 0.5))
+            codes.append("row_order")
+        elif r.status == "extra":
+            rows.append(RowResult(Msg("your_row", k=r.k + 1), "extra", Msg("row_extra"), "extra_row", (), 0.0))
+            messages.append(Msg("row_extra_at", k=r.k + 1))
+            codes.append("extra_row")
+        else:
+            code = r.code or "wrong_value"
+            msg = mistake_message(r) if r.code else Msg("row_wrong", ref=target.label(r.ref) if r.ref is not None
+                                                        else "?", owner=owner_text(target, r.ref)
+                                                        if r.ref is not None else "")
+            if quantity == "Phi_q" and r.entries:
+                bad = [f"∂/∂{columns[i]}" for i, e in enumerate(r.entries) if e != "ok"]
+                msg = Msg("row_with_entries", text=msg, entries=", ".join(bad))
+                expected = data.R[:, r.ref] if r.ref is not None else None
+                if expected is not None:
+                    relevant = _relevant(data.S[:, r.k], expected)
+                    e_n += len(relevant)
+                    e_ok += sum(1 for i in relevant if r.entries[i] == "ok")
+            rows.append(RowResult(label, "wrong", msg, code, r.entries, r.score))
+            owner = owner_text(target, r.ref) if r.ref is not None and not isinstance(r.ref, tuple) else ""
+            messages.append(Msg("row_line", label=label, owner=owner, text=msg) if owner
+                            else Msg("row_line_short", label=label, text=msg))
+            codes.append(code)
+            contexts.setdefault(code, getattr(r, "context", ()))
+            for e in r.entries:
+                if e not in ("ok", code):
+                    codes.append(e)
+                    contexts.setdefault(e, getattr(r, "context", ()))
+    for j in matching.missing:
+        if isinstance(j, tuple):  # a row of the student's own Φ with no row here
+            msg = Msg("row_missing_own", k=j[1] + 1)
+            rows.append(RowResult(Msg("your_row", k=j[1] + 1), "missing", msg, "missing_row", (), 0.0))
+            messages.append(msg)
+            codes.append("missing_row")
+            continue
+        code = "missing_normalization" if target.owner(j).kind == "normalization" else "missing_row"
+        msg = Msg("row_missing", ref=target.label(j), owner=owner_text(target, j))
+        rows.append(RowResult(target.label(j), "missing", msg, code, (), 0.0))
+        messages.append(Msg("row_line_short", label=target.label(j), text=msg))
+        codes.append(code)
+    if transposed:
+        codes.insert(0, "transposed")
+        rows = [RowResult(r._label, "wrong", Msg("transposed_right"), "transposed", r.entries, 0.5) for r in rows]
+        messages = [Msg("transposed_right")]
+    with_entries = quantity == "Phi_q" and any(r.entries and r.status == "wrong" for r in rows) and not transposed
+    return _finish(quantity, rows, messages, codes, contexts, target, matching,
+                   entries=(e_ok, e_n) if with_entries else False, transposed=transposed, columns=columns,
+                   notes_after=notes)
+
+
+def _nonzero(row):
+    return int(np.sum(np.max(np.abs(row), axis=0) > 1e-12)) if row.ndim == 2 else 1
+
+
+def _relevant(s, e):
+    return [i for i in range(s.shape[-1]) if np.max(np.abs(e[:, i])) > 1e-12 or np.max(np.abs(s[:, i])) > 1e-12]
+
+
+def _book(name):
+    """Coordinate names in the book's notation: phi2 → φ2."""
+    return name.replace("phi", "φ")
+
+
+def context_codes():
+    """Every code the report can emit (for the catalogue's tests)."""
+    return set(MISTAKES)

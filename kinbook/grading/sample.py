@@ -1,0 +1,182 @@
+"""Where answers are compared: seeded sample instants (second stage of a check).
+
+Two sets per target, both the same on every run and every machine (seeded):
+
+* *generic* samples — random q, q̇ and t. Φ is compared there: at assembled configurations every correct Φ
+  is zero, and zero says nothing about the form of a row. In space the Euler parameters of every body are
+  on the unit sphere (where every real configuration has them), so rows that differ only off it agree.
+* *assembled* samples — configurations on the constraint manifold: the graded rows vanish and, in space,
+  every body's normalization row too (single joints included). They are found by minimum-norm Newton steps
+  from perturbed initial guesses, in (q, t) when the rows depend on time (a driver), and kept only where Φ_q
+  has its full rank. Their velocities are *consistent*: Φ_q q̇ = ν (a particular solution plus a random
+  motion the constraints allow). Φ_q, ν and γ are compared there, so answers simplified with the help of
+  the constraints (φ̇_j = φ̇_i in a translational joint, the book's habit) are right, and equivalent
+  formulations of Φ are recognised by their zero set and rank.
+
+When too few assembled configurations are found (a model the projection cannot handle), the generic
+samples stand in, flagged ``on_manifold = False``: correct answers agree there too; only what needs the
+manifold (equivalent formulations, simplifications by the constraints) is then not recognised.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["Samples", "generic", "assembled", "at", "N_GENERIC", "N_ASSEMBLED", "SEED"]
+
+N_GENERIC = 16
+N_ASSEMBLED = 16
+SEED = 20241121
+_NEWTON_STEPS = 40
+_TOL = 1e-12
+
+
+class Samples:
+    """Instants at which answers are evaluated: Q, QD of shape (N, n) and T of shape (N,).
+
+    Attributes
+    ----------
+    on_manifold : bool
+        The configurations satisfy the target's constraints (and the velocities their velocity equations).
+    """
+
+    def __init__(self, Q, QD, T, on_manifold=False):
+        self.Q, self.QD, self.T = np.asarray(Q, float), np.asarray(QD, float), np.asarray(T, float)
+        self.N = self.Q.shape[0]
+        self.on_manifold = on_manifold
+
+    def take(self, idx):
+        return Samples(self.Q[idx], self.QD[idx], self.T[idx], self.on_manifold)
+
+
+def _unit_p(rng, N, nb):
+    p = rng.normal(size=(N, nb, 4))
+    return p / np.linalg.norm(p, axis=2, keepdims=True)
+
+
+def generic(target):
+    """Random configurations (Euler parameters of unit norm), velocities and times."""
+    rng = np.random.default_rng(SEED)
+    n, N = target.n, N_GENERIC
+    Q = rng.uniform(-3.0, 3.0, (N, n))
+    if target.kind == "planar":
+        Q[:, 2::3] = rng.uniform(-np.pi, np.pi, (N, n // 3))
+    else:
+        nb = n // 7
+        Q.reshape(N, nb, 7)[:, :, 3:] = _unit_p(rng, N, nb)
+    QD = rng.normal(0.0, 2.0, (N, n))
+    T = rng.uniform(0.0, 1.0, N)
+    return Samples(Q, QD, T)
+
+
+def assembled(target):
+    """Configurations on the target's constraint manifold with consistent velocities (see the module)."""
+    rng = np.random.default_rng(SEED + 1)
+    q0 = target.mech.q0
+    base, _, ok = _project(target, q0[None], np.zeros(1))
+    base = base if ok.all() else q0[None]
+    found_Q, found_T = [], []
+    for size in (0.25, 0.6):
+        idx = rng.integers(0, len(base), 3 * N_ASSEMBLED)
+        starts = _perturbed(target, rng, base[idx], size)
+        Q, T, ok = _project(target, starts, rng.uniform(0.0, 0.3, len(starts)))
+        Q, T = _regular(target, Q[ok], T[ok])
+        found_Q.append(Q)
+        found_T.append(T)
+        if sum(len(x) for x in found_Q) >= N_ASSEMBLED:
+            break
+        if len(Q):
+            base = Q
+    Q, T = np.vstack(found_Q), np.concatenate(found_T)
+    if len(Q) < 4:
+        return generic(target)
+    pick = np.linspace(0, len(Q) - 1, min(N_ASSEMBLED, len(Q))).round().astype(int)
+    Q, T = Q[pick], T[pick]
+    QD = _velocities(target, Q, T, rng)
+    return Samples(Q, QD, T, on_manifold=True)
+
+
+def at(target, configuration):
+    """One instant given by the caller: ``{"q": …, "qd": …, "t": …}`` (missing q̇ solved when possible)."""
+    mech = target.mech
+    conf = dict(configuration)
+    t = float(conf.get("t", 0.0))
+    q = np.asarray(conf["q"], float) if "q" in conf else mech.solve_position(t)
+    if "qd" in conf:
+        qd = np.asarray(conf["qd"], float)
+    else:
+        qd = _velocities(target, q[None], np.array([t]), np.random.default_rng(SEED))[0]
+    return Samples(q[None], qd[None], np.array([t]), on_manifold=False)
+
+
+# ---------------------------------------------------------------------------------------------- helpers
+def _perturbed(target, rng, base, size):
+    count, n = base.shape
+    Q = base + rng.normal(0.0, size, (count, n))
+    if target.kind == "spatial":
+        P = Q.reshape(count, n // 7, 7)[:, :, 3:]
+        P /= np.linalg.norm(P, axis=2, keepdims=True)
+    return Q
+
+
+def _project(target, Q, T):
+    """Minimum-norm Newton steps onto the manifold rows, in (q, t) when they depend on time."""
+    Q, T = Q.copy(), T.copy()
+    with_t = target.time_dependent
+    ok = np.zeros(len(Q), bool)
+    active = np.arange(len(Q))
+    for _ in range(_NEWTON_STEPS):
+        F, J = target.manifold(Q[active], T[active])
+        if not with_t:
+            J = J[:, :, :-1]
+        res = np.abs(F).max(axis=1) if F.size else np.zeros(len(active))
+        done = np.isfinite(res) & (res < _TOL * (1.0 + np.abs(Q[active]).max(axis=1)))
+        ok[active[done]] = True
+        keep = ~done & np.isfinite(res) & (res < 1e6)
+        active, F, J = active[keep], F[keep], J[keep]
+        if not len(active):
+            break
+        step = np.einsum("bij,bj->bi", np.linalg.pinv(J, rcond=1e-10), F)
+        step[~np.isfinite(step)] = 0.0
+        Q[active] -= step[:, : target.n]
+        if with_t:
+            T[active] -= step[:, -1]
+    if ok.any():  # one more step: from a residual of 1e-12 to rounding level
+        idx = np.flatnonzero(ok)
+        F, J = target.manifold(Q[idx], T[idx])
+        if not with_t:
+            J = J[:, :, :-1]
+        step = np.einsum("bij,bj->bi", np.linalg.pinv(J, rcond=1e-10), F)
+        if np.all(np.isfinite(step)):
+            Q[idx] -= step[:, : target.n]
+            if with_t:
+                T[idx] -= step[:, -1]
+    return Q, T, ok
+
+
+def _regular(target, Q, T):
+    """Keep the configurations where Φ_q of the manifold rows has the largest rank found, well conditioned."""
+    if len(Q) == 0:
+        return Q, T
+    F, J = target.manifold(Q, T)
+    J = J[:, :, :-1]
+    s = np.linalg.svd(J, compute_uv=False)
+    if s.shape[1] == 0:
+        return Q, T
+    rel = s / np.maximum(s[:, :1], 1e-300)
+    rank = (rel > 1e-9).sum(axis=1)
+    full = rank.max()
+    good = (rank == full) & (rel[:, full - 1] > 1e-6)
+    return Q[good], T[good]
+
+
+def _velocities(target, Q, T, rng):
+    """q̇ with Φ_q q̇ = ν on the manifold rows: the minimum-norm solution plus a random allowed motion."""
+    ev = target.mech.evaluate(Q, T)
+    rows = target.manifold_rows
+    J, nu = ev["Phi_q"][:, rows, :], ev["nu"][:, rows]
+    pinv = np.linalg.pinv(J)
+    particular = np.einsum("bij,bj->bi", pinv, nu)
+    z = rng.normal(0.0, 2.0, Q.shape)
+    free = z - np.einsum("bij,bj->bi", pinv, np.einsum("bij,bj->bi", J, z))
+    return particular + free

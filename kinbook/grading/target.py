@@ -1,0 +1,263 @@
+"""What a checker grades against: a whole mechanism or one of its constraints (first stage of a check).
+
+A :class:`Target` names the rows of Φ that are graded (the book numbers them from 1: Φ_4 …), the columns of
+Φ_q (every coordinate for a mechanism, the coordinates of the constraint's bodies for a constraint), and
+evaluates kinbook's reference — Φ, Φ_q, ν and γ — with the mechanism's fast numeric kernels
+(:meth:`kinbook.model.MechanismBase.evaluate`), never with a symbolic derivation at check time. The
+symbolic Φ of the target (for the mistake catalogue and equivalent formulations) is built only when a
+diagnosis needs it, and compiled into a :class:`~kinbook.grading.jets.Tape`.
+
+Targets and their samples are cached per mechanism and per version of it: a mechanism that changes (a
+constraint removed and another added under the same name) gets new targets, and a mechanism that is freed
+takes its targets with it (the cache holds it weakly).
+"""
+
+from __future__ import annotations
+
+import weakref
+
+import numpy as np
+
+from . import sample
+from ._i18n import constraint_label, row_name
+
+__all__ = ["Target", "target_for", "NotATarget"]
+
+
+class NotATarget(TypeError):
+    """The object given as the target of a check is not a mechanism or one of its constraints."""
+
+
+_CACHE = weakref.WeakKeyDictionary()
+
+
+def _version(mech):
+    """The mechanism's version: ``mech.version`` (bumped by every change), or, for a model without one, a
+    fingerprint of its bodies and constraints (object identities, rows and names)."""
+    v = getattr(mech, "version", None)
+    if v is not None:
+        return v
+    return (len(mech.bodies),
+            tuple((id(c), c.name, None if c.rows is None else c.rows.start) for c in mech.constraints))
+
+
+def target_for(obj):
+    """The cached :class:`Target` of a mechanism, of one of its constraints (``mech.constraint("3")``), or of
+    a pair ``(mechanism, constraint or its name)``.
+
+    Raises
+    ------
+    NotATarget
+    """
+    if isinstance(obj, tuple) and len(obj) == 2 and hasattr(obj[0], "constraints") and hasattr(obj[0], "evaluate"):
+        mech = obj[0]
+        try:
+            constraint = mech.constraint(obj[1]) if isinstance(obj[1], str) else obj[1]
+        except Exception as exc:  # ModelError naming the known constraints
+            raise NotATarget(str(exc)) from None
+        if constraint not in mech.constraints:
+            raise NotATarget(f"{obj[1]!r} is not a constraint of mechanism '{mech.name}'")
+    elif hasattr(obj, "constraints") and hasattr(obj, "evaluate"):
+        mech, constraint = obj, None
+    elif hasattr(obj, "rows") and getattr(obj, "mechanism", None) is not None:
+        mech, constraint = obj.mechanism, obj
+        if constraint not in mech.constraints or constraint.rows is None:
+            raise NotATarget(f"constraint {constraint.name!r} is no longer part of mechanism '{mech.name}'")
+    else:
+        raise NotATarget(f"expected a mechanism, one of its constraints (mech.constraint(name)) or a pair "
+                         f"(mechanism, constraint name), got {obj!r}")
+    per_mech = _CACHE.setdefault(mech, {})
+    key = (_version(mech), None if constraint is None else id(constraint))
+    target = per_mech.get(key)
+    if target is None:
+        if len(per_mech) > 64:  # old versions of a mechanism edited many times
+            per_mech.clear()
+        target = per_mech[key] = Target(mech, constraint)
+    return target
+
+
+class Target:
+    """A mechanism or one of its constraints, prepared for grading.
+
+    Attributes
+    ----------
+    mech : Mechanism
+    constraint : Constraint or None
+        The constraint graded alone, or None for the whole mechanism.
+    constraints : list of Constraint
+        The constraints whose rows are graded.
+    rows : ndarray of int
+        0-based rows of the mechanism's Φ that are graded.
+    cols : list of int
+        Columns of Φ_q that an answer for this target holds: every coordinate, or the coordinates of the
+        constraint's bodies in role order (body i, then j …: the book's tables).
+    manifold_rows : ndarray of int
+        Rows that vanish at the *assembled* samples: the graded rows and, in space, every body's
+        normalization pᵀp − 1 (single joints included: Euler parameters are on the unit sphere).
+    """
+
+    def __init__(self, mech, constraint=None):
+        self._mech = weakref.ref(mech)  # nothing here holds the mechanism (or its constraints) strongly
+        self.kind = mech.kind
+        self._index = [mech.constraints.index(constraint)] if constraint is not None else \
+            list(range(len(mech.constraints)))
+        self._single = constraint is not None
+        constraints = [mech.constraints[i] for i in self._index]
+        self.rows = np.array([r for c in constraints for r in range(c.rows.start, c.rows.stop)], dtype=int)
+        self.n = mech.n
+        ncoord = len(mech.COORDS)
+        if constraint is None:
+            self.cols = list(range(mech.n))
+        else:
+            self.cols = [ncoord * (b.number - 1) + k for b in constraint.bodies for k in range(ncoord)]
+        norm = [r for c in mech.constraints if c.kind == "normalization" for r in range(c.rows.start, c.rows.stop)]
+        self.manifold_rows = np.array(sorted(set(self.rows) | set(norm)), dtype=int)
+        self.free_rows = np.array(sorted(set(norm) - set(self.rows)), dtype=int)
+        self.names = mech.coordinate_names()
+        self.wrap = _wrapped_rows(self)
+        self.time_dependent = any(c.f is not None for c in mech.constraints
+                                  if set(range(c.rows.start, c.rows.stop)) & set(self.manifold_rows))
+        self._samples = {}
+        self._reference = {}
+        self.store = {}  # derived data of later stages (symbolic Φ, variants), keyed by their module
+
+    @property
+    def constraints(self):
+        """The constraints whose rows are graded."""
+        cs = self.mech.constraints
+        return [cs[i] for i in self._index]
+
+    @property
+    def constraint(self):
+        """The constraint graded alone, or None for the whole mechanism."""
+        return self.constraints[0] if self._single else None
+
+    @property
+    def mech(self):
+        mech = self._mech()
+        if mech is None:  # pragma: no cover - a target is only used while its mechanism is
+            raise RuntimeError("the mechanism of this target was freed")
+        return mech
+
+    # ------------------------------------------------------------------------------------------- naming
+    @property
+    def m(self):
+        """Number of graded rows."""
+        return len(self.rows)
+
+    def label(self, k):
+        """Book name of the k-th graded row: "Φ_4"."""
+        return row_name(int(self.rows[k]))
+
+    def owner(self, k):
+        """The constraint owning the k-th graded row."""
+        r = self.rows[k]
+        for c in self.constraints:
+            if c.rows.start <= r < c.rows.stop:
+                return c
+        return None  # pragma: no cover
+
+    def owner_label(self, k):
+        """"revolute joint 3 (rows Φ_8–Φ_9)", in the current language."""
+        return constraint_label(self.owner(k))
+
+    def block(self, c):
+        """Positions (0-based, among the graded rows) of constraint ``c``'s rows."""
+        return [k for k, r in enumerate(self.rows) if c.rows.start <= r < c.rows.stop]
+
+    # ------------------------------------------------------------------------------------------- numbers
+    def samples(self, which):
+        """The "generic" or the "assembled" :class:`~kinbook.grading.sample.Samples` (seeded: the same every
+        time, on every machine)."""
+        if which not in self._samples:
+            self._samples[which] = sample.generic(self) if which == "generic" else sample.assembled(self)
+        return self._samples[which]
+
+    def reference(self, which):
+        """kinbook's Φ (N, m), Φ_q (N, m, n) — all n columns —, ν (N, m) and γ (N, m) at a sample set, from
+        the numeric kernels."""
+        if which not in self._reference:
+            self._reference[which] = self.evaluate(self.samples(which))
+        return self._reference[which]
+
+    def evaluate(self, s):
+        """kinbook's Φ, Φ_q, ν, γ of the graded rows at the instants of ``s`` (a Samples)."""
+        ev = self.mech.evaluate(s.Q, s.T, s.QD)
+        return {"Phi": ev["Phi"][:, self.rows], "Phi_q": ev["Phi_q"][:, self.rows, :],
+                "nu": ev["nu"][:, self.rows], "gamma": ev["gamma"][:, self.rows],
+                "free_q": ev["Phi_q"][:, self.free_rows, :]}
+
+    def manifold(self, Q, T):
+        """Φ (B, r) and [Φ_q | Φ_t] (B, r, n + 1) of the manifold rows at (Q, T)."""
+        ev = self.mech.evaluate(Q, T)
+        rows = self.manifold_rows
+        J = np.concatenate([ev["Phi_q"][:, rows, :], -ev["nu"][:, rows, None]], axis=2)
+        return ev["Phi"][:, rows], J
+
+    # ------------------------------------------------------------------------------------------- symbolic Φ
+    def symbolic_phi(self):
+        """The symbolic Φ of the graded rows (a sympy Matrix), built once; for the mistake catalogue."""
+        if "phi" not in self.store:
+            import sympy as sp
+
+            mech = self.mech
+            self.store["phi"] = sp.Matrix.vstack(*[mech.constraint_phi(c) for c in self.constraints])
+        return self.store["phi"]
+
+    def tape(self, exprs, key=None):
+        """A :class:`~kinbook.grading.jets.Tape` of ``exprs`` over this target's q, q̇ and t (cached by key)."""
+        from .jets import Tape
+
+        if key is not None and ("tape", key) in self.store:
+            return self.store[("tape", key)]
+        mech = self.mech
+        tape = Tape(list(exprs), list(mech.q), list(mech.qd), mech.t)
+        if key is not None:
+            self.store[("tape", key)] = tape
+        return tape
+
+    def symbols(self):
+        """The names a student may use, each mapped to the mechanism's symbol: x1, x_1, phi2, phi_2, φ2,
+        dx1, dphi2, phi2_dot, ẋ1 … and t."""
+        if "symbols" not in self.store:
+            mech = self.mech
+            out = {"t": mech.t}
+            for s, d in zip(mech.q, mech.qd):
+                for name in _spellings(s.name):
+                    out[name] = s
+                for name in _spellings(s.name, velocity=True):
+                    out[name] = d
+            self.store["symbols"] = out
+        return self.store["symbols"]
+
+
+def _spellings(name, velocity=False):
+    """x1 → x1, x_1; phi2 → phi2, phi_2, φ2, φ_2, ϕ2; e02 → e02, e0_2; with ``velocity`` the q̇ names:
+    dx1, dx_1, x1_dot, xdot1 …"""
+    stem = name.rstrip("0123456789")
+    num = name[len(stem):]
+    stems = [stem]
+    if stem == "phi":
+        stems += ["φ", "ϕ"]
+    bases = {f"{s}{num}" for s in stems} | {f"{s}_{num}" for s in stems}
+    if not velocity:
+        return sorted(bases)
+    out = set()
+    for b in bases:
+        out |= {f"d{b}", f"{b}_dot", f"{b}dot"}
+    for s in stems:
+        out |= {f"{s}dot{num}", f"{s}_dot_{num}", f"d{s}_{num}"}
+    return sorted(out)
+
+
+def _wrapped_rows(target):
+    """{position among the graded rows: period} for rows whose value the mechanism wraps (an angle)."""
+    out = {}
+    for c in target.constraints:
+        wrap = getattr(c, "wrap", None)
+        if isinstance(wrap, dict) and wrap:
+            for r, period in wrap.items():
+                out[int(np.searchsorted(target.rows, c.rows.start + r))] = float(period)
+        elif getattr(c, "angular", False):
+            out[int(np.searchsorted(target.rows, c.rows.start))] = 2 * np.pi
+    return out
