@@ -36,11 +36,9 @@ MAX_OUTPUT = 100_000
 
 
 def _reader():
-    try:  # the team's safe reader (kinbook/expressions.py)
-        from .. import expressions as ex
-    except ImportError:  # pragma: no cover - until the reader is merged
-        from . import _interim_reader as ex
-    return ex
+    from .. import expressions  # the team's one safe reader
+
+    return expressions
 
 
 def _limits():
