@@ -202,15 +202,21 @@ _TEXT = {
         "es": "correcta: no es la forma de la referencia, pero se anula exactamente donde lo hace(n) {refs} y "
               "aporta la misma ecuación independiente",
     },
+    "row_equivalent_jacobian": {
+        "en": "correct: not the reference's row, but at every configuration a combination of {refs} — the "
+              "Jacobian of an equivalent formulation of the constraint",
+        "es": "correcta: no es la fila de la referencia, pero en cada configuración es una combinación de {refs} "
+              "— el jacobiano de una formulación equivalente de la restricción",
+    },
     "row_moved": {
         "en": "right, but it is {ref}: the exercise asks for the book's order (half credit)",
         "es": "correcta, pero es {ref}: el ejercicio pide el orden del libro (media puntuación)",
     },
     "row_depends_repeat": {
-        "en": "row {k} depends on row {j}: it repeats it (times {c}), so it adds no equation",
-        "es": "la fila {k} depende de la fila {j}: la repite (multiplicada por {c}), así que no aporta ninguna "
-              "ecuación",
+        "en": "row {k} depends on row {j}: it repeats it{times}, so it adds no equation",
+        "es": "la fila {k} depende de la fila {j}: la repite{times}, así que no aporta ninguna ecuación",
     },
+    "times": {"en": " multiplied by {c}", "es": " multiplicada por {c}"},
     "row_depends_function": {
         "en": "row {k} depends on {rows}: it vanishes together with its gradient where the mechanism is assembled "
               "(a power or product of those rows), so it adds no independent equation",

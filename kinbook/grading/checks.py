@@ -176,6 +176,10 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
                              _own_rows(own, quantity, data))
     else:
         m = match.match_rows(data.S, data.R, rtol, order, quantity == "Phi_q")
+    if quantity == "Phi_q":
+        diagnose.eg_rows(target, data, m, rtol)  # 2Eā without 2apᵀ: named before equivalents are sought
+        F = target.reference("assembled")["free_q"][:, :, data.cols]
+        match.jacobian_equivalents(m, data.S, data.R, [target.block(c) for c in target.constraints], rtol, F)
     if data.transposed:
         notes.insert(0, Msg("transposed", expected=f"({target.m}, {len(data.cols)})",
                             got=f"({data.S.shape[2]}, {data.S.shape[1]})"))

@@ -259,6 +259,35 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
             r.code = named[0] if named else "wrong_value"
 
 
+def eg_rows(target, data, matching, rtol):
+    """Spatial Φ_q rows that differ from the reference only by multiples of the bodies' normalization
+    gradients 2pᵀ in their p-columns: ∂(EGᵀa)/∂p = 2Eā where ∂(A a)/∂p = 2(Eā + apᵀ) belongs."""
+    if target.kind != "spatial":
+        return
+    s = target.samples("assembled")
+    cols = data.cols
+    bodies = sorted({c // 7 for c in cols})
+    for r in matching.rows:
+        if r.status != "wrong" or r.ref is None or isinstance(r.ref, tuple):
+            continue
+        f = 1.0 if r.factor is None or np.isnan(r.factor) else r.factor
+        D = data.S[:, r.k] - f * data.R[:, r.ref]
+        scale = max(scale_of(data.R[:, r.ref]), 1e-300)
+        if scale_of(D) <= rtol * scale:
+            continue
+        rest = D.copy()
+        for b in bodies:
+            pc = [i for i, c in enumerate(cols) if 7 * b + 3 <= c < 7 * b + 7]
+            if len(pc) != 4:
+                continue
+            p = s.Q[:, 7 * b + 3: 7 * b + 7]
+            coef = np.einsum("ni,ni->n", rest[:, pc], p) / np.einsum("ni,ni->n", p, p)
+            rest[:, pc] -= coef[:, None] * p
+        if scale_of(rest) <= 1e2 * rtol * scale:
+            r.code, r.erratum = "eg_jacobian", "14.3-dAa-dp"
+            r.entries, r.score = _entries(data.S[:, r.k], f * data.R[:, r.ref], rtol, "eg_jacobian", [])
+
+
 def _finite(V):
     return V is not None and np.all(np.isfinite(V))
 

@@ -256,11 +256,12 @@ class Tape:
         dict with "Phi" (N, k), "Phi_q" (N, k, n), "nu" (N, k), "gamma" (N, k).
         """
         r = self(Q, QD, T, grad=True, order=2, rule=rule, frozen=frozen)
-        nu = np.einsum("bkn,bn->bk", r["grad"], np.asarray(QD, float)) - r["d1"]
+        zero = np.zeros_like(np.asarray(Q, float))
+        nu = -self(Q, zero, T, order=1, rule=rule, frozen=frozen, velocities=QD)["d1"]  # −Φ_t, exactly 0 if no t
         out = {"Phi": r["value"], "Phi_q": r["grad"], "nu": nu, "gamma": -r["d2"]}
         if parts:
             quad = -self(Q, QD, T, order=2, rule=rule, frozen=frozen, dt=0.0)["d2"]
-            tt = -self(Q, np.zeros_like(np.asarray(Q, float)), T, order=2, rule=rule, frozen=frozen)["d2"]
+            tt = -self(Q, zero, T, order=2, rule=rule, frozen=frozen, velocities=QD)["d2"]
             out.update(quad=quad, tt=tt, qt=out["gamma"] - quad - tt)
         return out
 

@@ -242,14 +242,17 @@ def match_phi(S_G, R_G, S_M, R_M, gR_M, F_M, grads, rtol, order="any", wrap=None
     for r in accepted:
         if r.how != "equivalent":
             continue
-        others = [o for o in accepted if o is not r and o.status == "ok"]
+        others = [o for o in accepted if o is not r and o.status == "ok" and (o.how == "multiple" or o.k < r.k)]
         related = [o for o in others if (o.ref in r.covers) or (set(o.covers) & set(r.covers))]
         if related and S_G.shape[0] > len(related) + 3:
             A = S_G[:, [o.k for o in related]]
             coef, *_ = np.linalg.lstsq(A, S_G[:, r.k], rcond=None)
             if np.max(np.abs(A @ coef - S_G[:, r.k])) <= rtol * max(scale_of(S_G[:, r.k]), 1e-300):
                 r.status, r.dependence = "dependent", "combination"
-                r.depends_on = [o.k for o, c in zip(related, coef) if abs(c) > 1e-9]
+                used = [(o.k, c) for o, c in zip(related, coef) if abs(c) > 1e-9]
+                r.depends_on = [k for k, _ in used]
+                if len(used) == 1:
+                    r.dependence, r.factor = "repeat", nice(used[0][1])
     # 4. coverage: every reference row a multiple of an answer row, or in the span of the accepted rows
     accepted = [r for r in rows if r.status == "ok"]
     covered = {r.ref for r in accepted if r.how == "multiple"}
@@ -441,3 +444,61 @@ def _permutation(C):
         out[k] = j
         taken.add(j)
     return out
+
+
+def jacobian_equivalents(matching, S, R, blocks, rtol, F=None):
+    """Φ_q rows of an equivalent formulation: a row that is no constant multiple of a reference row but, at
+    every assembled sample, a combination of the rows of one constraint (the Jacobian of M(q)·Φ, e.g. the
+    book's cross-product rows of a parallel constraint) is right; reference rows whose gradients the accepted
+    rows span are then not missing.
+
+    Parameters
+    ----------
+    blocks : list of lists of int
+        The reference rows of each constraint.
+    F : ndarray (N, f, w), optional
+        Rows that hold anyway (the normalization rows of a joint graded alone), free to be added.
+    """
+    touched = []
+    for r in matching.rows:
+        if r.status not in ("wrong", "extra") or r.code is not None:
+            continue
+        s = S[:, r.k, :]
+        if scale_of(s) == 0:
+            continue
+        order = sorted(blocks, key=lambda b: 0 if r.ref in b else 1)
+        for block in order:
+            if len(block) < 2 and r.ref not in block:
+                pass
+            basis = R[:, block, :] if F is None or not F.size else np.concatenate([R[:, block, :], F], axis=1)
+            alpha, ok = _in_span(s, basis, rtol)
+            alpha = alpha[:, : len(block)]
+            if not ok:
+                continue
+            size = np.abs(alpha) * np.linalg.norm(R[:, block, :], axis=2)
+            covers = [j for i, j in enumerate(block) if np.any(size[:, i] > 1e-3 * np.linalg.norm(s, axis=1))]
+            if not covers:
+                continue
+            r.status, r.how, r.covers, r.code = "ok", "equivalent", covers, None
+            r.ref = covers[0]
+            touched.append(block)
+            break
+    if not touched:
+        return matching
+    accepted = [r for r in matching.rows if r.status == "ok"]
+    multiples = {r.ref for r in accepted if r.how == "multiple"}
+    basis = S[:, [r.k for r in accepted], :]
+    if F is not None and F.size:
+        basis = np.concatenate([basis, F], axis=1)
+    still = []
+    for j in sorted(set(matching.missing) | {j for b in touched for j in b} - multiples):
+        if j in multiples:
+            continue
+        _, ok = _in_span(R[:, j, :], basis, rtol)
+        if not ok:
+            still.append(j)
+    for r in matching.rows:  # wrong rows paired with a reference row that turned out covered
+        if r.status == "wrong" and r.ref is not None and r.ref not in still and r.ref not in multiples:
+            r.status, r.code = "extra", None
+    matching.missing = still
+    return matching

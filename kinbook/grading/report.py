@@ -18,6 +18,8 @@ from .result import CheckResult, RowResult
 __all__ = ["phi_result", "derived_result", "failed", "hints", "fmt"]
 
 QUANTITY = {"Phi": "Φ", "Phi_q": "Φ_q", "nu": "ν", "gamma": "γ"}
+PRINTED = {"book_misprint", "gamma_sign", "factor_2_missing"}
+"""Codes whose erratum means: the answer is the book's printed (wrong) formula."""
 
 
 def fmt(x):
@@ -61,7 +63,8 @@ def mistake_message(row):
     """"wrong — title[: detail]" for a diagnosed row (with the erratum when the answer is the book's misprint)."""
     detail = row.detail
     if row.erratum:
-        extra = Msg("book_misprint", id=row.erratum)
+        printed = row.code in PRINTED
+        extra = Msg("book_misprint", id=row.erratum) if printed else Msg("d.book_row", id=row.erratum)
         detail = extra if detail is None else [detail, extra]
     if detail is None:
         return Msg("row_mistake", title=_title(row.code))
@@ -125,7 +128,8 @@ def phi_result(target, matching, order):
 
 def _dependence(target, r):
     if r.dependence == "repeat":
-        return Msg("row_depends_repeat", k=r.k + 1, j=r.depends_on[0] + 1, c=fmt(r.factor or 1.0))
+        times = "" if r.factor in (None, 1.0) else Msg("times", c=fmt(r.factor))
+        return Msg("row_depends_repeat", k=r.k + 1, j=r.depends_on[0] + 1, times=times)
     if r.dependence == "combination":
         return Msg("row_depends_combination", k=r.k + 1, rows=", ".join(str(j + 1) for j in r.depends_on))
     if r.dependence == "free":
@@ -189,6 +193,8 @@ def derived_result(target, quantity, matching, data, rtol, transposed=False, not
                 messages.append(Msg("row_line_short", label=label, text=msg))
             elif r.how == "both":
                 msg = Msg("consistent_correct")
+            elif r.how == "equivalent":
+                msg = Msg("row_equivalent_jacobian", refs=", ".join(target.label(j) for j in r.covers))
             elif quantity == "Phi_q" and r.factor not in (None, 1.0):
                 msg = Msg("row_ok_jacobian_scaled", c=fmt(r.factor), ref=target.label(r.ref))
             else:

@@ -69,6 +69,8 @@ def target_for(obj):
     per_mech = _CACHE.setdefault(mech, {})
     key = (_version(mech), None if constraint is None else id(constraint))
     target = per_mech.get(key)
+    if target is not None and not target.current(mech):
+        target = None  # an id reused by a new constraint after the old one was freed
     if target is None:
         if len(per_mech) > 64:  # old versions of a mechanism edited many times
             per_mech.clear()
@@ -103,6 +105,7 @@ class Target:
             list(range(len(mech.constraints)))
         self._single = constraint is not None
         constraints = [mech.constraints[i] for i in self._index]
+        self._refs = [weakref.ref(c) for c in mech.constraints]
         self.rows = np.array([r for c in constraints for r in range(c.rows.start, c.rows.stop)], dtype=int)
         self.n = mech.n
         ncoord = len(mech.COORDS)
@@ -120,6 +123,11 @@ class Target:
         self._samples = {}
         self._reference = {}
         self.store = {}  # derived data of later stages (symbolic Φ, variants), keyed by their module
+
+    def current(self, mech):
+        """True while the mechanism still has the very constraints this target was built for."""
+        return len(self._refs) == len(mech.constraints) and all(
+            ref() is c for ref, c in zip(self._refs, mech.constraints))
 
     @property
     def constraints(self):

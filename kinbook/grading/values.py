@@ -156,7 +156,9 @@ def _check(answer, exp, rtol, atol, name, degrees=True, periodic=(), extra=None)
     if note is not None:
         notes.append(note)
     if erratum:
-        notes.append(Msg("book_misprint", id=erratum))
+        from .report import PRINTED
+
+        notes.append(Msg("book_misprint", id=erratum) if code in PRINTED else Msg("d.book_row", id=erratum))
     if detail is not None:
         notes.append(detail)
     rows = _rows(a, e, rtol, atol, per, name, code)
