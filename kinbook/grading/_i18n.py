@@ -110,12 +110,11 @@ def rows_name(rows):
 
 
 def _title(c, lang):
+    """The class's title (``title = {"en": …, "es": …}``, every registered constraint class has one)."""
     title = getattr(c, "title", None)
     if isinstance(title, dict) and title.get("en"):
         return title.get(lang) or title["en"]
-    from ._titles import title_of
-
-    return title_of(c, lang)
+    return str(getattr(c, "type_name", None) or type(c).__name__)
 
 
 def constraint_label(c, lang=None):

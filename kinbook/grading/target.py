@@ -7,9 +7,9 @@ evaluates kinbook's reference — Φ, Φ_q, ν and γ — with the mechanism's f
 symbolic Φ of the target (for the mistake catalogue and equivalent formulations) is built only when a
 diagnosis needs it, and compiled into a :class:`~kinbook.grading.jets.Tape`.
 
-Targets and their samples are cached per mechanism and per version of it: a mechanism that changes (a
-constraint removed and another added under the same name) gets new targets, and a mechanism that is freed
-takes its targets with it (the cache holds it weakly).
+Targets and their samples are kept by the mechanism itself (:meth:`~kinbook.model.MechanismBase.cached`),
+for its current version: a mechanism that changes (a constraint removed and another added under the same
+name) empties that cache, so no stale target can be reached.
 """
 
 from __future__ import annotations
@@ -26,19 +26,6 @@ __all__ = ["Target", "target_for", "NotATarget"]
 
 class NotATarget(TypeError):
     """The object given as the target of a check is not a mechanism or one of its constraints."""
-
-
-_CACHE = weakref.WeakKeyDictionary()
-
-
-def _version(mech):
-    """The mechanism's version: ``mech.version`` (bumped by every change), or, for a model without one, a
-    fingerprint of its bodies and constraints (object identities, rows and names)."""
-    v = getattr(mech, "version", None)
-    if v is not None:
-        return v
-    return (len(mech.bodies),
-            tuple((id(c), c.name, None if c.rows is None else c.rows.start) for c in mech.constraints))
 
 
 def target_for(obj):
@@ -66,16 +53,10 @@ def target_for(obj):
     else:
         raise NotATarget(f"expected a mechanism, one of its constraints (mech.constraint(name)) or a pair "
                          f"(mechanism, constraint name), got {obj!r}")
-    per_mech = _CACHE.setdefault(mech, {})
-    key = (_version(mech), None if constraint is None else id(constraint))
-    target = per_mech.get(key)
-    if target is not None and not target.current(mech):
-        target = None  # an id reused by a new constraint after the old one was freed
-    if target is None:
-        if len(per_mech) > 64:  # old versions of a mechanism edited many times
-            per_mech.clear()
-        target = per_mech[key] = Target(mech, constraint)
-    return target
+    # kept by the mechanism, for its current version: every change empties the cache (nothing stale survives
+    # a removed or re-added constraint); the target holds the mechanism only weakly (no reference cycle)
+    key = ("grading", "target", None if constraint is None else constraint.name)
+    return mech.cached(key, lambda: Target(mech, constraint))
 
 
 class Target:
@@ -105,7 +86,6 @@ class Target:
             list(range(len(mech.constraints)))
         self._single = constraint is not None
         constraints = [mech.constraints[i] for i in self._index]
-        self._refs = [weakref.ref(c) for c in mech.constraints]
         self.rows = np.array([r for c in constraints for r in range(c.rows.start, c.rows.stop)], dtype=int)
         self.n = mech.n
         ncoord = len(mech.COORDS)
@@ -123,11 +103,6 @@ class Target:
         self._samples = {}
         self._reference = {}
         self.store = {}  # derived data of later stages (symbolic Φ, variants), keyed by their module
-
-    def current(self, mech):
-        """True while the mechanism still has the very constraints this target was built for."""
-        return len(self._refs) == len(mech.constraints) and all(
-            ref() is c for ref, c in zip(self._refs, mech.constraints))
 
     @property
     def constraints(self):
@@ -262,10 +237,6 @@ def _wrapped_rows(target):
     """{position among the graded rows: period} for rows whose value the mechanism wraps (an angle)."""
     out = {}
     for c in target.constraints:
-        wrap = getattr(c, "wrap", None)
-        if isinstance(wrap, dict) and wrap:
-            for r, period in wrap.items():
-                out[int(np.searchsorted(target.rows, c.rows.start + r))] = float(period)
-        elif getattr(c, "angular", False):
-            out[int(np.searchsorted(target.rows, c.rows.start))] = 2 * np.pi
+        for r, period in (c.wrap or {}).items():
+            out[int(np.searchsorted(target.rows, c.rows.start + r))] = float(period)
     return out
