@@ -315,6 +315,19 @@ def _candidates(target, ex, r, own, expected):
             sources.append(("phi", ex.ref_tape(), r.ref, f))
         except Exception:  # pragma: no cover - a reference that cannot be taped
             pass
+    if r.ref is not None and not isinstance(r.ref, tuple) and q in ("Phi_q", "gamma"):
+        c = target.owner(r.ref)
+        pos = target.block(c).index(r.ref)
+        ref = target.reference("assembled")
+        for book in M.spec_of(c).derived_book:
+            try:
+                made = book(target, c, ex.s, ref, q)
+            except Exception:  # pragma: no cover - a misprint that cannot be made here
+                made = []
+            for row, values, erratum in made:
+                if row == pos:
+                    V = values[:, ex.data.cols] if q == "Phi_q" else values[:, None]
+                    out.append(("book_misprint", f * V, None, erratum))
     for key, tape, row, factor in sources:
         rules = [("chain_dropped", "missing_chain_rule", ())]
         if target.kind == "planar":

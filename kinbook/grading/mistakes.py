@@ -60,7 +60,12 @@ class Spec:
     context : tuple of str
         Hint contexts of the class (catalogue contexts: "gear", "rack", "driver" …).
     book : tuple of callables
-        ``f(c) -> (changes, erratum id)``: the book's misprinted forms as attribute changes.
+        ``f(c) -> (changes, erratum id, code)``: the book's misprinted forms of Φ as attribute changes.
+    extra : tuple of callables
+        ``f(target, c, Q) -> [(code, Φ rows, detail, erratum)]``: other structural variants.
+    derived_book : tuple of callables
+        ``f(target, c, samples, reference) -> [(quantity, row in c's block, values, erratum)]``: the book's
+        misprinted Jacobian entries and γ rows, made from kinbook's own reference values at the samples.
     """
 
     points: tuple = ()
@@ -75,6 +80,7 @@ class Spec:
     context: tuple = ()
     book: tuple = ()
     extra: tuple = ()
+    derived_book: tuple = ()
 
 
 SPECS = {}
@@ -365,11 +371,13 @@ def _defaults():
 
     register(P.Revolute, Spec(points=(("s_i", 0), ("s_j", 1)), swap_points=(("s_i", "s_j"),), frame="planar"))
     register(P.Translational, Spec(points=(("s_Pi", 0), ("s_Qi", 0), ("s_Pj", 1)), swap_bodies=True,
-                                   angles=("phi0",), frame="planar", book=(_book_translational_origin,)))
+                                   angles=("phi0",), frame="planar", book=(_book_translational_origin,),
+                                   derived_book=(_book_table_13_2, _book_gamma_t)))
     register(P.RevoluteRevolute, Spec(points=(("s_i", 0), ("s_j", 1)), swap_points=(("s_i", "s_j"),),
-                                      lengths=("length",), frame="planar"))
+                                      lengths=("length",), frame="planar",
+                                      derived_book=(_book_table_13_3, _book_gamma_rr)))
     register(P.RevoluteTranslational, Spec(points=(("s_Pi", 0), ("s_Pj", 1), ("s_Qj", 1)), swap_bodies=True,
-                                           frame="planar"))
+                                           frame="planar", derived_book=(_book_table_13_4,)))
     register(P.Gear, Spec(radii=("radius_i", "radius_j"), angles=("phi0",), context=("gear",),
                           book=(_book_gear_eq37,), extra=(_gear_fixed_carrier,)))
     register(P.RackPinion, Spec(radii=("radius",), swap_bodies=True, angles=("initial[phi_i]",), context=("rack",),
@@ -384,10 +392,10 @@ def _defaults():
     register(S.SphericalSpherical, Spec(points=(("P_i", 0), ("P_j", 1)), swap_points=(("P_i", "P_j"),),
                                         frame="spatial"))
     register(S.Universal, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_i", 0), ("a_j", 1)),
-                               swap_points=(("P_i", "P_j"),), frame="spatial"))
+                               swap_points=(("P_i", "P_j"),), frame="spatial", derived_book=(_book_gamma_n1,)))
     register(S.Revolute, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_j", 1),),
                               swap_points=(("P_i", "P_j"),), frame="spatial"))
-    register(S.Normal1, Spec(vectors=(("a_i", 0), ("a_j", 1)), frame="spatial"))
+    register(S.Normal1, Spec(vectors=(("a_i", 0), ("a_j", 1)), frame="spatial", derived_book=(_book_gamma_n1,)))
     register(S.Normal2, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_i", 0),), swap_bodies=True,
                              frame="spatial"))
     register(S.Parallel1, Spec(vectors=(("a_j", 1),), frame="spatial"))
@@ -434,3 +442,93 @@ def _rack_sliding(target, c, Q):
 def _simple_degrees(target, c, Q):
     if getattr(c, "coordinate", None) == "phi" and not _is_zero(c.value):
         yield ("degrees", _phi(target, c, value=c.value * DEG), Msg("d.constant_degrees", name="φ⁰"), None)
+
+
+# ============================================================================================ the book's tables
+def _planar_points(target, c, s, names):
+    """Global positions (N, 2) of the constraint's local points ``names`` (attributes) at the samples."""
+    mech = target.mech
+    out = {}
+    for attr, role in names:
+        b = c.bodies[role].name
+        out[attr] = mech.point_position(s.Q, b, [float(x) for x in getattr(c, attr)])
+    return out
+
+
+def _cols(target, c):
+    ncoord = len(target.mech.COORDS)
+    return [[ncoord * (b.number - 1) + k for k in range(ncoord)] for b in c.bodies]
+
+
+def _book_table_13_2(target, c, s, ref, quantity):
+    """Table 13.2 prints ∂Φ_1/∂φ_j of the translational joint with x_i, y_i for x_j, y_j."""
+    if quantity != "Phi_q":
+        return []
+    P = _planar_points(target, c, s, (("s_Pi", 0), ("s_Qi", 0), ("s_Pj", 1)))
+    ci, cj = _cols(target, c)
+    sx, sy = (P["s_Pi"] - P["s_Qi"]).T
+    pj = P["s_Pj"]
+    printed = (pj[:, 0] - s.Q[:, ci[0]]) * sx + (pj[:, 1] - s.Q[:, ci[1]]) * sy
+    row = ref["Phi_q"][:, target.block(c)[0]].copy()
+    row[:, cj[2]] = printed
+    return [(0, row, "13.6-table-13.2")]
+
+
+def _book_table_13_3(target, c, s, ref, quantity):
+    """Table 13.3 prints the r-r joint's ∂/∂φ_i and ∂/∂φ_j as expressions that reduce to zero."""
+    if quantity != "Phi_q":
+        return []
+    ci, cj = _cols(target, c)
+    row = ref["Phi_q"][:, target.block(c)[0]].copy()
+    row[:, ci[2]] = 0.0
+    row[:, cj[2]] = 0.0
+    return [(0, row, "13.6-table-13.3")]
+
+
+def _book_table_13_4(target, c, s, ref, quantity):
+    """Tables 13.4 and 13.5 print the r-t joint's ∂Φ/∂φ_j with x_i, y_i for x_j, y_j."""
+    if quantity != "Phi_q":
+        return []
+    P = _planar_points(target, c, s, (("s_Pi", 0), ("s_Pj", 1), ("s_Qj", 1)))
+    ci, cj = _cols(target, c)
+    sx, sy = (P["s_Pj"] - P["s_Qj"]).T
+    pi = P["s_Pi"]
+    printed = (pi[:, 1] - s.Q[:, ci[1]]) * sy + (pi[:, 0] - s.Q[:, ci[0]]) * sx
+    row = ref["Phi_q"][:, target.block(c)[0]].copy()
+    row[:, cj[2]] = printed
+    return [(0, row, "13.6-table-13.4")]
+
+
+def _book_gamma_rr(target, c, s, ref, quantity):
+    """Table 13.5 prints the r-r joint's γ with −2(ẏ_i − ẏ_j) for −2(ẏ_i − ẏ_j)²."""
+    if quantity != "gamma":
+        return []
+    ci, cj = _cols(target, c)
+    dy = s.QD[:, ci[1]] - s.QD[:, cj[1]]
+    return [(0, ref["gamma"][:, target.block(c)[0]] + 2 * dy**2 - 2 * dy, "13.8-table-13.5-rr")]
+
+
+def _book_gamma_t(target, c, s, ref, quantity):
+    """Table 13.5 prints γ_1 of the translational joint with +2[…]φ̇_i for −2[…]φ̇_i."""
+    if quantity != "gamma":
+        return []
+    P = _planar_points(target, c, s, (("s_Pi", 0), ("s_Qi", 0)))
+    ci, cj = _cols(target, c)
+    a, b = (P["s_Pi"] - P["s_Qi"]).T
+    vel = a * (s.QD[:, ci[0]] - s.QD[:, cj[0]]) + b * (s.QD[:, ci[1]] - s.QD[:, cj[1]])
+    return [(0, ref["gamma"][:, target.block(c)[0]] + 4 * vel * s.QD[:, ci[2]], "13.8-table-13.5-t")]
+
+
+def _book_gamma_n1(target, c, s, ref, quantity):
+    """§14.5's γ of Φ^(n1,1): without −2(s_jᵀs'_i)ṗ_iᵀṗ_i − 2(s_iᵀs'_j)ṗ_jᵀṗ_j (its printed misprints
+    corrected: 14.5-gamma-n1-table), and as printed (14.5-gamma-n1)."""
+    if quantity != "gamma":
+        return []
+    from ..book.errata import book_n1_acceleration
+
+    ci, cj = _cols(target, c)
+    row = c.n_eq - 1  # the n1 row: a normal-1 constraint's only row, a universal joint's last
+    _, _, rhs, extra = book_n1_acceleration(np.asarray(c.a_i, float), s.Q[:, ci[3:]], s.QD[:, ci[3:]],
+                                            np.asarray(c.a_j, float), s.Q[:, cj[3:]], s.QD[:, cj[3:]])
+    g = ref["gamma"][:, target.block(c)[0] + row]
+    return [(row, g + extra, "14.5-gamma-n1-table"), (row, rhs, "14.5-gamma-n1")]

@@ -433,7 +433,7 @@ def _translational_kernel(Q, P, Qd=None):
     rPi, Api = _point(Qi, P["sPi"])
     rQi, _ = _point(Qi, P["sQi"])
     rPj, Apj = _point(Qj, P["sPj"])
-    s = rQi - rPi
+    s = rPi - rQi  # the book's s_i = r_i^P − r_i^Q (eq. 23.a, with Q for the printed O)
     d = rPj - rPi
     Bn, k = s.shape[:2]
     phi = np.stack([_cross(s, d), Qi[..., 2] - Qj[..., 2] - P["c"]], -1)
@@ -460,8 +460,12 @@ class Translational(Constraint):
     Two points P_i, Q_i of body i on the line of translation and a point P_j of body j on the same line stay
     aligned, and the bodies keep their relative angle::
 
-        Φ_1 = (r_i^Q − r_i^P) × (r_j^P − r_i^P) = 0
+        Φ_1 = (r_i^P − r_i^Q) × (r_j^P − r_i^P) = 0
         Φ_2 = φ_i − φ_j − (φ_i⁰ − φ_j⁰) = 0
+
+    with the book's signs: s_i = r_i^P − r_i^Q (eq. 23.a, which prints the body origin O where Q belongs:
+    erratum 13.5-eq25), d = r_j^P − r_i^P (eq. 23.b), so Table 13.2's Jacobian and Table 13.5's γ apply as
+    printed where they are right.
 
     Parameters
     ----------
@@ -500,7 +504,7 @@ class Translational(Constraint):
             self.phi0 = self.bodies[0].q0[2] - self.bodies[1].q0[2]
 
     def phi(self, Q, t=t_symbol):
-        s = self._r(Q[0], self.s_Qi) - self._r(Q[0], self.s_Pi)
+        s = self._r(Q[0], self.s_Pi) - self._r(Q[0], self.s_Qi)  # the book's s_i = r_i^P − r_i^Q (eq. 23.a)
         d = self._r(Q[1], self.s_Pj) - self._r(Q[0], self.s_Pi)
         return [s[0] * d[1] - s[1] * d[0], Q[0][2] - Q[1][2] - self.phi0]
 

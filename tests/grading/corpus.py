@@ -523,5 +523,5 @@ def _book_rr_gamma(square="**2"):
 
 CASES += [
     Case("rr-gamma-book-table", "gamma", "ch13_example3", "3", _book_rr_gamma(), True, 1.0),
-    Case("rr-gamma-book-misprint", "gamma", "ch13_example3", "3", _book_rr_gamma(""), False, 0.0, ["wrong_value"]),
+    Case("rr-gamma-book-misprint", "gamma", "ch13_example3", "3", _book_rr_gamma(""), False, 0.0, ["book_misprint"]),
 ]
