@@ -34,6 +34,9 @@ def phi(target, answer, data, matching, rtol):
         _structural_phi(target, data, wrong, free, rtol)
     wrong = [r for r in wrong if r.code is None]
     if wrong and free:
+        _alternative_phi(target, data, wrong, free, rtol)
+    wrong = [r for r in wrong if r.code is None]
+    if wrong and free:
         _terms_phi(target, data, wrong, free, rtol)
     wrong = [r for r in wrong if r.code is None]
     if wrong:
@@ -87,12 +90,12 @@ def _structural_phi(target, data, wrong, free, rtol):
                 for pos, j in enumerate(block):
                     if j not in todo or not np.all(np.isfinite(V[:, pos])):
                         continue
-                    if scale_match(V[:, pos], data.R_G[:, j], rtol) is not None:
+                    if _phi_equal(V[:, pos], data.R_G[:, j], rtol):
                         continue  # the variant equals the reference on this row
                     for r in left:
                         if r.k in used:
                             continue
-                        if scale_match(data.S_G[:, r.k], V[:, pos], rtol) is not None:
+                        if _phi_equal(data.S_G[:, r.k], V[:, pos], rtol):
                             hits[j] = r
                             used.add(r.k)
                             break
@@ -104,6 +107,40 @@ def _structural_phi(target, data, wrong, free, rtol):
             for j, r in hits.items():
                 r.ref, r.code, r.detail, r.erratum = j, v.code, v.detail, v.erratum
                 free.remove(j)
+
+
+def _phi_equal(a, b, rtol):
+    """Rows of Φ equal up to a constant factor, or both identically zero (a row of constants)."""
+    if scale_of(b) <= 1e-12:
+        return scale_of(a) <= 1e-12
+    return scale_match(a, b, rtol) is not None
+
+
+def _alternative_phi(target, data, wrong, free, rtol):
+    """Wrong rows that are a mistake made on the book's formulation (cross-product rows of a parallel
+    constraint): named, and standing for the constraint's next missing row."""
+    owners = []
+    for j in free:
+        c = target.owner(j)
+        if c not in owners:
+            owners.append(c)
+    for c in owners:
+        for v in M.alternative_variants(target, c):
+            left = [r for r in wrong if r.code is None]
+            todo = [j for j in target.block(c) if j in free]
+            if not left or not todo:
+                break
+            try:
+                V = _variant_values(target, v, "generic")
+            except Exception:  # pragma: no cover
+                continue
+            for r in left:
+                if not todo:
+                    break
+                if any(_phi_equal(data.S_G[:, r.k], V[:, i], rtol) for i in range(V.shape[1])):
+                    j = todo.pop(0)
+                    r.ref, r.code, r.detail = j, v.code, v.detail
+                    free.remove(j)
 
 
 def term_variants(expr):
@@ -122,6 +159,9 @@ def term_variants(expr):
     if k <= 8:
         out += [("sign_flip", total - 2 * terms[a] - 2 * terms[b], None) for a, b in itertools.combinations(range(k), 2)]
     out += [("missing_term", total - terms[a], terms[a]) for a in range(k)]
+    if k <= 8:
+        out += [("missing_term", total - terms[a] - terms[b], terms[a] + terms[b])
+                for a, b in itertools.combinations(range(k), 2)]
     return out
 
 
@@ -244,6 +284,8 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
             by_owner.setdefault(target.owner(r.ref), []).append(r)
     for c, rows in by_owner.items():
         _structural_derived(target, ex, c, rows, rtol)
+        if quantity == "Phi_q":
+            _variant_spans(target, ex, c, [r for r in rows if r.code is None], rtol)
     for r in wrong:
         expected, cand = cands[r.k]
         S = data.S[:, r.k]
@@ -329,11 +371,7 @@ def _candidates(target, ex, r, own, expected):
                     V = values[:, ex.data.cols] if q == "Phi_q" else values[:, None]
                     out.append(("book_misprint", f * V, None, erratum))
     for key, tape, row, factor in sources:
-        rules = [("chain_dropped", "missing_chain_rule", ())]
-        if target.kind == "planar":
-            rules.append(("A_for_B", "A_for_B", ()))
-        else:
-            rules = [("exact", "missing_chain_rule", tuple(_p_columns(target)))]
+        rules = _rules(target)
         exact = ex.rule_values(key, tape, "exact")
         for rule, code, frozen in rules:
             d = ex.rule_values(key, tape, rule, frozen)
@@ -352,6 +390,13 @@ def _candidates(target, ex, r, own, expected):
             unsq = factor * (np.einsum("bkn,bn->bk", H, QD**2) - np.einsum("bkn,bn->bk", H, QD))[:, row][:, None]
             out.append(("missing_square", expected + unsq, None, None))
     return late + out
+
+
+def _rules(target):
+    """The derivation mistakes as tape rules: (rule, code, frozen coordinates)."""
+    if target.kind == "planar":
+        return [("chain_dropped", "missing_chain_rule", ()), ("A_for_B", "A_for_B", ())]
+    return [("exact", "missing_chain_rule", tuple(_p_columns(target)))]
 
 
 def _hdiag(ex, key, tape):
@@ -392,6 +437,41 @@ def _structural_derived(target, ex, c, rows, rtol):
         v, hits = best
         for r in hits:
             r.code, r.detail, r.erratum = v.code, v.detail, v.erratum
+
+
+def _variant_spans(target, ex, c, rows, rtol):
+    """Φ_q rows of a mistaken formulation: at every sample a combination of one variant's rows (and the
+    normalization rows of a joint graded alone) — e.g. Aᵀ for A in the book's cross-product rows."""
+    if not rows:
+        return
+    from .match import _in_span
+
+    F = target.reference("assembled")["free_q"][:, :, ex.data.cols]
+    block = target.block(c)
+    blocks = []
+    tape = ex.ref_tape()
+    for rule, code, frozen in (_rules(target)):
+        D = ex.rule_values("phi", tape, rule, frozen)["Phi_q"][:, block, :][:, :, ex.data.cols]
+        blocks.append((M.Variant(code, []), D))
+    for v in list(M.structural(target, c)) + list(M.alternative_variants(target, c)):
+        try:
+            blocks.append((v, _variant_values(target, v, "assembled", "Phi_q")["Phi_q"][:, :, ex.data.cols]))
+        except Exception:  # pragma: no cover
+            continue
+    for v, D in blocks:
+        left = [r for r in rows if r.code is None]
+        if not left:
+            return
+        if not np.all(np.isfinite(D)):
+            continue
+        basis = np.concatenate([D, F], axis=1) if F.size else D
+        for r in left:
+            s = ex.data.S[:, r.k]
+            if scale_of(s) == 0:
+                continue
+            _, ok = _in_span(s, basis, rtol)
+            if ok:
+                r.code, r.detail, r.erratum = v.code, v.detail, v.erratum
 
 
 def _terms_derived(target, ex, r, own, S, expected, rtol):

@@ -271,7 +271,13 @@ def match_phi(S_G, R_G, S_M, R_M, gR_M, F_M, grads, rtol, order="any", wrap=None
             _, ok = _in_span(gR_M[:, j, :], basis, rtol)
             if not ok:
                 still.append(j)
-        missing = still
+        # as many rows missing as the rank lacks (one cross-product row for two h-rows lacks one)
+        nf = 0 if F_M is None else F_M.shape[1]
+        acc = np.linalg.matrix_rank(basis[0].T, tol=1e-8 * max(np.abs(basis[0]).max(), 1e-300)) - (
+            np.linalg.matrix_rank(F_M[0].T) if nf else 0)
+        full = np.linalg.matrix_rank(gR_M[0].T, tol=1e-8 * max(np.abs(gR_M[0]).max(), 1e-300))
+        deficit = max(full - acc, 0)
+        missing = still[len(still) - deficit:] if deficit < len(still) else still
     # 5. book order
     if order == "book":
         _mark_moved(rows, m)

@@ -28,7 +28,7 @@ import numpy as np
 
 from ._i18n import Msg
 
-__all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "contexts_of", "register"]
+__all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "alternative_variants", "contexts_of", "register"]
 
 DEG = 180.0 / np.pi
 
@@ -63,6 +63,9 @@ class Spec:
         ``f(c) -> (changes, erratum id, code)``: the book's misprinted forms of Φ as attribute changes.
     extra : tuple of callables
         ``f(target, c, Q) -> [(code, Φ rows, detail, erratum)]``: other structural variants.
+    alternative : callable or None
+        ``f(c, Q) -> rows``: the book's own formulation when kinbook writes the constraint another way (the
+        cross-product rows s̃_i s_j of a parallel constraint); its mistakes are recognised too.
     derived_book : tuple of callables
         ``f(target, c, samples, reference) -> [(quantity, row in c's block, values, erratum)]``: the book's
         misprinted Jacobian entries and γ rows, made from kinbook's own reference values at the samples.
@@ -81,6 +84,7 @@ class Spec:
     book: tuple = ()
     extra: tuple = ()
     derived_book: tuple = ()
+    alternative: object = None
 
 
 SPECS = {}
@@ -372,6 +376,7 @@ def _defaults():
     register(P.Revolute, Spec(points=(("s_i", 0), ("s_j", 1)), swap_points=(("s_i", "s_j"),), frame="planar"))
     register(P.Translational, Spec(points=(("s_Pi", 0), ("s_Qi", 0), ("s_Pj", 1)), swap_bodies=True,
                                    angles=("phi0",), frame="planar", book=(_book_translational_origin,),
+                                   extra=(_book_translational_dot,),
                                    derived_book=(_book_table_13_2, _book_gamma_t)))
     register(P.RevoluteRevolute, Spec(points=(("s_i", 0), ("s_j", 1)), swap_points=(("s_i", "s_j"),),
                                       lengths=("length",), frame="planar",
@@ -398,8 +403,9 @@ def _defaults():
     register(S.Normal1, Spec(vectors=(("a_i", 0), ("a_j", 1)), frame="spatial", derived_book=(_book_gamma_n1,)))
     register(S.Normal2, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_i", 0),), swap_bodies=True,
                              frame="spatial"))
-    register(S.Parallel1, Spec(vectors=(("a_j", 1),), frame="spatial"))
-    register(S.Parallel2, Spec(points=(("P_i", 0), ("P_j", 1)), swap_bodies=True, frame="spatial"))
+    register(S.Parallel1, Spec(vectors=(("a_j", 1),), frame="spatial", alternative=_cross_p1))
+    register(S.Parallel2, Spec(points=(("P_i", 0), ("P_j", 1)), swap_bodies=True, frame="spatial",
+                               alternative=_cross_p2))
     register(S.Cylindrical, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_j", 1),), swap_bodies=True,
                                  frame="spatial"))
     register(S.Translational, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_j", 1),), swap_bodies=True,
@@ -414,6 +420,14 @@ def _book_translational_origin(c):
     if all(_is_zero(x) for x in c.s_Qi):
         return None
     return {"s_Qi": (0, 0)}, "13.5-eq25", "book_misprint"
+
+
+def _book_translational_dot(target, c, Q):
+    """§13.5 before eq. 24: "multiplicando escalarmente" read literally, s_i · d instead of s_i × d."""
+    s = c._global_point(Q[0], c.s_Pi) - c._global_point(Q[0], c.s_Qi)
+    d = c._global_point(Q[1], c.s_Pj) - c._global_point(Q[0], c.s_Pi)
+    rows = list(c.phi(Q, target.mech.t))
+    yield ("book_misprint", [s[0] * d[0] + s[1] * d[1], rows[1]], None, "13.5-eq24")
 
 
 def _book_gear_eq37(c):
@@ -532,3 +546,67 @@ def _book_gamma_n1(target, c, s, ref, quantity):
                                             np.asarray(c.a_j, float), s.Q[:, cj[3:]], s.QD[:, cj[3:]])
     g = ref["gamma"][:, target.block(c)[0] + row]
     return [(row, g + extra, "14.5-gamma-n1-table"), (row, rhs, "14.5-gamma-n1")]
+
+
+# ============================================================================================ the book's formulation
+def _cross_p1(c, Q):
+    """The book's Φ^(p1,2) = s̃_i s_j (all three rows)."""
+    return list(c._global_vector(Q[0], c.a_i).cross(c._global_vector(Q[1], c.a_j)))
+
+
+def _cross_p2(c, Q):
+    """The book's Φ^(p2,2) = s̃_i d (all three rows)."""
+    d = c._global_point(Q[1], c.P_j) - c._global_point(Q[0], c.P_i)
+    return list(c._global_vector(Q[0], c.a_i).cross(d))
+
+
+def book_rows(c, Q, t):
+    """The constraint's rows in the book's formulation: its parts' (a composite), its class's alternative,
+    or its own Φ."""
+    if getattr(c, "parts", ()):
+        return [e for v in c.part_views() for e in book_rows(v, Q, t)]
+    alt = spec_of(c).alternative
+    return list(alt(c, Q)) if alt is not None else list(c.phi(Q, t))
+
+
+def _has_alternative(c):
+    if getattr(c, "parts", ()):
+        return any(_has_alternative(v) for v in c.part_views())
+    return spec_of(c).alternative is not None
+
+
+def alternative_variants(target, c):
+    """Structural variants of the book's formulation of ``c`` (when kinbook writes it another way): Aᵀ for A,
+    A omitted, the points exchanged, the sign of A_j s'_j. Their rows do not stand row by row for kinbook's."""
+    key = ("alt-variants", tuple(target.block(c)))
+    if key in target.store:
+        return target.store[key]
+    out = []
+    if _has_alternative(c):
+        import sympy as sp
+
+        mech = target.mech
+        t = mech.t
+        Q = [mech.body_symbols(b.name) for b in c.bodies]
+        QT = [sp.Matrix([*q[:4], -q[4], -q[5], -q[6]]) for q in Q]
+        QL = [sp.Matrix([*q[:3], 1, 0, 0, 0]) for q in Q]
+
+        def copy_of(**changes):
+            cc = copy.copy(c)
+            cc.__dict__.pop("_views", None)
+            cc.__dict__.update(changes)
+            return cc
+
+        makers = [("A_transposed", lambda: book_rows(c, QT, t), None),
+                  ("local_vector", lambda: book_rows(c, QL, t), None)]
+        if hasattr(c, "P_i") and hasattr(c, "P_j"):
+            makers.append(("swapped_points", lambda: book_rows(copy_of(P_i=c.P_j, P_j=c.P_i), Q, t), None))
+            makers.append(("sign_flip", lambda: book_rows(copy_of(P_j=-np.asarray(c.P_j, float)), Q, t),
+                           Msg("d.sign_of", what="A_j s'_j")))
+        for code, make, detail in makers:
+            try:
+                out.append(Variant(code, make(), detail))
+            except Exception:  # pragma: no cover - a variant that cannot be built here
+                pass
+    target.store[key] = out
+    return out

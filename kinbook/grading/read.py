@@ -213,7 +213,8 @@ def _flat(a):
 
 
 def _is_number(x):
-    return isinstance(x, (numbers.Number, np.number)) and not isinstance(x, (bool, np.bool_))
+    """A Python or numpy number (a sympy number is a formula: it is read as one)."""
+    return isinstance(x, (numbers.Number, np.number)) and not isinstance(x, (bool, np.bool_)) and not _is_sympy(x)
 
 
 def _plain_numbers(a):

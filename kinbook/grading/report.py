@@ -115,7 +115,7 @@ def phi_result(target, matching, order):
             rows.append(RowResult(label, "wrong", msg, code, (), 0.0))
             messages.append(Msg("row_line", label=label, owner=owner_text(target, r.ref), text=msg))
             codes.append(code)
-            contexts.setdefault(code, r.entries_context if hasattr(r, "entries_context") else ())
+            contexts.setdefault(code, getattr(r, "context", ()))
         labels[r.k] = label
     for j in matching.missing:
         code = "missing_normalization" if target.owner(j).kind == "normalization" else "missing_row"
