@@ -348,6 +348,8 @@ def _candidates(target, ex, r, own, expected):
     out = []
     sign_code = {"nu": "nu_sign", "gamma": "gamma_sign", "Phi_q": "sign_flip"}[q]
     late = [(sign_code, -expected, None, None)]
+    if q != "Phi_q":  # a forgotten factor 2 (a Φ row halved, −ṗᵀṗ for −2ṗᵀṗ) — without phi= the factor is 1
+        late += [("scaled", c * expected, Msg("d.factor", c=fmt_factor(c)), None) for c in (2.0, 0.5)]
     f = 1.0 if r.factor is None or (isinstance(r.factor, float) and np.isnan(r.factor)) else r.factor
     sources = []
     if own is not None and own.get("tape") is not None and r.k < own["values"]["Phi"].shape[1]:
@@ -390,6 +392,10 @@ def _candidates(target, ex, r, own, expected):
             unsq = factor * (np.einsum("bkn,bn->bk", H, QD**2) - np.einsum("bkn,bn->bk", H, QD))[:, row][:, None]
             out.append(("missing_square", expected + unsq, None, None))
     return late + out
+
+
+def fmt_factor(c):
+    return "½" if c == 0.5 else f"{c:g}"
 
 
 def _rules(target):
