@@ -1,48 +1,153 @@
-"""Median time of check_jacobian and check_gamma on the book's example 1 (four-bar, 12 coordinates).
+"""How fast the checkers answer (issue #14 item 6): `import kinbook`, the first check on a target in a fresh
+process, and the median of later checks.
 
 Run:  .venv/bin/python benchmarks/checkers.py
 
-The answers are a student's hand-written strings (rows of the book's tables), so every run includes
-parsing, lambdifying and evaluating the answer at all sample configurations. The first call on a mechanism
-also builds the reference and the samples (cached afterwards); it is reported separately.
-Targets (issue #4): Φ_q < 100 ms, γ < 300 ms median.
+Each figure of the first part is measured in a new Python process (so nothing is cached or imported yet):
+the time of `import kinbook`, then — with the mechanism loaded and evaluated once — the first check of a
+correct answer on one target (the reference, the samples and the student's tape are all built then). The
+answers are a student's hand-written strings or sympy matrices, never kinbook's reference.
+Targets: import ≤ 400 ms; first check ≤ 300 ms; later checks ≤ 50 ms (median).
 """
 
 from __future__ import annotations
 
+import json
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
 
-import kinbook  # noqa: E402
-from kinbook.grading import check_gamma, check_jacobian, check_phi  # noqa: E402
-from tests.grading.corpus import EX1_GAMMA, EX1_JAC, EX1_PHI_SIMPLE  # noqa: E402
+FIRST = r"""
+import json, time
+t0 = time.perf_counter()
+import kinbook
+t_import = time.perf_counter() - t0
+from kinbook import grading
+import numpy as np
+import sys
+sys.path.insert(0, {root!r})
+from benchmarks.checkers import CASES
+case = CASES[{k}]
+mech, target, answer, check, options = case["build"]()
+mech.evaluate(mech.q0)  # a student has the mechanism (and kinbook's compiled model) before checking
+t0 = time.perf_counter()
+r = getattr(grading, check)(answer, target, **options)
+t_first = time.perf_counter() - t0
+assert r.passed, r
+print(json.dumps({{"import": t_import, "first": t_first}}))
+"""
 
 
-def median_ms(fn, repeat=30):
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        result = fn()
-        times.append(time.perf_counter() - t0)
-        assert result.passed, result
-    return 1e3 * statistics.median(times)
+def _ex(name, constraint=None):
+    import kinbook
+
+    m = kinbook.examples.load(name)
+    return m, (m if constraint is None else m.constraint(constraint))
+
+
+def _ex1_phi():
+    from tests.grading.corpus import EX1_PHI_SIMPLE
+
+    m, t = _ex("ch13_example1")
+    return m, t, EX1_PHI_SIMPLE, "check_phi", {}
+
+
+def _ex1_jac():
+    from tests.grading.corpus import EX1_JAC
+
+    m, t = _ex("ch13_example1")
+    return m, t, EX1_JAC, "check_jacobian", {}
+
+
+def _ex1_gamma():
+    from tests.grading.corpus import EX1_GAMMA
+
+    m, t = _ex("ch13_example1")
+    return m, t, EX1_GAMMA, "check_gamma", {}
+
+
+def _rr_joint_gamma():
+    from tests.grading.corpus import _book_rr_gamma
+
+    m, t = _ex("ch13_example3", "3")
+    return m, t, _book_rr_gamma(), "check_gamma", {}
+
+
+def _spatial(constraint, quantity):
+    from kinbook.symbolic import derive
+
+    m, t = _ex("spatial_fourbar", constraint)
+    c = t if constraint is not None else None
+    phi = m.constraint_phi(c) if c is not None else m.symbolic().Phi
+    d = derive(-phi, m.q, m.qd, m.t)  # the student's own derivation, in the setup (not timed)
+    check = {"Phi": "check_phi", "Phi_q": "check_jacobian", "gamma": "check_gamma"}[quantity]
+    answer = getattr(d, quantity) if quantity != "Phi" else d.Phi
+    if quantity == "gamma":
+        answer = -answer
+    if quantity == "Phi_q":
+        answer = -answer
+    return m, t, answer, check, {}
+
+
+CASES = [
+    {"name": "planar Φ, example 1 (12 rows)", "build": _ex1_phi},
+    {"name": "planar Φ_q, example 1", "build": _ex1_jac},
+    {"name": "planar γ, example 1", "build": _ex1_gamma},
+    {"name": "planar γ, r-r joint (book table)", "build": _rr_joint_gamma},
+    {"name": "spatial Φ, universal joint B", "build": lambda: _spatial("B", "Phi")},
+    {"name": "spatial Φ_q, revolute joint O_A", "build": lambda: _spatial("O_A", "Phi_q")},
+    {"name": "spatial γ, universal joint B", "build": lambda: _spatial("B", "gamma")},
+    {"name": "spatial Φ, whole four-bar (28 rows)", "build": lambda: _spatial(None, "Phi")},
+    {"name": "spatial Φ_q, whole four-bar", "build": lambda: _spatial(None, "Phi_q")},
+]
+
+
+def first_checks():
+    out = []
+    for k, case in enumerate(CASES):
+        code = FIRST.format(root=str(ROOT), k=k)
+        res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+        out.append((case["name"], json.loads(res.stdout.strip().splitlines()[-1])))
+    return out
+
+
+def later_checks(repeat=20):
+    from kinbook import grading
+
+    out = []
+    for case in CASES:
+        mech, target, answer, check, options = case["build"]()
+        fn = getattr(grading, check)
+        assert fn(answer, target, **options).passed
+        times = []
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            fn(answer, target, **options)
+            times.append(time.perf_counter() - t0)
+        out.append((case["name"], statistics.median(times)))
+    return out
 
 
 def main():
-    mech = kinbook.examples.load("ch13_example1")
-    t0 = time.perf_counter()
-    check_jacobian(EX1_JAC, mech)
-    first = 1e3 * (time.perf_counter() - t0)
-    print(f"first check on the mechanism (reference + samples): {first:7.1f} ms")
-    print(f"check_phi       median: {median_ms(lambda: check_phi(EX1_PHI_SIMPLE, mech)):7.1f} ms")
-    print(f"check_jacobian  median: {median_ms(lambda: check_jacobian(EX1_JAC, mech)):7.1f} ms   (target < 100 ms)")
-    print(f"check_gamma     median: {median_ms(lambda: check_gamma(EX1_GAMMA, mech)):7.1f} ms   (target < 300 ms)")
-    print(f"check_jacobian with the student's Φ (error carried forward) median: "
-          f"{median_ms(lambda: check_jacobian(EX1_JAC, mech, phi=EX1_PHI_SIMPLE), 10):7.1f} ms")
+    print("first check on a target, fresh process each (ms)        import   first   (targets 400 / 300)")
+    imports, firsts = [], []
+    for name, r in first_checks():
+        imports.append(r["import"])
+        firsts.append(r["first"])
+        print(f"  {name:52s} {1e3 * r['import']:6.0f}  {1e3 * r['first']:6.0f}")
+    print(f"  worst: import {1e3 * max(imports):.0f} ms ({max(imports) / 0.4:.2f} × target), first check "
+          f"{1e3 * max(firsts):.0f} ms ({max(firsts) / 0.3:.2f} × target)")
+    print("later checks, median of 20 (ms)                                (target 50)")
+    later = later_checks()
+    for name, t in later:
+        print(f"  {name:52s} {1e3 * t:6.1f}")
+    worst = max(t for _, t in later)
+    print(f"  worst: {1e3 * worst:.1f} ms ({worst / 0.05:.2f} × target)")
 
 
 if __name__ == "__main__":

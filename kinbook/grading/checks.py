@@ -291,20 +291,21 @@ def _confirm(result, target, A, m, quantity="Phi"):
     from .result import CheckResult
 
     ref = target.symbolic_phi()
+    answer = A.bound(target)
     pairs, skipped = [], 0
     for r in m.rows:
         if r.status != "ok" or r.how != "multiple" or r.ref is None:
             continue
         if quantity == "Phi":
-            a, b = A.matrix[r.k, 0], r.factor * ref[r.ref]
+            a, b = answer[r.k, 0], r.factor * ref[r.ref]
             pairs.append((a, b))
         else:
             mech = target.mech
             row = r.ref
-            cols = [mech.q[c] for c in target.cols] if A.matrix.shape[1] == len(target.cols) else list(mech.q)
+            cols = [mech.q[c] for c in target.cols] if answer.shape[1] == len(target.cols) else list(mech.q)
             if quantity == "Phi_q":
                 for i, x in enumerate(cols):
-                    pairs.append((A.matrix[r.k, i], (r.factor or 1.0) * sp.diff(ref[row], x)))
+                    pairs.append((answer[r.k, i], (r.factor or 1.0) * sp.diff(ref[row], x)))
             else:
                 skipped += 1
     ok, unconfirmed = True, skipped

@@ -201,9 +201,9 @@ def _pair(target, answer, wrong, free):
         Phi = target.symbolic_phi()
         cand = []
         for r in wrong:
-            sk = answer.matrix[r.k, 0].free_symbols
+            sk = {x.name for x in answer.matrix[r.k, 0].free_symbols}
             for j in free:
-                sj = Phi[j].free_symbols
+                sj = {x.name for x in Phi[j].free_symbols}
                 overlap = len(sk & sj) / max(1, len(sk | sj))
                 cand.append((-overlap, abs(r.k - j), j, r.k))
         out, used_j, used_k = {}, set(), set()

@@ -39,6 +39,14 @@ class UnsupportedExpression(ValueError):
     """A sympy node the tape cannot evaluate (a function outside the reader's list, a relation …)."""
 
 
+class UnknownSymbol(UnsupportedExpression):
+    """A symbol that is none of q, q̇, t (nor an alias of one)."""
+
+    def __init__(self, name):
+        super().__init__(f"unknown symbol {name}")
+        self.name = name
+
+
 _UNARY = {
     sp.sin: "sin", sp.cos: "cos", sp.tan: "tan", sp.asin: "asin", sp.acos: "acos", sp.atan: "atan",
     sp.exp: "exp", sp.log: "log", sp.Abs: "Abs", sp.sign: "sign", sp.sinh: "sinh", sp.cosh: "cosh",
@@ -56,15 +64,19 @@ class Tape:
     q, qd : sequence of sympy symbols
         Coordinates and velocities, in the order of the columns of ``Q`` and ``QD``.
     t : sympy symbol
+    aliases : dict, optional
+        Other names for those symbols (``{"phi_2": phi2, "x1": x1 …}``): a student's own symbols, matched by
+        name.
     """
 
-    def __init__(self, exprs, q, qd, t):
+    def __init__(self, exprs, q, qd, t, aliases=None):
         self.n = len(q)
         self._slots = {}
         self.ops = []  # (kind, payload, depends-on-q)
         self._symbols = {s: ("q", k) for k, s in enumerate(q)}
         self._symbols.update({s: ("qd", k) for k, s in enumerate(qd)})
         self._symbols[t] = ("t", 0)
+        self._aliases = {name: self._symbols[sym] for name, sym in (aliases or {}).items() if sym in self._symbols}
         self.outputs = [self._compile(e if isinstance(e, sp.Basic) else sp.Float(float(e))) for e in exprs]
         self.uses_qd = any(op[0] == "qd" for op in self.ops)
 
@@ -98,9 +110,12 @@ class Tape:
 
     def _leaf(self, node):
         if node.is_Symbol:
-            if node not in self._symbols:
-                raise UnsupportedExpression(f"unknown symbol {node}")
-            kind, k = self._symbols[node]
+            if node in self._symbols:
+                kind, k = self._symbols[node]
+            elif node.name in self._aliases:
+                kind, k = self._aliases[node.name]
+            else:
+                raise UnknownSymbol(node.name)
             return self._add(node, (kind, k, kind == "q"))
         if node.is_Number or node.is_NumberSymbol:
             try:

@@ -93,15 +93,36 @@ def scale_match(a, b, rtol, free=True, period=None, atol=0.0, zeros=False):
 
 
 def scale_matrix(S, R, rtol, free=True, wrap=None, atol=0.0, zeros=False):
-    """Constants C[k, j] with S[:, k] ≈ C·R[:, j] (NaN where there is none). S (N, ms, …), R (N, m, …)."""
+    """Constants C[k, j] with S[:, k] ≈ C·R[:, j] (NaN where there is none). S (N, ms, …), R (N, m, …).
+
+    Vectorized over all pairs (the rule of :func:`scale_match`); wrapped rows are compared one by one."""
     wrap = wrap or {}
     ms, m = S.shape[1], R.shape[1]
+    A = np.moveaxis(S, 1, 0).reshape(ms, -1)
+    B = np.moveaxis(R, 1, 0).reshape(m, -1)
+    sa, sb = np.abs(A).max(axis=1), np.abs(B).max(axis=1)
     C = np.full((ms, m), np.nan)
-    for k in range(ms):
-        for j in range(m):
-            c = scale_match(S[:, k], R[:, j], rtol, free, wrap.get(j), atol, zeros)
-            if c is not None:
-                C[k, j] = c
+    with np.errstate(all="ignore"):
+        if free:
+            c = (A @ B.T) / np.sum(B * B, axis=1)[None, :]
+        else:
+            c = np.ones((ms, m))
+        res = np.abs(A[:, None, :] - c[:, :, None] * B[None, :, :]).max(axis=2)
+        tol = rtol * np.maximum(sa[:, None], np.abs(c) * sb[None, :]) + atol
+        if not free:
+            tol = rtol * np.maximum(sa[:, None], sb[None, :]) + atol
+    ok = (res <= tol) & (sb[None, :] > atol) & np.isfinite(c) & (c != 0)
+    C[ok] = c[ok]
+    if zeros:
+        both = (sb[None, :] <= atol) & (sa[:, None] <= max(atol, 1e-12))
+        C[both] = 1.0
+    for j, period in wrap.items():
+        for k in range(ms):
+            cc = scale_match(S[:, k], R[:, j], rtol, free, period, atol, zeros)
+            C[k, j] = np.nan if cc is None else cc
+    if free:
+        for k, j in zip(*np.nonzero(np.isfinite(C))):
+            C[k, j] = nice(C[k, j])
     return C
 
 
@@ -287,16 +308,11 @@ def match_phi(S_G, R_G, S_M, R_M, gR_M, F_M, grads, rtol, order="any", wrap=None
 def _in_span(g, basis, rtol):
     """Per sample, the least-squares coefficients of g (N, n) on the rows of basis (N, b, n), and whether
     the residual is at rounding level at every sample."""
-    N = g.shape[0]
-    alpha = np.zeros((N, basis.shape[1]))
-    ok = True
-    for i in range(N):
-        B = basis[i].T  # (n, b)
-        coef, *_ = np.linalg.lstsq(B, g[i], rcond=1e-10)
-        res = np.linalg.norm(B @ coef - g[i])
-        alpha[i] = coef
-        if res > 1e3 * rtol * max(np.linalg.norm(g[i]), 1e-300):
-            ok = False
+    if basis.shape[1] == 0:
+        return np.zeros((g.shape[0], 0)), bool(np.all(np.linalg.norm(g, axis=1) == 0))
+    alpha = np.einsum("nbi,ni->nb", np.linalg.pinv(np.swapaxes(basis, 1, 2), rcond=1e-10), g)
+    res = np.linalg.norm(np.einsum("nbi,nb->ni", basis, alpha) - g, axis=1)
+    ok = bool(np.all(res <= 1e3 * rtol * np.maximum(np.linalg.norm(g, axis=1), 1e-300)))
     return alpha, ok
 
 

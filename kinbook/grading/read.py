@@ -94,13 +94,21 @@ class Answer:
     def tape(self, target):
         key = id(target)
         if key not in self._tapes:
-            from .jets import UnsupportedExpression
+            from .jets import UnknownSymbol, UnsupportedExpression
 
             try:
-                self._tapes[key] = target.tape(list(self.matrix))
+                self._tapes[key] = target.tape(list(self.matrix), aliases=True)
+            except UnknownSymbol as exc:
+                raise Refused("unknown_symbol", "unknown_symbols", names=exc.name, where=Msg("answer")) from None
             except UnsupportedExpression as exc:
                 raise Refused("malformed", "unsupported", what=str(exc)) from None
         return self._tapes[key]
+
+    def bound(self, target):
+        """The answer's matrix in the mechanism's own symbols (for sympy work on it)."""
+        symbols = target.symbols()
+        repl = {s: symbols[s.name] for s in self.matrix.free_symbols if s.name in symbols}
+        return self.matrix.xreplace(repl)
 
     def values(self, target, s):
         """The answer at the instants of ``s``: (N, rows, columns)."""
@@ -124,6 +132,12 @@ class Answer:
         if self.kind == "function":
             return _finite_differences(lambda Q, T: self._batch(Q, T, target), s)
         raise Refused("malformed", "needs_expression")
+
+    def gradient(self, target, s):
+        """Φ_q (N, k, n) of this answer read as Φ(q, t): the tape's gradients, or finite differences."""
+        if self.kind == "symbolic":
+            return self.tape(target)(s.Q, s.QD, s.T, grad=True)["grad"]
+        return self.derived(target, s)["Phi_q"]
 
     def _batch(self, Q, T, target):
         return np.stack([self._call(Q[k], np.zeros_like(Q[k]), T[k], target)[:, 0] for k in range(len(Q))])
@@ -288,8 +302,9 @@ def _matrix(answer, symbols, quantity):
     import sympy as sp
 
     if isinstance(answer, sp.MatrixBase):
-        rows = [list(answer.row(k)) for k in range(answer.rows)]
-    elif isinstance(answer, np.ndarray):
+        M = _sympy_matrix(answer)
+        return M.T if M.rows == 1 and M.cols > 1 and quantity != "Phi_q" else M
+    if isinstance(answer, np.ndarray):
         rows = _rows(answer.tolist())
     elif isinstance(answer, (list, tuple)):
         rows = _rows(list(answer))
@@ -306,6 +321,27 @@ def _matrix(answer, symbols, quantity):
     if M.rows == 1 and M.cols > 1 and quantity != "Phi_q":
         M = M.T  # a row vector for a column quantity
     return M
+
+
+def _sympy_matrix(M):
+    """A student's sympy Matrix: one walk of the reader's bounds over all its entries (bounded in total)."""
+    import sympy as sp
+
+    ex = _reader()
+    entries = M.tolist()
+    for i, row in enumerate(entries):
+        for j, e in enumerate(row):
+            if not isinstance(e, sp.Expr) or isinstance(e, sp.MatrixBase):
+                where = f"answer row {i + 1}, entry {j + 1}"
+                raise Refused("malformed", "not_an_expression", where=where, type=type(e).__name__)
+    limits = _limits()
+    try:
+        ex.check_expression(M, where="the answer", limits=type(limits)(
+            length=limits.length, nodes=limits.nodes * max(1, min(len(M), 50)), depth=limits.depth))
+    except ex.ExpressionError as err:
+        code = "not_finite" if "not a finite number" in str(err) else "malformed"
+        raise Refused(code, "reader", message=str(err)) from None
+    return sp.ImmutableMatrix(M)
 
 
 def _rows(items):
@@ -366,24 +402,7 @@ def _entry(e, symbols, where):
     except ex.ExpressionError as err:
         code = "not_finite" if "not a finite number" in str(err) else "malformed"
         raise Refused(code, "reader", message=str(err)) from None
-    return _rebind(e, symbols, where)
-
-
-def _rebind(e, symbols, where):
-    """The student's own symbols replaced, by name, with the mechanism's."""
-    free = e.free_symbols
-    repl, unknown = {}, []
-    targets = set(symbols.values())
-    for s in free:
-        if s in targets:
-            continue
-        if s.name in symbols:
-            repl[s] = symbols[s.name]
-        else:
-            unknown.append(s.name)
-    if unknown:
-        raise Refused("unknown_symbol", "unknown_symbols", names=", ".join(sorted(unknown)), where=where)
-    return e.xreplace(repl) if repl else e
+    return e  # its symbols are matched by name when it is taped (Answer.tape)
 
 
 # ================================================================================================ derivatives

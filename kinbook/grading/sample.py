@@ -77,7 +77,7 @@ def assembled(target):
     base = base if ok.all() else q0[None]
     found_Q, found_T = [], []
     for size in (0.25, 0.6):
-        idx = rng.integers(0, len(base), 3 * N_ASSEMBLED)
+        idx = rng.integers(0, len(base), 2 * N_ASSEMBLED)
         starts = _perturbed(target, rng, base[idx], size)
         Q, T, ok = _project(target, starts, rng.uniform(0.0, 0.3, len(starts)))
         Q, T = _regular(target, Q[ok], T[ok])
@@ -136,8 +136,7 @@ def _project(target, Q, T):
         active, F, J = active[keep], F[keep], J[keep]
         if not len(active):
             break
-        step = np.einsum("bij,bj->bi", np.linalg.pinv(J, rcond=1e-10), F)
-        step[~np.isfinite(step)] = 0.0
+        step = _min_norm_step(J, F)
         Q[active] -= step[:, : target.n]
         if with_t:
             T[active] -= step[:, -1]
@@ -146,12 +145,29 @@ def _project(target, Q, T):
         F, J = target.manifold(Q[idx], T[idx])
         if not with_t:
             J = J[:, :, :-1]
-        step = np.einsum("bij,bj->bi", np.linalg.pinv(J, rcond=1e-10), F)
+        step = _min_norm_step(J, F)
         if np.all(np.isfinite(step)):
             Q[idx] -= step[:, : target.n]
             if with_t:
                 T[idx] -= step[:, -1]
     return Q, T, ok
+
+
+def _min_norm_step(J, F):
+    """The minimum-norm solutions x of J x = F (batched): Jᵀ(J Jᵀ)⁻¹F where J has full row rank (a Cholesky-
+    sized solve), the pseudo-inverse where it does not (redundant rows)."""
+    JJ = J @ np.swapaxes(J, 1, 2)
+    step = np.full((J.shape[0], J.shape[2]), np.nan)
+    try:
+        y = np.linalg.solve(JJ, F[..., None])[..., 0]
+        step = np.einsum("bji,bj->bi", J, y)
+    except np.linalg.LinAlgError:
+        pass
+    bad = ~np.all(np.isfinite(step), axis=1)
+    if bad.any():
+        step[bad] = np.einsum("bij,bj->bi", np.linalg.pinv(J[bad], rcond=1e-10), F[bad])
+    step[~np.isfinite(step)] = 0.0
+    return step
 
 
 def _regular(target, Q, T):

@@ -187,14 +187,15 @@ class Target:
             self.store["phi"] = sp.Matrix.vstack(*[mech.constraint_phi(c) for c in self.constraints])
         return self.store["phi"]
 
-    def tape(self, exprs, key=None):
-        """A :class:`~kinbook.grading.jets.Tape` of ``exprs`` over this target's q, q̇ and t (cached by key)."""
+    def tape(self, exprs, key=None, aliases=False):
+        """A :class:`~kinbook.grading.jets.Tape` of ``exprs`` over this target's q, q̇ and t (cached by key);
+        with ``aliases``, symbols are also matched by name (a student's own symbols)."""
         from .jets import Tape
 
         if key is not None and ("tape", key) in self.store:
             return self.store[("tape", key)]
         mech = self.mech
-        tape = Tape(list(exprs), list(mech.q), list(mech.qd), mech.t)
+        tape = Tape(list(exprs), list(mech.q), list(mech.qd), mech.t, self.symbols() if aliases else None)
         if key is not None:
             self.store[("tape", key)] = tape
         return tape
