@@ -5,7 +5,8 @@ parameters (chapter 14) in :mod:`kinbook.spatial`; mechanism files are read by
 :func:`kinbook.load`, and the book's example mechanisms by :func:`kinbook.examples.load`.
 """
 
-from . import examples, planar, spatial
+import importlib
+
 from .errors import (
     AnalysisError,
     AssemblyError,
@@ -23,21 +24,38 @@ from .errors import (
     UnknownBodyError,
     UnknownPointError,
 )
-from .io import load, loads
-from . import grading  # noqa: E402  (after the modules it grades with)
-from .grading import set_language
-from .notebook import setup as notebook_setup
 
 __version__ = "0.1.0"
 
+# Subpackages are imported when first used (PEP 562): `import kinbook` itself stays cheap — no sympy, no
+# numpy — so a notebook, a command or a browser (Pyodide) starts at once; `kinbook.planar`, `from kinbook
+# import spatial`, `kinbook.load(...)` work as before.
+_SUBMODULES = ("examples", "planar", "spatial", "grading", "analysis", "model", "symbolic", "book", "io",
+               "expressions", "classroom", "kernels", "notebook")
+
+
+_FROM = {"load": "io", "loads": "io", "notebook_setup": "notebook", "try_it": "book.tryits", "reveal": "book.tryits"}
+_RENAMED = {"notebook_setup": "setup"}
+
 
 def __getattr__(name):
-    # the notebooks' try-it helpers load the book package only when first used (import kinbook stays light)
-    if name in ("try_it", "reveal"):
-        from .book import tryits
-
-        return getattr(tryits, name)
+    if name in _SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
+    if name in _FROM:
+        return getattr(importlib.import_module(f".{_FROM[name]}", __name__), _RENAMED.get(name, name))
     raise AttributeError(f"module 'kinbook' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_SUBMODULES) | set(_FROM))
+
+
+def set_language(lang):
+    """Choose the language of grading feedback ("en" or "es"): see :func:`kinbook.grading.set_language`."""
+    from .grading._i18n import set_language as _set
+
+    _set(lang)
+
 
 __all__ = [
     "load",
