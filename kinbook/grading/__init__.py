@@ -12,8 +12,7 @@ Public API: :func:`check_phi`, :func:`check_jacobian`, :func:`check_nu`, :func:`
 name), :class:`CheckResult`, :mod:`expected` (expected numbers that name their mistakes), the mistake
 catalogue (:data:`MISTAKES`, :func:`explain`), the feedback language (:func:`set_language`), and
 :func:`nbgrader_score` and :func:`assert_passed` for nbgrader and otter-grader tests (:mod:`.lms`). Exercises
-(graded parts, per-student parameters) are
-declared in notebooks with :mod:`kinbook.classroom`.
+(graded parts, per-student parameters) are declared in notebooks with :mod:`kinbook.classroom`.
 
 A check runs one way through small stages, each its own module: read (the safe reader) → sample → evaluate
 → match (the one equivalence rule) → diagnose (the mistake catalogue) → report (:mod:`kinbook.grading.checks`).

@@ -71,6 +71,35 @@ def mistake_message(row):
     return Msg("row_mistake_detail", title=_title(row.code), detail=detail)
 
 
+def _grouped(messages):
+    """Consecutive lines saying the same thing of rows of the same constraint, as one line naming all the rows
+    (one sign error over eight rows of γ is one line, not eight)."""
+    out = []
+    for m in messages:
+        prev = out[-1] if out else None
+        if isinstance(m, Msg) and isinstance(prev, Msg) and m.key == prev.key and m.key in ("row_line",
+                                                                                            "row_line_short"):
+            a = {k: v for k, v in m.fields.items() if k != "label"}
+            b = {k: v for k, v in prev.fields.items() if k != "label"}
+            if a == b:
+                out[-1] = Msg(prev.key, **dict(prev.fields, label=_join(prev.fields["label"], m.fields["label"])))
+                continue
+        out.append(m)
+    return out
+
+
+def _join(a, b):
+    if isinstance(a, str) and isinstance(b, str):
+        return f"{a}, {b}"
+    return both(lambda lang: f"{_render(a, lang)}, {_render(b, lang)}")
+
+
+def _render(x, lang):
+    from ._i18n import render
+
+    return render(x, lang)
+
+
 def _unique(codes):
     out = []
     for c in codes:
@@ -174,7 +203,7 @@ def _finish(quantity, rows, messages, codes, contexts, target, matching=None, en
         head = Msg("summary_half", what=what, ok=n_ok, n=total, half=half, score=score)
     else:
         head = Msg("summary", what=what, ok=n_ok, n=total, score=score)
-    notes = [head] + list(messages) + list(notes_after) + hints(codes, contexts)
+    notes = [head] + _grouped(list(messages)) + list(notes_after) + hints(codes, contexts)
     return CheckResult(passed, round(score, 6), notes, codes, tuple(rows), what, tuple(columns))
 
 

@@ -80,7 +80,7 @@ class CheckResult:
     rows : tuple of RowResult
         Per-row (and, for Φ_q, per-entry) detail.
     quantity : str
-        "Φ", "Φ_q", "ν", "γ" or the name of a value.
+        "Φ", "Φ_q", "ν", "γ" or the name of a value (in the current language).
     columns : tuple of str
         Names of the columns of Φ_q (coordinates), when ``rows`` carry entries.
     """
@@ -90,7 +90,7 @@ class CheckResult:
     notes: tuple
     mistakes: list
     rows: tuple
-    quantity: str
+    _quantity: object
     columns: tuple
 
     def __init__(self, passed, score, messages=(), mistakes=(), rows=(), quantity="", columns=()):
@@ -99,8 +99,12 @@ class CheckResult:
         object.__setattr__(self, "notes", tuple(messages))
         object.__setattr__(self, "mistakes", list(mistakes))
         object.__setattr__(self, "rows", tuple(rows))
-        object.__setattr__(self, "quantity", quantity)
+        object.__setattr__(self, "_quantity", quantity)
         object.__setattr__(self, "columns", tuple(columns))
+
+    @property
+    def quantity(self):
+        return render(self._quantity)
 
     @property
     def messages(self):
@@ -111,7 +115,7 @@ class CheckResult:
 
     def __repr__(self):
         word = render(Msg("h.passed" if self.passed else "h.failed"))
-        head = f"CheckResult({render(self.quantity)}: {word}, {render(Msg('h.score'))}={self.score:.2f}"
+        head = f"CheckResult({self.quantity}: {word}, {render(Msg('h.score'))}={self.score:.2f}"
         if self.mistakes:
             head += f", {render(Msg('h.mistakes'))}={self.mistakes}"
         lines = [head + ")"]
@@ -123,7 +127,7 @@ class CheckResult:
         verdict = "✓" if self.passed else "✗"
         esc = html.escape
         out = [
-            f'<div><p style="color:{colour};font-weight:bold">{verdict} {esc(render(self.quantity))} — '
+            f'<div><p style="color:{colour};font-weight:bold">{verdict} {esc(self.quantity)} — '
             f"{esc(render(Msg('h.score')))} {self.score:.2f}</p>"
         ]
         if self.notes:

@@ -82,7 +82,7 @@ def _shape(a, e, name):
     return None, _failed(name, Msg("wrong_shape", expected=e.shape, got=a.shape), "wrong_shape")
 
 
-def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name="value", angles=None, periodic=()):
+def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name=None, angles=None, periodic=()):
     """Check a number, vector or matrix against the expected value.
 
     Parameters
@@ -94,8 +94,8 @@ def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name="value", angles=
     rtol, atol : float
         |answer − expected| ≤ atol + rtol · max|expected| entry-wise (the book prints 4–6 significant
         digits, hence the default rtol = 1e-3).
-    name : str
-        How to call the value in messages ("q̈", "Φ_q at t = 0" …).
+    name : str, optional
+        How to call the value in messages ("q̈", "Φ_q at t = 0" …); default "value" ("valor").
     angles : bool, optional
         Kept for compatibility: degrees for radians are diagnosed wherever they occur (``angles=False`` turns
         that off for values that cannot be angles).
@@ -115,10 +115,19 @@ def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name="value", angles=
     >>> check_value([[1, 3], [2, 4]], [[1, 2], [3, 4]]).mistakes
     ['transposed']
     """
+    name = {"en": "value", "es": "valor"} if name is None else name
     exp = _expected(expected)
     if exp is None:
         return _failed(name, Msg("bad_type", expected="numbers", type=type(expected).__name__), "malformed")
     return _check(answer, exp, rtol, atol, name, angles is not False, periodic)
+
+
+def _indexed(name, idx):
+    """"A[1, 2]" — in every language when the name is translated."""
+    suffix = "[" + ", ".join(str(int(i) + 1) for i in idx) + "]" if len(idx) else ""
+    if isinstance(name, dict):
+        return {lang: text + suffix for lang, text in name.items()}
+    return name + suffix
 
 
 def _check(answer, exp, rtol, atol, name, degrees=True, periodic=(), extra=None):
@@ -150,7 +159,7 @@ def _check(answer, exp, rtol, atol, name, degrees=True, periodic=(), extra=None)
     if per.any():
         err = np.where(per, np.abs((a - e + np.pi) % (2 * np.pi) - np.pi), err)
     where = np.unravel_index(int(np.argmax(err)), err.shape) if err.ndim else ()
-    where_text = name + ("[" + ", ".join(str(int(i) + 1) for i in where) + "]" if where else "")
+    where_text = _indexed(name, where)
     head = Msg("value_wrong", expected=_fmt_array(e), got=_fmt_array(a), err=fmt(err.max()), where=where_text)
     notes = [head]
     if note is not None:
@@ -181,7 +190,7 @@ def _rows(a, e, rtol, atol, per, name, code):
         if per[idx]:
             d = (d + np.pi) % (2 * np.pi) - np.pi
         good = abs(d) <= atol + rtol * scale
-        label = name + ("[" + ", ".join(str(i + 1) for i in idx) + "]" if idx else "")
+        label = _indexed(name, idx)
         rows.append(RowResult(label, "ok" if good else "wrong", "" if good else
                               Msg("value_entry", got=fmt(x), expected=fmt(y)), None if good else (code or "wrong_value"),
                               (), 1.0 if good else 0.0))
