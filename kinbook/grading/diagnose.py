@@ -326,7 +326,7 @@ def eg_rows(target, data, matching, rtol):
             coef = np.einsum("ni,ni->n", rest[:, pc], p) / np.einsum("ni,ni->n", p, p)
             rest[:, pc] -= coef[:, None] * p
         if scale_of(rest) <= 1e2 * rtol * scale:
-            r.code, r.erratum = "eg_jacobian", "14.3-dAa-dp"
+            r.code, r.erratum = "eg_jacobian", None  # the book prints 2(Eā + apᵀ): a student slip, not a misprint
             r.entries, r.score = _entries(data.S[:, r.k], f * data.R[:, r.ref], rtol, "eg_jacobian", [])
 
 

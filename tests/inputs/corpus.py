@@ -1016,8 +1016,8 @@ def _files(argv):
 
 
 def checker_cases():
-    """Checker-side items of issue 13 that belong to h14 (the one equivalence rule of issue 14): expected
-    failures until h14 lands, then they pass (strict xfail flips)."""
+    """Checker-side items of issue 13 (the one equivalence rule of issue 14): numbers must be real, and an
+    answer set must have the reference's zero set and rank (a duplicated or scaled-duplicate row fails)."""
     import kinbook
     from kinbook.grading import check_phi, check_value
 
@@ -1032,9 +1032,7 @@ def checker_cases():
         ("check_phi-duplicate-row", lambda: phi_rows(lambda P: P[:4] + [P[3]] + P[5:])),
         ("check_phi-scaled-duplicate", lambda: phi_rows(lambda P: P[:4] + [2 * P[3]] + P[5:])),
     ]
-    return [Case(f"checker-{lbl}", "checkers (h14)", fn, "ok", check=lambda passed: passed is False,
-                 xfail="h14: an answer set must have the reference's zero set and rank; numbers must be real")
-            for lbl, fn in rows]
+    return [Case(f"checker-{lbl}", "checkers", fn, "ok", check=lambda passed: passed is False) for lbl, fn in rows]
 
 
 def cases():

@@ -20,9 +20,7 @@ ALLOWED = {
 }
 
 # files other engineers are rewriting: they still read text with sympify today (xfail flips when they land)
-PENDING = {
-    "grading/answers.py": "h14: student answers are to be read by kinbook.expressions",
-}
+PENDING = {}
 
 
 def calls(path):

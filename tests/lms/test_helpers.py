@@ -10,7 +10,6 @@ from kinbook.grading import CheckResult, assert_passed, check_phi, nbgrader_scor
 from kinbook.grading.lms import nbgrader_credit
 
 JOINT = kinbook.examples.load("ch13_example1").constraint("1")
-check_phi(["x1 - x2 - cos(phi2)", "y1 - y2 + sin(phi2)"], JOINT)  # warm-up: the checkers' 3 s clock budget (#14)
 WRONG = check_phi(["x1 - x2 - cos(phi2)", "y1 - y2 + sin(phi2)"], JOINT)
 RIGHT = check_phi(["x1 - x2 + cos(phi2)", "y1 - y2 + sin(phi2)"], JOINT)
 
@@ -22,9 +21,16 @@ def test_only_a_check_result_is_accepted(helper, value):
         helper(value) if helper is not nbgrader_score else helper(value, 4)
 
 
-@pytest.mark.parametrize("score", [-0.1, 1.5, math.nan, math.inf, True, "1"])
+@pytest.mark.parametrize("score", [-0.1, 1.5, math.nan, math.inf])
 def test_a_score_outside_0_1_is_refused(score):
     with pytest.raises(ValueError, match=r"score must be a number in \[0, 1\]"):
+        nbgrader_credit(CheckResult(False, score), 4)
+
+
+@pytest.mark.parametrize("score", [True, "1"])
+def test_a_score_that_reads_as_1_on_a_failed_check_is_refused(score):
+    # CheckResult keeps its score as a float: True and "1" become 1.0, a failed check at full score
+    with pytest.raises(ValueError, match="inconsistent CheckResult"):
         nbgrader_credit(CheckResult(False, score), 4)
 
 
@@ -67,7 +73,6 @@ def test_nbgrader_score_publishes_the_credit_first(tmp_path):
     setup = (
         "import kinbook\nfrom kinbook.grading import check_phi, nbgrader_score\n"
         'joint = kinbook.examples.load("ch13_example1").constraint("1")\n'
-        'check_phi(["x1 - x2 - cos(phi2)", "y1 - y2 + sin(phi2)"], joint)  # warm-up (issue #14)\n'
         'result = check_phi(["x1 - x2 - cos(phi2)", "y1 - y2 + sin(phi2)"], joint)'
     )
     cells = [setup, "nbgrader_score(result, points=4)\nresult", "%precision 0\nnbgrader_score(result, points=3)"]

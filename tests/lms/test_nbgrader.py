@@ -120,7 +120,6 @@ def test_misuses_graded_by_nbgraders_own_rule(tmp_path):
     setup = nbformat.v4.new_code_cell(
         "import kinbook\nfrom kinbook.grading import check_phi, nbgrader_score\n"
         'joint = kinbook.examples.load("ch13_example1").constraint("1")\n'
-        f"check_phi({WRONG_ROWS!r}, joint)  # warm-up: the checkers' 3 s clock budget (issue #14)\n"
         f"result = check_phi({WRONG_ROWS!r}, joint)\n"
         'correct = check_phi(["x1 - x2 + cos(phi2)", "y1 - y2 + sin(phi2)"], joint)'
     )
