@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from ..notebook import agrees, clean, small, tolerance_text
+from .notation import html_math
 
 __all__ = ["Erratum", "Evidence", "ERRATA", "table", "show", "get", "book_n1_acceleration"]
 
@@ -896,8 +897,8 @@ class ErrataTable:
         for e, ev in self.rows:
             parts = [f"<p style='margin:0 0 4px 0'><b>{html.escape(e.where)}</b> "
                      f"<span style='color:#777'>[{html.escape(e.id)}, {e.kind}]</span></p>",
-                     f"<p style='margin:0'>The book prints: $${html.escape(e.printed)}$$</p>",
-                     f"<p style='margin:0'>Correct: $${html.escape(e.correct)}$$</p>"]
+                     f"<p style='margin:0'>The book prints: {html_math(e.printed, display=True)}</p>",
+                     f"<p style='margin:0'>Correct: {html_math(e.correct, display=True)}</p>"]
             if ev is not None:
                 parts.append(f"<p style='margin:4px 0 0 0'>Evidence: {html.escape(ev.text)}</p>")
             if e.note:

@@ -17,6 +17,8 @@ kinbook names coordinates ``x1, y1, phi1, dx1 …`` (body numbers); the book wri
 
 from __future__ import annotations
 
+import html
+
 import re
 from functools import lru_cache
 from types import SimpleNamespace
@@ -24,7 +26,7 @@ from types import SimpleNamespace
 import numpy as np
 import sympy as sp
 
-__all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "equations", "matrix", "names",
+__all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "html_math", "equations", "matrix", "names",
            "book_gamma", "Math", "local_points", "table"]
 
 
@@ -194,6 +196,14 @@ def latex(expr, mech=None, **kwargs):
     """LaTeX of a kinbook expression in the book's notation (see :func:`names`)."""
     expr = as_sympy(expr)
     return sp.latex(expr, symbol_names=names(expr, mech), **kwargs)
+
+
+def html_math(tex, display=False):
+    r"""TeX placed in an HTML output: ``\(…\)`` (or ``\[…\]`` when ``display``), HTML-escaped. These are the
+    delimiters both JupyterLab and the static book's MathJax typeset in HTML; ``$…$`` is left as raw text by
+    the book (Sphinx enables no dollar delimiters)."""
+    left, right = (r"\[", r"\]") if display else (r"\(", r"\)")
+    return f"{left}{html.escape(str(tex))}{right}"
 
 
 def equations(rows, mech=None, first=1, label=r"\Phi"):

@@ -18,7 +18,7 @@ import numpy as np
 import sympy as sp
 
 from ..notebook import agrees, tolerance_text
-from .notation import S, as_sympy, from_book, latex
+from .notation import S, as_sympy, from_book, html_math, latex
 
 __all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table", "zero_on_sphere", "rate", "relative_dof", "motion_table"]
 
@@ -90,12 +90,12 @@ class Comparison:
         return f"{self.title}: {self.summary()}\n{marks}"
 
     def _repr_html_(self):
-        head = "".join(f"<th>${c}$</th>" for c in self.columns)
+        head = "".join(f"<th>{html_math(c)}</th>" for c in self.columns)
         body = []
         for r, row in enumerate(self.agree):
             cells = "".join(f"<td style='text-align:center;color:{'#155724' if ok else '#b00020'}'>{'✓' if ok else '✗'}"
                             f"</td>" for ok in row)
-            body.append(f"<tr><td>${self.rows[r]}$</td>{cells}</tr>")
+            body.append(f"<tr><td>{html_math(self.rows[r])}</td>{cells}</tr>")
         return (f"<p><b>{html.escape(self.title)}</b> — {html.escape(self.summary())}</p>"
                 f"<table><tr><th></th>{head}</tr>{''.join(body)}</table>")
 

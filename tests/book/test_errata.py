@@ -1,9 +1,14 @@
 """Every erratum must stand: the book's version disagrees with kinbook, the corrected one agrees."""
 
+import json
+import re
+from pathlib import Path
+
 import pytest
 
 from kinbook.book import errata
 
+ROOT = Path(__file__).resolve().parents[2]
 COMPUTED = [e for e in errata.ERRATA if e.evidence is not None]
 
 
@@ -28,3 +33,20 @@ def test_table_renders_every_entry():
     html = t._repr_html_()
     assert html.count("border-left") == len([e for e in errata.ERRATA if e.id.startswith("13")])
     assert "|AB| = 6.092" in repr(t)
+
+
+DOLLAR_TEX = re.compile(r"\$[^$]*\\[A-Za-z]+[^$]*\$")
+
+
+def test_html_outputs_carry_math_the_static_book_typesets():
+    """The book's MathJax (Sphinx's) reads \\(…\\) and \\[…\\] in HTML outputs, never $…$: a table with $\\Phi$
+    shows raw TeX on the website while looking fine in JupyterLab."""
+    for html in (errata.table("13")._repr_html_(), errata.table("14")._repr_html_()):
+        assert "\\(" in html or "\\[" in html
+        assert not DOLLAR_TEX.search(html), DOLLAR_TEX.search(html).group(0)[:80]
+    stored = sorted(ROOT.glob("chapters/*.ipynb")) + sorted(ROOT.glob("exercises/**/*.ipynb"))
+    for path in stored:
+        for cell in json.loads(path.read_text())["cells"]:
+            for out in cell.get("outputs", []):
+                found = DOLLAR_TEX.search("".join(out.get("data", {}).get("text/html", "")))
+                assert not found, f"{path.name}: $…$ in an HTML output: {found.group(0)[:80]}"

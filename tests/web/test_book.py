@@ -99,10 +99,13 @@ def test_animation_buttons_have_icons_and_play(browser, site, offline, screensho
     page = open_page(browser, offline, f"{site.url}/chapters/{chapter}.html")
     player = page.locator(".animation").first
     player.scroll_into_view_if_needed()
-    # every button shows its icon: the theme's Font Awesome 6 (local) draws them as inline SVG; an icon it
-    # left alone is drawn by the site's Font Awesome 4 (vendor/), which must then have loaded
+    # every button shows its icon: kinbook draws them as text symbols (kinbook/_animation.py: no web font, they
+    # show offline); an icon font's <i> (matplotlib's own player) is drawn by the theme's Font Awesome as inline
+    # SVG, or by the site's Font Awesome 4 (vendor/), which must then have loaded
     sizes = player.evaluate("a => [...a.querySelectorAll('.anim-buttons button')].map(b => {"
-                            " const i = b.querySelector('svg, i'); return i ? i.getBoundingClientRect().width : 0; })")
+                            " const i = b.querySelector('svg, i, span');"
+                            " return i && i.textContent.trim() !== '' || i && i.tagName !== 'SPAN'"
+                            " ? i.getBoundingClientRect().width : 0; })")
     assert len(sizes) == 9 and min(sizes) > 4, f"animation buttons without icons: widths {sizes}"
     if player.locator(".anim-buttons button i").count():
         page.wait_for_function("() => [...document.fonts].some(f => f.family.replace(/[\"']/g, '') === "
