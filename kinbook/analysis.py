@@ -8,6 +8,7 @@ only its numeric interface (``evaluate``, ``n``, ``m``, ``constraints`` …).
 from __future__ import annotations
 
 import html
+import math
 import warnings
 from dataclasses import dataclass, field
 
@@ -21,6 +22,7 @@ from .errors import (
     DriverCountError,
     DriverValueError,
     InputError,
+    KinbookError,
     RedundantConstraintsError,
     SingularJacobianError,
 )
@@ -32,6 +34,9 @@ __all__ = [
     "solve_acceleration",
     "simulate",
     "diagnose",
+    "follow",
+    "follow_times",
+    "Continuation",
     "Diagnosis",
     "NewtonHistory",
     "SimulationResult",
@@ -890,3 +895,106 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=5
     if stopped is not None:
         return stopped
     return SimulationResult(mech, T.copy(), Q, QD, QDD)
+
+
+# --------------------------------------------------------------------------------------------- continuation
+@dataclass(frozen=True)
+class Continuation:
+    """How far following the motion toward an instant got (:func:`follow`).
+
+    Attributes
+    ----------
+    t : float
+        The instant reached: the one asked for when ``reached``, else the *limit*, the last instant at which the
+        mechanism still assembles on the branch that was followed (within ``min_step`` of where it stops).
+    q : ndarray, shape (n,), or None
+        The configuration at ``t`` (None when not even the start assembles).
+    reached : bool
+    failure : KinbookError or None
+        Why the next step past the limit failed (no convergence, a dead point …).
+    """
+
+    t: float
+    q: np.ndarray | None
+    reached: bool
+    failure: KinbookError | None = None
+
+
+_STEP_ERRORS = (KinbookError, np.linalg.LinAlgError, FloatingPointError)
+
+
+def follow(mech, t_to, *, t_from, q_from, max_step, min_step=None):
+    """Follow the assembly of ``mech`` from a solution ``q_from`` at ``t_from`` to ``t_to`` by continuation.
+
+    Position solves (Newton–Raphson from the previous solution) in steps of at most ``max_step``, halved
+    whenever a step fails, so the solution stays on the assembly branch of ``q_from``. When steps shorter
+    than ``min_step`` still fail, the mechanism stops there: the result holds the last configuration that
+    assembled, the *limit* (at a dead point, the limit position the driver cannot move past).
+
+    Parameters
+    ----------
+    t_to, t_from : float
+    q_from : array_like, shape (n,)
+        A solution at ``t_from``.
+    max_step : float
+        Largest step in t (> 0).
+    min_step : float, optional
+        Precision of the limit in t; default ``max_step / 1024``.
+
+    Returns
+    -------
+    Continuation
+    """
+    t_from, t_to, max_step = _t(t_from), _t(t_to), float(max_step)
+    if not max_step > 0:
+        raise InputError(f"`max_step` must be positive, got {max_step}")
+    min_step = max_step / 1024 if min_step is None else float(min_step)
+    q, t = np.array(mech.check_q(q_from), dtype=float), t_from
+    step, last = max_step, None
+    while t != t_to:
+        h = min(step, abs(t_to - t))
+        t_next = t_to if h == abs(t_to - t) else t + math.copysign(h, t_to - t)
+        try:
+            q = mech.solve_position(t_next, q0=q, max_iter=15)
+            t = t_next
+        except _STEP_ERRORS as exc:
+            last = exc if isinstance(exc, KinbookError) else None
+            if step <= min_step:
+                return Continuation(t, q, False, last)
+            step /= 2
+    return Continuation(t, q, True, None)
+
+
+def follow_times(mech, times, *, t0=0.0, q0=None, max_step):
+    """Configurations at many instants, all on the assembly branch of the solution at ``t0``.
+
+    The motion is followed (:func:`follow`) from the assembly at ``t0`` (solved from ``q0``, default the
+    bodies' q0) upward through the instants after ``t0`` in increasing order, and downward through those
+    before it. Past a limit the mechanism does not assemble on that branch: every farther instant gets that
+    limit. When nothing assembles at ``t0``, each instant is solved on its own from ``q0``.
+
+    Returns
+    -------
+    list of Continuation, one per instant of ``times``, in their order.
+    """
+    times = [_t(v) for v in np.atleast_1d(times)]
+    try:
+        start = solve_position(mech, t0, q0=q0)
+    except KinbookError:
+        out = []
+        for t in times:
+            try:
+                out.append(Continuation(t, solve_position(mech, t, q0=q0), True))
+            except KinbookError as exc:
+                out.append(Continuation(t, None, False, exc))
+        return out
+    out = [None] * len(times)
+    up = sorted((k for k, t in enumerate(times) if t >= t0), key=lambda k: times[k])
+    down = sorted((k for k, t in enumerate(times) if t < t0), key=lambda k: -times[k])
+    for order in (up, down):
+        at = Continuation(t0, start, True)
+        for k in order:
+            if at.reached:
+                at = follow(mech, times[k], t_from=at.t, q_from=at.q, max_step=max_step)
+            out[k] = at
+    return out

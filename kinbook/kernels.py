@@ -27,7 +27,7 @@ import numpy as np
 import sympy as sp
 
 from .errors import ModelError
-from .symbolic import derive, t as t_symbol
+from .symbolic import t as t_symbol
 
 __all__ = ["compiled", "stacked", "CompiledKernel", "StackedKernel"]
 

@@ -74,11 +74,11 @@ def _body_points(mech, q, body):
 
 
 def _grounded(mech):
-    return {c.body_names[0] for c in mech.constraints if c.type_name == "ground"}
+    return set(mech.fixed_bodies())
 
 
 def _check_single(mech, q):
-    q = mech._check_q(q)
+    q = mech.check_q(q)
     if q.ndim != 1:
         raise InputError(f"`q` must be one configuration of shape ({mech.n},), got {q.shape}")
     return q

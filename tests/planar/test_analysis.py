@@ -192,3 +192,42 @@ def test_hermite_guess_is_exact_for_quintics():
     t = t0 + np.array([0.3, 0.85]) * (t1 - t0)
     ends = [tuple(q(tt, d) for d in range(3)) for tt in (t0, t1)]
     np.testing.assert_allclose(_hermite5(t, t0, t1, *ends), q(t), rtol=1e-12, atol=1e-12)
+
+
+# --------------------------------------------------------------------------------------------- continuation
+def test_following_past_the_dead_point_stops_at_the_limit_configuration():
+    from kinbook.analysis import follow
+
+    m, q_limit, t_limit = example1_at_limit()
+    q0 = m.solve_position(0.0)
+    dt = 0.05 / 100  # 0.05 rad of crank per step
+    at = follow(m, 0.02, t_from=0.0, q_from=q0, max_step=dt)  # φ₂ would be 135° + 114.6°: reachable
+    assert at.reached and at.t == 0.02 and np.max(np.abs(m.Phi(at.q, at.t))) < 1e-10
+    at = follow(m, 0.03, t_from=0.0, q_from=q0, max_step=dt)  # 135° + 171.9° = 306.9°: past 289.47°
+    assert not at.reached and isinstance(at.failure, (ConvergenceError, DeadPointError))
+    assert t_limit - dt / 1024 <= at.t <= t_limit  # the limit, to within min_step
+    assert np.max(np.abs(m.Phi(at.q, at.t))) < 1e-10
+    diff = at.q - q_limit
+    diff[2::3] = np.mod(diff[2::3] + np.pi, 2 * np.pi) - np.pi  # angles modulo a turn
+    np.testing.assert_allclose(diff, 0, atol=2e-2)  # near the limit Φ_q is singular: q is √(Δt)-sensitive
+    assert m.diagnose(at.q, at.t).cond > 1e3
+
+
+def test_following_many_instants_goes_outward_from_the_start():
+    from kinbook.analysis import follow_times
+
+    m, _, t_limit = example1_at_limit()
+    times = [0.03, 0.0, -0.005, 0.01, -0.02]  # 306.9° (past), 135°, 106.4°, 192.3°, 20.4° (past 70.53°)
+    found = follow_times(m, times, t0=0.0, max_step=0.0005)
+    assert [f.reached for f in found] == [False, True, True, True, False]
+    t_low = (THETA_LIMIT - 3 * np.pi / 4) / 100
+    assert found[0].t == pytest.approx(t_limit, abs=1e-6) and found[4].t == pytest.approx(t_low, abs=1e-6)
+    for f in found:
+        assert np.max(np.abs(m.Phi(f.q, f.t))) < 1e-10
+    # one branch: B stays on the same side of the line from A to O_B (the other branch is its mirror image)
+    def side(q):
+        A, B = m.point_position(q, "crank", "A"), m.point_position(q, "coupler", "B")
+        (ax, ay), (bx, by) = B - A, np.array([3.0, 0.0]) - A
+        return np.sign(ax * by - ay * bx)
+
+    assert len({side(f.q) for f in found if f.reached}) == 1  # (at a limit B, O_B and A are aligned)

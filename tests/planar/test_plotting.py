@@ -13,8 +13,10 @@ import pytest  # noqa: E402
 from matplotlib.patches import Circle, FancyArrowPatch, Polygon  # noqa: E402
 
 from kinbook import InputError, examples  # noqa: E402
+from kinbook import planar  # noqa: E402
 from kinbook.planar import Ground, Mechanism, Revolute, Driver  # noqa: E402
 from kinbook.planar import plotting  # noqa: E402
+from kinbook.planar.plotting._common import _point_text  # noqa: E402
 
 from .zoo import zoo  # noqa: E402
 
@@ -98,7 +100,7 @@ def test_body_with_three_points_is_its_convex_hull():
     polys = [p for p in ax.patches if isinstance(p, Polygon) and p.get_fill() and len(p.get_xy()) == 4]
     matches = [p for p in polys if all(np.isclose(p.get_xy()[:3], v, atol=1e-12).all(axis=1).any() for v in hull)]
     assert len(matches) == 1
-    assert plotting._point_text("OA") == "$O_{A}$"
+    assert _point_text("OA") == "$O_{A}$"
 
 
 def test_slider_box_is_centred_on_the_slider_point():
@@ -236,37 +238,117 @@ def test_animation_html_plays_and_closes_its_figure(sweep):
 
 # --------------------------------------------------------------------------------------------- explorer
 def _residual(title):
-    m = re.search(r"max\|Φ\| = ([0-9.e+-]+)", title)
+    m = re.search(r"max\|Φ\| [=<] ([0-9.e+-]+)", title)
     return float(m.group(1)) if m else None
 
 
-def test_explorer_static_marks_the_reachable_range(four_bar):
+# example 1 (crank 2, coupler 6, rocker 3, ground 3) stops where coupler and rocker fold: |A − O_B| = 6 − 3,
+# 2² + 3² − 12 cos φ₂ = 3², so φ₂ = arccos(1/3) = 70.53° or 360° − 70.53° = 289.47°
+LIMITS = (np.degrees(np.arccos(1 / 3)), 360 - np.degrees(np.arccos(1 / 3)))
+
+
+def _stops_at(text):
+    return float(re.search(r"stops at φ₂ = ([0-9.]+)°", text).group(1))
+
+
+def test_explorer_static_marks_the_reachable_range_and_shows_the_limits(four_bar):
     m, _ = four_bar
     values = [0.5, 1.5, 3 * np.pi / 4, 4.5, 5.6]  # reachable crank angles: about 1.24 ... 5.04
     fig = plotting.explorer(m, values=values, static=True)
-    titles = [ax.get_title() for ax in fig.axes if ax.get_visible()]
+    axes = [ax for ax in fig.axes if ax.get_visible()]
+    titles = [ax.get_title() for ax in axes]
     assert len(titles) == 5
+    assert titles[2].startswith("$\\varphi_{2}$ = 135°")  # in degrees
     for v, title in zip(values, titles):
         if 1.3 < v < 5.0:
             assert _residual(title) < 1e-9, title
             assert "cond" in title
         else:
             assert "does not assemble" in title and _residual(title) is None
+            limit = LIMITS[0] if v < 1 else LIMITS[1]
+            assert abs(_stops_at(title) - limit) < 0.01, title
+    # past the dead point the panel shows the limit configuration: the crank pin A at φ₂ = 289.47°
+    A = 2 * np.array([np.cos(np.radians(LIMITS[1])), np.sin(np.radians(LIMITS[1]))])
+    assert _has_circle_at(axes[4], A, tol=1e-3)
+    same = plotting.explorer(m, values=np.degrees(values), degrees=True, static=True)
+    assert [ax.get_title() for ax in same.axes if ax.get_visible()] == titles
 
 
-def test_explorer_widget_reports_residual_and_failure(four_bar):
+def test_explorer_widget_works_in_degrees_and_shows_the_limit(four_bar):
     pytest.importorskip("ipywidgets")
     m, _ = four_bar
     box = plotting.explorer(m, values=[1.0, 5.5], static=False)
     slider, status = box.kinbook_slider, box.kinbook_status
-    assert "max|Φ|" in status.value
-    slider.value = 4.9  # near the dead point: still assembles, Φ_q badly conditioned
-    assert "max|Φ|" in status.value
-    slider.value = 5.4
-    assert "does not assemble" in status.value
+    assert (slider.min, slider.max, slider.value) == pytest.approx((np.degrees(1.0), np.degrees(5.5), 135.0))
+    assert "φ₂ = 135°: max|Φ|" in status.value
+    slider.value = 285.0  # near the dead point: still assembles, Φ_q badly conditioned
+    assert "φ₂ = 285°: max|Φ|" in status.value
+    slider.value = 300.0  # a jump past the dead point: the limit configuration, and where it is
+    assert "does not assemble</b> at φ₂ = 300°" in status.value
+    assert abs(_stops_at(status.value) - LIMITS[1]) < 0.01
+    slider.value = 200.0  # from the limit back into the range
+    assert "φ₂ = 200°: max|Φ|" in status.value
 
 
 def test_explorer_names_an_unknown_driver(four_bar):
     m, _ = four_bar
     with pytest.raises(InputError, match="no driver 'motor'.*'driver 1'"):
         plotting.explorer(m, driver="motor", static=True)
+
+
+# --------------------------------------------------------------------------------------------- drawings by class
+class _Slot(planar.Constraint):
+    """Pin P of body i in a circular slot of radius ρ about C of body j: a type without a drawing of its own."""
+
+    type_name = "test-plot-slot"
+    n_eq = 1
+    points = {"pin": "i", "centre": "j"}
+    numbers = ("radius",)
+
+    def phi(self, Q, t=None):
+        d = self.point(Q, "pin") - self.point(Q, "centre")
+        return [d.dot(d) - self.radius**2]
+
+
+def _slot_mechanism():
+    m = Mechanism("slot")
+    m.add_body("ground", points={"O": (0, 0), "C": (1, 0)})
+    m.add_body("bar", points={"O": (0, 0), "P": (2, 0)}, q0=(0, 0, 0.6))
+    m.add(Ground("ground"))
+    m.add(Revolute("ground", "bar", point="O"))
+    m.add(_Slot("bar", "ground", pin="P", centre="C", radius=1.5))
+    return m
+
+
+def test_a_type_without_a_drawing_shows_the_points_it_names_joined():
+    m = _slot_mechanism()
+    q = m.solve_position(0.0)
+    ax = plotting.draw(m, q)
+    P, C = m.point_position(q, "bar", "P"), m.point_position(q, "ground", "C")
+    assert _lines_through(ax, [P, C]) and _has_circle_at(ax, P) and _has_circle_at(ax, C)
+
+
+def test_a_drawing_registered_for_a_class_draws_it_and_its_subclasses():
+    class Bigger(_Slot):  # no type name of its own: not registered, drawn like its base
+        pass
+
+    calls = []
+
+    @plotting.drawing_for(_Slot)
+    class SlotDrawing(plotting.Drawing):
+        def __init__(self, ax, c, scene):
+            calls.append(type(c))
+            (line,) = ax.plot([], [], ":")
+            self.artists = [line]
+
+    try:
+        m = _slot_mechanism()
+        m.remove(m.constraints[-1].name)
+        m.add(Bigger("bar", "ground", pin="P", centre="C", radius=1.5))
+        ax = plotting.draw(m, m.solve_position(0.0))
+        assert calls == [Bigger]
+        assert not _lines_through(ax, [m.point_position(m.q0, "bar", "P"), m.point_position(m.q0, "ground", "C")])
+    finally:
+        from kinbook.planar.plotting import joints
+
+        del joints._DRAWINGS[_Slot]

@@ -1,0 +1,126 @@
+"""Animations of a planar sweep: :func:`animate` (a matplotlib FuncAnimation whose artists are created once
+and moved) and :func:`animation_html` (a player that renders itself in a notebook)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..._animation import AnimationHTML
+from ...errors import InputError
+from ._common import _TRACES, _plt, _size, _style_axes
+from .scene import _Scene
+from .joints import driver_symbol
+
+__all__ = ["animate", "animation_html", "MAX_FRAMES"]
+
+MAX_FRAMES = 120
+"""Default cap on the number of frames of an animation."""
+
+
+def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frames=MAX_FRAMES, labels=True,
+            figsize=(6.4, 4.8), dpi=None):
+    """Animate a sweep: the mechanism at its solved instants.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        Only the solved instants are shown (a truncated sweep stops at the dead point).
+    every : int
+        Show every ``every``-th instant; raised as needed so there are at most ``max_frames`` frames.
+    interval : int
+        Milliseconds between frames.
+    frames : bool
+        Draw the bodies' local frames.
+    trace : list of (body, point), optional
+        Points whose paths are drawn faintly and traced as the mechanism moves.
+    max_frames : int
+    labels : bool
+        Body numbers and point names.
+    figsize, dpi
+        Of the new figure.
+
+    Returns
+    -------
+    matplotlib.animation.FuncAnimation
+        Its figure is a pyplot figure (``plt.show()`` plays it in a script).
+
+    Notes
+    -----
+    The artists are created once and moved (blitting), so the animation renders quickly.
+    """
+    from matplotlib.animation import FuncAnimation
+
+    mech = result.mechanism
+    N = len(result.t)
+    if N == 0:
+        raise InputError("the sweep has no solved instant to animate")
+    every = max(1, int(every), math.ceil(N / max(1, int(max_frames))))
+    idx = np.arange(0, N, every)
+    fig, ax = _plt().subplots(figsize=figsize, dpi=dpi)
+    qs = result.q[idx]
+    scene = _Scene(ax, mech, qs[0], frames=frames, labels=labels, size=_size(mech, qs))
+    traces = []
+    for k, (body, point) in enumerate(trace or []):
+        xy = result.position(body, point)[idx]
+        ax.plot(xy[:, 0], xy[:, 1], ":", color="#888888", lw=1.0, zorder=1)
+        (line,) = ax.plot([], [], "-", color=_TRACES[k % len(_TRACES)], lw=1.5, zorder=1)
+        traces.append((line, xy))
+    box = scene.observe(qs)
+    scene.set_limits(box)
+    _style_axes(ax, getattr(mech, "title", None))
+    driver = mech.drivers[0] if mech.drivers else None
+    sym = driver_symbol(mech, driver, unicode=True) if driver is not None else None
+    values = None
+    if driver is not None:
+        import sympy as sp
+
+        f = sp.lambdify(mech.t, driver.f, "numpy")
+        values = np.broadcast_to(np.asarray(f(result.t[idx]), dtype=float), idx.shape)
+    clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, zorder=10,
+                    bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="#bbbbbb", alpha=0.9))
+
+    def update(k):
+        artists = scene.update(qs[k])
+        text = f"t = {result.t[idx[k]]:.4g}"  # plain text: mathtext would be parsed anew every frame
+        if values is not None:
+            text += f"    {sym} = {values[k]:.4g}"
+        if k == len(idx) - 1 and result.failure is not None:
+            text += "   (last instant that assembles)"
+        clock.set_text(text)
+        for line, xy in traces:
+            line.set_data(xy[: k + 1, 0], xy[: k + 1, 1])
+        return artists + [clock] + [line for line, _ in traces]
+
+    update(0)
+    anim = FuncAnimation(fig, update, frames=len(idx), init_func=lambda: update(0), interval=interval,
+                         blit=True, repeat=True)
+    anim.kinbook_indices = idx
+    return anim
+
+
+def animation_html(result, frame_format="png", **kwargs):
+    """:func:`animate` for notebooks: an object that renders as an HTML/JavaScript player.
+
+    The figure is closed so the notebook does not also show it as a still image. Keyword arguments go to
+    :func:`animate`; the defaults here are smaller (72 frames at most, 72 dpi) because every frame is
+    stored in the notebook as an image. The player's HTML is the same on every run (no random ids), so a
+    re-executed notebook changes only where its content does.
+
+    Parameters
+    ----------
+    frame_format : {"png", "jpeg"}
+        How the frames are stored.
+
+    Returns
+    -------
+    kinbook._animation.AnimationHTML
+        ``_repr_html_()`` returns the JavaScript player; ``.anim`` is the FuncAnimation.
+    """
+    kwargs.setdefault("figsize", (6.0, 4.5))
+    kwargs.setdefault("dpi", 72)
+    kwargs.setdefault("max_frames", 72)
+    anim = animate(result, **kwargs)
+    _plt().close(anim._fig)
+    return AnimationHTML(anim, frame_format)
