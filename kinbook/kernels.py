@@ -8,9 +8,11 @@ None when ``jacobian`` is false). The mechanism applies the drivers' f(t) (:meth
 
 :func:`compiled` builds the kernel of a type from :meth:`Constraint.phi` alone. The constraint's numeric
 attributes (its ``parameters``: local points, lengths, radii …) are replaced by symbols, so Φ is written once
-per type with symbolic parameters; Φ_q and the velocity-quadratic γ = −(Φ_q q̇)_q q̇ are derived from it by
-:func:`kinbook.symbolic.derive` and lambdified with common-subexpression elimination into numpy code that
-broadcasts over instants (B) and constraints (k). The compiled kernel is cached per type and per *template*:
+per type with symbolic parameters. Φ_q is its Jacobian, and the velocity-quadratic γ = −(Φ_q q̇)_q q̇ is
+−d²Φ(q + s q̇)/ds² at s = 0, differentiated forward through the nodes of Φ (:func:`_gamma_chain`; the same
+value as :func:`kinbook.symbolic.derive` gives, at a cost linear in the size of Φ); all are lambdified with
+common-subexpression elimination into numpy code that broadcasts over instants (B) and constraints (k), the
+lambdified functions built when first called. The compiled kernel is cached per type and per *template*:
 the symbolic Φ with symbolic parameters. What is not a declared parameter (the coordinate a simple
 constraint fixes, a flag, a profile function ρ(ψ) of a cam) stays in the template, so constraints that
 differ there get kernels of their own — always correct, shared as far as the declarations allow.
@@ -89,10 +91,10 @@ class CompiledKernel:
         out = np.empty((len(values), Bn, k))
         for i, v in enumerate(values):
             out[i] = v  # constants and (k,) parameter-only entries broadcast
-        out = np.moveaxis(out, 0, -1)
+        out = out.transpose(1, 2, 0)
         phi = out[..., :r]
         jac = out[..., r : r + r * c].reshape(Bn, k, r, c) if jacobian else None
-        gam = out[..., -r:] if gamma else None
+        gam = out[..., out.shape[-1] - r :] if gamma else None
         return phi, jac, gam
 
 
@@ -235,8 +237,26 @@ class StackedKernel:
 
 def stacked(numerics):
     """(kernel, parameters) of a composite from its parts' ``numeric()`` pairs; one kernel object per
-    combination of part kernels, so every composite of a type is evaluated in one call."""
+    combination of part kernels, so every composite of a type is evaluated in one call.
+
+    Parts whose kernels are built from row builders that can be combined (``kernel.builders`` and
+    ``kernel.combine``, the spatial row algebra) are fused into one kernel over one parameter dict when their
+    parameters agree on every name they share — one pass over the shared body quantities instead of one per
+    part."""
     ks = tuple(k for k, _ in numerics)
+    combine = getattr(ks[0], "combine", None)
+    if combine is not None and all(getattr(k, "combine", None) is combine for k in ks):
+        merged = {}
+        for _, p in numerics:
+            for name, v in p.items():
+                if name in merged and not np.array_equal(merged[name], v):
+                    break
+                merged[name] = v
+            else:
+                continue
+            break
+        else:
+            return combine(*(b for k in ks for b in k.builders)), merged
     kernel = _STACKED.get(ks)
     if kernel is None:
         kernel = _STACKED[ks] = StackedKernel(ks)

@@ -355,7 +355,7 @@ class ConstraintBase(abc.ABC):
         if not self.parts:
             return []
         views = self.__dict__.get("_views")
-        if views is None:
+        if views is None or views[0].owner is not self:  # none yet, or those of the original of a copy
             views, start = [], 0
             for cls, rename in self.parts:
                 v = object.__new__(cls)
@@ -703,8 +703,11 @@ class MechanismBase:
 
     @property
     def _counts(self):
-        return self.cached("sizes", lambda: (sum(c.n_eq for c in self.constraints),
-                                             sum(c.n_eq for c in self.constraints if c.kind != "driver")))
+        found = self._cache.get("sizes")  # read on every evaluation: the cache without a closure
+        if found is None:
+            found = self.cached("sizes", lambda: (sum(c.n_eq for c in self.constraints),
+                                                  sum(c.n_eq for c in self.constraints if c.kind != "driver")))
+        return found
 
     @property
     def m(self):
@@ -811,7 +814,8 @@ class MechanismBase:
     # ------------------------------------------------------------------------------------------- numerics
     @property
     def _compiled(self):
-        return self.cached("compiled", self._compile)
+        found = self._cache.get("compiled")
+        return found if found is not None else self.cached("compiled", self._compile)
 
     def _compile(self):
         """Group the constraints by kernel (hand-written or compiled from Φ, per ``kernels``), and gather the
@@ -868,6 +872,9 @@ class MechanismBase:
         assembled values, its q̇ and q̈ are zero, and the rest solves the smaller system of the other rows and
         columns — the same solution at a fraction of the cost of factoring the whole matrix.
         """
+        if "reduction" in self._cache:
+            return self._cache["reduction"]
+
         def build():
             ncoord = len(self.COORDS)
             rows, cols = [], []

@@ -187,6 +187,23 @@ def test_composite_rows_wrap_and_measures_follow_from_the_parts():
     np.testing.assert_allclose(m.A(q, "b")[:, 0], [np.cos(3.6), np.sin(3.6), 0], atol=1e-10)
 
 
+def test_a_copy_of_a_composite_reads_its_own_attributes():
+    """The checkers build wrong answers by changing a copy's attributes: the copy's parts must see them."""
+    import copy
+
+    m = spatial.Mechanism("rev")
+    m.add_body("a", points={"O": (0, 0, 0)})
+    m.add_body("b", points={"O": (0, 0, 0)})
+    m.add(spatial.Revolute("a", "b", point="O", axis_i=(0, 0, 1), axis_j=(0, 0, 1)))
+    c = m.constraints[-1]
+    m.constraint_phi(c)
+    cc = copy.copy(c)
+    cc.P_j = np.array([1.0, 0.0, 0.0])
+    x2 = m.body_symbols("b")[0]
+    assert (m.constraint_phi(c) - m.constraint_phi(cc))[0].diff(x2) == 0  # the shift is a constant
+    assert sp.simplify(m.constraint_phi(cc)[0] - m.constraint_phi(c)[0]) != 0
+
+
 # --------------------------------------------------------------------------------------------- caches
 def test_every_change_bumps_the_version_and_empties_the_cache():
     m = _pendulum()

@@ -304,7 +304,16 @@ def _rows_angle(Q, Qd, P):
     return [(phi, jac, gam)]
 
 
+_KERNELS = {}
+
+
 def _kernel(*builders):
+    """The kernel whose rows are those of the row ``builders``, in order; one kernel per tuple of builders.
+    ``combine`` lets a composite joint fuse its parts' builders into one kernel
+    (:func:`kinbook.kernels.stacked`)."""
+    if builders in _KERNELS:
+        return _KERNELS[builders]
+
     def kernel(Q, P, Qd=None, jacobian=True):
         rows = []
         for build in builders:
@@ -312,7 +321,9 @@ def _kernel(*builders):
         return _stack_rows(rows, jacobian)
 
     kernel.builders = builders
+    kernel.combine = _kernel
     kernel.optional_jacobian = True
+    _KERNELS[builders] = kernel
     return kernel
 
 
