@@ -235,8 +235,6 @@ def test_removing_and_adding_a_constraint_of_the_same_name_leaves_nothing_stale(
     assert m.derivation("j").Phi[0] == m.q[3] - 2 * m.t
 
 
-@pytest.mark.xfail(strict=True, reason="needs the checkers (kinbook/grading/_target.py, h14) to keep their targets in "
-                                       "mech.cached(...) instead of the mechanism's __dict__")
 def test_grading_after_removing_and_re_adding_a_constraint_named_alike():
     from kinbook.grading import check_phi
 
@@ -245,8 +243,10 @@ def test_grading_after_removing_and_re_adding_a_constraint_named_alike():
     m.add_body("bar", points={"O": (-1, 0), "A": (1, 0)}, q0=(1, 0, 0))
     m.add(planar.Ground("ground"))
     m.add(planar.Revolute("ground", "bar", point="O", name="j"))
-    x2, y2, p2 = m.body_symbols("bar")
-    assert check_phi([-x2 + sp.cos(p2), -y2 + sp.sin(p2)], m.constraint("j")).passed
+    (x1, y1, _), (x2, y2, p2) = m.body_symbols("ground"), m.body_symbols("bar")
+    assert check_phi([x1 - x2 + sp.cos(p2), y1 - y2 + sp.sin(p2)], m.constraint("j")).passed
+    if not any(isinstance(k, tuple) and k[:1] == ("grading",) for k in m._cache):
+        pytest.xfail("the checkers keep their targets outside mech.cached (grading/_target.py before h14's switch)")
     m.remove("j")
     m.add(planar.Revolute("ground", "bar", point_i="O", point_j="A", name="j"))
-    assert check_phi([-x2 - sp.cos(p2), -y2 - sp.sin(p2)], m.constraint("j")).passed
+    assert check_phi([x1 - x2 - sp.cos(p2), y1 - y2 - sp.sin(p2)], m.constraint("j")).passed
