@@ -282,8 +282,15 @@ attempt("socket", lambda: os.remove("/run/kinbook/zygote/fork.sock") or "removed
                 time.sleep(0.05)
         os._exit(0)
     os.waitpid(pid, 0)
-    time.sleep(0.2)
-    return open("/tmp/kinbook-daemon-alive").read()
+    for _ in range(400):  # until the daemon has written its pid (a busy machine may take seconds)
+        time.sleep(0.05)
+        try:
+            alive = open("/tmp/kinbook-daemon-alive").read()
+        except OSError:
+            continue
+        if alive.isdigit():
+            return alive
+    return "never wrote its pid"
 attempt("daemon", daemon)
 """,
 }
