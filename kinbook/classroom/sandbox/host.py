@@ -171,9 +171,15 @@ class Sandbox:
         job_r, self.job_w = os.pipe()
         self.result_r, result_w = os.pipe()
         self.job_r = job_r  # kept: the job pipe is drained here at every reset
+        # the zygote's commands and events travel on pipes of their own, never on bubblewrap's stdin and stdout:
+        # bubblewrap's init (pid 1 of the sandbox) keeps its standard descriptors, and what it holds, a student's
+        # process can reopen (/proc/1/fd) or copy (pidfd_getfd) — with the commands in hand it could answer
+        # "clean" to a reset in the zygote's place and live on into the next student's run
+        cmd_r, self.cmd_w = os.pipe()
+        self.evt_r, evt_w = os.pipe()
         argv = [sys.executable, "-s", "-m", "kinbook.classroom.sandbox.zygote", layout.to_json(), str(job_r),
-                str(result_w)]
-        keep = [job_r, result_w]
+                str(result_w), str(cmd_r), str(evt_w)]
+        keep = [job_r, result_w, cmd_r, evt_w]
         if self.isolation:
             seccomp = bwrap.seccomp_fd()
             if seccomp is not None:
@@ -186,18 +192,22 @@ class Sandbox:
                               "MPLCONFIGDIR": os.path.join(layout.tmp, ".matplotlib")})
         # the sandbox's own messages (bubblewrap's, tracebacks): an unlinked file, gone with this process
         self.log = tempfile.TemporaryFile(prefix="kinbook-sandbox-log-")
+        # no permission left on it: bubblewrap's init holds it (as stderr), and a sandbox that runs as this user
+        # (a grader that is not root) could otherwise reopen it through /proc/1/fd/2
+        os.fchmod(self.log.fileno(), 0)
         try:
-            self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=self.log, env=env,
-                                         cwd=cwd, pass_fds=keep, start_new_session=True)
+            self.proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=self.log,
+                                         env=env, cwd=cwd, pass_fds=keep, start_new_session=True)
         except OSError as exc:
             self.close()
             raise SandboxError(f"the sandbox could not be started: {exc}") from None
         finally:
-            os.close(result_w)
+            for fd in (result_w, cmd_r, evt_w):
+                os.close(fd)
             if seccomp is not None:
                 os.close(seccomp)
         self.starts += 1
-        for fd in (self.job_w, self.result_r, self.job_r, self.proc.stdout.fileno()):
+        for fd in (self.job_w, self.result_r, self.job_r, self.evt_r, self.cmd_w):
             os.set_blocking(fd, False)
         self.events = b""
         try:
@@ -245,14 +255,14 @@ class Sandbox:
         self.proc.wait()
 
     def _close_pipes(self):
-        streams = (self.proc.stdin, self.proc.stdout) if self.proc is not None else ()
-        fds = [getattr(self, name, None) for name in ("job_w", "job_r", "result_r")]
-        for closer in [s.close for s in streams] + [lambda fd=fd: os.close(fd) for fd in fds if fd is not None]:
-            try:
-                closer()
-            except (OSError, ValueError):
-                pass
-        self.job_w = self.job_r = self.result_r = None
+        for name in ("job_w", "job_r", "result_r", "cmd_w", "evt_r"):
+            fd = getattr(self, name, None)
+            if fd is not None:
+                try:
+                    os.close(fd)
+                except OSError:
+                    pass
+            setattr(self, name, None)
 
     def forget(self):
         """In a forked copy of the owner: drop the inherited descriptors without stopping the sandbox."""
@@ -275,7 +285,7 @@ class Sandbox:
         """The zygote's next event line, or "" when none came by ``deadline`` (or it is gone)."""
         import select
 
-        fd = self.proc.stdout.fileno()
+        fd = self.evt_r
         while b"\n" not in self.events:
             left = deadline - time.monotonic()
             if left <= 0:
@@ -295,11 +305,9 @@ class Sandbox:
         return line.decode(errors="replace").strip()
 
     def _send(self, word):
-        try:
-            self.proc.stdin.write(word.encode() + b"\n")
-            self.proc.stdin.flush()
-            return True
-        except (OSError, ValueError):
+        try:  # a command is a few bytes: a pipe too full to take it means a zygote that no longer reads
+            return os.write(self.cmd_w, word.encode() + b"\n") == len(word) + 1
+        except (OSError, TypeError):
             return False
 
     # ----------------------------------------------------------------------------------------------- run
@@ -359,7 +367,7 @@ class Sandbox:
         deadline = time.monotonic() + timeout + STARTUP_SECONDS + 15.0
         reader = FrameReader(MAX_RESULT_BYTES)
         ended = None
-        events = self.proc.stdout.fileno()
+        events = self.evt_r
         try:
             while reader.frame is None:
                 if ended is not None:

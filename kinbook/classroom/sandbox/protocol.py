@@ -5,11 +5,13 @@ Both sides import this module (standard library only); neither imports the other
 import cycle between :mod:`.host` and :mod:`.zygote`.
 
 Channels between the grading process (outside) and the sandbox (inside)
-    ``stdin`` of the zygote
+    the command pipe (the zygote's stdin)
         commands, one line each: ``run``, ``reset``, ``stop`` (end of file also stops it);
-    ``stdout`` of the zygote
+    the event pipe (the zygote's stdout)
         events, one line each: ``ready``, ``worker PID``, ``exit N`` / ``signal N`` (the worker ended),
-        ``clean`` / ``dirty REASON`` (after ``reset``);
+        ``clean`` / ``dirty REASON`` (after ``reset``). Both are passed to the zygote as descriptors of their
+        own, never as bubblewrap's standard input and output: bubblewrap's init (pid 1 in the sandbox) keeps
+        those, where a student's process could reach them;
     descriptor :data:`JOB_FD` (read end, inside)
         one job frame per ``run``, read by that run's worker only — the zygote never reads it, so no
         submission ever enters the zygote's memory (which every later kernel would inherit);

@@ -1,4 +1,5 @@
-"""The sandbox's first process: ``python -I -m kinbook.classroom.sandbox.zygote LAYOUT JOB_FD RESULT_FD``.
+"""The sandbox's first process: ``python -m kinbook.classroom.sandbox.zygote LAYOUT JOB RESULT CMD EVENT``
+(the last four: descriptors of pipes to and from the grading process).
 
 Running one submission takes two Python processes: the worker (:mod:`.worker`, nbclient) and the kernel
 (:mod:`.kernel`: numpy, sympy, IPython, kinbook). Their imports cost more than a submission's cells, so the
@@ -6,7 +7,7 @@ Running one submission takes two Python processes: the worker (:mod:`.worker`, n
 (:class:`kinbook.classroom.sandbox.host.Sandbox`) inside bubblewrap — or, with ``--no-isolation``, as a
 plain child process — and serves one submission after another:
 
-``run`` (a line on stdin)
+``run`` (a line on ``CMD_FD``, which the zygote makes its stdin; events go to ``EVENT_FD``, its stdout)
     fork a new worker, answer ``worker PID``. The worker reads its job from ``JOB_FD``, runs the notebook and
     writes its result to ``RESULT_FD``; when it ends the zygote says ``exit N`` or ``signal N``. The zygote
     itself never reads a job or a result: no submission ever enters its memory, which later kernels inherit.
@@ -509,6 +510,11 @@ class _Lifeline:
 def main(argv):
     layout = Layout.from_json(argv[0])
     job_fd, result_fd = int(argv[1]), int(argv[2])
+    # commands in, events out: pipes passed as descriptors of their own (bubblewrap's init keeps its stdin and
+    # stdout, where a student's process could take them), made this process's 0 and 1
+    for fd, target in ((int(argv[3]), 0), (int(argv[4]), 1)):
+        os.dup2(fd, target)
+        os.close(fd)
     for fd in (job_fd, result_fd):
         os.set_inheritable(fd, False)  # the zygote's children inherit them only when asked (the worker)
     if not layout.isolated:  # (in bubblewrap, --die-with-parent at every level)
