@@ -171,6 +171,8 @@ attempt("subinterpreter", subinterpreter)
 attempt("mknod", lambda: os.mknod(os.path.expanduser("~/null"), 0o20666, os.makedev(1, 3)) or "made")
 attempt("mkfifo", lambda: os.mkfifo(os.path.expanduser("~/fifo")) or "made")
 attempt("ctypes", ctypes_syscalls)
+# memory in a file descriptor: counted by neither the address-space limit nor a directory's size cap
+attempt("memfd", lambda: os.write(os.memfd_create("hoard"), b"x" * (1 << 20)) and "made")
 """,
     # what is there to see: the file system, /proc, the environment, the network
     "recon": """def walk():

@@ -87,6 +87,8 @@ def test_unaudited_processes_and_interpreters_stay_inside(probes):
     assert "etc" not in p["subinterpreter"]      # a subinterpreter sees the same root
     assert refused(p["mknod"])                   # no device nodes
     assert p["mkfifo"] == "made"                 # a FIFO in its own directory is harmless (and is wiped)
+    if bwrap.seccomp_program() is not None:
+        assert refused(p["memfd"])               # no memory outside the address-space limit
     assert all(v != "ok" for v in p["ctypes"].values()), p["ctypes"]  # mount, ptrace, setuid, unshare, keyctl
     if bwrap.seccomp_program() is not None and os.uname().machine in ("x86_64", "aarch64"):
         assert p["ctypes"]["keyctl"] == "EPERM"  # refused by the seccomp filter

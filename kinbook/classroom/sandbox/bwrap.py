@@ -18,7 +18,7 @@ namespaces. :func:`command` asks it for:
   system calls a notebook has no use for and that reach the host's kernel state or other processes:
   :data:`DENIED_SYSCALLS` (keyrings — shared by every sandbox of the same uid —, ptrace, cross-process
   memory and descriptors, BPF, perf, io_uring, userfaultfd, mounts and namespaces, modules, IPC objects that
-  would outlive a run). Where libseccomp cannot be loaded
+  would outlive a run, and memory files, which no limit counts). Where libseccomp cannot be loaded
   the sandbox runs without it (:func:`seccomp_program` returns None).
 
 The sandbox's user must be unprivileged *on the host* too. Run as root, bubblewrap would map uid 65534
@@ -68,6 +68,8 @@ DENIED_SYSCALLS = (
     # another process's descriptors, copied without any permission check on what they point to (bubblewrap's init
     # holds descriptors of the grading process), and another process's memory advice
     "pidfd_getfd", "process_madvise",
+    # memory in no address space and no size-capped directory: a file descriptor each, outside every limit
+    "memfd_create", "memfd_secret",
 )
 
 

@@ -6,8 +6,8 @@ count against the limits below and read no file once the audit hook is on). Then
 
 1. initializes ipykernel (reads the connection file, binds its ZeroMQ sockets);
 2. caps the address space at *current size + memory budget* (``RLIMIT_AS``), file size (``RLIMIT_FSIZE``),
-   CPU time (``RLIMIT_CPU``, a backstop to the wall-clock timeout) and processes (``RLIMIT_NPROC``, inside
-   bubblewrap);
+   CPU time (``RLIMIT_CPU``, a backstop to the wall-clock timeout), open files (``RLIMIT_NOFILE``) and
+   processes (``RLIMIT_NPROC``, inside bubblewrap);
 3. installs :func:`install_audit_hook` — a ``sys.addaudithook`` hook cannot be removed — and only then
    starts serving cells, so that no student code runs before the hook.
 
@@ -48,10 +48,12 @@ DENIED_EVENTS = frozenset({
 })
 DENIED_PREFIXES = ("ctypes.", "_winapi.", "winreg.", "cpython.run_", "sqlite3.")
 #: Functions that act without raising an audit event (``pidfd_open`` + ``pidfd_send_signal`` signal another
-#: process, ``fork_exec`` starts one, ``mknod``/``mkfifo`` make device nodes and FIFOs);
+#: process, ``fork_exec`` starts one, ``mknod``/``mkfifo`` make device nodes and FIFOs, ``memfd_create`` makes
+#: files of memory that neither the address-space limit nor a directory's size cap counts);
 #: :func:`install_audit_hook` removes them, and refuses to import their modules afresh (deleting a module from
 #: ``sys.modules`` and importing it again would bring them back).
-UNAUDITED = {"posix": ("pidfd_open", "mknod", "mkfifo"), "os": ("pidfd_open", "mknod", "mkfifo"),
+UNAUDITED = {"posix": ("pidfd_open", "mknod", "mkfifo", "memfd_create"),
+             "os": ("pidfd_open", "mknod", "mkfifo", "memfd_create"),
              "_signal": ("pidfd_send_signal",), "signal": ("pidfd_send_signal",), "_posixsubprocess": ("fork_exec",)}
 #: Modules whose import is refused: a subinterpreter (it starts without this hook), and CPython's test helpers
 #: (they corrupt memory on purpose).
@@ -69,6 +71,8 @@ WRITE_EVENTS = frozenset({
 READ_EVENTS = frozenset({"os.listdir", "os.scandir", "glob.glob", "glob.glob/2", "os.listxattr", "os.getxattr"})
 #: Processes the sandbox's user may have (inside bubblewrap only: elsewhere the count is the grader's user's).
 NPROC = 128
+#: Open files a kernel may have (its own sockets and files take about 60).
+NOFILE = 1024
 _WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_TRUNC | os.O_APPEND
 
 
@@ -288,6 +292,10 @@ def main(argv, layout):
         resource.setrlimit(resource.RLIMIT_CPU, (cpu_s, cpu_s + 5))
     resource.setrlimit(resource.RLIMIT_FSIZE, (64 * 1024 * 1024, 64 * 1024 * 1024))
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    # each descriptor can pin kernel memory outside RLIMIT_AS (a socket's queued data): not the grader's 20,000
+    hard = resource.getrlimit(resource.RLIMIT_NOFILE)[1]
+    nofile = NOFILE if hard == resource.RLIM_INFINITY or hard > NOFILE else hard
+    resource.setrlimit(resource.RLIMIT_NOFILE, (nofile, nofile))
     if layout.isolated:  # the whole sandbox is this submission's: a fork bomb stops here
         resource.setrlimit(resource.RLIMIT_NPROC, (NPROC, NPROC))
     if os.environ.get("KINBOOK_SANDBOX_AUDIT", "1") != "0":  # "0": tests of the operating-system boundary alone
