@@ -29,7 +29,7 @@ from pathlib import Path
 
 from .results import Refused
 
-__all__ = ["atomic_write", "Entry", "collect", "read_entry", "student_id", "MAX_ID_CHARS"]
+__all__ = ["atomic_write", "Entry", "collect", "read_entry", "shown", "student_id", "MAX_ID_CHARS"]
 
 MAX_ID_CHARS = 64
 _ID_EXTRA = "._@+-"
@@ -52,6 +52,18 @@ def atomic_write(path, data):
             os.unlink(tmp)
         raise
     return path
+
+
+def shown(path):
+    """``path`` as text that every file, database and terminal takes: bytes that are not UTF-8 (Python keeps them
+    as lone surrogates, which SQLite and a UTF-8 file refuse) and control characters (a newline, a terminal's
+    escape sequences) are written as escapes.
+
+    >>> shown("collected/bad\\udcff\\x1b[2J\\n.ipynb")
+    'collected/bad\\\\xff\\\\x1b[2J\\\\n.ipynb'
+    """
+    text = os.fsencode(path).decode("utf-8", "backslashreplace")
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 def student_id(name):
@@ -87,7 +99,8 @@ class Entry:
     Attributes
     ----------
     path : str
-        For messages and the gradebook (never opened by this path).
+        For messages and the gradebook (never opened by this path): :func:`shown`, so that a file name that is
+        not UTF-8 or holds control characters cannot break the gradebook or the instructor's terminal.
     root : str
         The directory (or file) the instructor named; ``parts`` lead from it to the file.
     parts : tuple of str
@@ -161,7 +174,7 @@ def collect(paths, exercise, *, max_bytes):
     entries = []
     for parts, root, ident, problem in found:
         sid, bad = student_id(_name_of(root, parts, exercise))
-        e = Entry(os.path.join(root, *parts), root, parts, ident, sid)
+        e = Entry(shown(os.path.join(root, *parts)), root, parts, ident, sid)
         if problem is not None:
             e.status, e.message = problem
         elif ident[2] > max_bytes:

@@ -57,6 +57,12 @@ def _cell(text):
     return "'" + text if text[:1] in ("=", "+", "-", "@", "\t", "\r") else text
 
 
+def _utf8(value):
+    """Text SQLite and the UTF-8 exports can store: a lone surrogate (a file name's byte that is not UTF-8, carried
+    into a message) is written as an escape instead of failing the whole run."""
+    return value.encode("utf-8", "backslashreplace").decode("utf-8") if isinstance(value, str) else value
+
+
 def _now():
     return time.strftime("%Y-%m-%dT%H:%M:%S%z")
 
@@ -124,14 +130,15 @@ class Gradebook:
             self.db.execute(
                 "INSERT OR REPLACE INTO submissions (exercise, student, submission, sha256, status, message, score, "
                 "max_score, seconds, isolation, run, graded, changed_sha256) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,NULL)",
-                (r.exercise, r.student, r.submission, r.sha256, r.status, r.message, r.score, r.max_score,
-                 r.seconds, r.isolation, run, _now()))
-            self.db.execute("DELETE FROM parts WHERE exercise = ? AND student = ?", (r.exercise, r.student))
+                [_utf8(v) for v in (r.exercise, r.student, r.submission, r.sha256, r.status, r.message, r.score,
+                                    r.max_score, r.seconds, r.isolation, run, _now())])
+            self.db.execute("DELETE FROM parts WHERE exercise = ? AND student = ?",
+                            (_utf8(r.exercise), _utf8(r.student)))
             self.db.executemany(
                 "INSERT INTO parts (exercise, student, position, part, score, max_score, status, message, html, "
                 "reference) VALUES (?,?,?,?,?,?,?,?,?,?)",
-                [(r.exercise, r.student, i, p.part, p.score, p.max_score, p.status, p.message, p.html, p.reference)
-                 for i, p in enumerate(r.parts)])
+                [[_utf8(v) for v in (r.exercise, r.student, i, p.part, p.score, p.max_score, p.status, p.message,
+                                     p.html, p.reference)] for i, p in enumerate(r.parts)])
 
     # ------------------------------------------------------------------------------------------- reading
     def results(self, student=None):

@@ -28,6 +28,8 @@ WHY_NO_BWRAP = "" if BWRAP else f"no operating-system sandbox here: {bwrap._prob
 needs_bwrap = pytest.mark.skipif(not BWRAP, reason=WHY_NO_BWRAP)
 #: The student id of the over-long file name (as kinbook.classroom.files.student_id shortens it).
 LONG_NAME = "x" * 240
+#: A file name that is not UTF-8, with a terminal's escape sequence and a newline in it.
+ODD_NAME = os.fsdecode(b"bytes\xff\x1b[2J\nname")
 
 
 def submission(name):
@@ -101,6 +103,7 @@ def make_collected(root):
     for form in ("NFC", "NFD"):
         (collected / (unicodedata.normalize(form, "José") + ".ipynb")).write_bytes(good)
     (collected / (LONG_NAME + ".ipynb")).write_bytes(good)
+    (collected / (ODD_NAME + ".ipynb")).write_bytes(good)
     return collected
 
 

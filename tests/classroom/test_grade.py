@@ -11,7 +11,7 @@ from kinbook.classroom import grade
 from kinbook.classroom.files import student_id
 from kinbook.classroom.gradebook import COLUMNS, TOTALS
 
-from .conftest import BWRAP, CANARY, CANARY_DIR, EVIL, LONG_NAME, SECRET, SOURCE, submission
+from .conftest import BWRAP, CANARY, CANARY_DIR, EVIL, LONG_NAME, ODD_NAME, SECRET, SOURCE, submission
 
 FULL = 6.0
 ESCAPES = ["unhook", "unaudited", "recon", "writes", "daemon", "leftovers", "hijack"]
@@ -56,12 +56,18 @@ def test_good_submission_gets_full_score_among_bad_ones(batch):
     ("fifo", "refused", 0.0),                # a FIFO: never opened (the batch does not hang on it)
     ("José", "duplicate-id", 0.0),           # NFC and NFD spellings of one name: neither is graded
     (student_id(LONG_NAME)[0], "bad-id", 0.0),
+    (student_id(ODD_NAME)[0], "ok", FULL),   # a name that is not UTF-8 (and has control characters)
 ] + [(name, "ok", FULL) for name in ESCAPES])  # every attempt refused; the answers themselves are right
 def test_status_and_score(batch, student, status, score):
     r = batch["results"][student]
     assert r.status == status, r
     assert r.score == score
     assert r.max_score == FULL
+
+
+def test_a_file_name_that_is_not_utf8_is_graded_and_shown_escaped(batch):
+    r = batch["results"][student_id(ODD_NAME)[0]]
+    assert r.submission.endswith("bytes\\xff\\x1b[2J\\nname.ipynb") and r.submission.isprintable()
 
 
 def test_a_device_node_is_refused(batch):

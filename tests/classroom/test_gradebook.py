@@ -2,6 +2,7 @@
 
 import csv
 import json
+import os
 import sqlite3
 
 from kinbook.classroom import grade
@@ -43,6 +44,20 @@ def test_exports_are_complete_and_safe_for_spreadsheets(tmp_path):
     assert list(rows[0]) == COLUMNS and len(rows) == 4
     assert rows[0]["message"].startswith("'=")  # never a formula
     assert sorted(p.name for p in (tmp_path / "feedback").iterdir()) == ["alice.html", "bob.html"]
+
+
+def test_text_that_is_not_utf8_is_stored_escaped_not_fatal(tmp_path):
+    """A file name's byte that is not UTF-8 reaches a message as a lone surrogate, which SQLite refused: the
+    whole run stopped at that student (those after it were never graded)."""
+    odd = os.fsdecode(b"collected/bad\xff.ipynb")
+    r = result("dave")
+    r.submission, r.message, r.parts[1].message = odd, f"cannot read {odd}", odd
+    book = Gradebook(tmp_path)
+    book.record(r)
+    book.export()
+    (got,) = book.results()
+    assert got.submission == "collected/bad\\udcff.ipynb" and got.parts[1].message == got.submission
+    assert "bad\\udcff" in (tmp_path / "grades.csv").read_text(encoding="utf-8")
 
 
 def test_results_of_an_older_kinbook_are_imported_once(tmp_path):

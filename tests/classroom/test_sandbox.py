@@ -2,9 +2,9 @@
 that nothing outlives it.
 
 The escape fixtures (tests/classroom/submissions/{unhook,unaudited,recon,writes,daemon,leftovers,hijack}.ipynb)
-are graded with the rest in tests/classroom/conftest.py's batch, with the audit hook on. Here their cells run once more in one
-sandbox with the hook *off* — as if a student had found a way past it — and each reports in ``probe`` what it
-saw and did: the tests assert that bubblewrap alone held.
+are graded with the rest in tests/classroom/conftest.py's batch, with the audit hook on. Here their cells run
+once more in one sandbox with the hook *off* — as if a student had found a way past it — and each reports in
+``probe`` what it saw and did: the tests assert that bubblewrap alone held.
 """
 
 import json
