@@ -28,11 +28,14 @@ import sys
 import time
 import warnings
 
+import numpy as np
+
 from ..errors import GradingError
 from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
 from .notebook import (MAX_NOTEBOOK_BYTES, find_parameters, load_source, locked_sequence, missing_locked,
                        parse_submission, student_notebook)
+from .parts import CHECKS
 from .reference_use import reference_use
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, worst
 from .serialize import DecodeError, decode
@@ -40,12 +43,50 @@ from .variant import references, student_parameters
 
 __all__ = ["STATUSES", "PartGrade", "SubmissionResult", "grade_submission", "grade", "NO_ISOLATION_WARNING"]
 
+#: Entries an answer may have beyond twice its reference's before it is refused unchecked (see _too_large).
+MAX_EXTRA_ENTRIES = 16
 NO_ISOLATION_WARNING = ("grading WITHOUT isolation (--no-isolation): students' code runs as your user, fenced only "
                         "by an in-process audit hook; recorded as 'isolation: none' in the gradebook")
 
 
 def _all_parts(parts, status, message):
     return [PartGrade(p.name, 0.0, p.points, status, message) for p in parts]
+
+
+def _entries(value):
+    """Entries of a decoded answer (a number, an array, a sympy matrix, or rows mixing expressions and text)."""
+    if isinstance(value, list):
+        return sum(len(row) if isinstance(row, list) else 1 for row in value)
+    shape = getattr(value, "shape", ())
+    return int(np.prod(shape)) if shape else 1
+
+
+def _too_large(p, decoded):
+    """Why an answer (or the student's own Φ it is checked against) is too much larger than the part's
+    reference to be checked, or None. A checker's time grows with the answer's rows (each one is compared with
+    each reference row and its catalogued variants: 100 rows against a four-bar's Φ took 46 s of the grader's
+    time, 2,000 rows some 15 minutes), and an answer with more than twice the reference's entries is wrong
+    whatever they are."""
+    try:
+        if CHECKS[p.check][1]:
+            from ..grading._target import target_for
+
+            target = target_for(p.target)
+            reference = target.m * (target.mech.n if p.check == "jacobian" else 1)
+            own = target.m
+        else:
+            reference, own = _entries(np.asarray(p.expected, dtype=object)), None
+    except Exception:  # a reference the checker will reject itself
+        return None
+    names = [(p.answer, reference)]
+    if own and isinstance(p.options.get("phi"), str):
+        names.append((p.options["phi"], own))
+    for name, size in names:
+        limit = 2 * size + MAX_EXTRA_ENTRIES
+        if name in decoded and _entries(decoded[name]) > limit:
+            return (f"`{name}` has {_entries(decoded[name]):,} entries where the reference has {size:,}: an answer "
+                    f"of more than {limit:,} is not checked")
+    return None
 
 
 def _refused(source, entry, status, message, isolation=""):
@@ -175,6 +216,10 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
             if errors:
                 hint = " (exceptions in code cells " + ", ".join(str(c) for c in sorted(errors)[:5]) + ")"
             grades.append(PartGrade(p.name, 0.0, p.points, "missing-answer", f"`{p.answer}` is not assigned{hint}"))
+            continue
+        too_large = _too_large(p, decoded)
+        if too_large:
+            grades.append(PartGrade(p.name, 0.0, p.points, "error", too_large))
             continue
         try:
             result = p.run(decoded[p.answer], decoded)

@@ -46,6 +46,7 @@ def test_good_submission_gets_full_score_among_bad_ones(batch):
     ("corrupt", "corrupt-notebook", 0.0),
     ("not_a_notebook", "corrupt-notebook", 0.0),
     ("power_tower", "error", 2.0),           # the tower is refused as too large; the angle is right
+    ("many_rows", "error", 2.0),             # 2,000 rows for a joint's 2: refused unchecked; the angle is right
     ("reference", "ok", FULL),               # kinbook's own Φ: correct, and reported (not penalized)
     ("old44", "ok", FULL),                   # re-saved as nbformat 4.4 (no cell ids): not tampered
     ("giant", "too-large", 0.0),             # 20 MB, 150,000 cells: refused before reading
@@ -94,6 +95,12 @@ def test_power_tower_is_refused_not_computed(batch):
     p = parts(batch, "power_tower")
     assert p["revolute"].status == "error" and "not gradable data" in p["revolute"].message
     assert p["angle"].status == "ok"
+
+
+def test_an_answer_far_larger_than_the_reference_is_not_checked(batch):
+    p = parts(batch, "many_rows")
+    assert p["revolute"].status == "error" and p["revolute"].message.startswith("`Phi_OA` has 2,000 entries where "
+                                                                                 "the reference has 2")
 
 
 def test_answers_taken_from_the_reference_are_reported_not_penalized(batch):
