@@ -181,6 +181,25 @@ def test_a_forged_result_is_data_checked_field_by_field():
     assert _validated({"status": "ok"}).message == "the sandbox returned no answers"
 
 
+def test_a_result_frame_nested_too_deeply_is_unreadable_data():
+    """A forged result nested beyond the JSON parser's depth raised RecursionError in the grading process: the
+    submission was recorded as a failure of the grader, without its parts."""
+    import threading
+
+    from kinbook.classroom.sandbox.protocol import FrameError, read_frame, write_frame
+
+    r, w = os.pipe()
+    nested = {"status": "ok", "answers": {"x": None}}
+    frame = json.dumps(nested).replace("null", "[" * 100_000 + "]" * 100_000)
+    writer = threading.Thread(target=lambda: (os.write(w, b"KBF1 %d 0\n%s" % (len(frame), frame.encode())),
+                                              os.close(w)))
+    writer.start()
+    with pytest.raises(FrameError, match="nested too deeply"):
+        read_frame(r, 1 << 20, timeout=30)
+    writer.join()
+    os.close(r)
+
+
 @needs_bwrap
 def test_neither_the_source_nor_submissions_enter_the_zygote(tmp_path):
     """The zygote, which every kernel is forked from, never holds the instructor's notebook or a submission:

