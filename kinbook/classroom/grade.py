@@ -30,7 +30,7 @@ import warnings
 
 import numpy as np
 
-from ..errors import GradingError
+from ..errors import GradingError, KinbookError
 from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
 from .notebook import (MAX_NOTEBOOK_BYTES, find_parameters, load_source, locked_sequence, missing_locked,
@@ -67,16 +67,16 @@ def _too_large(p, decoded):
     each reference row and its catalogued variants: 100 rows against a four-bar's Φ took 46 s of the grader's
     time, 2,000 rows some 15 minutes), and an answer with more than twice the reference's entries is wrong
     whatever they are."""
+    from ..grading.target import NotATarget, target_for
+
     try:
         if CHECKS[p.check][1]:
-            from ..grading._target import target_for
-
             target = target_for(p.target)
-            reference = target.m * (target.mech.n if p.check == "jacobian" else 1)
-            own = target.m
+            own = len(target.rows)
+            reference = own * (len(target.cols) if p.check == "jacobian" else 1)
         else:
             reference, own = _entries(np.asarray(p.expected, dtype=object)), None
-    except Exception:  # a reference the checker will reject itself
+    except (NotATarget, KinbookError, ValueError, TypeError):  # a reference the checker will reject itself
         return None
     names = [(p.answer, reference)]
     if own and isinstance(p.options.get("phi"), str):
