@@ -95,7 +95,7 @@ def pair(kind):
 
     Body ``i`` (coordinates x1, y1, phi1) carries P (and Q for the translational joint), body ``j`` (x2, y2,
     phi2) carries P (and Q for the revolute–translational joint); their local coordinates are the symbols
-    ``S.xiP_i`` … The translational joint uses the book's eq. 26 (s_i from Q_i to P_i, so ``axis=("Q", "P")``)
+    ``S.xiP_i`` … The translational joint is the book's eq. 26 (s_i = r_i^P − r_i^Q, d = r_j^P − r_i^P: ``axis=("P", "Q")``)
     with the constant angle ``S.c``; the revolute–revolute link has length ``S.l``.
 
     Parameters
@@ -116,7 +116,7 @@ def pair(kind):
     for b in "ij":
         m.add_body(b, points={p: (getattr(S, f"xi{p}_{b}"), getattr(S, f"eta{p}_{b}")) for p in points[b]})
     m.add({"r": lambda: Revolute("i", "j", point="P"),
-           "t": lambda: Translational("i", "j", axis=("Q", "P"), point_j="P", phi0=S.c),
+           "t": lambda: Translational("i", "j", axis=("P", "Q"), point_j="P", phi0=S.c),
            "rr": lambda: RevoluteRevolute("i", "j", "P", "P", length=S.l),
            "rt": lambda: RevoluteTranslational("i", "j", "P", axis=("P", "Q"))}[kind]())
     return m
