@@ -27,7 +27,7 @@ import numpy as np
 import sympy as sp
 
 __all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "html_math", "equations", "matrix", "names",
-           "book_gamma", "Math", "local_points", "table"]
+           "book_gamma", "Math", "local_points", "table", "tidy"]
 
 
 
@@ -192,9 +192,29 @@ def names(expr, mech=None):
     return out
 
 
-def latex(expr, mech=None, **kwargs):
-    """LaTeX of a kinbook expression in the book's notation (see :func:`names`)."""
+def tidy(expr, digits=10):
+    """``expr`` with its floating-point numbers written as a person would: 2.0 → 2, 1.2000000000000002 → 1.2
+    (``digits`` significant digits), so a derived expression prints as the book writes it.
+
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> tidy(2.0 * x + 1.2000000000000002 * x**2 - 0.5)
+    1.2*x**2 + 2*x - 0.5
+    """
     expr = as_sympy(expr)
+    floats = expr.atoms(sp.Float)
+    if not floats:
+        return expr
+    repl = {}
+    for f in floats:
+        v = float(f)
+        repl[f] = sp.Integer(round(v)) if v == round(v) else sp.Float(f"{v:.{digits}g}", digits)
+    return expr.xreplace(repl)
+
+
+def latex(expr, mech=None, **kwargs):
+    """LaTeX of a kinbook expression in the book's notation (see :func:`names`), numbers tidied (:func:`tidy`)."""
+    expr = tidy(expr)
     return sp.latex(expr, symbol_names=names(expr, mech), **kwargs)
 
 

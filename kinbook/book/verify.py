@@ -20,7 +20,10 @@ import sympy as sp
 from ..notebook import agrees, tolerance_text
 from .notation import S, as_sympy, from_book, html_math, latex
 
-__all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table", "zero_on_sphere", "rate", "relative_dof", "motion_table"]
+__all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table",
+           "zero_on_sphere", "rate", "relative_dof", "motion_table", "columns", "Table", "jacobian_table",
+           "gamma_table", "fd_jacobian", "sweep_checks", "joint_summary",
+           "joint_table"]
 
 
 def _free(mech, *exprs):
@@ -150,12 +153,19 @@ def compare(printed, derived, mech, *, count=20, seed=1, tol=1e-9, equal=(), tit
     return Comparison(printed, shown, errors, signs, tol, title, columns, rows)
 
 
+def fd_jacobian(f, x, h=1e-6):
+    """The Jacobian of any function ``f`` of a vector at ``x`` by central differences (step ``h``): column k is
+    (f(x + h e_k) − f(x − h e_k)) / 2h; ``f`` may return a vector or a matrix (flattened into the rows)."""
+    x = np.asarray(x, dtype=float)
+    cols = [(np.ravel(f(x + h * e)) - np.ravel(f(x - h * e))) / (2 * h) for e in np.eye(x.size)]
+    return np.column_stack(cols)
+
+
 def jacobian_fd(mech, q, t=0.0, h=1e-6):
     """Largest |Φ_q − central finite differences of Φ| at ``q`` (a number; about h² times the third
     derivatives)."""
     q = np.asarray(q, dtype=float)
-    cols = [(mech.Phi(q + h * e, t) - mech.Phi(q - h * e, t)) / (2 * h) for e in np.eye(mech.n)]
-    return float(np.abs(mech.Phi_q(q, t) - np.column_stack(cols)).max())
+    return float(np.abs(mech.Phi_q(q, t) - fd_jacobian(lambda x: mech.Phi(x, t), q, h)).max())
 
 
 def gamma_path(mech, q, qd, t=0.0, h=1e-4):
@@ -304,21 +314,254 @@ def motion_table(mech, q, constraint, motions, body="j"):
     """The constraint's rows after each rigid motion of ``body``: which motions the joint allows.
 
     ``motions`` maps a description to (axis, angle, centre, shift), as :meth:`Mechanism.moved` takes them.
-    Returns a :class:`Checks`-like table: "allowed" where every row stays 0 (below 1e-9), "forbidden" otherwise.
+    Returns a :class:`Checks` table: "allowed" where every row stays 0 (below 1e-9), "forbidden" otherwise, with
+    the rows' values after the motion (which row catches it).
     """
     rows = mech.constraint(constraint).rows
     out = Checks()
     for name, (axis, angle, centre, shift) in motions.items():
         moved = mech.moved(q, body, axis, angle, about=centre, shift=shift)
-        out.append(_Motion(name, float(np.abs(mech.Phi(moved)[rows]).max())))
+        out.append(_Motion(name, mech.Phi(moved)[rows]))
     return out
 
 
 class _Motion(Check):
-    def __init__(self, what, error):
-        super().__init__(what, error, 1e-9)
+    def __init__(self, what, values):
+        from ..notebook import clean
+
+        self.values = clean(np.round(np.asarray(values, dtype=float), 4))
+        super().__init__(what, float(np.abs(values).max()), 1e-9)
 
     def verdict(self):
-        from ..notebook import small
+        rows = " ".join(f"{v:g}" for v in self.values)
+        return f"allowed: Φ = [{rows}]" if self.ok else f"forbidden: Φ = [{rows}]"
 
-        return "allowed: Φ stays 0" if self.ok else f"forbidden: max |Φ| = {small(self.error)}"
+
+class JointSummary:
+    """A joint's Φ as kinbook writes it (book notation, its bodies' symbols), its value at a configuration, its
+    number of equations and the relative degrees of freedom it leaves (:func:`joint_summary`)."""
+
+    def __init__(self, mech, q, constraint):
+        from .notation import latex
+
+        c = mech.constraint(constraint) if isinstance(constraint, str) else constraint
+        self.constraint, self.q = c, np.asarray(q, dtype=float)
+        self.value = mech.Phi(self.q)[c.rows]
+        self.dof = relative_dof(mech, self.q)
+        labels = [p.label for p in c.part_views()] or [c.label]
+        head = rf"\Phi^{{({labels[0]})}}" if len(labels) == 1 else (
+            r"\begin{bmatrix}" + r"\\ ".join(rf"\Phi^{{({lab})}}" for lab in labels) + r"\end{bmatrix}")
+        Phi = mech.constraint_phi(c)
+        self.tex = head + " = " + latex(Phi[0] if c.n_eq == 1 else Phi, mech)
+
+    def text(self):
+        from ..notebook import clean
+
+        c, rows = self.constraint, " ".join(f"{v:g}" for v in clean(np.round(self.value, 4)))
+        return (f"at this configuration Φ = [{rows}];  {c.label}: {c.n_eq} equation{'s' if c.n_eq > 1 else ''}, "
+                f"{self.dof} relative DOF left")
+
+    def __repr__(self):
+        return f"{self.tex}\n{self.text()}"
+
+    def _repr_html_(self):
+        return f"<div>{html_math(self.tex, display=True)}</div><p>{html.escape(self.text())}</p>"
+
+
+def joint_summary(mech, q, constraint):
+    """Φ of one joint in the book's notation, its value at ``q`` and what it leaves free (:class:`JointSummary`);
+    ``mech`` is the joint between two free bodies, so the relative DOF are n − rank Φ_q − 6."""
+    return JointSummary(mech, q, constraint)
+
+
+# ------------------------------------------------------------------------------- every constraint, three ways
+def columns(mech, constraint):
+    """The columns of Φ_q that belong to a constraint's bodies (their coordinates, body by body): the columns of
+    the book's Jacobian tables."""
+    c = mech.constraint(constraint) if isinstance(constraint, str) else constraint
+    return [mech.index(str(s)) for b in c.bodies for s in mech.body_symbols(b.name)]
+
+
+def _numeric(c, qc, qdc=None, compiled=False):
+    """(Φ_q, γ) of one constraint from its kernel — its own or the one compiled from its symbolic Φ —, at the
+    coordinates ``qc`` (and velocities ``qdc``) of its bodies. Drivers: the geometric part g(q) only."""
+    from ..model import stack_params
+
+    nb, nc = len(c.bodies), len(c.COORDS)
+    kernel, params = c.numeric(compiled=compiled)
+    Qd = None if qdc is None else np.asarray(qdc, dtype=float).reshape(1, 1, nb, nc)
+    _, jac, gam = kernel(np.asarray(qc, dtype=float).reshape(1, 1, nb, nc), stack_params([params]), Qd)
+    return jac[0, 0], None if gam is None else gam[0, 0]
+
+
+class Table:
+    """A small results table that renders itself: a header and rows of cells, each a string or a
+    :class:`Check` (shown as "✓ < 1e-12" or "✗ 0.34")."""
+
+    def __init__(self, header, rows, caption=""):
+        self.header, self.rows, self.caption = list(header), [list(r) for r in rows], caption
+
+    @staticmethod
+    def _text(cell):
+        if isinstance(cell, Check):
+            return f"✓ < {tolerance_text(cell.tol)}" if cell.ok else f"✗ {_small(cell.error)}"
+        return str(cell)
+
+    @property
+    def all_ok(self):
+        """True when every check in the table passes."""
+        return all(c.ok for r in self.rows for c in r if isinstance(c, Check))
+
+    def __repr__(self):
+        cells = [self.header] + [[self._text(c) for c in r] for r in self.rows]
+        widths = [max(len(r[k]) for r in cells) for k in range(len(self.header))]
+        lines = ["  ".join(t.ljust(w) for t, w in zip(r, widths)).rstrip() for r in cells]
+        return "\n".join(lines + ([self.caption] if self.caption else []))
+
+    def _repr_html_(self):
+        head = "".join(f"<th>{html.escape(h)}</th>" for h in self.header)
+        body = "".join("<tr>" + "".join(f"<td style='text-align:left'>{html.escape(self._text(c))}</td>" for c in r)
+                       + "</tr>" for r in self.rows)
+        caption = f"<p>{html.escape(self.caption)}</p>" if self.caption else ""
+        return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>{caption}"
+
+
+def _small(x):
+    from ..notebook import small
+
+    return small(x, 1e-12)
+
+
+def _closed_form(c):
+    """kinbook.book.table14 for spatial constraints with an entry; None otherwise."""
+    if getattr(c, "chapter", None) != "spatial":
+        return None
+    from . import table14
+
+    return table14 if table14.has_entry(c) else None
+
+
+def jacobian_table(mech, qs, *, h=1e-6, tol=1e-12, fd_tol=1e-8):
+    """Every constraint's rows of Φ_q checked three ways at the configurations ``qs``.
+
+    For each constraint of ``mech``: kinbook's Φ_q (its rows, the columns of its bodies) against central finite
+    differences of Φ (step ``h``), against the closed form of Table 14.1 (:mod:`kinbook.book.table14`, spatial
+    types) and against the kernel compiled from the type's symbolic Φ (sympy). Each cell is the largest
+    absolute difference over ``qs``; "—" where the table has no entry.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    qs : sequence of array_like, shape (n,)
+        Configurations (Euler parameters need not be unit: every formula holds off the sphere).
+
+    Returns
+    -------
+    Table
+    """
+    qs = [np.asarray(q, dtype=float) for q in qs]
+    found = _jacobian_checks(mech, qs, mech.constraints, h, tol, fd_tol)
+    rows = [[c.name, f"({c.label})", str(c.n_eq), *checks] for c, checks in found]
+    return Table(["constraint", "type", "rows", "kernel − finite differences", "kernel − Table 14.1",
+                  "kernel − sympy"], rows, f"Largest absolute difference over {len(qs)} configurations.")
+
+
+def _jacobian_checks(mech, qs, constraints, h, tol, fd_tol):
+    """[(constraint, [fd check, table check or "—", sympy check]), …] over the configurations ``qs``."""
+    kernel_J = [mech.Phi_q(q) for q in qs]
+    fd_J = [fd_jacobian(mech.Phi, q, h) for q in qs]
+    out = []
+    for c in constraints:
+        cols, table = columns(mech, c), _closed_form(c)
+        err = {"fd": 0.0, "table": 0.0, "sympy": 0.0}
+        for q, J_all, fd in zip(qs, kernel_J, fd_J):
+            J = J_all[c.rows][:, cols]
+            err["fd"] = max(err["fd"], np.abs(J - fd[c.rows][:, cols]).max())
+            # with velocities, so the one compiled function also serves gamma_table
+            err["sympy"] = max(err["sympy"], np.abs(J - _numeric(c, q[cols], 0 * q[cols], compiled=True)[0]).max())
+            if table is not None:
+                err["table"] = max(err["table"], np.abs(J - table.jacobian_rows(c, q[cols])).max())
+        out.append((c, [Check("fd", err["fd"], fd_tol), Check("table", err["table"], tol) if table is not None else "—",
+                        Check("sympy", err["sympy"], tol)]))
+    return out
+
+
+def joint_table(joints, *, h=1e-6, tol=1e-12, fd_tol=1e-8):
+    """One row per joint, each in its own two-body mechanism at an assembled configuration: its type, label and
+    equations, the relative DOF it leaves, max |Φ| there, and its Jacobian rows against finite differences,
+    Table 14.1 and sympy (as :func:`jacobian_table`).
+
+    Parameters
+    ----------
+    joints : mapping of str to (Mechanism, q)
+        The joint's name in its mechanism → the mechanism and a configuration that satisfies the joint.
+
+    Returns
+    -------
+    Table
+    """
+    rows = []
+    for name, (mech, q) in joints.items():
+        q = np.asarray(q, dtype=float)
+        c = mech.constraint(name)
+        (_, checks), = _jacobian_checks(mech, [q], [c], h, tol, fd_tol)
+        rows.append([c.type_name, f"({c.label})", str(c.n_eq), str(relative_dof(mech, q)),
+                     Check("Φ", np.abs(mech.Phi(q)[c.rows]).max(), tol), *checks])
+    return Table(["joint", "type", "equations", "relative DOF", "max |Φ|", "kernel − finite differences",
+                  "kernel − Table 14.1", "kernel − sympy"], rows)
+
+
+def gamma_table(mech, states, *, h=1e-4, tol=1e-12, fd_tol=1e-6):
+    """Every constraint's γ checked three ways at the states ``states`` = [(q, q̇, q̈), …].
+
+    For each constraint: kinbook's γ against the kernel compiled from the symbolic Φ (sympy); against
+    Φ_q q̈ − Φ̈, with Φ̈ the second central difference of Φ along the path q + q̇ s + q̈ s²/2 (relative to
+    max(1, |γ|)); and against the γ table of :mod:`kinbook.book.table14`. Geometric constraints (no driver).
+
+    Returns
+    -------
+    Table
+    """
+    rows = []
+    for c in mech.constraints:
+        cols, table = columns(mech, c), _closed_form(c)
+        err = {"fd": 0.0, "table": 0.0, "sympy": 0.0}
+        for q, qd, qdd in states:
+            q, qd, qdd = (np.asarray(v, dtype=float) for v in (q, qd, qdd))
+            gam = mech.gamma(q, qd)[c.rows]
+            path = lambda s: q + qd * s + 0.5 * qdd * s**2  # noqa: E731
+            Phi_dd = (mech.Phi(path(h)) - 2 * mech.Phi(q) + mech.Phi(path(-h)))[c.rows] / h**2
+            fd = mech.Phi_q(q)[c.rows] @ qdd - Phi_dd
+            err["fd"] = max(err["fd"], np.abs(gam - fd).max() / max(1.0, np.abs(gam).max()))
+            err["sympy"] = max(err["sympy"], np.abs(gam - _numeric(c, q[cols], qd[cols], compiled=True)[1]).max())
+            if table is not None:
+                err["table"] = max(err["table"], np.abs(gam - table.gamma_rows(c, q[cols], qd[cols])).max())
+        rows.append([c.name, f"({c.label})", Check("sympy", err["sympy"], tol), Check("fd", err["fd"], fd_tol),
+                     Check("table", err["table"], tol) if table is not None else "—"])
+    return Table(["constraint", "type", "kernel − sympy", "kernel − (Φ_q q̈ − Φ̈), relative", "kernel − γ table"],
+                 rows, f"Largest difference over {len(states)} states (q, q̇, q̈).")
+
+
+def sweep_checks(result, tol=1e-3):
+    """Checks of a sweep that any correct solution passes, as (what, error, tol) triples for :func:`checks`:
+    q̇ against dq/dt and q̈ against dq̇/dt (second-order finite differences along the solved instants, relative
+    to the largest value), and for Euler parameters |p_i| = 1, p_iᵀṗ_i = 0, p_iᵀp̈_i + ṗ_iᵀṗ_i = 0 (every body).
+
+    The finite differences are limited by the time step: ``tol`` bounds their relative error.
+    """
+    t, q, qd, qdd = result.t, result.q, result.qd, result.qdd
+    grad = lambda y: np.gradient(y, t, axis=0, edge_order=2)  # noqa: E731
+    rel = lambda a, b: float(np.abs(a - b).max() / max(np.abs(b).max(), 1e-300))  # noqa: E731
+    out = [("all of q̇ against dq/dt (relative)", rel(grad(q), qd), tol),
+           ("all of q̈ against dq̇/dt (relative)", rel(grad(qd), qdd), tol)]
+    from ..spatial import Mechanism as Spatial
+
+    mech = result.mechanism
+    if isinstance(mech, Spatial):
+        p, pd, pdd = ([mech.p(x, b.name) for b in mech.bodies] for x in (q, qd, qdd))
+        dot = lambda a, b: np.einsum("...i,...i->...", a, b)  # noqa: E731
+        worst = lambda f: float(max(np.abs(f(*v)).max() for v in zip(p, pd, pdd)))  # noqa: E731
+        out += [("|p_i| = 1, every body", worst(lambda a, b, c: np.linalg.norm(a, axis=-1) - 1), 1e-9),
+                ("p_iᵀṗ_i = 0", worst(lambda a, b, c: dot(a, b)), 1e-12),
+                ("p_iᵀp̈_i + ṗ_iᵀṗ_i = 0", worst(lambda a, b, c: dot(a, c) + dot(b, b)), 1e-12)]
+    return out
