@@ -348,7 +348,7 @@ class JointSummary:
         self.constraint, self.q = c, np.asarray(q, dtype=float)
         self.value = mech.Phi(self.q)[c.rows]
         self.dof = relative_dof(mech, self.q)
-        labels = [p.label for p in c.part_views()] or [c.label]
+        labels = _leaf_labels(c)
         head = rf"\Phi^{{({labels[0]})}}" if len(labels) == 1 else (
             r"\begin{bmatrix}" + r"\\ ".join(rf"\Phi^{{({lab})}}" for lab in labels) + r"\end{bmatrix}")
         Phi = mech.constraint_phi(c)
@@ -366,6 +366,14 @@ class JointSummary:
 
     def _repr_html_(self):
         return f"<div>{html_math(self.tex, display=True)}</div><p>{html.escape(self.text())}</p>"
+
+
+def _leaf_labels(c):
+    """The book's labels of a constraint's primitive parts, composites of composites flattened: a translational
+    joint is (p1,2), (p2,2), (n1,1)."""
+    if not c.parts:
+        return [c.label]
+    return [label for v in c.part_views() for label in _leaf_labels(v)]
 
 
 def joint_summary(mech, q, constraint):

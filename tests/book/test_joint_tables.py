@@ -58,6 +58,8 @@ def test_joint_summary_counts_what_geometry_says(name):
     assert np.abs(s.value).max() < 1e-12 and f"{dof} relative DOF left" in s.text()
     html = s._repr_html_()
     assert html.startswith("<div>\\[") and "$" not in html
+    heads = {"s": ["s,3"], "r": ["s,3", "p1,2"], "c": ["p1,2", "p2,2"], "t": ["p1,2", "p2,2", "n1,1"]}[name]
+    assert all(f"\\Phi^{{({h})}}" in s.tex for h in heads) and "+" not in s.tex.split("=")[0]
 
 
 def test_motion_table_reads_the_rows_a_motion_breaks():
