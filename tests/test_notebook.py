@@ -29,3 +29,18 @@ def test_clean_leaves_other_objects_alone():
     x = sp.Symbol("x")
     assert notebook.clean({"a": x, "b": "text", "c": 3, "d": True}) == {"a": x, "b": "text", "c": 3, "d": True}
     assert notebook.clean(np.arange(3)).dtype.kind == "i"
+
+
+def test_newton_table_shows_the_solver_iterations_without_round_off():
+    import kinbook
+    from kinbook.notebook import newton_table
+
+    m = kinbook.examples.load("ch13_example1")
+    q, hist = m.solve_position(0.0, history=True)
+    table = newton_table(hist)
+    assert len(table.rows) == len(hist) >= 3
+    # row k is the iterate q_k: its residual is max |Φ(q_k)|, recomputed here from the mechanism
+    k = 1
+    assert table.rows[k][1] == notebook.small(np.abs(m.Phi(hist.q[k], 0.0)).max())
+    assert table.rows[-1][1] == "< 1e-12" and np.abs(hist.q[-1] - q).max() == 0
+    assert "e-1" not in repr(table).replace("1e-12", "")  # nothing at round-off level is printed
