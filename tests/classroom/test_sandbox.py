@@ -347,3 +347,21 @@ def _alive(pid):
             return f.read().rsplit(")", 1)[1].split()[0] != "Z"
     except OSError:
         return False
+
+
+def test_an_environment_under_tmp_is_bound_after_the_private_tmp(monkeypatch):
+    """A checkout cloned under /tmp (a newcomer's `git clone` into a temporary directory) keeps its venv and
+    kinbook visible: bubblewrap mounts in argument order, so their read-only binds must follow the sandbox's
+    private /tmp, which would hide them (the sandbox then failed with "execvp …/.venv/bin/python")."""
+    from kinbook.classroom.sandbox import bwrap
+
+    venv, pkg = "/tmp/clone/.venv", "/tmp/clone/kinbook"
+    monkeypatch.setattr(bwrap, "readonly_dirs", lambda: ["/opt/python", "/usr", pkg, venv])
+    monkeypatch.setattr(bwrap.shutil, "which", lambda name: f"/usr/bin/{name}")
+    monkeypatch.setattr(bwrap.os, "geteuid", lambda: 1000)   # (as root, the same command follows setpriv)
+    inner = bwrap.command(["/tmp/clone/.venv/bin/python"])
+    tmpfs = inner.index("/tmp", inner.index("--tmpfs") - 1)
+    assert inner[tmpfs - 1] == "--tmpfs"
+    for d in (venv, pkg):
+        assert inner.index(d) > tmpfs and inner[inner.index(d) - 1] == "--ro-bind"
+    assert inner.index("/opt/python") < tmpfs     # the rest keeps its place

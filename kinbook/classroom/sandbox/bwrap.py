@@ -214,11 +214,20 @@ def command(argv, env=None, seccomp=None):
             inner += ["--symlink", os.readlink(top), top]
         elif os.path.isdir(top) and top not in ro:
             inner += ["--ro-bind", top, top]
+    # bubblewrap mounts in argument order: a directory below one of the private tmpfs directories (a checkout
+    # and its venv cloned under /tmp) is bound after that tmpfs, which would otherwise hide it
+    def below_private(d):
+        return any(d.startswith(path.rstrip("/") + "/") for path in SIZES)
+
     for d in ro:
-        inner += ["--ro-bind", d, d]
+        if not below_private(d):
+            inner += ["--ro-bind", d, d]
     inner += ["--proc", "/proc", "--dev", "/dev"]
     for path, size in SIZES.items():
         inner += ["--size", str(size), "--perms", "0700", "--tmpfs", path]
+    for d in ro:
+        if below_private(d):
+            inner += ["--ro-bind", d, d]
     inner += ["--remount-ro", "/dev", "--remount-ro", "/", "--chdir", ISOLATED.home]
     if seccomp is not None:
         inner += ["--seccomp", str(seccomp)]

@@ -388,16 +388,19 @@ def _empty(directory, budget):
     ``budget[0]`` entries had to go (the rest is left: the sandbox is replaced then)."""
     os.makedirs(directory, mode=0o700, exist_ok=True)
     os.chmod(directory, 0o700)
+    dev = os.lstat(directory).st_dev
     stack = [(directory, False)]
+    holding = set()  # directories that lead to a read-only mount: kept
     while stack:
         path, listed = stack.pop()
         if listed:
-            if path != directory:
+            if path != directory and path not in holding:
                 os.rmdir(path)
             continue
         stack.append((path, True))
         try:
-            os.chmod(path, 0o700)
+            if path not in holding:
+                os.chmod(path, 0o700)
             entries = list(os.scandir(path))
         except OSError:
             return False
@@ -406,6 +409,14 @@ def _empty(directory, budget):
             if budget[0] < 0:
                 return False
             if entry.is_dir(follow_symlinks=False):
+                if entry.stat(follow_symlinks=False).st_dev != dev:
+                    # the environment bound read-only below this directory (a checkout and its venv under
+                    # /tmp): the mount and the directories leading to it stay, everything else goes
+                    parent = path
+                    while parent != directory and parent not in holding:
+                        holding.add(parent)
+                        parent = os.path.dirname(parent)
+                    continue
                 stack.append((entry.path, False))
             else:
                 os.unlink(entry.path)
