@@ -408,6 +408,11 @@ _TEXT = {
         "en": "your answer is the expected one multiplied by {c}",
         "es": "tu respuesta es la esperada multiplicada por {c}",
     },
+    "value_signs": {"en": "the sign of {where}", "es": "el signo de {where}"},
+    "value_exchanged": {"en": "{a} and {b} are exchanged", "es": "{a} y {b} están intercambiados"},
+    "value_rows_exchanged": {"en": "rows {a} and {b} are exchanged", "es": "las filas {a} y {b} están intercambiadas"},
+    "value_cols_exchanged": {"en": "columns {a} and {b} are exchanged",
+                             "es": "las columnas {a} y {b} están intercambiadas"},
     "p_negated": {
         "en": "correct: −p describes the same orientation as p (both are valid Euler parameters)",
         "es": "correcto: −p describe la misma orientación que p (ambos son parámetros de Euler válidos)",

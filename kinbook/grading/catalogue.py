@@ -102,6 +102,11 @@ _ENTRIES = [
        "the exercise asks for the book's order: constraints in the order of the joint table, drivers last",
        "el ejercicio pide el orden del libro: restricciones en el orden de la tabla de pares, las motrices "
        "al final"),
+    _m("swapped_entries", "entries exchanged", "elementos intercambiados",
+       "the right numbers in the wrong places: check which coordinate, row or column each entry belongs to "
+       "(q = [x1, y1, φ1, x2 …]; a point's [x, y]; row k of a matrix is its k-th equation)",
+       "los números correctos en posiciones equivocadas: comprueba a qué coordenada, fila o columna corresponde "
+       "cada elemento (q = [x1, y1, φ1, x2 …]; [x, y] de un punto; la fila k de una matriz es su ecuación k)"),
     _m("wrong_value", "wrong value", "valor incorrecto",
        "the value differs from the reference and matches none of the catalogued mistakes; recheck the "
        "derivation step by step",

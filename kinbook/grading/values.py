@@ -154,7 +154,7 @@ def _check(answer, exp, rtol, atol, name, degrees=True, periodic=(), extra=None)
     for value, why in exp.equivalents:
         if _close(a, np.asarray(value, float).reshape(e.shape), rtol, atol, per):
             return CheckResult(True, 1.0, [why], [], (), name)
-    code, detail, erratum, note = _diagnose(a, e, exp, rtol, atol, per, degrees, extra)
+    code, detail, erratum, note = _diagnose(a, e, exp, rtol, atol, per, degrees, extra, name)
     err = np.abs(a - e)
     if per.any():
         err = np.where(per, np.abs((a - e + np.pi) % (2 * np.pi) - np.pi), err)
@@ -171,7 +171,8 @@ def _check(answer, exp, rtol, atol, name, degrees=True, periodic=(), extra=None)
     if detail is not None:
         notes.append(detail)
     rows = _rows(a, e, rtol, atol, per, name, code)
-    global_codes = code not in ("wrong_value",)
+    # a mistake of some entries (an entry's sign, two entries exchanged) keeps the credit of the right ones
+    global_codes = code not in ("wrong_value", "sign_flip", "swapped_entries")
     good = sum(1 for r in rows if r.status == "ok")
     score = 0.0 if global_codes or not rows else good / len(rows)
     codes = [code]
@@ -197,7 +198,7 @@ def _rows(a, e, rtol, atol, per, name, code):
     return rows
 
 
-def _diagnose(a, e, exp, rtol, atol, per, degrees, extra):
+def _diagnose(a, e, exp, rtol, atol, per, degrees, extra, name="value"):
     """(code, detail, erratum, note) of a wrong answer."""
     for code, value, detail, erratum in exp.variants:
         v = np.asarray(value, float)
@@ -222,6 +223,9 @@ def _diagnose(a, e, exp, rtol, atol, per, degrees, extra):
             return "degrees", None, None, None
     if nz.any() and _close(a, -e, rtol, atol):
         return "sign_flip", None, None, None
+    found = _entry_signs(a, e, rtol, atol, per, name) or _exchanged(a, e, rtol, atol, name)
+    if found is not None:
+        return found
     flat_a, flat_e = a.ravel(), e.ravel()
     ee = float(flat_e @ flat_e)
     c = float(flat_a @ flat_e) / ee if ee > 0 else 0.0
@@ -230,6 +234,54 @@ def _diagnose(a, e, exp, rtol, atol, per, degrees, extra):
         if several or any(abs(c - p) <= 1e-3 * abs(p) for p in _PLAUSIBLE):
             return "scaled", Msg("value_scaled", c=fmt(c)), None, None
     return "wrong_value", None, None, None
+
+
+def _wrong_entries(a, e, rtol, atol, per):
+    scale = np.max(np.abs(e), initial=0.0)
+    d = a - e
+    if per.any():
+        d = np.where(per, (d + np.pi) % (2 * np.pi) - np.pi, d)
+    return np.abs(d) > atol + rtol * scale, scale
+
+
+def _entry_signs(a, e, rtol, atol, per, name):
+    """Some entries (not all) with the opposite sign, the others right: "sign_flip", naming them."""
+    wrong, scale = _wrong_entries(a, e, rtol, atol, per)
+    if not wrong.any() or wrong.all():
+        return None
+    flipped = np.abs(a + e) <= atol + rtol * scale
+    if not np.all(flipped[wrong]) or not np.all(np.abs(e[wrong]) > max(atol, 1e-12)):
+        return None
+    where = [_indexed(name, idx) for idx in zip(*np.nonzero(wrong))] if a.ndim else [name]
+    return "sign_flip", Msg("value_signs", where=where), None, None
+
+
+def _exchanged(a, e, rtol, atol, name):
+    """Two entries of a vector, or two rows or two columns of a matrix, exchanged (and nothing else wrong):
+    "swapped_entries", naming them."""
+    per = np.zeros(e.shape, bool)
+    if a.ndim == 1 or (a.ndim == 2 and 1 in a.shape):
+        flat_a, flat_e = a.ravel(), e.ravel()
+        wrong, _ = _wrong_entries(flat_a, flat_e, rtol, atol, per.ravel())
+        idx = np.nonzero(wrong)[0]
+        if len(idx) == 2:
+            i, j = idx
+            swapped = flat_e.copy()
+            swapped[[i, j]] = swapped[[j, i]]
+            if _close(flat_a, swapped, rtol, atol):
+                return "swapped_entries", Msg("value_exchanged", a=_indexed(name, (i,)), b=_indexed(name, (j,))), \
+                    None, None
+        return None
+    if a.ndim != 2:
+        return None
+    for axis, key in ((0, "value_rows_exchanged"), (1, "value_cols_exchanged")):
+        A, E = (a, e) if axis == 0 else (a.T, e.T)
+        wrong = [k for k in range(E.shape[0]) if not _close(A[k], E[k], rtol, atol)]
+        if len(wrong) == 2:
+            i, j = wrong
+            if _close(A[i], E[j], rtol, atol) and _close(A[j], E[i], rtol, atol):
+                return "swapped_entries", Msg(key, a=i + 1, b=j + 1), None, None
+    return None
 
 
 # ================================================================================================ rotations

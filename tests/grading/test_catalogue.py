@@ -24,10 +24,11 @@ def test_corpus_codes_are_catalogued_and_cover_the_planar_catalogue():
     seen = {code for case in CASES for code in case.mistakes}
     assert seen <= set(MISTAKES)
     # covered elsewhere: test_checks (missing_qt_term, wrong_value), test_spatial (missing_normalization),
-    # test_values (scaled, not_orthogonal, not_normalized)
+    # test_values (scaled, not_orthogonal, not_normalized, swapped_entries)
     elsewhere = {"missing_qt_term", "wrong_value", "missing_normalization", "scaled", "not_orthogonal",
                  "not_normalized", "dependent_row", "eg_jacobian", "book_misprint", "left_handed", "factor_2_missing",
-                 "full_angle", "G_for_E", "wrong_frame", "extrinsic_order", "A_for_AT", "scalar_last", "extra_row"}
+                 "full_angle", "G_for_E", "wrong_frame", "extrinsic_order", "A_for_AT", "scalar_last", "extra_row",
+                 "swapped_entries"}
     assert set(MISTAKES) - seen <= elsewhere, set(MISTAKES) - seen - elsewhere
 
 

@@ -44,6 +44,27 @@ def test_check_value(answer, expected, passed, mistakes, kw):
     assert (r.passed, r.mistakes) == (passed, mistakes), repr(r)
 
 
+@pytest.mark.parametrize("answer, expected, detail", [
+    ([1.0, -2.0, 3.0], [1.0, 2.0, 3.0], "the sign of value[2]"),
+    ([[1.0, 2.0], [-3.0, 4.0]], [[1.0, 2.0], [3.0, 4.0]], "the sign of value[2, 1]"),
+    ([2.0, 1.0, 3.0], [1.0, 2.0, 3.0], "value[1] and value[2] are exchanged"),
+    ([[3.0, 4.0], [1.0, 2.0], [5.0, 6.0]], [[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]], "rows 1 and 2 are exchanged"),
+    ([[2.0, 1.0, 3.0], [5.0, 4.0, 6.0]], [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]], "columns 1 and 2 are exchanged"),
+])
+def test_some_entries_negated_or_two_exchanged_are_named(answer, expected, detail):
+    r = check_value(answer, expected)
+    code = "sign_flip" if "sign" in detail else "swapped_entries"
+    assert r.mistakes == [code], repr(r)
+    assert any(str(n) == detail for n in r.notes), [str(n) for n in r.notes]
+    right = sum(1 for a, e in zip(np.ravel(answer), np.ravel(expected)) if a == e)
+    assert r.score == pytest.approx(right / np.size(expected))
+
+
+def test_an_entry_changed_otherwise_is_still_a_wrong_value():
+    assert check_value([1.0, 2.5, 3.0], [1.0, 2.0, 3.0]).mistakes == ["wrong_value"]
+    assert check_value([3.0, 1.0, 2.0], [1.0, 2.0, 3.0]).mistakes == ["wrong_value"]  # not one exchange
+
+
 def test_check_value_partial_credit_per_entry():
     r = check_value([1.0, 2.0, 3.0, 5.0], [1.0, 2.0, 3.0, 4.0])
     assert r.score == pytest.approx(0.75)
