@@ -298,7 +298,12 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
         r.entries, r.score = _entries(S, expected, rtol, r.code, cand)
         if r.code is None:
             named = [e for e in r.entries if e not in ("ok", "wrong_value")]
-            r.code = named[0] if named else "wrong_value"
+            hit = None if named else _terms_derived(target, ex, r, own, S, expected, rtol)
+            if hit is not None:  # the Jacobian of Φ with a term's sign flipped or a term dropped
+                r.code, r.detail, r.erratum = hit
+                r.entries, r.score = _entries(S, expected, rtol, r.code, cand)
+            else:
+                r.code = named[0] if named else "wrong_value"
 
 
 def eg_rows(target, data, matching, rtol):
@@ -481,7 +486,8 @@ def _variant_spans(target, ex, c, rows, rtol):
 
 
 def _terms_derived(target, ex, r, own, S, expected, rtol):
-    """Sign flips and dropped terms of the symbolic expected row, derived with sympy only for small rows."""
+    """Sign flips and dropped terms of the symbolic expected row (ν, γ), or of the Φ row a Φ_q row is the
+    Jacobian of — derived with sympy only for small rows."""
     if r.ref is None or own is not None:
         return None
     import sympy as sp
@@ -493,15 +499,21 @@ def _terms_derived(target, ex, r, own, S, expected, rtol):
     q, qd, t = list(mech.q), list(mech.qd), mech.t
     syms = [x for x in q if x in Phi.free_symbols]
     D = lambda e: sum(sp.diff(e, x) * qd[q.index(x)] for x in syms) + sp.diff(e, t)  # noqa: E731
-    expr = -sp.diff(Phi, t) if ex.quantity == "nu" else -D(D(Phi))
     f = 1.0 if r.factor is None or np.isnan(r.factor) else r.factor
-    cands = term_variants(f * expr)
-    if not cands:
-        return None
     s = ex.s
-    vals = target.tape([e for _, e, _ in cands])(s.Q, s.QD, s.T)["value"]
+    if ex.quantity == "Phi_q":  # the terms of Φ's row: their Jacobians
+        cands = term_variants(f * Phi)
+        if not cands:
+            return None
+        vals = target.tape([e for _, e, _ in cands]).derived(s.Q, s.QD, s.T)["Phi_q"][:, :, ex.data.cols]
+    else:
+        expr = -sp.diff(Phi, t) if ex.quantity == "nu" else -D(D(Phi))
+        cands = term_variants(f * expr)
+        if not cands:
+            return None
+        vals = target.tape([e for _, e, _ in cands])(s.Q, s.QD, s.T)["value"][:, :, None]
     for i, (code, _, term) in enumerate(cands):
-        V = vals[:, i][:, None]
+        V = vals[:, i]
         if not same(V, expected, rtol) and same(S, V, rtol):
             return code, _term_detail(code, term), None
     return None
