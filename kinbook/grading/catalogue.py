@@ -304,5 +304,13 @@ add_texts({
     "d.function_degrees": {"en": "f(t) in degrees", "es": "f(t) en grados"},
     "d.book_row": {"en": "see erratum {id}", "es": "ver la errata {id}"},
     "d.factor": {"en": "factor {c}", "es": "factor {c}"},
+    "d.factor_length": {"en": "the length {a}–{b} of body {body}", "es": "la longitud {a}–{b} del elemento {body}"},
+    "d.factor_radius": {"en": "the distance of {point} from the origin of body {body}",
+                        "es": "la distancia de {point} al origen del elemento {body}"},
+    "d.factor_local": {"en": "the length |{a}| of body {body}", "es": "la longitud |{a}| del elemento {body}"},
+    "d.factor_local_pair": {"en": "the length |{a} − {b}| of body {body}",
+                            "es": "la longitud |{a} − {b}| del elemento {body}"},
+    "d.factor_joint_length": {"en": "the joint's length {name}", "es": "la longitud {name} del par"},
+    "d.multiplied_by": {"en": "multiplied by {c}, {what}", "es": "multiplicada por {c}, {what}"},
     "d.degrees_value": {"en": "{got} is {expected} rad in degrees", "es": "{got} es {expected} rad en grados"},
 })

@@ -353,8 +353,14 @@ def _candidates(target, ex, r, own, expected):
     out = []
     sign_code = {"nu": "nu_sign", "gamma": "gamma_sign", "Phi_q": "sign_flip"}[q]
     late = [(sign_code, -expected, None, None)]
-    if q != "Phi_q":  # a forgotten factor 2 (a Φ row halved, −ṗᵀṗ for −2ṗᵀṗ) — without phi= the factor is 1
-        late += [("scaled", c * expected, Msg("d.factor", c=fmt_factor(c)), None) for c in (2.0, 0.5)]
+    if q != "Phi_q":  # a plausible factor: a link length of the row's constraint (multiplied through), a
+        # forgotten 2 (a Φ row halved, −ṗᵀṗ for −2ṗᵀṗ) — without phi= the factor is 1; any other is "wrong value"
+        owner = target.owner(r.ref) if r.ref is not None and not isinstance(r.ref, tuple) else None
+        lengths = M.length_factors(owner) if owner is not None else []
+        late += [("scaled", c * expected, Msg("d.multiplied_by", c=fmt_factor(c), what=what), None)
+                 for c, what in lengths]
+        late += [("scaled", c * expected, Msg("d.factor", c=fmt_factor(c)), None) for c in (2.0, 0.5)
+                 if not any(abs(c - v) <= 1e-9 for v, _ in lengths)]
     f = 1.0 if r.factor is None or (isinstance(r.factor, float) and np.isnan(r.factor)) else r.factor
     sources = []
     if own is not None and own.get("tape") is not None and r.k < own["values"]["Phi"].shape[1]:

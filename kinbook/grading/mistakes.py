@@ -28,7 +28,8 @@ import numpy as np
 
 from ._i18n import Msg
 
-__all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "alternative_variants", "contexts_of", "register"]
+__all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "alternative_variants", "contexts_of", "register",
+           "length_factors"]
 
 DEG = 180.0 / np.pi
 
@@ -366,6 +367,54 @@ def _degrees(target, c, attr):
     if _is_zero(cur):
         return None
     return _phi(target, c, **{attr: cur * DEG})
+
+
+# ============================================================================================ plausible factors
+def length_factors(c, limit=12):
+    """The lengths of constraint ``c``'s own geometry a student may multiply a row by: the length attributes
+    of its class (the r-r joint's l), the distances between the named points of each of its bodies (a crank's
+    O_A–A) and each named point's distance from its body's origin, then the constraint's own local points
+    (their distances on one body, their norms) — ``[(value, detail Msg)]`` named in the mechanism's notation,
+    without 0, 1 and repeated values, at most ``limit``."""
+    out = []
+
+    def add(value, detail):
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            return
+        if not np.isfinite(value) or value <= 1e-9 or abs(value - 1.0) <= 1e-9:
+            return
+        if any(abs(value - v) <= 1e-9 * value for v, _ in out):
+            return
+        out.append((value, detail))
+
+    spec = spec_of(c)
+    names = [b.name for b in getattr(c, "bodies", ())]
+    for attr in spec.lengths:
+        add(getattr(c, attr, None), Msg("d.factor_joint_length", name=attr))
+    for body in getattr(c, "bodies", ()):
+        points = list((getattr(body, "points", None) or {}).items())
+        for k, (a, pa) in enumerate(points):
+            for b, pb in points[k + 1:]:
+                add(np.linalg.norm(np.asarray(pa, float) - np.asarray(pb, float)),
+                    Msg("d.factor_length", a=a, b=b, body=body.name))
+        for a, pa in points:
+            add(np.linalg.norm(np.asarray(pa, float)), Msg("d.factor_radius", point=a, body=body.name))
+    local = []  # the constraint's own local points (s'_i^P …): their distances and their norms
+    for attr, role in spec.points:
+        v = getattr(c, attr, None)
+        if v is not None and role < len(names):
+            try:
+                local.append((attr, role, np.asarray([float(x) for x in v])))
+            except (TypeError, ValueError):  # a symbolic coordinate: no number to try
+                pass
+    for k, (a, role, pa) in enumerate(local):
+        for b, role_b, pb in local[k + 1:]:
+            if role_b == role:
+                add(np.linalg.norm(pa - pb), Msg("d.factor_local_pair", a=a, b=b, body=names[role]))
+        add(np.linalg.norm(pa), Msg("d.factor_local", a=a, body=names[role]))
+    return out[:limit]
 
 
 # ============================================================================================ the registry

@@ -59,6 +59,14 @@ def _build(name):
         m.add_body("crank", q0=(0, 0, 0.3))
         m.add(P.Driver("crank", "phi", "0.3 + 0.5*sin(4*t)", name="d"))
         return m
+    if name == "p-crank":  # a crank O–A (1.8 long) pinned at A to a rod
+        return _planar_pair(name, {"O": CRANK_O, "A": CRANK_A}, {"A": ROD_A}, P.Revolute("i", "j", point="A", name="r"))
+    if name == "s-crank":  # a spatial crank O–A (1.6 long) with a ball joint at A
+        m = S.Mechanism(name)
+        m.add_body("i", points={"O": S_CRANK_O, "A": S_CRANK_A}, q0=(0, 0, 0, 1, 0.3, -0.2, 0.1))
+        m.add_body("j", points={"A": S_ROD_A}, q0=(1, 0.5, -0.4, 0.9, -0.1, 0.4, 0.2))
+        m.add(S.Spherical("i", "j", point="A", name="c"))
+        return m
     if name.startswith("s-"):
         return _spatial(name[2:])
     raise KeyError(name)
@@ -78,6 +86,7 @@ def target(name, constraint):
 SI, SJ = (0.4, -0.2), (-0.7, 0.3)
 TP, TQ, TJ = (0.2, 0.3), (1.2, 0.6), (-0.3, 0.4)
 RP, RQ = (0.1, 0.2), (1.1, -0.3)
+CRANK_O, CRANK_A, ROD_A = (-0.5, 0.0), (1.3, 0.0), (-0.7, 0.3)  # |O–A| = 1.8
 
 
 def xy(b, s, transposed=False, local=False):
@@ -368,6 +377,17 @@ def planar_cases():
     add("p-driver-gamma-zero", "gamma", m, c, [0], False, 0.0, ["malformed"])  # the γ = [0]: refused
     add("p-driver-gamma-zero-text", "gamma", m, c, ["0*t"], False, 0.0, ["missing_tt_term"])
     add("p-driver-gamma-sign", "gamma", m, c, ["8*sin(4*t)"], False, 0.0, ["gamma_sign"])
+    # ---------------------------------------------------------------- a row multiplied by a link length
+    # γ (eq. 18 differentiated twice) of a revolute joint at the end A of a crank O–A: |A − O| = 1.8 from the
+    # points typed above; any factor that is no length of the joint's geometry stays a "wrong value"
+    m, c = "p-crank", "r"
+    ok = rev_gamma(CRANK_A, ROD_A)
+    length = float(np.hypot(CRANK_A[0] - CRANK_O[0], CRANK_A[1] - CRANK_O[1]))
+    add("p-crank-gamma", "gamma", m, c, ok, True, 1.0)
+    add("p-crank-gamma-times-crank", "gamma", m, c, [f"{length}*({r})" for r in ok], False, 0.0, ["scaled"])
+    add("p-crank-gamma-row-times-crank", "gamma", m, c, _scaled(ok, 1, str(length)), False, 0.5, ["scaled"])
+    add("p-crank-gamma-times-1.37", "gamma", m, c, [f"1.37*({r})" for r in ok], False, 0.0, ["wrong_value"])
+    add("p-rr-gamma-times-l", "gamma", "p-rr", "rr", [f"1.7*({r})" for r in rr_gamma()], False, 0.0, ["scaled"])
     return C
 
 
@@ -391,6 +411,9 @@ def _spatial(kind):
     m.add_body("j", q0=(1, 0.5, -0.4, 0.9, -0.1, 0.4, 0.2))
     m.add(joints[kind]())
     return m
+
+
+S_CRANK_O, S_CRANK_A, S_ROD_A = (0.2, 0.0, 0.0), (1.8, 0.0, 0.0), (-0.5, 0.4, 0.3)  # |O–A| = 1.6
 
 
 def A_of(p, transposed=False, factor=2):
@@ -492,6 +515,13 @@ def spatial_cases():
         eg[-1, 3:7] = 2 * sj.T * E(pi) * a_bar(sp.Matrix(AI))
         eg[-1, 10:14] = 2 * si.T * E(pj) * a_bar(sp.Matrix(AJ))
         add(f"s-{kind}-jac-eg", "jacobian", m, eg, False, None, ["eg_jacobian"])
+    # a ball joint at the end A of a crank O–A (|A − O| = 1.6): γ multiplied by the crank's length is "scaled",
+    # by 1.37 a "wrong value"
+    _, gamma = _derive(list(_point(1, S_CRANK_A) - _point(2, S_ROD_A)))
+    length = float(np.linalg.norm(np.subtract(S_CRANK_A, S_CRANK_O)))
+    add("s-crank-gamma", "gamma", "s-crank", gamma, True, 1.0)
+    add("s-crank-gamma-times-crank", "gamma", "s-crank", length * gamma, False, 0.0, ["scaled"])
+    add("s-crank-gamma-times-1.37", "gamma", "s-crank", 1.37 * gamma, False, 0.0, ["wrong_value"])
     return C
 
 

@@ -301,3 +301,37 @@ def _with_entry(rows, k, col, value):
     out = [list(r) for r in rows]
     out[k][col] = value
     return out
+
+
+def _crank_gammas():
+    from . import corpus2 as c2
+
+    planar = [sp.sympify(r) for r in c2.rev_gamma(c2.CRANK_A, c2.ROD_A)]
+    _, spatial = c2._derive(list(c2._point(1, c2.S_CRANK_A) - c2._point(2, c2.S_ROD_A)))
+    return {"p-crank": (planar, "r"), "s-crank": (list(spatial), "c")}
+
+
+@pytest.mark.parametrize("mech, factor, en, es", [
+    ("p-crank", 1.8, "multiplied by 1.8, the length O–A of body i",
+     "multiplicada por 1.8, la longitud O–A del elemento i"),
+    ("s-crank", 1.6, "multiplied by 1.6, the length O–A of body i",
+     "multiplicada por 1.6, la longitud O–A del elemento i"),
+])
+def test_a_row_multiplied_by_a_link_length_names_the_length(mech, factor, en, es):
+    """γ rows (typed in corpus2) multiplied by the crank's length |A − O| of the points typed there: "scaled",
+    naming the length in the mechanism's own point names, in both languages; 1.37 (no length of the joint's
+    geometry) is a "wrong value"."""
+    from . import corpus2
+
+    gamma, name = _crank_gammas()[mech]
+    target = corpus2.target(mech, name)
+    assert check_gamma(gamma, target).passed
+    r = check_gamma([factor * e for e in gamma], target)
+    assert r.mistakes == ["scaled"] and not r.passed
+    assert en in "\n".join(r.messages), r.messages
+    try:
+        kinbook.set_language("es")
+        assert es in "\n".join(r.messages), r.messages
+    finally:
+        kinbook.set_language("en")
+    assert check_gamma([1.37 * e for e in gamma], target).mistakes == ["wrong_value"]
