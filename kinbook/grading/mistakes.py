@@ -375,7 +375,7 @@ def length_factors(c, limit=12):
     of its class (the r-r joint's l), the distances between the named points of each of its bodies (a crank's
     O_A–A) and each named point's distance from its body's origin, then the constraint's own local points
     (their distances on one body, their norms) — ``[(value, detail Msg)]`` named in the mechanism's notation,
-    without 0, 1 and repeated values, at most ``limit``."""
+    without 0, 1 and repeated values, at most ``limit``. None for a constraint without points or lengths."""
     out = []
 
     def add(value, detail):
@@ -390,6 +390,8 @@ def length_factors(c, limit=12):
         out.append((value, detail))
 
     spec = spec_of(c)
+    if not (spec.points or spec.vectors or spec.lengths):
+        return out  # a row of angles (a driver, a gear, a normalization): no length of it is plausible
     names = [b.name for b in getattr(c, "bodies", ())]
     for attr in spec.lengths:
         add(getattr(c, attr, None), Msg("d.factor_joint_length", name=attr))
