@@ -1,9 +1,14 @@
 """Every try-it check of the chapter notebooks and every exercise part on the book's examples, re-run with
 typical wrong answers (tests/grading/tryits.py): right answers pass, wrong ones fail with the mistake they
-are, and the generic "wrong value" is given for at most 1 in 10."""
+are, and the generic "wrong value" is given for at most 1 in 10.
+
+Then every graded part of every exercise notebook (ex01–ex12, as the grader reads them) and every try-it,
+re-run with the wrong answers generated from kinbook's reference (tests/grading/generated.py): none passes,
+and at most 1 in 10 gets only the generic "wrong value" (the figure is printed)."""
 
 import pytest
 
+from .generated import exercise_parts, tryit_parts, wrong_answers
 from .tryits import all_tryits
 
 TRY_ITS = all_tryits()
@@ -30,3 +35,25 @@ def test_at_most_one_in_ten_wrong_answers_gets_the_generic_wrong_value():
         generic += r.mistakes == ["wrong_value"]
     assert len(WRONG) >= 80
     assert generic / len(WRONG) <= 0.1, generic
+
+
+def test_every_exercise_part_and_try_it_with_generated_wrong_answers_is_named():
+    parts = tryit_parts(TRY_ITS) + exercise_parts()
+    assert {p.id.split("/")[0] for p in parts} >= {f"ex{k:02d}" for k in range(1, 13)}
+    total, generic, accepted, by_part = 0, 0, [], {}
+    for p in parts:
+        wrong = wrong_answers(p)
+        assert wrong, f"{p.id}: no wrong answer generated"
+        for answer, code in wrong:
+            r = p.checker(answer, p.target, **p.options)
+            total += 1
+            if r.passed:
+                accepted.append((p.id, code))
+            elif r.mistakes == ["wrong_value"]:
+                generic += 1
+                by_part.setdefault(p.id, []).append(code)
+    print(f"\n{len(parts)} parts (try-its and exercise parts), {total} generated wrong answers, "
+          f"{generic} with only the generic 'wrong value' ({generic / total:.1%}): {by_part}")
+    assert not accepted, accepted
+    assert total >= 400
+    assert generic / total <= 0.1, by_part
