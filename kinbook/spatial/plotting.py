@@ -127,7 +127,8 @@ def draw(mech, q, ax=None, frames=False, frame_size=None, labels=False, limits=N
     q : array_like, shape (n,)
         An assembled configuration (unit Euler parameters), e.g. from ``mech.solve_position``.
     ax : Axes3D, optional
-        Created (with equal scales on the three axes) when not given.
+        Created (with equal scales on the three axes) when not given. Titled with the mechanism's title unless
+        it already has a title.
     frames : bool
         Also draw each body's local axes ξ (red), η (green), ζ (blue) at its origin.
     frame_size : float, optional
@@ -177,7 +178,8 @@ def draw(mech, q, ax=None, frames=False, frame_size=None, labels=False, limits=N
     ax.set_xlabel("x")
     ax.set_ylabel("y")
     ax.set_zlabel("z")
-    ax.set_title(mech.title)
+    if not ax.get_title():  # an axes titled by the caller (make_3d_axes, joint_figure) keeps its title
+        ax.set_title(mech.title)
     return drawing
 
 

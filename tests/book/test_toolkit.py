@@ -56,3 +56,25 @@ def test_latex_uses_the_books_names():
     assert N.matrix([[-1e-17, 0.5]]) == r"\begin{array}{rr}0 & 0.5\end{array}"
     pair = N.pair("rr")
     assert r"\varphi_{i}" in N.latex(pair.symbolic().Phi, pair)
+
+
+def test_figures_keep_the_title_the_notebook_gives():
+    """joint_figure(title=...) and make_3d_axes(title=...) followed by plotting.draw show the caller's title (the
+    figure caption of the book), not the mechanism's name; a bare draw is still titled with the mechanism."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from kinbook.spatial import joint_figure, make_3d_axes, plotting
+
+    mech = kinbook.examples.load("spatial_fourbar")
+    q0 = mech.solve_position(0.0)
+    try:
+        assert joint_figure(mech, q0, title="Fig. 14.12: revolute joint").get_title() == "Fig. 14.12: revolute joint"
+        ax = make_3d_axes(title="global components s (eq. 1)")
+        plotting.draw(mech, q0, ax=ax)
+        assert ax.get_title() == "global components s (eq. 1)"
+        assert plotting.draw(mech, q0).ax.get_title() == mech.title != ""
+    finally:
+        plt.close("all")
