@@ -26,9 +26,11 @@ __all__ = ["AnimationHTML"]
 _PLAYER_ID = re.compile(r'id="_anim_img([0-9a-f]+)"')
 _ICON_FONT = re.compile(r'<link rel="stylesheet"\s*href="[^"]*font-awesome[^"]*">')
 # The player's buttons are Font Awesome icons loaded from a CDN: without internet (an HTML export opened offline,
-# a lab without network) they are blank. Plain text symbols need no font and no network.
-_ICONS = {"fa fa-minus": "−", "fa fa-fast-backward": "⏮", "fa fa-step-backward": "◂", "fa fa-play fa-flip-horizontal": "◀",
-          "fa fa-pause": "⏸", "fa fa-play": "▶", "fa fa-step-forward": "▸", "fa fa-fast-forward": "⏭", "fa fa-plus": "+"}
+# a lab without network) they are blank. Plain text symbols need no font and no network — as long as the fonts a
+# browser already has draw them: the media symbols ⏮ ⏸ ⏭ (U+23ED–23F8) are missing from DejaVu, the fallback font
+# of a Linux desktop, and showed as empty boxes; ⇤ ❚❚ ⇥ are in DejaVu Sans as in the Windows and macOS fonts.
+_ICONS = {"fa fa-minus": "−", "fa fa-fast-backward": "⇤", "fa fa-step-backward": "◂", "fa fa-play fa-flip-horizontal": "◀",
+          "fa fa-pause": "❚❚", "fa fa-play": "▶", "fa fa-step-forward": "▸", "fa fa-fast-forward": "⇥", "fa fa-plus": "+"}
 
 
 def _offline_buttons(html):
