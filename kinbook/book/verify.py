@@ -426,9 +426,14 @@ class Table:
         lines = ["  ".join(t.ljust(w) for t, w in zip(r, widths)).rstrip() for r in cells]
         return "\n".join(lines + ([self.caption] if self.caption else []))
 
+    @staticmethod
+    def _style(cell):
+        # a verdict ("✓ < 1e-12") is read as one word: in a narrow column it wrapped as "✓ < 1e-" / "12"
+        return "text-align:left; white-space:nowrap" if isinstance(cell, Check) else "text-align:left"
+
     def _repr_html_(self):
         head = "".join(f"<th>{html.escape(h)}</th>" for h in self.header)
-        body = "".join("<tr>" + "".join(f"<td style='text-align:left'>{html.escape(self._text(c))}</td>" for c in r)
+        body = "".join("<tr>" + "".join(f"<td style='{self._style(c)}'>{html.escape(self._text(c))}</td>" for c in r)
                        + "</tr>" for r in self.rows)
         caption = f"<p>{html.escape(self.caption)}</p>" if self.caption else ""
         return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>{caption}"

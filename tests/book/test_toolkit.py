@@ -78,3 +78,12 @@ def test_figures_keep_the_title_the_notebook_gives():
         assert plotting.draw(mech, q0).ax.get_title() == mech.title != ""
     finally:
         plt.close("all")
+
+
+def test_a_verdict_cell_does_not_wrap_but_a_label_may():
+    table = verify.Table(["what", "verdict"], [["a long label that may wrap", verify.Check("Φ", 3e-13, 1e-12)],
+                                               ["other", verify.Check("Φ", 0.34, 1e-12)]])
+    html = table._repr_html_()
+    assert "<td style='text-align:left; white-space:nowrap'>✓ &lt; 1e-12</td>" in html
+    assert "<td style='text-align:left; white-space:nowrap'>✗ 0.34</td>" in html
+    assert "<td style='text-align:left'>a long label that may wrap</td>" in html
