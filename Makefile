@@ -76,10 +76,15 @@ notebooks: $(STAMP)
 # The chapters as standalone HTML pages that work offline: MathJax comes from the jupyter-server-mathjax package
 # (copied next to the pages) instead of a CDN; the animation players need no icon font. Open build/html/*.html.
 MATHJAX_DIR = $(shell $(BIN)/python -c "import jupyter_server_mathjax, os; print(os.path.join(os.path.dirname(jupyter_server_mathjax.__file__), 'static'))" 2>/dev/null)
+# That package ships only the STIX-Web fonts: MathJax, which asks for its TeX fonts by default, then fell back to
+# the browser's serif (upright variables, no bold vectors); local/offline.js points it at STIX-Web.
 html: $(STAMP)
 	mkdir -p build/html && rm -rf build/html/mathjax && cp -r $(MATHJAX_DIR) build/html/mathjax
+	mkdir -p build/html/mathjax/config/local
+	printf '%s\n' 'MathJax.Hub.Config({"HTML-CSS": {availableFonts: [], preferredFont: null, webFont: "STIX-Web", imageFont: null}});' \
+		'MathJax.Ajax.loadComplete("[MathJax]/config/local/offline.js");' > build/html/mathjax/config/local/offline.js
 	$(BIN)/jupyter nbconvert --to html --output-dir build/html \
-		--HTMLExporter.mathjax_url="mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe" chapters/*.ipynb
+		--HTMLExporter.mathjax_url="mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe,local/offline" chapters/*.ipynb
 
 # Re-pin the environment after a dependency change (run on the reference machine class: Python 3.11, Linux).
 lock:
