@@ -126,18 +126,22 @@ def fmt(x, digits=PRECISION, tol=TOL):
     return text[1:] if text.startswith("-") and float(text) == 0 else text
 
 
-def small(x, tol=TOL, digits=2):
+def small(x, tol=TOL, digits=2, *, relation=False):
     """A residual or error: its magnitude with ``digits`` significant digits, or ``"< tol"`` below ``tol``.
 
-    >>> small(-0.0451), small(float("nan"))
-    ('0.045', 'nan')
+    With ``relation=True`` the text completes a label as a relation — ``"= 0.045"`` or ``"< 1e-12"`` — so a line
+    such as ``show("max|E p|", small(x, relation=True))`` never reads "max|E p| = < 1e-12".
+
+    >>> small(-0.0451), small(float("nan")), small(0.0451, relation=True), small(1e-17, relation=True)
+    ('0.045', 'nan', '= 0.045', '< 1e-12')
     """
     x = abs(float(x))
     if math.isnan(x):
-        return "nan"
+        return "= nan" if relation else "nan"
     if x < tol:
         return f"< {tolerance_text(tol)}"
-    return f"{x:.0f}" if x >= 10**digits else f"{x:.{digits}g}"
+    text = f"{x:.0f}" if x >= 10**digits else f"{x:.{digits}g}"
+    return f"= {text}" if relation else text
 
 
 def agrees(error, tol=TOL):

@@ -75,3 +75,10 @@ def test_animation_buttons_are_drawn_by_the_fonts_a_browser_has():
     dejavu = FT2Font(findfont("DejaVu Sans", fallback_to_default=False)).get_charmap()
     missing = {ch for label in labels for ch in label if ord(ch) not in dejavu}
     assert not missing, f"button symbols DejaVu Sans cannot draw: {sorted(missing)}"
+
+
+def test_small_as_a_relation_never_reads_equals_less_than():
+    assert notebook.small(-1.5e-17, relation=True) == "< 1e-12"
+    assert notebook.small(3.2e-5, 1e-9, relation=True) == "= 3.2e-05"
+    assert notebook.small(2.35, relation=True) == "= 2.4"
+    assert notebook.small(4.7e-7, 1e-6, relation=True) == "< 1e-6"
