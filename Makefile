@@ -25,8 +25,11 @@ kernel: $(STAMP)
 
 # root (a container, a CI box) needs --allow-root; everyone else gets the plain command
 # The chapter notebooks are trusted first, so their stored animations (JavaScript players) play when opened.
+# etc/jupyterlab-overrides.json: JupyterLab's windowed notebook (its default) gave the stored animation players
+# an image of height 0 (only the slider and buttons showed); the whole notebook is laid out instead.
 lab: $(STAMP)
-	mkdir -p chapters
+	mkdir -p chapters $(VENV)/share/jupyter/lab/settings
+	cp etc/jupyterlab-overrides.json $(VENV)/share/jupyter/lab/settings/overrides.json
 	$(BIN)/jupyter trust chapters/*.ipynb >/dev/null
 	$(BIN)/jupyter lab --notebook-dir=chapters $(if $(filter 0,$(shell id -u)),--allow-root)
 

@@ -199,6 +199,9 @@ def build_lite():
     lite = _fresh(STAGE / "lite")
     for f in ("jupyter_lite_config.json", "jupyter-lite.json"):
         shutil.copy2(WEB / "lite" / f, lite / f)
+    # the lab's settings (etc/jupyterlab-overrides.json: no windowed notebook, whose layout left the stored
+    # animation players without a picture) apply to the live site too
+    shutil.copy2(ROOT / "etc" / "jupyterlab-overrides.json", lite / "overrides.json")
     contents = lite / "contents"
     for path in notebooks():
         _write(lite_notebook(_read(path)), contents / path.name)
