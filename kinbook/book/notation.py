@@ -12,7 +12,9 @@ kinbook names coordinates ``x1, y1, phi1, dx1 …`` (body numbers); the book wri
   :func:`from_book` goes back (both checked against each other in ``tests/book``);
 - :func:`latex` prints any kinbook expression with the book's names (x_1, φ_1, ẋ_1, e_{0,1}, …);
   :func:`equations` writes a list of rows as :math:`\\Phi_k \\equiv … = 0`; :func:`matrix` a numeric matrix
-  without round-off.
+  without round-off;
+- :func:`book_form` writes a pair's Φ, Φ_q or γ as the book does — point coordinates, factored by the joint's
+  vectors, γ collected by φ̇ — and :func:`lines` sets rows one per line, broken to fit a notebook column.
 """
 
 from __future__ import annotations
@@ -25,9 +27,10 @@ from types import SimpleNamespace
 
 import numpy as np
 import sympy as sp
+from sympy.printing.latex import LatexPrinter
 
 __all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "html_math", "equations", "matrix", "names",
-           "book_gamma", "Math", "local_points", "table", "tidy"]
+           "book_form", "factored", "lines", "Math", "local_points", "table", "tidy"]
 
 
 
@@ -155,12 +158,139 @@ def from_book(expr, mech):
     return as_sympy(expr).subs(back, simultaneous=True)
 
 
-def book_gamma(expr, mech):
-    """γ (or any velocity-quadratic expression) of a pair in the book's notation, collected by the products
-    of angular velocities and factored term by term, as Table 13.5 writes it."""
-    g = sp.expand(to_book(expr, mech))
-    keys = [S.w_i**2, S.w_i * S.w_j, S.w_j**2, S.w_i, S.w_j]
-    return sp.collect(g, keys, func=lambda c: sp.factor(c))
+# The book's vectors: (x, y) symbols of the joint points, the bodies' origins and their velocities, in the order
+# the book writes a difference (x_i^P − x_i^Q, x_j^P − x_j, x_i^P − x_j^P, ẋ_i − ẋ_j: a joint point before an
+# origin, P before Q, i before j). Where a joint's equation names a vector the other way, or prefers another of
+# two equal-length forms, _BOOK_VECTORS lists it first (eq. 26's s_i and d = r_j^P − r_i^P, eq. 33's r_i^P − r_j^Q).
+_POINTS = [(getattr(S, f"x{p}_{b}"), getattr(S, f"y{p}_{b}")) for p in "PQ" for b in "ij"] + \
+    [(S.x_i, S.y_i), (S.x_j, S.y_j), (S.xd_i, S.yd_i), (S.xd_j, S.yd_j)]
+_RANK = {s: k for k, pt in enumerate(_POINTS) for s in pt}
+_P = {(p, b): (getattr(S, f"x{p}_{b}"), getattr(S, f"y{p}_{b}")) for p in "PQ" for b in "ij"}
+_BOOK_VECTORS = {"t": [(_P["P", "i"], _P["Q", "i"]), (_P["P", "j"], _P["P", "i"])],
+                 "rr": [(_P["P", "i"], _P["P", "j"])],
+                 "rt": [(_P["P", "i"], _P["Q", "j"]), (_P["P", "j"], _P["Q", "j"])]}
+
+
+def _size(expr):
+    return sp.count_ops(expr) + sum(1 for a in sp.preorder_traversal(expr) if a.is_Symbol)
+
+
+def _orient(expr, vectors=()):
+    """``expr`` with every difference of two coordinates written in the book's order; the sign moves to the
+    term's coefficient, and the terms' common numeric factor is taken out (unevaluated, so sympy keeps it)."""
+    order = {(U[k], V[k]) for U, V in vectors for k in (0, 1)}
+
+    def flip(f):   # f = a − b → (sign, the difference the book writes)
+        if not (f.is_Add and len(f.args) == 2):
+            return 1, f
+        a, b = sorted(f.args, key=lambda t: t.could_extract_minus_sign())
+        b = -b
+        if a not in _RANK or b not in _RANK or (a, b) in order:
+            return 1, f
+        if (b, a) in order or _RANK[b] < _RANK[a]:
+            return -1, sp.Add(b, -a, evaluate=False)
+        return 1, f
+
+    terms = []
+    for term in sp.Add.make_args(expr):
+        coeff, factors = sp.Integer(1), []
+        for f in sp.Mul.make_args(term):
+            if f.is_Number:
+                coeff *= f
+                continue
+            base, exp = f.as_base_exp()
+            sign, base = flip(base)
+            coeff *= sign ** exp
+            factors.append(base if exp == 1 else sp.Pow(base, exp, evaluate=False))
+        terms.append((coeff, factors))
+    if len(terms) == 1:
+        (c, f), = terms
+        return sp.Mul(c, *f, evaluate=False) if f and c != 1 else (f[0] if len(f) == 1 and c == 1 else sp.Mul(c, *f))
+    common = sp.gcd_list([c for c, _ in terms]) if all(c.is_Rational for c, _ in terms) else sp.Integer(1)
+    if common != 1 and all(c.is_negative for c, _ in terms):   # −2(…), but −(a)(b) − (c)(d) as the book
+        common = -common
+    inner = sp.Add(*[sp.Mul(c / common, *f, evaluate=False) if c != common else sp.Mul(*f, evaluate=False)
+                     for c, f in terms], evaluate=False)
+    return inner if common == 1 else sp.Mul(common, inner, evaluate=False)
+
+
+def factored(expr, vectors=()):
+    """An expression in the book's symbols (:data:`S`) factored the way the book factors its tables: by the
+    vectors it contains (s_i, d, r_i^P − r_i …), each cofactor a difference of coordinates.
+
+    Every vector U − V of two points in ``expr`` is tried (``vectors`` first, so they win a tie): with
+    x_U = u + x_V, y_U = v + y_V the expression splits into u·A + v·B + R, and the shortest
+    (x_U − x_V)·A + (y_U − y_V)·B + R wins. The result equals ``expr`` (``tests/book`` checks it for every
+    planar joint).
+    """
+    expr = sp.expand(as_sympy(expr))
+    best = sp.factor(expr)
+    points = [p for p in _POINTS if expr.has(*p)]
+    u, v = sp.Dummy("u"), sp.Dummy("v")
+    for U, V in list(vectors) + [(U, V) for U in points for V in points if U != V]:
+        dx, dy = U[0] - V[0], U[1] - V[1]
+        moved = sp.expand(expr.xreplace({U[0]: u + V[0], U[1]: v + V[1]}))
+        tu, tv, rest = [], [], []
+        for t in sp.Add.make_args(moved):
+            (tu if t.has(u) else tv if t.has(v) else rest).append(t)
+        if not tu and not tv:
+            continue
+        back = {u: dx, v: dy}
+        A, B, R = (sp.expand(x).xreplace(back) for x in (sp.Add(*tu) / u, sp.Add(*tv) / v, sp.Add(*rest)))
+        R = sp.factor(sp.expand(R))
+        for t in (0, 1, -1):   # u·A + v·B = u·(A + t·v) + v·(B − t·u): the same value, maybe the book's cofactors
+            form = sp.factor(sp.expand(A + t * dy)) * dx + sp.factor(sp.expand(B - t * dx)) * dy + R
+            if (_size(form), _foreign(form, vectors)) < (_size(best), _foreign(best, vectors)):
+                best = form
+    return best
+
+
+def _foreign(expr, vectors):
+    """How many differences in ``expr`` are not components of the preferred ``vectors`` (a tie-break)."""
+    own = {frozenset((U[k], V[k])) for U, V in vectors for k in (0, 1)}
+    return sum(1 for a in sp.preorder_traversal(expr) if a.is_Add and len(a.args) == 2
+               and frozenset(t if not t.could_extract_minus_sign() else -t for t in a.args) not in own)
+
+
+def _kind(mech):
+    return next((k for k in PAIR_KINDS if pair(k) is mech), None)
+
+
+def book_form(expr, mech=None, kind=None):
+    """A kinbook expression (or matrix) of a :func:`pair` ``mech`` as the book writes it: in global point
+    coordinates (:func:`to_book`), collected by the angular velocities as Table 13.5 writes γ (φ̇_i², φ̇_i φ̇_j …;
+    products with the same coefficient merged, φ̇_i(φ̇_i − 2φ̇_j)), each coefficient :func:`factored` and each
+    difference in the book's order. Without ``mech``, ``expr`` is already in the book's symbols (``kind``, a key of
+    :data:`PAIR_KINDS`, then says whose vectors to prefer). For printing (:func:`latex`, :func:`lines`): the
+    result is partly unevaluated; ``sympy.expand(book_form(e, m) − to_book(e, m))`` is 0."""
+    expr = as_sympy(expr)
+    kind = kind or (_kind(mech) if mech is not None else None)
+    if isinstance(expr, sp.MatrixBase):
+        return expr.applyfunc(lambda e: book_form(e, mech, kind))
+    vectors = _BOOK_VECTORS.get(kind, ())
+    e = sp.expand(to_book(expr, mech) if mech is not None else expr)
+    if not e.has(S.w_i, S.w_j):
+        return _orient(factored(e, vectors), vectors)
+    keys = [S.w_i**2, S.w_i * S.w_j, S.w_j**2, S.w_i, S.w_j, sp.Integer(1)]
+    parts = sp.collect(e, keys[:-1], evaluate=False)
+    groups = []   # [velocity factor, coefficient]: a product whose coefficient is a number times another's joins it
+    for k in keys:
+        c = parts.get(k)
+        if c is None:
+            continue
+        for g in groups:
+            ratio = sp.cancel(c / g[1])
+            if ratio.is_Number and k != 1 and g[0] != 1:
+                g[0] = g[0] + ratio * k
+                break
+        else:
+            groups.append([k, c])
+    terms = []
+    for k, c in groups:
+        content, k = sp.factor(k).as_content_primitive()
+        c = _orient(factored(sp.expand(content * c), vectors), vectors)
+        terms.append(c if k == 1 else sp.Mul(k, c, evaluate=False))
+    return sp.Add(*terms, evaluate=False) if len(terms) > 1 else terms[0]
 
 
 # ----------------------------------------------------------------------------------------- the printer
@@ -212,10 +342,97 @@ def tidy(expr, digits=10):
     return expr.xreplace(repl)
 
 
-def latex(expr, mech=None, **kwargs):
-    """LaTeX of a kinbook expression in the book's notation (see :func:`names`), numbers tidied (:func:`tidy`)."""
+class _BookPrinter(LatexPrinter):
+    """sympy's LaTeX printer with the book's habits: in a sum the positive terms first (x_j^P − x_i, not
+    −x_i + x_j^P); in a product the number, then the plain symbols, then the bracketed sums; and unevaluated
+    products (:func:`book_form`) kept as built."""
+
+    def parts(self, expr):
+        """(numeric coefficient, [factors]) of a product, through nested unevaluated products."""
+        coeff, factors = sp.Integer(1), []
+        for f in sp.Mul.make_args(expr):
+            if f.is_Number:
+                coeff *= f
+            elif f.is_Mul:
+                c, fs = self.parts(f)
+                coeff, factors = coeff * c, factors + fs
+            else:
+                factors.append(f)
+        return coeff, factors
+
+    def product(self, coeff, factors):
+        plain = [f for f in factors if not (f.is_Add or (f.is_Pow and f.base.is_Add))]
+        rest = [f for f in factors if f not in plain]
+        plain = sp.Mul(*plain)
+        texts = [LatexPrinter._print_Mul(self, plain) if plain.is_Mul else self._print(plain)] if plain != 1 else []
+        for f in rest:
+            base, exp = f.as_base_exp()
+            texts.append(rf"\left({self._print(base)}\right)" + (f"^{{{self._print(exp)}}}" if exp != 1 else ""))
+        head = "" if coeff == 1 else "-" if coeff == -1 else self._print(coeff) + " "
+        return head + " ".join(texts) if texts else self._print(coeff)
+
+    def terms(self, expr):
+        """The terms of a sum in the book's order, each as (sign, LaTeX without its sign)."""
+        out = []
+        args = list(sp.Add.make_args(expr)) if expr.is_Add else [expr]
+        for term in args:
+            coeff, factors = self.parts(term)
+            out.append(("-" if coeff < 0 else "+", self.product(abs(coeff), factors)))
+        return sorted(out, key=lambda t: t[0] == "-")
+
+    def _print_Add(self, expr, order=None):
+        out = ""
+        for k, (sign, tex) in enumerate(self.terms(expr)):
+            out += (("-" if sign == "-" else "") if k == 0 else f" {sign} ") + tex
+        return out
+
+    def _print_Mul(self, expr):
+        coeff, factors = self.parts(expr)
+        return self.product(coeff, factors)
+
+
+def _printer(expr, mech=None):
+    return _BookPrinter({"symbol_names": names(expr, mech)})
+
+
+def latex(expr, mech=None, book=False, **kwargs):
+    """LaTeX of a kinbook expression in the book's notation (see :func:`names`), numbers tidied (:func:`tidy`);
+    with ``book=True`` also in the book's order of terms and factors (for :func:`book_form` results)."""
+    if book:
+        return _printer(expr, mech).doprint(expr)
     expr = tidy(expr)
     return sp.latex(expr, symbol_names=names(expr, mech), **kwargs)
+
+
+def _width(tex):
+    """A rough count of the glyphs ``tex`` shows (sub- and superscripts count half)."""
+    tex = re.sub(r"\\(left|right|displaystyle)", "", tex)
+    small = sum(len(re.sub(r"\\[a-zA-Z]+", "x", m)) for m in re.findall(r"[_^]\{([^{}]*)\}", tex))
+    tex = re.sub(r"[_^]\{[^{}]*\}", "", tex)
+    tex = re.sub(r"\\dot\{([^{}]*)\}", r"\1", tex)
+    tex = re.sub(r"\\[a-zA-Z]+", "x", tex)
+    return len(re.sub(r"[{}\s]", "", tex)) + small / 2
+
+
+def lines(rows, labels, mech=None, width=58, relation="="):
+    """Rows (in the book's symbols, e.g. from :func:`book_form`) as the book sets a system: one row per line,
+    aligned at ``relation``; a row wider than ``width`` glyphs continues on the next line after a whole term, so
+    it fits a notebook column (about 58 glyphs at 900 px). Returns one LaTeX ``aligned`` block."""
+    out = []
+    for label, row in zip(labels, rows):
+        row = as_sympy(row)
+        printer = _printer(row, mech)
+        line, current = [], ""
+        for k, (sign, tex) in enumerate(printer.terms(row) if row.is_Add else [("+", printer.doprint(row))]):
+            piece = (("-" if sign == "-" else "") if k == 0 else f" {sign} ") + tex
+            if current and _width(current + piece) > width:
+                line.append(current)
+                current = r"\quad " + piece.lstrip()
+            else:
+                current += piece
+        line.append(current)
+        out.append(rf"{label} &{relation} " + r" \\ &\phantom{=}".join(line))
+    return r"\begin{aligned}" + r" \\ ".join(out) + r"\end{aligned}"
 
 
 def html_math(tex, display=False):
@@ -273,16 +490,24 @@ def local_points(mech):
             + r"\end{array}")
 
 
-def table(M, row_labels, columns=None, mech=None, split=3):
-    """A symbolic matrix as the book's tables print it (rows = equations, columns = ∂/∂q), in blocks of
-    ``split`` columns to keep a page narrow; returns one LaTeX array per block."""
+def table(M, row_labels, columns=None, mech=None, width=58):
+    """A symbolic matrix as the book's tables print it (rows = equations, columns = ∂/∂q), entries in the book's
+    order of terms (:func:`book_form` results print factored), in blocks of as many columns as fit ``width``
+    glyphs (see :func:`lines`); returns one LaTeX array per block."""
     M = sp.Matrix(M)
     columns = columns or S.columns
+    tex = [[latex(M[r, c], mech, book=True) for c in range(M.cols)] for r in range(M.rows)]
+    colw = [max(_width(columns[c]), *(_width(tex[r][c]) for r in range(M.rows))) + 2 for c in range(M.cols)]
+    blocks, start = [], 0
+    while start < M.cols:
+        stop = start + 1
+        while stop < M.cols and max(_width(x) for x in row_labels) + sum(colw[start:stop + 1]) <= width:
+            stop += 1
+        blocks.append(range(start, stop))
+        start = stop
     out = []
-    for start in range(0, M.cols, split):
-        cols = range(start, min(start + split, M.cols))
-        body = r" \\[4pt] ".join(lab + " & " + " & ".join(latex(M[r, c], mech) for c in cols)
-                                 for r, lab in enumerate(row_labels))
+    for cols in blocks:
+        body = r" \\[4pt] ".join(lab + " & " + " & ".join(tex[r][c] for c in cols) for r, lab in enumerate(row_labels))
         out.append(rf"\begin{{array}}{{c|{'c' * len(cols)}}} & " + " & ".join(columns[c] for c in cols)
                    + r" \\ \hline " + body + r"\end{array}")
     return out

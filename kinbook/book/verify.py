@@ -103,11 +103,13 @@ class Comparison:
                 f"<table><tr><th></th>{head}</tr>{''.join(body)}</table>")
 
     def latex_disagreements(self):
-        """LaTeX lines "row, column: printed … kinbook …" for every entry that differs."""
+        """For every entry that differs, two aligned LaTeX lines "row, column: printed …" and "kinbook …", in
+        the book's order of terms (a :func:`~kinbook.book.notation.book_form` ``book_form`` prints factored)."""
         out = []
         for r, c in self.disagreements():
-            out.append(rf"{self.rows[r]},\ {self.columns[c]}:\quad \text{{printed }} {sp.latex(self.printed[r, c])}"
-                       rf"\qquad \text{{kinbook }} {sp.latex(self.derived[r, c])}")
+            out.append(rf"\begin{{aligned}}{self.rows[r]},\ {self.columns[c]}:\quad &\text{{printed }} "
+                       rf"{latex(self.printed[r, c], book=True)} \\ &\text{{kinbook }} "
+                       rf"{latex(self.derived[r, c], book=True)}\end{{aligned}}")
         return out
 
 
