@@ -9,10 +9,11 @@ None when ``jacobian`` is false). The mechanism applies the drivers' f(t) (:meth
 :func:`compiled` builds the kernel of a type from :meth:`Constraint.phi` alone. The constraint's numeric
 attributes (its ``parameters``: local points, lengths, radii …) are replaced by symbols, so Φ is written once
 per type with symbolic parameters. Φ_q is its Jacobian, and the velocity-quadratic γ = −(Φ_q q̇)_q q̇ is
-−d²Φ(q + s q̇)/ds² at s = 0, differentiated forward through the nodes of Φ (:func:`_gamma_chain`; the same
-value as :func:`kinbook.symbolic.derive` gives, at a cost linear in the size of Φ); all are lambdified with
-common-subexpression elimination into numpy code that broadcasts over instants (B) and constraints (k), the
-lambdified functions built when first called. The compiled kernel is cached per type and per *template*:
+−d²Φ(q + s q̇)/ds² at s = 0, both differentiated through the nodes of Φ (:func:`_chain`: γ forward, Φ_q in
+reverse; the same values as :func:`kinbook.symbolic.derive` gives, at a cost linear in the size of Φ); all are
+lambdified, the chain of nodes serving as the common-subexpression elimination, into numpy code that
+broadcasts over instants (B) and constraints (k), the lambdified functions built when first called. The
+compiled kernel is cached per type and per *template*:
 the symbolic Φ with symbolic parameters. What is not a declared parameter (the coordinate a simple
 constraint fixes, a flag, a profile function ρ(ψ) of a cam) stays in the template, so constraints that
 differ there get kernels of their own — always correct, shared as far as the declarations allow.
@@ -62,20 +63,16 @@ class CompiledKernel:
         key = (jacobian, gamma)
         if key not in self._functions:
             args = self.q + (self.qd if gamma else []) + self.params
-            out = list(self.exprs)
-            if jacobian:
-                out += list(sp.Matrix(self.exprs).jacobian(self.q))
-            if not gamma:
-                self._functions[key] = sp.lambdify(args, out, modules="numpy", cse=True)
+            if not (jacobian or gamma):
+                self._functions[key] = sp.lambdify(args, self.exprs, modules="numpy", cse=True)
             else:
-                chain, phi, gamma = _gamma_chain(self.exprs, self.q, self.qd)
-                jac = out[len(phi):]
+                chain, phi, jac, gam = _chain(self.exprs, self.q, self.qd, jacobian, gamma)
+                out = phi + [e for row in jac for e in row] + gam
 
-                def cse(exprs):  # Φ and γ from the chain of nodes, Φ_q by common subexpressions
-                    reps, reduced = sp.cse(jac)
-                    return chain + reps, phi + reduced + gamma
+                def cse(exprs):  # the chain of nodes is the common-subexpression elimination
+                    return chain, out
 
-                self._functions[key] = sp.lambdify(args, out + gamma, modules="numpy", cse=cse)
+                self._functions[key] = sp.lambdify(args, out, modules="numpy", cse=cse, printer=_printer())
         return self._functions[key]
 
     def __call__(self, Q, P, Qd=None, jacobian=True):
@@ -98,29 +95,41 @@ class CompiledKernel:
         return phi, jac, gam
 
 
-def _gamma_chain(exprs, q, qd):
-    """γ = −d²Φ(q + s q̇)/ds² at s = 0 (the velocity-quadratic term; Φ has no t) by second-order forward
-    differentiation: Φ is cut into its nodes (every sum, product, power and function application gets a
-    name), and each node's first and second derivatives along q̇ follow from its arguments'.
+def _chain(exprs, q, qd, jacobian=True, gamma=True):
+    """Φ, Φ_q and γ = −d²Φ(q + s q̇)/ds² at s = 0 (the velocity-quadratic term; Φ has no t) through the
+    nodes of Φ: Φ is cut into its nodes (every sum, product, power and function application gets a name) and
+    each node's partial derivatives with respect to its arguments are taken once. γ follows by second-order
+    forward differentiation (each node's first and second derivatives along q̇ from its arguments'), Φ_q by
+    reverse accumulation (each row's adjoint of every node it depends on, from the nodes that use it).
 
-    Returns (replacements, phi, gamma): the replacements define the nodes and their derivatives in order; Φ
-    and γ are expressions in them. The cost is linear in the size of Φ, where expanding the Hessian
-    contraction −(Φ_q q̇)_q q̇ is not (the atan2 of a spatial rotation driver grows to some 10⁵ operations
-    that way, and takes sympy many seconds).
+    Returns (replacements, phi, jac, gamma): the replacements define the nodes, their derivatives and adjoints
+    in order; Φ (r expressions), Φ_q (r lists of len(q); empty when ``jacobian`` is false) and γ (r; empty when
+    ``gamma`` is false) are expressions in them. The cost is linear in the size of Φ (times r for Φ_q), where
+    differentiating the expanded Φ is not: sympy's Jacobian of the spatial types repeats every product rule
+    through A(p) s', and the Hessian contraction −(Φ_q q̇)_q q̇ of the atan2 of a spatial rotation driver grows
+    to some 10⁵ operations.
     """
-    chain, memo = [], {}
+    chain, memo, partials = [], {}, {}
     nodes, names1, names2 = sp.numbered_symbols("_c"), sp.numbered_symbols("_v"), sp.numbered_symbols("_a")
-    first, second = dict(zip(q, qd)), {}
+    first, second = dict(zip(q, qd)), {}  # first: every symbol that depends on q (nodes and coordinates)
 
-    def derivatives(e):
+    def derivatives(e, name):
         if e.is_Add:  # its arguments are nodes, coordinates or numbers
-            return sp.Add(*[first[a] for a in e.args if a in first]), sp.Add(*[second[a] for a in e.args if a in second])
-        args = [a for a in e.free_symbols if a in first]
-        d1 = sp.Add(*[sp.diff(e, a) * first[a] for a in args])
-        d2 = sp.Add(*[sp.diff(e, a) * second[a] for a in args if a in second])
+            args = [a for a in e.args if a in first]
+            partials[name] = [(a, sp.Integer(1)) for a in args]
+            if not gamma:
+                return sp.Integer(len(args)), 0  # nonzero when the node depends on q
+            return sp.Add(*[first[a] for a in args]), sp.Add(*[second[a] for a in args if a in second])
+        product = e.is_Mul and all(a.is_Atom for a in e.args)  # distinct factors: ∂/∂a is the product of the rest
+        args = [a for a in (e.args if product else e.free_symbols) if a in first]
+        partials[name] = [(a, e.func(*[b for b in e.args if b != a]) if product else sp.diff(e, a)) for a in args]
+        if not gamma:
+            return sp.Integer(len(args)), 0  # nonzero when the node depends on q
+        d1 = sp.Add(*[d * first[a] for a, d in partials[name]])
+        d2 = sp.Add(*[d * second[a] for a, d in partials[name] if a in second])
         for m, a in enumerate(args):
-            for b in args[m:]:
-                h = sp.diff(e, a, b)
+            for b in args[m + 1 if product else m:]:
+                h = sp.Mul(*[c for c in e.args if c != a and c != b]) if product else sp.diff(e, a, b)
                 if h != 0:
                     d2 += (1 if a == b else 2) * h * first[a] * first[b]
         return d1, d2
@@ -131,18 +140,45 @@ def _gamma_chain(exprs, q, qd):
         node = e.func(*[visit(a) for a in e.args]) if all(isinstance(a, sp.Expr) for a in e.args) else e
         name = memo[e] = next(nodes)
         chain.append((name, node))
-        d1, d2 = derivatives(node)
+        d1, d2 = derivatives(node, name)
         if d1 != 0:
             first[name] = next(names1)
-            chain.append((first[name], d1))
+            if gamma:
+                chain.append((first[name], d1))
         if d2 != 0:
             second[name] = next(names2)
             chain.append((second[name], d2))
         return name
 
     phi = [visit(e) for e in exprs]
-    gamma = [-second.get(r, sp.Integer(0)) if isinstance(r, sp.Symbol) else sp.Integer(0) for r in phi]
-    return chain, phi, gamma
+    gam = [-second.get(r, sp.Integer(0)) if isinstance(r, sp.Symbol) else sp.Integer(0) for r in phi] if gamma else []
+    jac = []
+    if jacobian:
+        order = [name for name, _ in chain if name in partials]  # the nodes, each after its arguments
+        adjoints = sp.numbered_symbols("_b")
+        for r in phi:
+            adj = {r: sp.Integer(1)} if r in first else {}
+            for name in reversed(order):
+                if name not in adj:
+                    continue
+                a_n = adj.pop(name)
+                if not a_n.is_Atom:  # named once, used by every argument of the node
+                    b = next(adjoints)
+                    chain.append((b, a_n))
+                    a_n = b
+                for a, d in partials[name]:
+                    adj[a] = adj.get(a, 0) + a_n * d
+            jac.append([adj.get(s, sp.Integer(0)) for s in q])
+    return chain, phi, jac, gam
+
+
+def _printer():
+    """lambdify's numpy printer, writing the terms of a sum in the order sympy stores them — a fixed order;
+    sorting them for display, the default, took half the time of printing a kernel."""
+    from sympy.printing.numpy import NumPyPrinter
+
+    return NumPyPrinter({"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True,
+                         "user_functions": {}, "order": "none"})
 
 
 def _symbolize(value, symbols, numbers):
