@@ -1036,7 +1036,15 @@ class MechanismBase:
 
     def _table_footer(self):
         return (f"n = {self.n} coordinates, m = {self.m_geometric} geometric equations + "
-                f"{self.m - self.m_geometric} driver equation(s), degrees of freedom n − m = {self.dof}")
+                f"{self.m - self.m_geometric} driver equation(s), degrees of freedom n − m = {self.dof}"
+                + self._overconstrained_note())
+
+    def _overconstrained_note(self):
+        """What a negative count means (a set of joints gathered to be tabulated, say, not a mechanism)."""
+        if self.dof >= 0:
+            return ""
+        return (f" < 0: {-self.dof} more equations than coordinates — an overconstrained set of joints, not a "
+                f"mechanism that can be assembled")
 
     def check_drivers(self):
         """Raise :class:`~kinbook.errors.DriverCountError` unless there are exactly as many driver equations

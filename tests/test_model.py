@@ -250,3 +250,18 @@ def test_grading_after_removing_and_re_adding_a_constraint_named_alike():
     m.remove("j")
     m.add(planar.Revolute("ground", "bar", point_i="O", point_j="A", name="j"))
     assert check_phi([x1 - x2 - sp.cos(p2), y1 - y2 - sp.sin(p2)], m.constraint("j")).passed
+
+
+def test_a_joint_table_says_what_a_negative_count_means():
+    """14-5's bench (two free bodies, one constraint of every type) printed "DOF = -22" with no word on it."""
+    import kinbook
+    from kinbook.book import table14
+
+    bench = table14.bench()
+    n_norm = sum(1 for c in bench.constraints if c.kind == "normalization")
+    extra = bench.m_geometric - bench.n
+    assert extra > 0 and bench.dof == -extra and n_norm == 2
+    assert f"{extra} more equations than coordinates" in bench._table_footer()
+    assert f"{extra} more equations" in bench.constraint_table()._repr_html_()
+    four_bar = kinbook.examples.load("ch13_example1")
+    assert four_bar.dof == 1 and "more equations" not in four_bar._table_footer()

@@ -267,4 +267,5 @@ class Mechanism(MechanismBase):
     def _table_footer(self):
         n_norm = sum(1 for c in self.constraints if c.kind == "normalization")
         return (f"n = {self.n} coordinates, m = {self.m_geometric - n_norm} geometric + {n_norm} normalization + "
-                f"{self.m - self.m_geometric} driver equations, DOF = n − geometric − normalization = {self.dof}")
+                f"{self.m - self.m_geometric} driver equations, DOF = n − geometric − normalization = {self.dof}"
+                + self._overconstrained_note())
