@@ -29,6 +29,8 @@ import numbers
 
 import numpy as np
 
+from ._i18n import Msg
+
 __all__ = ["Answer", "Refused", "read"]
 
 MAX_OUTPUT = 100_000
@@ -187,8 +189,6 @@ def read(answer, target, quantity):
     if _plain_numbers(answer):
         return Answer("numbers", array=_as_numbers(answer, "answer"))
     if not isinstance(answer, (str, list, tuple, np.ndarray)) and not _is_sympy(answer):
-        from ._i18n import Msg
-
         raise Refused("malformed", "bad_type", expected=Msg(f"expect_{quantity}"), type=type(answer).__name__)
     symbols = target.symbols()
     return Answer("symbolic", matrix=_matrix(answer, symbols, quantity))
