@@ -9,7 +9,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinbook-installed
 PIN    := requirements/constraints.txt
 
-.PHONY: lab test test-lms install kernel lock clean notebooks test-cpu html web-env book lite test-web lock-web chromium
+.PHONY: lab lint test test-lms install kernel lock clean notebooks test-cpu html web-env book lite test-web lock-web chromium
 
 install: $(STAMP)
 
@@ -38,8 +38,13 @@ lab: $(STAMP)
 # their reason (the grading sandbox's tests are skipped where bubblewrap cannot run).
 JOBS ?= auto
 test: $(STAMP)
+	$(BIN)/ruff check .
 	$(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=120 -rs \
 		$(if $(filter 1,$(JOBS)),,-n $(JOBS) --dist loadfile)
+
+# Static analysis alone (make test runs it first): pyflakes, import order and bugbear, configured in pyproject.toml.
+lint: $(STAMP)
+	$(BIN)/ruff check .
 
 # The notebook tests again under another BLAS/SIMD profile: OpenBLAS's SSE3 (Prescott) kernels and numpy without
 # its AVX2 (X86_V3) and AVX-512 (X86_V4, AVX512_*) loops. Outputs stored on one CPU and compared on another round

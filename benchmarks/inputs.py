@@ -10,11 +10,11 @@ kinbook.io.build on the parsed file (TOML parsing by tomllib is shown apart) and
 import sys
 import time
 
+import sympy as sp
 import tomllib
 
 from kinbook.expressions import ExpressionError, read_expression
 from kinbook.io import _no_gc, build
-import sympy as sp
 
 
 def chain(n):
@@ -49,9 +49,9 @@ def main(sizes):
     prev = None
     for n in sizes:
         text = chain(n)
-        t_toml = best(lambda: loads_toml(text), 1)
+        t_toml = best(lambda text=text: loads_toml(text), 1)
         data = loads_toml(text)
-        t_build = best(lambda: build(data, "chain.toml"), 2)
+        t_build = best(lambda data=data: build(data, "chain.toml"), 2)
         ratio = "" if prev is None else f"{t_build / prev:.2f}"
         print(f"{n:>8} {t_toml:9.2f} {t_build:10.2f} {1e6 * t_build / n:8.0f} {ratio:>6}")
         prev = t_build
@@ -60,7 +60,7 @@ def main(sizes):
     print(f"{'expression':>36} {'µs':>8}  result")
     for text in ("pi/4 + 100*t", "2 + sin(t)", "9**9**9**9", "factorial(10**8)", "(t+1)**100000",
                  "__import__('os').system('x')", "(" * 199 + "t" + ")" * 199, "t" * 1_000_000):
-        def read():
+        def read(text=text):
             try:
                 return read_expression(text, symbols={"t": t}, where="benchmark")
             except ExpressionError as exc:

@@ -147,7 +147,7 @@ def main(N=10000):
             continue
         ratio = us / per["kinbook simulate"]
         print(f"{name:45} {us:14.1f} {ratio:17.1f}×")
-    print(f"\ntarget: kinbook ≤ 15 µs per instant and ≥ 8× faster than (a)")
+    print("\ntarget: kinbook ≤ 15 µs per instant and ≥ 8× faster than (a)")
 
 
 if __name__ == "__main__":

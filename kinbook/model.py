@@ -22,7 +22,9 @@ from . import analysis, kernels
 from ._arrays import real_array
 from .errors import InputError, ModelError, UnknownBodyError, UnknownPointError
 from .expressions import check_expression, read_constant, read_expression, read_number
-from .symbolic import derive, t as t_symbol, time_derivatives, time_function as read_time_function
+from .symbolic import derive, time_derivatives
+from .symbolic import t as t_symbol
+from .symbolic import time_function as read_time_function
 
 __all__ = [
     "ConstraintBase",

@@ -1,8 +1,6 @@
 import subprocess
 import sys
 
-import numpy as np
-
 from kinbook import examples
 from kinbook.cli import main
 

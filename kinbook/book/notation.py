@@ -20,7 +20,6 @@ kinbook names coordinates ``x1, y1, phi1, dx1 …`` (body numbers); the book wri
 from __future__ import annotations
 
 import html
-
 import re
 from functools import lru_cache
 from types import SimpleNamespace

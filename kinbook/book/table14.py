@@ -201,8 +201,20 @@ def bench():
     It does not assemble (the constraints contradict each other); it is a place to evaluate every type's
     rows at the same configurations.
     """
-    from ..spatial import (Cylindrical, Ground, Mechanism, Normal1, Normal2, Parallel1, Parallel2, Revolute,
-                           Spherical, SphericalSpherical, Translational, Universal)
+    from ..spatial import (
+        Cylindrical,
+        Ground,
+        Mechanism,
+        Normal1,
+        Normal2,
+        Parallel1,
+        Parallel2,
+        Revolute,
+        Spherical,
+        SphericalSpherical,
+        Translational,
+        Universal,
+    )
 
     m = Mechanism("test bench: one constraint of each type")
     m.add_body("i", points={"P": (0, 0, 1), "B": (1, 0, 0)}, vectors={"s": (0, 0, 1), "h": (1, 0, 0)},

@@ -544,7 +544,7 @@ def gamma_table(mech, states, *, h=1e-4, tol=1e-12, fd_tol=1e-6):
         for q, qd, qdd in states:
             q, qd, qdd = (np.asarray(v, dtype=float) for v in (q, qd, qdd))
             gam = mech.gamma(q, qd)[c.rows]
-            path = lambda s: q + qd * s + 0.5 * qdd * s**2  # noqa: E731
+            path = lambda s, q=q, qd=qd, qdd=qdd: q + qd * s + 0.5 * qdd * s**2  # noqa: E731
             Phi_dd = (mech.Phi(path(h)) - 2 * mech.Phi(q) + mech.Phi(path(-h)))[c.rows] / h**2
             fd = mech.Phi_q(q)[c.rows] @ qdd - Phi_dd
             err["fd"] = max(err["fd"], np.abs(gam - fd).max() / max(1.0, np.abs(gam).max()))

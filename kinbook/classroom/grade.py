@@ -33,8 +33,15 @@ import numpy as np
 from ..errors import GradingError, KinbookError
 from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
-from .notebook import (MAX_NOTEBOOK_BYTES, find_parameters, load_source, locked_sequence, missing_locked,
-                       parse_submission, student_notebook)
+from .notebook import (
+    MAX_NOTEBOOK_BYTES,
+    find_parameters,
+    load_source,
+    locked_sequence,
+    missing_locked,
+    parse_submission,
+    student_notebook,
+)
 from .parts import CHECKS
 from .reference_use import reference_use
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, worst

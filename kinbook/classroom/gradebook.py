@@ -21,7 +21,6 @@ import csv
 import html
 import io
 import json
-import os
 import sqlite3
 import time
 from pathlib import Path

@@ -34,7 +34,6 @@ def release(sources, outdir="release"):
     list of Path
         The notebooks written.
     """
-    import nbformat
 
     if isinstance(sources, (str, os.PathLike)):
         sources = [sources]

@@ -260,7 +260,7 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
     ``own``: with the student's Φ, a dict with its "tape" (or None for a function), "values" (its derived
     quantities at the samples) — derivation mistakes are then made on it as well.
     """
-    s = data_samples = target.samples("assembled")
+    s = target.samples("assembled")
     ex = _Expected(target, quantity, data, s)
     wrong = [r for r in matching.rows if r.status == "wrong"]
     if not wrong:

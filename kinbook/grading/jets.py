@@ -186,7 +186,7 @@ class Tape:
         V, G, D1, D2 = [], [], [], []
         zero = np.zeros(N)
         with np.errstate(all="ignore"):
-            for kind, payload, dep in self.ops:
+            for kind, payload, _dep in self.ops:
                 v = g = a = b = None
                 if kind == "const":
                     v = np.full(N, payload)

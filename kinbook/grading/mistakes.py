@@ -272,7 +272,7 @@ def _structural(target, c):
                 yield from add("sign_flip", e, Msg("d.sign_of", what=f"A_{roles[role]} s'_{roles[role]}"))
     if spec.points:
         nxyz = 2 if spec.frame == "planar" else 3
-        for role, q in enumerate(Q):
+        for role in range(len(Q)):
             for k in range(nxyz):
                 Qs = [sp.Matrix(x) for x in Q]
                 Qs[role][k] = -Qs[role][k]

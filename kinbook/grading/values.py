@@ -337,8 +337,8 @@ def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name=
 def _from_matrix(A_):
     """Variants of any rotation matrix: the book's A(p) misprint and ½A, at the p of A."""
     try:
-        from .expected import _book_A_of_p
         from ..spatial.rotations import p_from_A
+        from .expected import _book_A_of_p
 
         p = np.asarray(p_from_A(np.asarray(A_, float)), float)
     except Exception:  # not a rotation matrix: no p

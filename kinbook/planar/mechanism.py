@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-
 from ..errors import ModelError
 from ..expressions import read_constant
 from ..model import ConstraintTable, MechanismBase

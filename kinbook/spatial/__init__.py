@@ -10,6 +10,7 @@
 Conventions (frames, active rotations, z-x-z, radians, unit p): docs/conventions.md.
 """
 
+from . import constraints, plotting, random, rotations, transforms
 from .constraints import (
     CONSTRAINT_TYPES,
     Constraint,
@@ -28,11 +29,9 @@ from .constraints import (
     Translational,
     Universal,
 )
-from . import constraints, plotting, random, rotations, transforms
+from .mechanism import Body, ConstraintTable, Mechanism
 from .plotting import draw_frame, draw_vector, joint_figure, make_3d_axes
 from .random import random_p, random_p_rates
-from .transforms import point_acceleration, point_position, point_velocity
-from .mechanism import Body, ConstraintTable, Mechanism
 from .rotations import (
     A_ddot,
     A_dot,
@@ -57,6 +56,7 @@ from .rotations import (
     p_from_axis_angle,
     skew,
 )
+from .transforms import point_acceleration, point_position, point_velocity
 
 __all__ = [
     "plotting",

@@ -50,7 +50,9 @@ from ..errors import ModelError, UnknownPointError
 from ..expressions import read_number
 from ..model import ConstraintBase, constraint_types, lookup_point, stack_params
 from ..symbolic import t as t_symbol
-from .rotations import A_from_p as _A_sym, E as _E_sym, _mv
+from .rotations import A_from_p as _A_sym
+from .rotations import E as _E_sym
+from .rotations import _mv
 
 __all__ = [
     "Constraint",

@@ -13,8 +13,6 @@ the motion of a rigid body. Arrays broadcast over leading dimensions.
 
 from __future__ import annotations
 
-import numpy as np
-
 from .rotations import A_from_p, _array, _mv, _p, _shapes, _vec3, dAa_dp
 
 __all__ = ["point_position", "point_velocity", "point_acceleration"]
@@ -39,6 +37,7 @@ def point_position(r, p, s_local):
 
     Examples
     --------
+    >>> import numpy as np
     >>> from kinbook.spatial import p_from_axis_angle
     >>> point_position([1.0, 0, 0], p_from_axis_angle([0, 0, 1], np.pi / 2), [2.0, 0, 0]).round(12)
     array([1., 2., 0.])

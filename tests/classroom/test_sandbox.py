@@ -186,7 +186,7 @@ def test_a_result_frame_nested_too_deeply_is_unreadable_data():
     submission was recorded as a failure of the grader, without its parts."""
     import threading
 
-    from kinbook.classroom.sandbox.protocol import FrameError, read_frame, write_frame
+    from kinbook.classroom.sandbox.protocol import FrameError, read_frame
 
     r, w = os.pipe()
     nested = {"status": "ok", "answers": {"x": None}}

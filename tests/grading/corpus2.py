@@ -456,7 +456,6 @@ def _spatial_phi(kind, **kw):
 def _derive(rows):
     qs = _syms(1) + _syms(2)
     qd = [sp.Symbol("d" + s.name) for s in qs]
-    t = sp.Symbol("t")
     M = sp.Matrix(rows)
     J = M.jacobian(qs)
     gamma = -(J * sp.Matrix(qd)).jacobian(qs) * sp.Matrix(qd)

@@ -24,8 +24,15 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
-from kinbook.grading import (check_euler_parameters, check_gamma, check_jacobian, check_nu, check_phi,
-                             check_rotation, check_value)
+from kinbook.grading import (
+    check_euler_parameters,
+    check_gamma,
+    check_jacobian,
+    check_nu,
+    check_phi,
+    check_rotation,
+    check_value,
+)
 from kinbook.grading import mistakes as M
 from kinbook.grading.diagnose import term_variants
 from kinbook.grading.expected import DEG, Expected

@@ -7,7 +7,6 @@ names, Φ_q and γ are the book's tables (corrected where an erratum says so) or
 Φ (for the spatial joints, whose Table 14.1 the book prints empty).
 """
 
-import numpy as np
 import pytest
 import sympy as sp
 

@@ -41,7 +41,6 @@ def test_the_corpus_is_large_and_covers_every_joint_type_and_quantity():
     wrong = [c for c, _ in CASES if not c.passed]
     named = [c for c in wrong if c.mistakes != ["wrong_value"]]
     assert len(named) / len(wrong) >= 0.95, [c.id for c in wrong if c not in named]
-    ids = " ".join(c.id for c, _ in CASES)
     for kind in ("rev", "trans", "rr", "rt", "gear", "rack", "driver", "sph", "n1", "n2", "p1", "uni", "cyl"):
         for check in ("phi", "jac", "nu", "gamma"):
             assert any(f"{kind}-{check}" in c.id for c, _ in CASES), (kind, check)

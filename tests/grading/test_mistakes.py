@@ -5,7 +5,8 @@ constraint of the book's examples and the corpus mechanisms; and no generator lo
 import pytest
 
 import kinbook
-from kinbook.grading import check_phi, mistakes as M
+from kinbook.grading import check_phi
+from kinbook.grading import mistakes as M
 from kinbook.grading.target import target_for
 
 from . import corpus

@@ -14,8 +14,7 @@ from kinbook.grading.target import target_for
 from kinbook.spatial.rotations import A_from_p, E, a_bar
 from kinbook.symbolic import derive
 
-from .corpus import EX1_PHI_SIMPLE, mechanism, target
-
+from .corpus import EX1_PHI_SIMPLE, mechanism
 
 # ================================================================================================ jets
 X, Y, T = sp.symbols("x y t", real=True)

@@ -18,8 +18,16 @@ import sympy as sp
 import kinbook
 from kinbook import planar as P
 from kinbook import spatial as S
-from kinbook.grading import (check_euler_parameters, check_gamma, check_jacobian, check_nu, check_phi,
-                             check_rotation, check_value, expected)
+from kinbook.grading import (
+    check_euler_parameters,
+    check_gamma,
+    check_jacobian,
+    check_nu,
+    check_phi,
+    check_rotation,
+    check_value,
+    expected,
+)
 
 from .corpus2 import xy
 
@@ -145,7 +153,7 @@ def _ch13():
     T.append(TryIt("13-6/try-1", check_nu, lambda: example("ch13_example3")[0], ["0"] * 8 + ["100"], [
         (["0"] * 8 + ["-100"], "nu_sign"), (["0"] * 9, "nu_missing"), (["0"] * 8 + [str(100 * DEG)], "degrees")]))
     vB = m3.point_velocity(q3, qd3, "rocker", "B")
-    r3, p3, rd3, w3 = q3[6:8], q3[8], qd3[6:8], qd3[8]
+    p3, rd3, w3 = q3[8], qd3[6:8], qd3[8]
     T.append(TryIt("13-6/try-2", check_value, lambda: float(np.linalg.norm(vB)), float(np.linalg.norm(vB)), [
         (float(np.linalg.norm(vB)) * DEG, "degrees"), (2 * float(np.linalg.norm(vB)), "scaled")],
         {"name": "|v_B| at t = 0 (m/s)"}))

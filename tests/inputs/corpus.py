@@ -411,7 +411,8 @@ def reader_cases():
 
 def driver_cases():
     from kinbook.planar import DistanceDriver, Driver, Mechanism, RelativeAngleDriver
-    from kinbook.spatial import DistanceDriver as SpatialDistanceDriver, RevoluteDriver
+    from kinbook.spatial import DistanceDriver as SpatialDistanceDriver
+    from kinbook.spatial import RevoluteDriver
 
     t = sp.Symbol("t", real=True)
     texts = [
@@ -716,7 +717,7 @@ def api_cases():
     for lbl, t, word in bad_t:
         add(f"solve_position-t-{lbl}", lambda t=t: ex().solve_position(t), "InputError", ("`t`", word))
         add(f"diagnose-t-{lbl}", lambda t=t: ex().diagnose(ex().q0, t), "InputError", ("`t`",))
-        add(f"nu-t-{lbl}", lambda t=t: ex().nu(ex().q0, t) if lbl != "list" else ex().nu(ex().q0, [[0]]),
+        add(f"nu-t-{lbl}", lambda t=t, lbl=lbl: ex().nu(ex().q0, t) if lbl != "list" else ex().nu(ex().q0, [[0]]),
             "InputError", ("`t`",))
     for lbl, tol in (("inf", np.inf), ("zero", 0), ("negative", -1e-9), ("text", "1e-9"), ("bool", True),
                      ("nan", np.nan), ("none", None)):
@@ -815,7 +816,8 @@ def function_cases():
     import inspect
 
     from kinbook.planar import transforms as PT
-    from kinbook.spatial import rotations as R, transforms as ST
+    from kinbook.spatial import rotations as R
+    from kinbook.spatial import transforms as ST
 
     bad = [("text", "x", "`"), ("numtext", "1", "text"), ("none", None, "`"), ("nan", np.nan, "finite"),
            ("inf", np.inf, "finite"), ("complex", np.array([1j, 0, 0]), "complex"), ("bool", True, "booleans"),

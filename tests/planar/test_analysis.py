@@ -87,7 +87,6 @@ def test_batched_sweep_equals_sequential_solutions():
     m = examples.load("ch13_example2")
     times = np.linspace(0, 0.05, 101)
     r = m.simulate(times, anchor_every=16)
-    q = m.solve_position(0.0)
     for k in (0, 7, 33, 100):
         qk = m.solve_position(times[k], q0=r.q[k] + 1e-3)
         np.testing.assert_allclose(r.q[k], qk, atol=1e-9)

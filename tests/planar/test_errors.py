@@ -4,7 +4,15 @@ import numpy as np
 import pytest
 
 import kinbook
-from kinbook import ExpressionError, InputError, MechanismFileError, ModelError, UnknownBodyError, UnknownPointError, examples
+from kinbook import (
+    ExpressionError,
+    InputError,
+    MechanismFileError,
+    ModelError,
+    UnknownBodyError,
+    UnknownPointError,
+    examples,
+)
 from kinbook.planar import Driver, Mechanism, Revolute, RevoluteRevolute, Translational
 
 

@@ -12,10 +12,18 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from matplotlib.patches import Circle, FancyArrowPatch, Polygon  # noqa: E402
 
-from kinbook import InputError, examples  # noqa: E402
-from kinbook import planar  # noqa: E402
-from kinbook.planar import Ground, Mechanism, Revolute, Driver  # noqa: E402
-from kinbook.planar import plotting  # noqa: E402
+from kinbook import (  # noqa: E402
+    InputError,
+    examples,
+    planar,  # noqa: E402
+)
+from kinbook.planar import (  # noqa: E402
+    Driver,
+    Ground,
+    Mechanism,
+    Revolute,
+    plotting,  # noqa: E402
+)
 from kinbook.planar.plotting._common import _point_text  # noqa: E402
 
 from .zoo import zoo  # noqa: E402

@@ -11,8 +11,17 @@ import numpy as np
 
 from ... import examples
 from ...grading import check_gamma, check_jacobian, check_nu, check_phi, check_value
-from ...planar import A, B, Mechanism, Revolute, RevoluteRevolute, Translational, point_acceleration
-from ...planar import point_position, point_velocity
+from ...planar import (
+    A,
+    B,
+    Mechanism,
+    Revolute,
+    RevoluteRevolute,
+    Translational,
+    point_acceleration,
+    point_position,
+    point_velocity,
+)
 from . import register
 
 

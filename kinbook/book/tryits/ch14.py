@@ -5,8 +5,17 @@ from __future__ import annotations
 import numpy as np
 
 from ...grading import check_euler_parameters, check_gamma, check_jacobian, check_phi, check_rotation, check_value
-from ...spatial import (A_from_axes, A_from_euler, A_from_p, euler_from_A, omega_from_euler_rates, omega_from_p_dot,
-                        p_from_A, p_from_axis_angle, point_position)
+from ...spatial import (
+    A_from_axes,
+    A_from_euler,
+    A_from_p,
+    euler_from_A,
+    omega_from_euler_rates,
+    omega_from_p_dot,
+    p_from_A,
+    p_from_axis_angle,
+    point_position,
+)
 from . import register
 
 _AXES_14_1 = ([0, 0.6, 0.8], [0, -0.8, 0.6], [1, 0, 0])

@@ -233,11 +233,10 @@ def preload():
 
     warnings.filterwarnings("ignore")
     os.environ.setdefault("MPLBACKEND", "Agg")
-    import numpy  # noqa: F401
-    import sympy
-
     import IPython.core.logger  # noqa: F401  (imported lazily by IPython at the first cell)
+    import numpy  # noqa: F401
     import stack_data  # noqa: F401  (tracebacks)
+    import sympy
 
     import kinbook  # noqa: F401
     import kinbook.classroom.parts  # noqa: F401
@@ -247,13 +246,12 @@ def preload():
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.font_manager  # noqa: F401  (builds the font list once)
-    import matplotlib.pyplot  # noqa: F401
-
     import ipykernel.debugger  # noqa: F401  (what IPKernelApp.initialize imports)
     import ipykernel.ipkernel  # noqa: F401
     import ipykernel.kernelapp  # noqa: F401
     import ipykernel.zmqshell  # noqa: F401
+    import matplotlib.font_manager  # noqa: F401  (builds the font list once)
+    import matplotlib.pyplot  # noqa: F401
 
     warnings.resetwarnings()
 

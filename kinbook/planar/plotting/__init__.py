@@ -36,9 +36,9 @@ under nbval, whose stored output would then be a widget model; a notebook checke
 from . import animation, explore, joints, plots, scene
 from .animation import MAX_FRAMES, animate, animation_html
 from .explore import explorer
-from .scene import draw, draw_frame, draw_point_vectors
 from .joints import Drawing, drawing_for
 from .plots import plot_history, plot_trajectories
+from .scene import draw, draw_frame, draw_point_vectors
 
 __all__ = [
     "draw",

@@ -10,8 +10,8 @@ import numpy as np
 from ..._animation import AnimationHTML
 from ...errors import InputError
 from ._common import _TRACES, _plt, _size, _style_axes
-from .scene import _Scene
 from .joints import driver_symbol
+from .scene import _Scene
 
 __all__ = ["animate", "animation_html", "MAX_FRAMES"]
 

@@ -16,8 +16,8 @@ import numpy as np
 from ...analysis import follow, follow_times
 from ...errors import InputError
 from ._common import _plt, _size, _style_axes
-from .scene import _Scene
 from .joints import driver_symbol
+from .scene import _Scene
 
 __all__ = ["explorer"]
 
