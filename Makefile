@@ -9,7 +9,8 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinbook-installed
 PIN    := requirements/constraints.txt
 
-.PHONY: lab lint test test-lms install kernel lock clean notebooks test-cpu html web-env book lite test-web lock-web chromium
+.PHONY: lab lint test test-lms install kernel lock clean notebooks test-cpu html web-env book lite test-web lock-web chromium \
+	translations
 
 install: $(STAMP)
 
@@ -45,6 +46,16 @@ test: $(STAMP)
 # Static analysis alone (make test runs it first): pyflakes, import order and bugbear, configured in pyproject.toml.
 lint: $(STAMP)
 	$(BIN)/ruff check .
+
+# After changing a message: Babel extracts the marked messages (kinbook/i18n.py: N_, Np_, pN_; the mappings are
+# pyproject.toml's [tool.babel]), merges them into each catalogue (a new message appears untranslated: translate it
+# in kinbook/locale/<lang>/LC_MESSAGES/kinbook.po and run this again) and compiles the .mo files that are shipped.
+translations: $(STAMP)
+	mkdir -p build
+	$(BIN)/pybabel -q extract -F pyproject.toml -k N_ -k Np_:1,2 -k pN_:1c,2 --no-location -w 120 \
+		--project kinbook --copyright-holder "kinbook developers" -o build/kinbook.pot .
+	$(BIN)/pybabel -q update -i build/kinbook.pot -d kinbook/locale -D kinbook --no-fuzzy-matching --ignore-obsolete -w 120
+	$(BIN)/pybabel compile -d kinbook/locale -D kinbook --statistics
 
 # The notebook tests again under another BLAS/SIMD profile: OpenBLAS's SSE3 (Prescott) kernels and numpy without
 # its AVX2 (X86_V3) and AVX-512 (X86_V4, AVX512_*) loops. Outputs stored on one CPU and compared on another round

@@ -273,7 +273,7 @@ def _as_numbers(value, what, **fields):
     if arr.dtype.kind not in "iuf":
         raise Refused("malformed", "not_numbers", what=what, **fields)
     if arr.size > MAX_OUTPUT:
-        raise Refused("malformed", "too_many_numbers", size=arr.size, limit=MAX_OUTPUT)
+        raise Refused("malformed", "too_many_numbers", n=arr.size, limit=MAX_OUTPUT)
     if arr.ndim > 2:
         squeezed = arr.squeeze()
         if squeezed.ndim > 2:

@@ -117,6 +117,25 @@ def test_reading_spellings_and_refusals():
         assert exc.value.code == code, bad
 
 
+
+@pytest.mark.parametrize("name", ["theta2", "x4"])
+def test_a_sympy_symbol_the_mechanism_lacks_is_refused_as_unknown_not_a_crash(name):
+    """Regression (issue 22): read.py used Msg without importing it, so a *sympy* symbol outside the mechanism
+    (theta2, or x4 in a three-body mechanism) crashed every checker with NameError."""
+    m = mechanism("ch13_example3")  # three bodies: x4 is no coordinate of it
+    bad = sp.Symbol(name)
+    x2, phi2 = sp.symbols("x2 phi2")
+    for check, answer in ((check_phi, [x2 + sp.cos(bad), phi2]), (check_jacobian, sp.Matrix([[bad] * 9])),
+                          (check_gamma, [bad] * m.m), (check_nu, [bad] * m.m)):
+        r = check(answer, m)
+        assert not r.passed and r.mistakes == ["unknown_symbol"], (check.__name__, r)
+        assert f"unknown symbol(s) {name}" in r.messages[0], r
+        try:
+            kinbook.set_language("es")
+            assert f"símbolo(s) desconocido(s) {name}" in r.messages[0], r
+        finally:
+            kinbook.set_language("en")
+
 def test_the_target_cache_follows_the_mechanism_version():
     """Remove a constraint and add a different one under the same name: the check sees the new one
     (it used to crash on a stale target)."""

@@ -1,0 +1,107 @@
+"""Translations through gettext (kinbook.i18n): every marked message of the package is in the Spanish catalogue,
+translated, not fuzzy, with the same fields; the shipped .mo is the compiled .po; plural forms follow n."""
+
+import gettext
+import re
+import string
+from pathlib import Path
+
+import pytest
+
+babel = pytest.importorskip("babel")  # a test/dev dependency (pyproject's test extra): the catalogue's tools
+
+from babel.messages.extract import extract_from_dir  # noqa: E402
+from babel.messages.pofile import read_po  # noqa: E402
+
+import kinbook  # noqa: E402
+from kinbook import i18n  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+PO = i18n.LOCALE_DIR / "es" / "LC_MESSAGES" / "kinbook.po"
+MO = PO.with_suffix(".mo")
+
+
+def _catalog():
+    with PO.open("rb") as f:
+        return read_po(f, locale="es", domain="kinbook")
+
+
+def _marked():
+    """(message id, context) of every marked message in kinbook/, read by Babel's extractor as `make translations`
+    reads them (pyproject.toml's [tool.babel], the keywords of kinbook.i18n)."""
+    out = set()
+    for _file, _line, message, _comments, context in extract_from_dir(ROOT / "kinbook", keywords=i18n.KEYWORDS,
+                                                                       method_map=[("**.py", "python")]):
+        out.add((message if isinstance(message, str) else tuple(message), context))
+    return out
+
+
+def _fields(text):
+    return {f for _, f, _, _ in string.Formatter().parse(text) if f}
+
+
+def test_every_marked_message_is_translated_in_the_spanish_catalogue():
+    catalog = _catalog()
+    marked = _marked()
+    assert len(marked) >= 200
+    problems = []
+    for message, context in sorted(marked, key=str):
+        key = message[0] if isinstance(message, tuple) else message
+        entry = catalog.get(key, context=context)
+        if entry is None:
+            problems.append(("missing", message))
+            continue
+        strings = entry.string if isinstance(entry.string, tuple) else (entry.string,)
+        if entry.fuzzy or not all(strings):
+            problems.append(("fuzzy or untranslated", message))
+            continue
+        ids = message if isinstance(message, tuple) else (message,)
+        allowed = set().union(*(_fields(m) for m in ids))
+        for s in strings:
+            if not _fields(s) <= allowed:  # a translation may leave out {n} (its singular), never invent a field
+                problems.append(("fields", message, s))
+    assert not problems, problems
+
+
+def test_the_plural_forms_are_spanish():
+    assert _catalog().plural_forms == "nplurals=2; plural=(n != 1);"
+
+
+def test_the_shipped_mo_is_the_compiled_po():
+    """A .po edited without `make translations` leaves a stale .mo: what gettext reads at run time."""
+    with MO.open("rb") as f:
+        shipped = gettext.GNUTranslations(f)._catalog
+    expected = {}
+    for m in _catalog():
+        if not m.id or not m.string:
+            continue
+        key = m.id if m.context is None else f"{m.context}\x04{m.id if isinstance(m.id, str) else m.id[0]}"
+        if isinstance(m.id, tuple):
+            ctx = "" if m.context is None else f"{m.context}\x04"
+            for k, s in enumerate(m.string):
+                expected[(ctx + m.id[0], k)] = s
+        else:
+            expected[key] = m.string
+    shipped = {k: v for k, v in shipped.items() if k != ""}
+    assert shipped == expected
+
+
+def test_the_catalogue_is_package_data():
+    text = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
+    assert re.search(r'"kinbook" = \[[^]]*"locale/\*/LC_MESSAGES/\*\.mo"', text)
+
+
+def test_set_language_switches_every_message_and_plural_forms():
+    from kinbook.grading._i18n import Msg, render
+
+    try:
+        kinbook.set_language("es")
+        assert render(Msg("summary", what="Φ", ok=0, n=1, score=0.0)) == "Φ: 0 de 1 fila correcta (puntuación 0.00)."
+        assert render(Msg("summary", what="Φ", ok=2, n=3, score=0.67)) == \
+            "Φ: 2 de 3 filas correctas (puntuación 0.67)."
+        assert render(Msg("row_ok")) == "correcta" and render(Msg("value_ok")) == "correcto"
+    finally:
+        kinbook.set_language("en")
+    assert render(Msg("summary", what="Φ", ok=0, n=1, score=0.0)) == "Φ: 0 of 1 row correct (score 0.00)."
+    with pytest.raises(kinbook.KinbookError, match="`lang` must be one of en, es, got 'fr'"):
+        kinbook.set_language("fr")
