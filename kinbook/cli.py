@@ -82,6 +82,17 @@ def student_id(text):
     return text
 
 
+def id_pattern(text):
+    """A ready pattern's name or a regular expression with a student or lms group (argparse type)."""
+    from .classroom.naming import NamingError, compile_pattern
+
+    try:
+        compile_pattern(text)
+    except NamingError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return text
+
+
 def existing_file(text):
     """The path of an existing file (argparse type)."""
     if not text or "\0" in text:
@@ -179,9 +190,33 @@ def _cmd_grade(args):
 
     results = grade(args.source, args.submissions, args.output, timeout=args.timeout, memory=args.memory,
                     jobs=args.jobs, force=args.force, generic=args.generic, reveal_hidden=args.reveal_hidden,
-                    isolation=not args.no_isolation, progress=progress)
-    print(f"graded {len(results)} submission(s); gradebook in {args.output}/grades.csv, feedback in "
-          f"{args.output}/feedback/")
+                    isolation=not args.no_isolation, progress=progress, **_course_options(args))
+    out = args.output.rstrip("/") or "."
+    print(f"graded {len(results)} submission(s); gradebook {out}/gradebook.sqlite (grades.csv, totals.csv; every "
+          f"file and what became of it in collection.csv), feedback in {out}/feedback/")
+
+
+def _course_options(args):
+    """grade's options for a course: the roster, how ids are read, the attempt policy, a changed source."""
+    from .classroom.roster import read_roster
+
+    roster = read_roster(args.roster, args.roster_id) if args.roster else None
+    return dict(regrade=args.regrade, policy=args.policy, id_pattern=args.id_pattern, roster=roster)
+
+
+def _course_arguments(p):
+    from .classroom.naming import PATTERNS
+
+    p.add_argument("--roster", type=existing_file, help="the course's roster: kinbook's roster.csv, or a Canvas or "
+                   "Moodle export as downloaded (stored in the gradebook; see docs/instructors.md)")
+    p.add_argument("--roster-id", metavar="COLUMN", help="the roster's column holding the kinbook id")
+    p.add_argument("--id-pattern", metavar="REGEX", type=id_pattern, help="read student ids from the paths with this regular expression "
+                   "(named groups student or lms, time, late, attempt, file), or a ready one: "
+                   + ", ".join(PATTERNS))
+    p.add_argument("--policy", choices=("latest", "best"), help="which of a student's attempts counts (default: the "
+                   "exercise's stored policy, else latest; with latest only the latest file is graded)")
+    p.add_argument("--regrade", action="store_true", help="the source changed since the gradebook's results were "
+                   "graded: grade every submission again with it (without this, such a run stops)")
 
 
 def build_parser():
@@ -230,6 +265,7 @@ def build_parser():
                    help="give the checkers' full messages for hidden checks too (they may quote the expected value)")
     p.add_argument("--no-isolation", action="store_true",
                    help="grade without the bubblewrap sandbox (audit hook only; recorded as 'isolation: none')")
+    _course_arguments(p)
     p.set_defaults(func=_cmd_grade)
     return parser
 

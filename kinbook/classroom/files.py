@@ -19,6 +19,7 @@ there by students, so it is treated as hostile:
 
 from __future__ import annotations
 
+import datetime as _dt
 import hashlib
 import os
 import stat
@@ -94,7 +95,7 @@ def id_key(sid):
 
 @dataclass
 class Entry:
-    """One submission found by :func:`collect`.
+    """One entry found by :func:`collect`: a submission to grade, or a file that is not, with the reason.
 
     Attributes
     ----------
@@ -107,8 +108,25 @@ class Entry:
     ident : tuple or None
         (device, inode, size) as listed.
     student : str
+        The kinbook id ("" for an entry that names no student).
     status, message : str or None
-        Why the entry is not graded (``refused``, ``too-large``, ``bad-id``, ``duplicate-id``), or None.
+        None for a submission to grade; else why it is not graded: ``ignored`` (not a notebook, a hidden name, not
+        named after the exercise …), ``superseded`` (an earlier attempt of a student whose latest one is graded),
+        ``refused`` (a link, a device, a hard link, the instructor's own source …), ``too-large``, ``bad-id``,
+        ``duplicate-id``.
+    submitted : str
+        When it was handed in (ISO 8601): from the name (no zone: read in the due date's) or the file's time.
+    submitted_from : str
+        ``"name"``, ``"file"`` or "".
+    late : bool
+        The LMS marked it late in its name.
+    attempt : int
+        The attempt number read from the name (0: none).
+    on_roster : bool or None
+        None when no roster was given.
+    result : bool
+        Whether the entry stands for its student in the gradebook (a file refused beside a gradable one of the same
+        student does not: it is listed, not graded).
     """
 
     path: str
@@ -118,6 +136,18 @@ class Entry:
     student: str
     status: str | None = None
     message: str | None = None
+    submitted: str = ""
+    submitted_from: str = ""
+    late: bool = False
+    attempt: int = 0
+    on_roster: bool | None = None
+    result: bool = True
+    mtime: float = 0.0
+    sha256: str = ""
+    replace: int | None = None
+    _raw: str = ""
+    _named: bool | None = None
+    _order: tuple = ()
 
 
 def _kind(mode):
@@ -128,79 +158,156 @@ def _kind(mode):
     return "not a regular file"
 
 
-def _name_of(root, parts, exercise):
-    """The student's name from a file's path: ``<student>/<exercise>.ipynb``, ``<exercise>-<student>.ipynb`` or
-    ``<student>.ipynb``."""
-    stem = parts[-1][:-len(".ipynb")] if parts[-1].endswith(".ipynb") else parts[-1]
-    if stem == exercise:
-        return parts[-2] if len(parts) > 1 else os.path.basename(os.path.realpath(root))
-    if stem.startswith(exercise + "-"):
-        return stem[len(exercise) + 1:]
-    return stem
+#: Policies that choose among a student's attempts.
+POLICIES = ("latest", "best")
 
 
-def collect(paths, exercise, *, max_bytes):
-    """The submissions of ``exercise`` among ``paths`` (files, or directories searched through).
+def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="latest"):
+    """Every entry below ``paths`` (files, or directories searched through), each with its student or the reason it is
+    not graded.
 
-    In a directory, the notebooks named after the exercise (``<exercise>.ipynb``, ``<exercise>-<student>.ipynb``)
-    are taken, or every notebook when none is. Entries that are links, devices, FIFOs or sockets — notebooks,
-    or directories a student could have made — are returned refused, as are files over ``max_bytes``.
+    In a directory, without a pattern, the notebooks named after the exercise (``<exercise>.ipynb``,
+    ``<exercise>-<student>.ipynb``, with attempt suffixes) are taken, or every notebook when none is; the others are
+    listed ``ignored``. Entries that are links, devices, FIFOs, sockets or hard links are ``refused`` (never followed
+    or opened), files over ``max_bytes`` ``too-large``; hidden names, Jupyter's checkpoints and files that are not
+    notebooks ``ignored``. The student's id, the attempt and the time come from the path
+    (:func:`kinbook.classroom.naming.read_name`, ``pattern`` an ``--id-pattern``) and, with a ``roster``
+    (:class:`kinbook.classroom.roster.Roster`), are mapped to the roster's kinbook id. Several attempts of one student:
+    with ``policy`` "latest" the latest is graded and the others are ``superseded``; with "best" all are graded.
 
     Returns
     -------
     list of Entry
         In a stable order (by path).
     """
-    found = []  # (parts, root, ident or None, problem)
+    from .naming import compile_pattern, read_name
+
+    if policy not in POLICIES:
+        raise ValueError(f"policy must be one of {', '.join(POLICIES)}, got {policy!r}")
+    rx = compile_pattern(pattern)
+    keep = roster.knows if roster is not None else None
+    found = []  # (parts, root, stat or None, problem)
     for given in paths:
         given = os.fspath(given)
+        root = os.path.dirname(given) or "."
         try:
             st = os.lstat(given)
         except OSError as exc:
-            found.append(((os.path.basename(given),), os.path.dirname(given) or ".", None,
-                          ("refused", f"cannot be read: {exc.strerror}")))
+            found.append(((os.path.basename(given),), root, None, ("refused", f"cannot be read: {exc.strerror}")))
             continue
         if stat.S_ISDIR(os.stat(given).st_mode):  # the directory the instructor named: followed if a link
             found += _walk(given)
-        elif stat.S_ISREG(st.st_mode):
-            found.append(((os.path.basename(given),), os.path.dirname(given) or ".", (st.st_dev, st.st_ino, st.st_size),
-                          None))
         else:
-            found.append(((os.path.basename(given),), os.path.dirname(given) or ".", None,
-                          ("refused", f"{_kind(st.st_mode)}: not read")))
-    named = [f for f in found if f[0][-1] in (f"{exercise}.ipynb",) or f[0][-1].startswith(exercise + "-")]
-    if named:
-        found = named + [f for f in found if f[3] is not None and f not in named and not f[0][-1].endswith(".ipynb")]
+            found.append(((os.path.basename(given),), root, st, _problem(os.path.basename(given), st, True)))
     entries = []
-    for parts, root, ident, problem in found:
-        sid, bad = student_id(_name_of(root, parts, exercise))
-        e = Entry(shown(os.path.join(root, *parts)), root, parts, ident, sid)
+    for parts, root, st, problem in found:
+        root_name = os.path.basename(os.path.realpath(root)) if len(parts) == 1 else ""
+        readable = st is not None and problem is None
+        e = Entry(shown(os.path.join(root, *parts)), root, parts,
+                  (st.st_dev, st.st_ino, st.st_size) if readable else None, "")
+        if problem is not None and problem[0] == "ignored":
+            e.status, e.message, e.result = problem[0], problem[1], False
+            entries.append(e)
+            continue
+        if st is not None:
+            e.mtime = st.st_mtime
+        name = read_name(parts, exercise, root_name or os.path.basename(os.path.realpath(root)), rx, keep)
+        e._named, e.attempt, e.late = name.exercise_named, name.attempt, name.late
+        if name.time is not None:
+            e.submitted, e.submitted_from = name.time.isoformat(), "name"
+        elif st is not None:
+            e.submitted = _dt.datetime.fromtimestamp(int(st.st_mtime), _dt.timezone.utc).isoformat()
+            e.submitted_from = "file"
+        e._order = (name.attempt, (name.time or _dt.datetime.min).isoformat(), e.mtime, e.path)
+        if name.raw is None:
+            e.status, e.message, e.result = "ignored", f"no student: the path {name.why}", False
+            entries.append(e)
+            continue
+        known = roster.find(name.raw, name.key) if roster is not None else None
+        if known is not None:
+            e.student, e._raw, e.on_roster = known.student, known.student, True
+        else:
+            e.student, bad = student_id(name.raw)
+            e._raw = name.raw
+            e.on_roster = False if roster is not None else None
+            if bad and problem is None:
+                problem = ("bad-id", bad)
         if problem is not None:
             e.status, e.message = problem
-        elif ident[2] > max_bytes:
-            e.status, e.message = "too-large", f"the file has {ident[2]:,} bytes (at most {max_bytes:,}); not read"
-        elif bad:
-            e.status, e.message = "bad-id", bad
+        elif e.ident[2] > max_bytes:
+            e.status, e.message = "too-large", f"the file has {e.ident[2]:,} bytes (at most {max_bytes:,}); not read"
         entries.append(e)
-    by_key = {}
-    for e in entries:
-        by_key.setdefault(id_key(e.student), []).append(e)
-    for same in by_key.values():
-        if len(same) > 1:
-            for e in same:
-                others = ", ".join(o.path for o in same if o is not e)[:300]
-                e.status, e.message = "duplicate-id", (f"more than one submission for student {e.student!r} (also "
-                                                       f"{others}); none of them is graded")
+    if rx is None:
+        named = [e for e in entries if e._named]
+        if named:
+            for e in entries:
+                if e._named is False and e.status is None:
+                    e.status, e.result = "ignored", False
+                    e.message = (f"not named after the exercise {exercise!r} (other notebooks here are): not graded; "
+                                 "rename it, or give --id-pattern")
+    _attempts(entries, policy)
     return sorted(entries, key=lambda e: e.path)
 
 
+def _attempts(entries, policy):
+    """Group the entries of one student: spellings that only meet once folded are a clash (``duplicate-id``);
+    several files of one id are attempts, chosen by ``policy``."""
+    by_key = {}
+    for e in entries:
+        if e.student and e.status not in ("ignored",):
+            by_key.setdefault(id_key(e.student), []).append(e)
+    for same in by_key.values():
+        if len(same) < 2:
+            continue
+        if len({e._raw for e in same}) > 1 and not all(e.on_roster for e in same):
+            for e in same:
+                others = ", ".join(o.path for o in same if o is not e)[:300]
+                e.status, e.message = "duplicate-id", (f"more than one submission for student {e.student!r} under "
+                                                       f"different spellings (also {others}); none of them is graded")
+            continue
+        good = sorted((e for e in same if e.status is None), key=lambda e: e._order)
+        if good:
+            for e in same:
+                if e.status is not None:
+                    e.result = False
+                    e.message += f" (another file of {e.student} is graded)"
+        if policy == "latest" and len(good) > 1:
+            last = good[-1]
+            for e in good[:-1]:
+                e.status, e.result = "superseded", False
+                e.message = f"an earlier attempt of {e.student} than {last.path} (policy: latest)"
+        elif not good:
+            for e in same[:-1]:
+                e.result = False
+
+
+def _problem(name, st, named_by_instructor=False):
+    """(status, reason) for a listed entry that is not read, or None."""
+    if stat.S_ISLNK(st.st_mode) or not stat.S_ISREG(st.st_mode):
+        return "refused", f"{_kind(st.st_mode)}: not followed"
+    if not named_by_instructor and name.startswith("."):
+        return "ignored", "a hidden name (editors and archives leave these): not read"
+    if not named_by_instructor and not name.endswith(".ipynb"):
+        return "ignored", "not a notebook (.ipynb): not read"
+    if st.st_nlink > 1:
+        return "refused", (f"a hard link (one of {st.st_nlink} names of the same file, maybe the instructor's source or "
+                           "a classmate's file): not read")
+    return None
+
+
+_SPECIAL_DIRS = {".ipynb_checkpoints": "Jupyter's autosaved checkpoints: not read",
+                 "__MACOSX": "macOS archive metadata (made by unzipping on a Mac): not read",
+                 "__pycache__": "Python's cache: not read"}
+
+
 def _walk(top):
-    """(parts, root, ident, problem) of the notebooks below ``top`` and of every entry that is refused."""
+    """(parts, root, stat, problem) of every entry below ``top`` (directories that are not searched included)."""
     out = []
     try:
         fd = os.open(top, os.O_RDONLY | os.O_DIRECTORY)
     except OSError as exc:
-        return [((os.path.basename(top),), os.path.dirname(top) or ".", None, ("refused", f"cannot be read: {exc.strerror}"))]
+        return [((os.path.basename(top),), os.path.dirname(top) or ".", None,
+                 ("refused", f"cannot be read: {exc.strerror}"))]
     stack = [(fd, ())]
     while stack:
         dfd, prefix = stack.pop()
@@ -211,9 +318,11 @@ def _walk(top):
             listing = []
         for name, st in listing:
             parts = prefix + (name,)
-            if name == ".ipynb_checkpoints" or (name.startswith(".") and stat.S_ISDIR(st.st_mode)):
-                continue
             if stat.S_ISDIR(st.st_mode):
+                if name in _SPECIAL_DIRS or name.startswith("."):
+                    out.append((parts, top, None, ("ignored", _SPECIAL_DIRS.get(
+                        name, "a hidden directory (its name starts with '.'): not searched"))))
+                    continue
                 try:
                     sub = os.open(name, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW, dir_fd=dfd)
                 except OSError as exc:
@@ -224,11 +333,8 @@ def _walk(top):
                     out.append((parts, top, None, ("refused", "the directory changed while it was listed")))
                     continue
                 stack.append((sub, parts))
-            elif stat.S_ISREG(st.st_mode):
-                if name.endswith(".ipynb"):
-                    out.append((parts, top, (st.st_dev, st.st_ino, st.st_size), None))
-            else:  # a link, a FIFO, a device, a socket: never followed, never opened
-                out.append((parts, top, None, ("refused", f"{_kind(st.st_mode)}: not followed")))
+            else:
+                out.append((parts, top, st, _problem(name, st)))
         os.close(dfd)
     return out
 

@@ -31,8 +31,11 @@ import warnings
 import numpy as np
 
 from ..errors import GradingError, KinbookError
+from .answers import describe, mistake_rows
+from .feedback import write_pages
 from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
+from .intake import annotate, check_pin, intake
 from .notebook import (
     MAX_NOTEBOOK_BYTES,
     find_parameters,
@@ -237,10 +240,12 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         if p.hidden and not reveal_hidden:  # the verdict, not the expected value, of a hidden check
             verdict = "correct" if result.passed else "not correct" + (
                 f" (mistakes: {', '.join(result.mistakes)})" if result.mistakes else "")
-            grades.append(PartGrade(p.name, score, p.points, "ok", f"hidden check: {verdict}", "", used[p.answer]))
+            grades.append(PartGrade(p.name, score, p.points, "ok", f"hidden check: {verdict}", "", used[p.answer],
+                                    mistakes=mistake_rows(result)))
             continue
         grades.append(PartGrade(p.name, score, p.points, "ok", " | ".join(result.messages)[:1000],
-                                result._repr_html_(), used[p.answer]))
+                                result._repr_html_(), used[p.answer], mistakes=mistake_rows(result)))
+    describe(grades, parts, decoded, cells)
     status = worst(g.status for g in grades)
     message = "" if status == "ok" else next(g.message for g in grades if g.status == status)
     return done(status, message, grades, ran=True)
@@ -279,7 +284,8 @@ def _grade_task(args):
 
 
 def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jobs=1, force=False,
-          generic=False, reveal_hidden=False, isolation=True, progress=None):
+          generic=False, reveal_hidden=False, isolation=True, progress=None, regrade=False, policy=None,
+          id_pattern=None, roster=None):
     """Grade a batch of submissions of one exercise and record them in the gradebook.
 
     Parameters
@@ -296,7 +302,19 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         Submissions graded in parallel (a process pool). Each grading process keeps one sandbox, whose zygote
         forks a fresh worker and kernel for every submission and resets everything after it.
     force : bool
-        Grade again submissions already graded (also those whose file changed since).
+        Grade again files already graded (a file not graded before — a new attempt — is always graded).
+    regrade : bool
+        The source changed since the gradebook's results of this exercise were graded (a run stops otherwise):
+        grade every file again with the new source.
+    policy : {"latest", "best"} or None
+        Which of a student's attempts counts (stored as the exercise's rule; default: the stored one, else
+        latest). With latest, only the latest file of each student is graded; the others are kept as history.
+    id_pattern : str or None
+        How to read student ids (and attempts, times) from the paths: a regular expression or a ready pattern
+        (``canvas``, ``moodle``, ``blackboard``; :mod:`kinbook.classroom.naming`).
+    roster : Roster or None
+        The course's students (:func:`kinbook.classroom.roster.read_roster`): maps LMS ids to kinbook ids, and is
+        stored in the gradebook for the exports and the report.
     generic, reveal_hidden : bool
         See :func:`grade_submission`.
     isolation : bool
@@ -323,12 +341,19 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         if progress:
             progress("warning: " + NO_ISOLATION_WARNING)
     book = Gradebook(outdir)
+    try:
+        check_pin(book, src, regrade)
+    except BaseException:
+        book.close()
+        raise
     run = book.begin_run(src, "bubblewrap" if isolation else "none")
     options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden))
     results, touched = [], set()
+    plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
+                  roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress)
 
     def record(res):
-        book.record(res, run)
+        book.record(res, run, replace=annotate(res, plan, src))
         results.append(res)
         touched.add(res.student)
         if progress:
@@ -337,26 +362,9 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
             raise GradingError(f"the source notebook {str(src.path)!r} changed during grading; the run was stopped "
                                "(every result recorded so far is kept). Grade again once it is final.")
 
-    todo = []
-    for entry in collect(submissions, src.exercise, max_bytes=MAX_NOTEBOOK_BYTES):
-        previous = book.graded(src.exercise, entry.student)
-        if entry.status is None:
-            try:
-                digest = hashlib.sha256(read_entry(entry, MAX_NOTEBOOK_BYTES)).hexdigest()
-            except Refused as exc:
-                entry.status, entry.message = exc.status, exc.message
-        if previous is not None and not force:
-            if entry.status is None and previous[0] != digest:
-                book.note_changed(src.exercise, entry.student, digest)
-                if progress:
-                    progress(f"changed since graded: {entry.student} ({entry.path}; use --force to grade it again)")
-            elif progress:
-                progress(f"skipped {entry.student}: already graded (use --force to grade again)")
-            continue
-        if entry.status is not None:
-            record(_refused(src, entry, entry.status, entry.message))
-            continue
-        todo.append(entry)
+    for entry in plan.refused:
+        record(_refused(src, entry, entry.status, entry.message))
+    todo = plan.todo
 
     previous_handler = None
     if _main_thread():
@@ -376,8 +384,12 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         book.end_run(run)
         try:
             book.export()
+            write_pages(book, book.outdir / "feedback", touched)
         finally:
             book.close()
+    if plan.stale and progress:
+        progress(f"graded with the earlier source and not regraded ({len(plan.stale)}; their files were not given): "
+                 + ", ".join(plan.stale[:20]) + (" …" if len(plan.stale) > 20 else ""))
     return results
 
 

@@ -1,24 +1,44 @@
 """The gradebook: an SQLite database (``graded/gradebook.sqlite``), and the files exported from it.
 
-Every graded submission is recorded in one transaction (its row in ``submissions`` and one row per part in
-``parts``), in WAL mode with full synchronization: a grading run killed at any moment — SIGKILL, the OOM
-killer, a power cut — keeps every result recorded before, and the next run finds them and grades only what is
-left. Recording one result costs the same whether the database holds 10 results or 10,000 (one indexed
-upsert; nothing is re-read).
+Every graded submission is recorded in one transaction, in WAL mode with full synchronization: a grading run
+killed at any moment — SIGKILL, the OOM killer, a power cut — keeps every result recorded before, and the next run
+finds them and grades only what is left. Recording one result costs the same whether the database holds 10
+results or 10,000 (indexed upserts; nothing is re-read).
 
-``grades.csv`` (one row per part), ``totals.csv`` (one row per submission, for an LMS) and
-``feedback/<student>.html`` are exports, each written atomically (:func:`kinbook.classroom.files.atomic_write`)
-from the database at the end of a run (and when a run is interrupted by SIGTERM or Ctrl-C): never half-written.
+Tables
+------
+``runs``
+    When, which source (path and sha256), kinbook's version, isolation.
+``attempts``, ``attempt_parts``
+    Every attempt ever graded or seen: file, sha256, when it was handed in (and from what: its name or the file's
+    time), the source's sha256 that graded it, status, score, and one row per part (score, message, the student's
+    answer, the cell it was assigned in). Attempts ``superseded`` by a later one are kept, ungraded, as history.
+``submissions``, ``parts``
+    For each (exercise, student), the attempt that counts under the exercise's policy (``latest``: the last one
+    graded; ``best``: the highest score after the late penalty), and its parts: what ``grades.csv`` and
+    ``totals.csv`` show.
+``mistakes``
+    (attempt, part, code, row): each catalogue mistake a checker named, so that the report's item analysis is a
+    query.
+``signals``
+    Copying signals per attempt (a notebook released for another student …), for the instructor.
+``files``
+    Every entry of ``collected/`` seen by a run, with what became of it (graded, skipped, superseded, ignored,
+    refused) and why.
+``sources``
+    The source notebook each exercise is pinned to (its sha256): a run with another source stops unless it
+    regrades everything (``--regrade``).
+``roster``, ``rules``, ``extensions``, ``overrides``
+    The course: students and their LMS ids, each exercise's due date, late penalty and policy, per-student
+    extensions, and the instructor's per-part overrides (kept across regrades and ``--force``).
 
-Tables: ``runs`` (when, which source — path and sha256 —, kinbook's version, isolation), ``submissions``
-(exercise, student, file, sha256, status, message, score, isolation, the run, and ``changed_sha256`` when a
-different file was seen after grading) and ``parts``.
+``grades.csv`` (one row per part), ``totals.csv`` (one row per submission) and ``collection.csv`` (one row per file
+of the last run) are exports, each written atomically (:func:`kinbook.classroom.files.atomic_write`).
 """
 
 from __future__ import annotations
 
 import csv
-import html
 import io
 import json
 import sqlite3
@@ -27,12 +47,15 @@ from pathlib import Path
 
 from .files import atomic_write
 from .results import PartGrade, SubmissionResult
+from .scores import Final, Rule, final
 
-__all__ = ["Gradebook", "COLUMNS", "TOTALS", "DATABASE"]
+__all__ = ["Gradebook", "COLUMNS", "TOTALS", "DATABASE", "FILES"]
 
 DATABASE = "gradebook.sqlite"
 COLUMNS = ["student", "exercise", "part", "score", "max_score", "status", "message", "reference"]
 TOTALS = ["student", "exercise", "score", "max_score", "status", "isolation", "sha256", "note"]
+FILES = ["exercise", "path", "student", "outcome", "reason", "sha256", "submitted"]
+_PART_COLS = "part, score, max_score, status, message, html, reference, answer, cell"
 _SCHEMA = """
 CREATE TABLE IF NOT EXISTS runs (
     id INTEGER PRIMARY KEY, started TEXT NOT NULL, source TEXT NOT NULL, source_sha256 TEXT NOT NULL,
@@ -47,13 +70,57 @@ CREATE TABLE IF NOT EXISTS parts (
     score REAL NOT NULL, max_score REAL NOT NULL, status TEXT NOT NULL, message TEXT NOT NULL,
     html TEXT NOT NULL, reference TEXT NOT NULL,
     PRIMARY KEY (exercise, student, position));
+CREATE TABLE IF NOT EXISTS attempts (
+    id INTEGER PRIMARY KEY, exercise TEXT NOT NULL, student TEXT NOT NULL, submission TEXT NOT NULL,
+    sha256 TEXT NOT NULL, submitted TEXT NOT NULL DEFAULT '', submitted_from TEXT NOT NULL DEFAULT '',
+    late INTEGER NOT NULL DEFAULT 0, source_sha256 TEXT NOT NULL DEFAULT '', status TEXT NOT NULL,
+    message TEXT NOT NULL, score REAL NOT NULL, max_score REAL NOT NULL, seconds REAL NOT NULL,
+    isolation TEXT NOT NULL, run INTEGER, graded TEXT NOT NULL);
+CREATE INDEX IF NOT EXISTS attempts_by_student ON attempts (exercise, student, sha256);
+CREATE TABLE IF NOT EXISTS attempt_parts (
+    attempt INTEGER NOT NULL, position INTEGER NOT NULL, part TEXT NOT NULL, score REAL NOT NULL,
+    max_score REAL NOT NULL, status TEXT NOT NULL, message TEXT NOT NULL, html TEXT NOT NULL,
+    reference TEXT NOT NULL, answer TEXT NOT NULL DEFAULT '', cell TEXT NOT NULL DEFAULT '',
+    PRIMARY KEY (attempt, position));
+CREATE TABLE IF NOT EXISTS mistakes (
+    attempt INTEGER NOT NULL, exercise TEXT NOT NULL, student TEXT NOT NULL, part TEXT NOT NULL,
+    code TEXT NOT NULL, row TEXT NOT NULL);
+CREATE INDEX IF NOT EXISTS mistakes_by_attempt ON mistakes (attempt);
+CREATE TABLE IF NOT EXISTS signals (
+    attempt INTEGER NOT NULL, exercise TEXT NOT NULL, student TEXT NOT NULL, kind TEXT NOT NULL,
+    detail TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS files (
+    run INTEGER NOT NULL, exercise TEXT NOT NULL, path TEXT NOT NULL, student TEXT NOT NULL, outcome TEXT NOT NULL,
+    reason TEXT NOT NULL, sha256 TEXT NOT NULL, submitted TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS sources (
+    exercise TEXT PRIMARY KEY, sha256 TEXT NOT NULL, path TEXT NOT NULL, pinned TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS roster (
+    position INTEGER NOT NULL, student TEXT PRIMARY KEY, name TEXT NOT NULL, first TEXT NOT NULL,
+    last TEXT NOT NULL, lms_id TEXT NOT NULL, sis_id TEXT NOT NULL, login TEXT NOT NULL, email TEXT NOT NULL,
+    section TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS rules (
+    exercise TEXT PRIMARY KEY, due TEXT NOT NULL DEFAULT '', penalty REAL NOT NULL DEFAULT 0,
+    cap REAL NOT NULL DEFAULT 100, policy TEXT NOT NULL DEFAULT 'latest');
+CREATE TABLE IF NOT EXISTS extensions (
+    exercise TEXT NOT NULL, student TEXT NOT NULL, due TEXT NOT NULL, why TEXT NOT NULL,
+    PRIMARY KEY (exercise, student));
+CREATE TABLE IF NOT EXISTS overrides (
+    exercise TEXT NOT NULL, student TEXT NOT NULL, part TEXT NOT NULL, score REAL NOT NULL, why TEXT NOT NULL,
+    set_at TEXT NOT NULL, PRIMARY KEY (exercise, student, part));
 """
+#: Columns added to the tables of a gradebook made by an earlier kinbook (migrated when opened).
+_ADDED = {
+    "submissions": [("attempt", "INTEGER"), ("source_sha256", "TEXT NOT NULL DEFAULT ''"),
+                    ("submitted", "TEXT NOT NULL DEFAULT ''"), ("submitted_from", "TEXT NOT NULL DEFAULT ''"),
+                    ("late", "INTEGER NOT NULL DEFAULT 0")],
+    "parts": [("answer", "TEXT NOT NULL DEFAULT ''"), ("cell", "TEXT NOT NULL DEFAULT ''")],
+}
 
 
 def _cell(text):
     """A CSV field a spreadsheet will not read as a formula (messages can quote students' answers)."""
-    text = str(text).replace("\n", " ")
-    return "'" + text if text[:1] in ("=", "+", "-", "@", "\t", "\r") else text
+    text = str(text).replace("\n", " ").replace("\r", " ")
+    return "'" + text if text[:1] in ("=", "+", "-", "@", "\t") else text
 
 
 def _utf8(value):
@@ -64,6 +131,16 @@ def _utf8(value):
 
 def _now():
     return time.strftime("%Y-%m-%dT%H:%M:%S%z")
+
+
+def write_csv(path, header, rows):
+    """A CSV export, written atomically; every text field guarded against spreadsheet formulas."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(header)
+    for row in rows:
+        w.writerow([_cell(v) if isinstance(v, str) else v for v in row])
+    return atomic_write(path, buf.getvalue())
 
 
 class Gradebook:
@@ -83,6 +160,7 @@ class Gradebook:
         self.db.execute("PRAGMA journal_mode=WAL")
         self.db.execute("PRAGMA synchronous=FULL")
         self.db.executescript(_SCHEMA)
+        self._migrate()
         self._import_json_results()
 
     def close(self):
@@ -108,89 +186,333 @@ class Gradebook:
         self.db.execute("UPDATE runs SET finished = ? WHERE id = ?", (_now(), run))
 
     def graded(self, exercise, student):
-        """(sha256, status) of the recorded result, or None."""
-        row = self.db.execute("SELECT sha256, status FROM submissions WHERE exercise = ? AND student = ?",
-                              (exercise, student)).fetchone()
-        return row
+        """(sha256, status) of the result that counts, or None."""
+        return self.db.execute("SELECT sha256, status FROM submissions WHERE exercise = ? AND student = ?",
+                               (exercise, student)).fetchone()
 
     def has(self, student, exercise):
         return self.graded(exercise, student) is not None
+
+    def attempt_of(self, exercise, student, sha256):
+        """(id, source_sha256, status) of the attempt with this file's sha256, or None."""
+        return self.db.execute("SELECT id, source_sha256, status FROM attempts WHERE exercise = ? AND student = ? AND "
+                               "sha256 = ? ORDER BY id DESC LIMIT 1", (exercise, student, sha256)).fetchone()
 
     def note_changed(self, exercise, student, sha256):
         """A file different from the graded one was seen for this student (not graded again without --force)."""
         self.db.execute("UPDATE submissions SET changed_sha256 = ? WHERE exercise = ? AND student = ?",
                         (sha256, exercise, student))
 
-    def record(self, result, run=None):
-        """Store one submission's result (replacing an earlier one), in one transaction."""
+    def record(self, result, run=None, replace=None):
+        """Store one attempt's result (in place of attempt ``replace``, a regrade, or as a new attempt), then choose
+        the attempt that counts for the student under the exercise's policy; one transaction. Returns the attempt's
+        id."""
         r = result
         with self.db:
             self.db.execute("BEGIN IMMEDIATE")
-            self.db.execute(
-                "INSERT OR REPLACE INTO submissions (exercise, student, submission, sha256, status, message, score, "
-                "max_score, seconds, isolation, run, graded, changed_sha256) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,NULL)",
-                [_utf8(v) for v in (r.exercise, r.student, r.submission, r.sha256, r.status, r.message, r.score,
-                                    r.max_score, r.seconds, r.isolation, run, _now())])
-            self.db.execute("DELETE FROM parts WHERE exercise = ? AND student = ?",
-                            (_utf8(r.exercise), _utf8(r.student)))
+            values = [_utf8(v) for v in (r.exercise, r.student, r.submission, r.sha256, r.submitted, r.submitted_from,
+                                         int(bool(r.late)), r.source_sha256, r.status, r.message, r.score,
+                                         r.max_score, r.seconds, r.isolation, run, _now())]
+            cols = ("exercise, student, submission, sha256, submitted, submitted_from, late, source_sha256, status, "
+                    "message, score, max_score, seconds, isolation, run, graded")
+            if replace is not None:
+                self.db.execute(f"UPDATE attempts SET ({cols}) = ({', '.join('?' * 16)}) WHERE id = ?",
+                                values + [replace])
+                attempt = replace
+                for table in ("attempt_parts", "mistakes", "signals"):
+                    self.db.execute(f"DELETE FROM {table} WHERE attempt = ?", (attempt,))
+            else:
+                attempt = self.db.execute(f"INSERT INTO attempts ({cols}) VALUES ({', '.join('?' * 16)})",
+                                          values).lastrowid
             self.db.executemany(
-                "INSERT INTO parts (exercise, student, position, part, score, max_score, status, message, html, "
-                "reference) VALUES (?,?,?,?,?,?,?,?,?,?)",
-                [[_utf8(v) for v in (r.exercise, r.student, i, p.part, p.score, p.max_score, p.status, p.message,
-                                     p.html, p.reference)] for i, p in enumerate(r.parts)])
+                f"INSERT INTO attempt_parts (attempt, position, {_PART_COLS}) VALUES (?,?,?,?,?,?,?,?,?,?,?)",
+                [[attempt, i] + [_utf8(v) for v in (p.part, p.score, p.max_score, p.status, p.message, p.html,
+                                                    p.reference, p.answer, p.cell)] for i, p in enumerate(r.parts)])
+            self.db.executemany(
+                "INSERT INTO mistakes (attempt, exercise, student, part, code, row) VALUES (?,?,?,?,?,?)",
+                [[attempt] + [_utf8(v) for v in (r.exercise, r.student, p.part, str(code), str(row))]
+                 for p in r.parts for code, row in p.mistakes])
+            self.db.executemany(
+                "INSERT INTO signals (attempt, exercise, student, kind, detail) VALUES (?,?,?,?,?)",
+                [[attempt] + [_utf8(str(v)) for v in (r.exercise, r.student, kind, detail)]
+                 for kind, detail in r.signals])
+            if r.status != "superseded":
+                self._select(r.exercise, r.student)
+        return attempt
+
+    def record_file(self, run, exercise, entry, outcome, reason="", sha256=""):
+        """One entry of ``collected/`` and what became of it."""
+        self.db.execute("INSERT INTO files (run, exercise, path, student, outcome, reason, sha256, submitted) "
+                        "VALUES (?,?,?,?,?,?,?,?)", [_utf8(v) for v in (run, exercise, entry.path, entry.student or "",
+                                                                        outcome, reason or "", sha256,
+                                                                        entry.submitted)])
+
+    def _select(self, exercise, student):
+        """Make the attempt that counts under the policy the student's result (``submissions`` and ``parts``)."""
+        rows = self.db.execute("SELECT id FROM attempts WHERE exercise = ? AND student = ? AND status != 'superseded' "
+                               "ORDER BY id", (exercise, student)).fetchall()
+        if not rows:
+            return
+        ids = [r[0] for r in rows]
+        rule = self.rule(exercise)
+        chosen = ids[-1]
+        if rule.policy == "best" and len(ids) > 1:
+            ext = self.extension(exercise, student)
+            finals = {i: final(student, exercise, self._attempt_result(i), rule, ext).score for i in ids}
+            chosen = max(ids, key=lambda i: (finals[i], i))
+        a = self._attempt_result(chosen)
+        self.db.execute(
+            "INSERT OR REPLACE INTO submissions (exercise, student, submission, sha256, status, message, score, "
+            "max_score, seconds, isolation, run, graded, changed_sha256, attempt, source_sha256, submitted, "
+            "submitted_from, late) SELECT exercise, student, submission, sha256, status, message, score, max_score, "
+            "seconds, isolation, run, graded, NULL, id, source_sha256, submitted, submitted_from, late FROM attempts "
+            "WHERE id = ?", (chosen,))
+        self.db.execute("DELETE FROM parts WHERE exercise = ? AND student = ?", (exercise, student))
+        self.db.execute(f"INSERT INTO parts (exercise, student, position, {_PART_COLS}) SELECT ?, ?, position, "
+                        f"{_PART_COLS} FROM attempt_parts WHERE attempt = ?", (exercise, student, chosen))
+        return a
+
+    def reselect(self, exercise):
+        """Choose again every student's counting attempt (after the policy or the late rule changed)."""
+        with self.db:
+            self.db.execute("BEGIN IMMEDIATE")
+            for (student,) in self.db.execute("SELECT DISTINCT student FROM attempts WHERE exercise = ?",
+                                              (exercise,)).fetchall():
+                self._select(exercise, student)
+
+    # ---------------------------------------------------------------------------------------- the source pin
+    def pin(self, exercise):
+        """(sha256, path, pinned) of the source the exercise's results were graded with, or None."""
+        row = self.db.execute("SELECT sha256, path, pinned FROM sources WHERE exercise = ?", (exercise,)).fetchone()
+        if row is None:  # a gradebook of an earlier kinbook: the source of its last run
+            row = self.db.execute("SELECT source_sha256, source, started FROM runs WHERE exercise = ? AND id IN "
+                                  "(SELECT run FROM submissions WHERE exercise = ?) ORDER BY id DESC LIMIT 1",
+                                  (exercise, exercise)).fetchone()
+        return row
+
+    def set_pin(self, source):
+        self.db.execute("INSERT OR REPLACE INTO sources (exercise, sha256, path, pinned) VALUES (?,?,?,?)",
+                        (source.exercise, source.sha256, _utf8(str(source.path)), _now()))
+
+    def stale(self, exercise):
+        """Students whose counting result was graded with another source than the pinned one."""
+        pin = self.pin(exercise)
+        if pin is None:
+            return []
+        return [s for (s,) in self.db.execute("SELECT student FROM submissions WHERE exercise = ? AND source_sha256 "
+                                              "!= ? ORDER BY student", (exercise, pin[0]))]
+
+    # ------------------------------------------------------------------------------------------- the course
+    def set_roster(self, roster):
+        """Replace the stored roster (:class:`kinbook.classroom.roster.Roster`)."""
+        from .roster import FIELDS
+
+        with self.db:
+            self.db.execute("BEGIN IMMEDIATE")
+            self.db.execute("DELETE FROM roster")
+            self.db.executemany(f"INSERT INTO roster (position, {', '.join(FIELDS)}) VALUES "
+                                f"(?, {', '.join('?' * len(FIELDS))})",
+                                [[i] + [_utf8(getattr(s, f)) for f in FIELDS] for i, s in enumerate(roster)])
+
+    def roster(self):
+        """The stored roster, or None."""
+        from .roster import FIELDS, Roster, Student
+
+        rows = self.db.execute(f"SELECT {', '.join(FIELDS)} FROM roster ORDER BY position").fetchall()
+        return Roster([Student(*r) for r in rows]) if rows else None
+
+    def set_rule(self, exercise, *, due=None, penalty=None, cap=None, policy=None):
+        """Change an exercise's due date, late penalty, cap or policy (the others are kept); the counting attempts
+        are chosen again."""
+        old = self.rule(exercise)
+        new = Rule(old.due if due is None else due, old.penalty if penalty is None else float(penalty),
+                   old.cap if cap is None else float(cap), old.policy if policy is None else policy)
+        self.db.execute("INSERT OR REPLACE INTO rules (exercise, due, penalty, cap, policy) VALUES (?,?,?,?,?)",
+                        (exercise, new.due, new.penalty, new.cap, new.policy))
+        if new != old:
+            self.reselect(exercise)
+        return new
+
+    def rule(self, exercise):
+        row = self.db.execute("SELECT due, penalty, cap, policy FROM rules WHERE exercise = ?", (exercise,)).fetchone()
+        return Rule(*row) if row else Rule()
+
+    def extend(self, exercise, student, due, why=""):
+        """Give ``student`` their own due date for ``exercise`` ("" removes it)."""
+        if due:
+            self.db.execute("INSERT OR REPLACE INTO extensions (exercise, student, due, why) VALUES (?,?,?,?)",
+                            (exercise, student, due, _utf8(why)))
+        else:
+            self.db.execute("DELETE FROM extensions WHERE exercise = ? AND student = ?", (exercise, student))
+        if self.rule(exercise).policy == "best":
+            with self.db:
+                self.db.execute("BEGIN IMMEDIATE")
+                self._select(exercise, student)
+
+    def extension(self, exercise, student):
+        row = self.db.execute("SELECT due FROM extensions WHERE exercise = ? AND student = ?",
+                              (exercise, student)).fetchone()
+        return row[0] if row else ""
+
+    def override(self, exercise, student, part, score, why):
+        """Set a part's score by hand (kept across regrades and ``--force``); ``score`` None removes it."""
+        if score is None:
+            self.db.execute("DELETE FROM overrides WHERE exercise = ? AND student = ? AND part = ?",
+                            (exercise, student, part))
+        else:
+            self.db.execute("INSERT OR REPLACE INTO overrides (exercise, student, part, score, why, set_at) VALUES "
+                            "(?,?,?,?,?,?)", (exercise, student, part, float(score), _utf8(why), _now()))
+
+    def overrides(self, exercise=None, student=None):
+        """``{(exercise, student): {part: (score, why)}}``."""
+        out = {}
+        for e, s, p, score, why in self.db.execute("SELECT exercise, student, part, score, why FROM overrides"):
+            if (exercise is None or e == exercise) and (student is None or s == student):
+                out.setdefault((e, s), {})[p] = (score, why)
+        return out
+
+    def exercises(self):
+        """Every exercise with a result, a rule or a pin, sorted."""
+        return sorted({e for (e,) in self.db.execute("SELECT exercise FROM attempts UNION SELECT exercise FROM rules "
+                                                     "UNION SELECT exercise FROM sources")})
+
+    def points(self, exercise):
+        """[(part, max_score)] of an exercise, from its most recent graded attempt."""
+        row = self.db.execute("SELECT a.id FROM attempts a WHERE exercise = ? AND EXISTS (SELECT 1 FROM attempt_parts "
+                              "p WHERE p.attempt = a.id) ORDER BY id DESC LIMIT 1", (exercise,)).fetchone()
+        if row is None:
+            return []
+        return [tuple(r) for r in self.db.execute("SELECT part, max_score FROM attempt_parts WHERE attempt = ? "
+                                                   "ORDER BY position", (row[0],))]
 
     # ------------------------------------------------------------------------------------------- reading
-    def results(self, student=None):
-        """Every recorded result (of one student), ordered by student and exercise."""
-        where, args = ("WHERE student = ?", (student,)) if student is not None else ("", ())
+    def _attempt_result(self, attempt):
+        a = self.db.execute("SELECT exercise, student, submission, sha256, status, message, seconds, isolation, "
+                            "submitted, submitted_from, late, source_sha256 FROM attempts WHERE id = ?",
+                            (attempt,)).fetchone()
+        parts = [PartGrade(*row) for row in self.db.execute(
+            f"SELECT {_PART_COLS} FROM attempt_parts WHERE attempt = ? ORDER BY position", (attempt,))]
+        return SubmissionResult(a[1], a[0], a[2], a[3], a[4], a[5], parts, a[6], a[7], a[8], a[9], bool(a[10]),
+                                [], a[11], attempt)
+
+    def results(self, student=None, exercise=None):
+        """Every counting result (of one student, of one exercise), ordered by student and exercise; each part's
+        ``mistakes`` and the result's ``signals`` filled in."""
+        where, args = [], []
+        if student is not None:
+            where.append("student = ?")
+            args.append(student)
+        if exercise is not None:
+            where.append("exercise = ?")
+            args.append(exercise)
+        clause = ("WHERE " + " AND ".join(where)) if where else ""
         subs = self.db.execute(
-            "SELECT exercise, student, submission, sha256, status, message, seconds, isolation FROM submissions "
-            f"{where} ORDER BY student, exercise", args).fetchall()
+            "SELECT exercise, student, submission, sha256, status, message, seconds, isolation, submitted, "
+            f"submitted_from, late, source_sha256, attempt FROM submissions {clause} ORDER BY student, exercise",
+            args).fetchall()
         parts = {}
-        for row in self.db.execute(f"SELECT exercise, student, part, score, max_score, status, message, html, reference "
-                                   f"FROM parts {where} ORDER BY exercise, student, position", args):
+        for row in self.db.execute(f"SELECT exercise, student, {_PART_COLS} FROM parts {clause} "
+                                   "ORDER BY exercise, student, position", args):
             parts.setdefault((row[0], row[1]), []).append(PartGrade(*row[2:]))
-        return [SubmissionResult(s[1], s[0], s[2], s[3], s[4], s[5], parts.get((s[0], s[1]), []), s[6], s[7])
-                for s in subs]
+        mistakes, signals = {}, {}
+        for a, part, code, row in self.db.execute("SELECT attempt, part, code, row FROM mistakes WHERE attempt IN "
+                                                  f"(SELECT attempt FROM submissions {clause}) ORDER BY rowid", args):
+            mistakes.setdefault((a, part), []).append((code, row))
+        for a, kind, detail in self.db.execute("SELECT attempt, kind, detail FROM signals WHERE attempt IN "
+                                               f"(SELECT attempt FROM submissions {clause}) ORDER BY rowid", args):
+            signals.setdefault(a, []).append((kind, detail))
+        out = []
+        for s in subs:
+            ps = parts.get((s[0], s[1]), [])
+            for p in ps:
+                p.mistakes = mistakes.get((s[12], p.part), [])
+            out.append(SubmissionResult(s[1], s[0], s[2], s[3], s[4], s[5], ps, s[6], s[7], s[8], s[9], bool(s[10]),
+                                        signals.get(s[12], []), s[11], s[12]))
+        return out
+
+    def attempts(self, exercise=None, student=None):
+        """Every attempt (history), as rows: (id, exercise, student, submission, sha256, submitted, status, score,
+        max_score, counts)."""
+        rows = self.db.execute(
+            "SELECT a.id, a.exercise, a.student, a.submission, a.sha256, a.submitted, a.status, a.score, a.max_score, "
+            "EXISTS (SELECT 1 FROM submissions s WHERE s.attempt = a.id) FROM attempts a ORDER BY a.exercise, "
+            "a.student, a.id").fetchall()
+        return [r for r in rows if (exercise is None or r[1] == exercise) and (student is None or r[2] == student)]
+
+    def finals(self, exercise, roster=None):
+        """The :class:`~kinbook.classroom.scores.Final` of every student of ``exercise``: the roster's (``missing``
+        when they handed nothing in), then those not on it."""
+        results = {r.student: r for r in self.results(exercise=exercise)}
+        roster = roster if roster is not None else self.roster()
+        rule = self.rule(exercise)
+        overrides = self.overrides(exercise)
+        exts = dict(self.db.execute("SELECT student, due FROM extensions WHERE exercise = ?", (exercise,)).fetchall())
+        points = self.points(exercise)
+        order = [s.student for s in roster] if roster is not None else []
+        order += sorted(set(results) - set(order))
+        return [final(s, exercise, results.get(s), rule, exts.get(s, ""), overrides.get((exercise, s)), points)
+                for s in order]
 
     def notes(self):
-        """{(exercise, student): note} for submissions whose file changed after they were graded."""
-        return {(e, s): f"changed since graded (now sha256 {h[:12]}…; grade again with --force)"
-                for e, s, h in self.db.execute("SELECT exercise, student, changed_sha256 FROM submissions "
-                                               "WHERE changed_sha256 IS NOT NULL")}
+        """{(exercise, student): note} for results that need the instructor's attention."""
+        notes = {}
+        for e, s, h in self.db.execute("SELECT exercise, student, changed_sha256 FROM submissions WHERE "
+                                       "changed_sha256 IS NOT NULL"):
+            notes[(e, s)] = f"changed since graded (now sha256 {h[:12]}…; grade again with --force)"
+        for e in self.exercises():
+            for s in self.stale(e):
+                notes[(e, s)] = "graded with an earlier version of the source (grade again with --regrade)"
+        return notes
 
     # ------------------------------------------------------------------------------------------- exports
     def export(self, students=None):
-        """Write grades.csv, totals.csv (everything recorded) and the feedback pages of ``students`` (default:
-        every student), each atomically."""
+        """Write grades.csv, totals.csv and collection.csv (everything recorded), each atomically. (``students``:
+        kept for callers of an earlier kinbook; the feedback pages are :mod:`kinbook.classroom.feedback`'s.)"""
         results = self.results()
         notes = self.notes()
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(COLUMNS)
-        for r in results:
-            for p in r.parts:
-                w.writerow([_cell(r.student), _cell(r.exercise), _cell(p.part), f"{p.score:g}", f"{p.max_score:g}",
-                            p.status, _cell(p.message), _cell(p.reference)])
-        atomic_write(self.outdir / "grades.csv", buf.getvalue())
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(TOTALS)
-        for r in results:
-            w.writerow([_cell(r.student), _cell(r.exercise), f"{r.score:g}", f"{r.max_score:g}", r.status,
-                        r.isolation or "", r.sha256, notes.get((r.exercise, r.student), "")])
-        atomic_write(self.outdir / "totals.csv", buf.getvalue())
-        mine = {}
-        for r in results:
-            mine.setdefault(r.student, []).append(r)
-        for student in (sorted(mine) if students is None else [s for s in students if s in mine]):
-            atomic_write(self.outdir / "feedback" / f"{student}.html", _page(student, mine[student]))
+        write_csv(self.outdir / "grades.csv", COLUMNS,
+                  [[r.student, r.exercise, p.part, f"{p.score:g}", f"{p.max_score:g}", p.status, p.message,
+                    p.reference] for r in results for p in r.parts])
+        write_csv(self.outdir / "totals.csv", TOTALS,
+                  [[r.student, r.exercise, f"{r.score:g}", f"{r.max_score:g}", r.status, r.isolation or "", r.sha256,
+                    notes.get((r.exercise, r.student), "")] for r in results])
+        last = {e: run for e, run in self.db.execute("SELECT exercise, MAX(run) FROM files GROUP BY exercise")}
+        rows = []
+        for e in sorted(last):
+            rows += self.db.execute(f"SELECT {', '.join(FILES)} FROM files WHERE exercise = ? AND run = ? ORDER BY "
+                                    "path", (e, last[e])).fetchall()
+        write_csv(self.outdir / "collection.csv", FILES, rows)
 
     def write(self):
         """Export everything (:meth:`export`)."""
         self.export()
 
     # ----------------------------------------------------------------------------------- older gradebooks
+    def _migrate(self):
+        """Add what an earlier kinbook's gradebook lacks: columns, and each result as its first attempt."""
+        for table, cols in _ADDED.items():
+            have = {r[1] for r in self.db.execute(f"PRAGMA table_info({table})")}
+            for name, decl in cols:
+                if name not in have:
+                    self.db.execute(f"ALTER TABLE {table} ADD COLUMN {name} {decl}")
+        old = self.db.execute("SELECT s.exercise, s.student, COALESCE(r.source_sha256, '') FROM submissions s LEFT "
+                              "JOIN runs r ON r.id = s.run WHERE s.attempt IS NULL").fetchall()
+        if not old:
+            return
+        with self.db:
+            self.db.execute("BEGIN IMMEDIATE")
+            for exercise, student, source in old:
+                attempt = self.db.execute(
+                    "INSERT INTO attempts (exercise, student, submission, sha256, source_sha256, status, message, "
+                    "score, max_score, seconds, isolation, run, graded) SELECT exercise, student, submission, sha256, "
+                    "?, status, message, score, max_score, seconds, isolation, run, graded FROM submissions WHERE "
+                    "exercise = ? AND student = ?", (source, exercise, student)).lastrowid
+                self.db.execute(f"INSERT INTO attempt_parts (attempt, position, {_PART_COLS}) SELECT ?, position, "
+                                f"{_PART_COLS} FROM parts WHERE exercise = ? AND student = ?",
+                                (attempt, exercise, student))
+                self.db.execute("UPDATE submissions SET attempt = ?, source_sha256 = ? WHERE exercise = ? AND "
+                                "student = ?", (attempt, source, exercise, student))
+
     def _import_json_results(self):
         """Results stored by kinbook before the database (``.kinbook/results/<exercise>/<student>.json``)."""
         store = self.outdir / ".kinbook" / "results"
@@ -207,24 +529,4 @@ class Gradebook:
                 continue
 
 
-def _page(student, results):
-    body = [f"<h1>Feedback for {html.escape(student)}</h1>"]
-    for r in results:
-        body.append(f"<h2>{html.escape(r.exercise)}: {r.score:g} / {r.max_score:g}</h2>")
-        if r.status != "ok":
-            body.append(f"<p><b>status: {html.escape(r.status)}</b> — {html.escape(r.message)}</p>")
-        body.append("<table border=1 cellpadding=4><tr><th>part</th><th>score</th><th>status</th>"
-                    "<th>answered with kinbook's reference</th></tr>")
-        for p in r.parts:
-            body.append(f"<tr><td>{html.escape(p.part)}</td><td>{p.score:g} / {p.max_score:g}</td>"
-                        f"<td>{html.escape(p.status)}</td><td>{html.escape(p.reference) or '—'}</td></tr>")
-        body.append("</table>")
-        for p in r.parts:
-            body.append(f"<h3>{html.escape(p.part)}</h3>")
-            if p.reference:
-                body.append(f"<p><i>This answer was computed with kinbook's own reference: "
-                            f"{html.escape(p.reference)}.</i></p>")
-            # p.html is rendered by kinbook's CheckResult (escaped there); anything else is escaped here
-            body.append(p.html if p.html else f"<p>{html.escape(p.message)}</p>")
-    return ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>kinbook feedback: "
-            f"{html.escape(student)}</title></head><body>{''.join(body)}</body></html>")
+__all__ += ["Final", "write_csv"]

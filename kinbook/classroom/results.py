@@ -16,9 +16,13 @@ too-large          the file is over the size or cell-count cap: refused before p
 refused            a symbolic link, device, FIFO or socket in ``collected/`` (never followed or opened), or a
                    file replaced while it was being read: 0 points
 bad-id             the student id taken from the path is too long: not graded (rename and grade again)
-duplicate-id       two files give the same student (ids equal once case and Unicode forms are folded): neither
-                   is graded
+duplicate-id       two files give the same student under different spellings (ids equal once case and Unicode
+                   forms are folded): neither is graded
 =================  ==========================================================================================
+
+Entries of ``collected/`` that are not a student's result are listed, not graded (:mod:`.files`): ``ignored``
+(not a notebook, a hidden name, not named after the exercise …) and ``superseded`` (an earlier attempt of a
+student whose latest one is graded). A student on the roster with no submission is ``missing`` in the exports.
 """
 
 from __future__ import annotations
@@ -56,6 +60,13 @@ class PartGrade:
     reference : str
         How the student's code obtained the answer from kinbook's own reference, when it did (information for
         the instructor, not a penalty; see :mod:`kinbook.classroom.reference_use`), else "".
+    answer : str
+        The student's answer as the grader read it (bounded text), for the feedback page and the report.
+    cell : str
+        Where the answer was assigned, as the student sees the notebook ("cell 7 of 12: (a) Φ of …"), and its code.
+    mistakes : list of (code, row)
+        Catalogue codes of the mistakes the checker named, each with the row it was found in ("" for the whole
+        answer): stored as rows of the gradebook, so that the class report is a query.
     """
 
     part: str
@@ -65,6 +76,9 @@ class PartGrade:
     message: str = ""
     html: str = ""
     reference: str = ""
+    answer: str = ""
+    cell: str = ""
+    mistakes: list = field(default_factory=list)
 
 
 @dataclass
@@ -76,6 +90,15 @@ class SubmissionResult:
     isolation : str
         ``"bubblewrap"`` (the notebook ran in the operating-system sandbox), ``"none"`` (``--no-isolation``:
         the audit hook only), or ``""`` when nothing was run.
+    submitted, submitted_from, late :
+        When it was handed in (ISO 8601), read from ``"name"`` or ``"file"``, and whether the LMS marked it late.
+    signals : list of (kind, detail)
+        Copying signals for the instructor (never told to the student): ``("released-for", "<other id>")`` for a
+        notebook released for another student.
+    source_sha256 : str
+        The source notebook that graded it.
+    attempt : int or None
+        Its row in the gradebook's history (set when read from the gradebook).
     """
 
     student: str
@@ -87,6 +110,12 @@ class SubmissionResult:
     parts: list = field(default_factory=list)
     seconds: float = 0.0
     isolation: str = ""
+    submitted: str = ""
+    submitted_from: str = ""
+    late: bool = False
+    signals: list = field(default_factory=list)
+    source_sha256: str = ""
+    attempt: int | None = None
 
     @property
     def score(self):
@@ -103,6 +132,7 @@ class SubmissionResult:
     def from_dict(cls, d):
         d = dict(d)
         d["parts"] = [PartGrade(**p) for p in d.get("parts", [])]
+        d["signals"] = [tuple(x) for x in d.get("signals", [])]
         return cls(**d)
 
     def __repr__(self):

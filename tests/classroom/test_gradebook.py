@@ -36,6 +36,8 @@ def test_each_result_is_one_transaction_and_survives_a_reopen(tmp_path):
 
 
 def test_exports_are_complete_and_safe_for_spreadsheets(tmp_path):
+    from kinbook.classroom.feedback import write_pages
+
     book = Gradebook(tmp_path)
     for s in ("alice", "bob"):
         book.record(result(s))
@@ -43,7 +45,9 @@ def test_exports_are_complete_and_safe_for_spreadsheets(tmp_path):
     rows = list(csv.DictReader(open(tmp_path / "grades.csv", newline="")))
     assert list(rows[0]) == COLUMNS and len(rows) == 4
     assert rows[0]["message"].startswith("'=")  # never a formula
-    assert sorted(p.name for p in (tmp_path / "feedback").iterdir()) == ["alice.html", "bob.html"]
+    write_pages(book, tmp_path / "feedback")
+    assert sorted(str(p.relative_to(tmp_path / "feedback")) for p in (tmp_path / "feedback").rglob("*.html")) == [
+        "alice/ex01.html", "alice/index.html", "bob/ex01.html", "bob/index.html"]
 
 
 def test_text_that_is_not_utf8_is_stored_escaped_not_fatal(tmp_path):
@@ -72,7 +76,7 @@ def test_results_of_an_older_kinbook_are_imported_once(tmp_path):
     assert [(r.student, r.score, r.isolation) for r in book.results()] == [("carol", 1.0, "none")]
 
 
-def test_a_changed_resubmission_is_reported_not_silently_skipped(tmp_path):
+def test_a_changed_resubmission_is_a_new_attempt_and_the_old_one_is_kept(tmp_path):
     """Corrupt notebooks are graded without running anything: the bookkeeping alone is exercised here."""
     subs = tmp_path / "collected"
     subs.mkdir()
@@ -80,16 +84,18 @@ def test_a_changed_resubmission_is_reported_not_silently_skipped(tmp_path):
     out = tmp_path / "graded"
     first = grade(SOURCE, [subs], out, isolation=BWRAP)
     assert [r.status for r in first] == ["corrupt-notebook"]
-    (subs / "dave.ipynb").write_bytes(open(submission("not_a_notebook"), "rb").read())  # handed in again
     seen = []
-    assert grade(SOURCE, [subs], out, isolation=BWRAP, progress=seen.append) == []
-    assert any("changed since graded: dave" in str(s) for s in seen)
-    totals = {r["student"]: r for r in csv.DictReader(open(out / "totals.csv", newline=""))}
-    assert totals["dave"]["note"].startswith("changed since graded")
-    forced = grade(SOURCE, [subs], out, isolation=BWRAP, force=True)
-    assert [r.status for r in forced] == ["corrupt-notebook"]
-    totals = {r["student"]: r for r in csv.DictReader(open(out / "totals.csv", newline=""))}
-    assert totals["dave"]["note"] == ""
+    assert grade(SOURCE, [subs], out, isolation=BWRAP, progress=seen.append) == []  # the same file: skipped
+    assert any("skipped 1 file(s) graded before" in str(s) for s in seen)
+    (subs / "dave.ipynb").write_bytes(open(submission("not_a_notebook"), "rb").read())  # handed in again
+    second = grade(SOURCE, [subs], out, isolation=BWRAP)
+    assert [r.status for r in second] == ["corrupt-notebook"]
+    book = Gradebook(out)
+    history = book.attempts("tiny", "dave")
+    assert len(history) == 2 and [h[-1] for h in history] == [0, 1]  # both kept, the latest counts
+    assert history[0][4] != history[1][4]
+    forced = grade(SOURCE, [subs], out, isolation=BWRAP, force=True)  # the same file again: regraded in place
+    assert [r.status for r in forced] == ["corrupt-notebook"] and len(book.attempts("tiny", "dave")) == 2
 
 
 def test_a_source_that_changes_during_grading_stops_the_run(tmp_path):

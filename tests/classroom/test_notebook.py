@@ -220,7 +220,9 @@ def test_collected_directories_yield_this_exercise_only(tmp_path):
         (tmp_path / student / "ex02.ipynb").write_text("{}")
     (tmp_path / "ex01-carol.ipynb").write_text("{}")
     found = collect([tmp_path], "ex01", max_bytes=1000)
-    assert sorted(e.student for e in found) == ["alice", "bob", "carol"]
+    assert sorted(e.student for e in found if e.status is None) == ["alice", "bob", "carol"]
+    others = sorted((e.path[len(str(tmp_path)) + 1:], e.status) for e in found if e.status is not None)
+    assert others == [("alice/ex02.ipynb", "ignored"), ("bob/ex02.ipynb", "ignored")]  # listed, not dropped
     flat = tmp_path / "flat"
     flat.mkdir()
     (flat / "dave.ipynb").write_text("{}")

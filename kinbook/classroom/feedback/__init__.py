@@ -1,0 +1,148 @@
+"""Feedback a student can use (``kinbook feedback``): one page per student per exercise.
+
+Each page is one self-contained HTML file (no script, no outside resource): the exercise, the student, when it was
+handed in and graded, the total (with the instructor's overrides and the late penalty, each with its reason), and
+for every part its score, its status in words, the checker's message next to the student's own answer, and the cell
+the answer was assigned in, as the student sees their notebook (its position among all cells, its first line and its
+code). ``kinbook feedback --out DIR`` lays them out as ``DIR/<student>/<exercise>.html`` with a
+``DIR/<student>/index.html`` per student: a folder per student for an LMS's per-student upload or a shared drive.
+Copying signals and the other students are never on a student's page.
+"""
+
+from __future__ import annotations
+
+import html
+from pathlib import Path
+
+from ..files import atomic_write
+from ..gradebook import Gradebook
+
+__all__ = ["write_pages", "feedback", "page", "STATUS_WORDS", "part_words"]
+
+#: What a submission's status means, for the student.
+STATUS_WORDS = {
+    "ok": "graded",
+    "missing-answer": "some answers were not found: the variable was not assigned, or its cell raised an error first",
+    "error": "some answers could not be graded: they are not data the grader reads, or the notebook stopped",
+    "timeout": "the notebook did not finish within the time limit",
+    "memory": "the notebook used more memory than allowed",
+    "tampered": "a cell you were not meant to edit was changed, moved or deleted",
+    "corrupt-notebook": "the file is not a notebook that can be read",
+    "too-large": "the file is too large to be graded",
+    "refused": "the file was not read (a link, a special file, or not your own notebook)",
+    "bad-id": "the file's name gives no usable student id",
+    "duplicate-id": "two files were handed in under different spellings of your name",
+    "missing": "nothing was handed in",
+}
+
+_CSS = """
+body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;max-width:60rem;margin:2rem auto;
+padding:0 1rem;color:#1d2125;line-height:1.45}
+h1{font-size:1.5rem;margin-bottom:.2rem}h2{font-size:1.15rem;margin-top:2rem;border-bottom:1px solid #ccd;
+padding-bottom:.2rem}.meta{color:#555}.total{font-size:1.3rem;font-weight:600;margin:1rem 0}
+table{border-collapse:collapse;margin:.5rem 0}td,th{border:1px solid #ccd;padding:.3rem .6rem;text-align:left;
+vertical-align:top}th{background:#f1f3f6}.ok{color:#155724}.partial{color:#856404}.bad{color:#721c24}
+.note{background:#fff8e1;border-left:4px solid #f0b400;padding:.4rem .8rem;margin:.5rem 0}
+pre{background:#f6f8fa;border:1px solid #dde;padding:.5rem;overflow-x:auto;font-size:.85rem;white-space:pre-wrap}
+.cols{display:grid;grid-template-columns:1fr 1fr;gap:1rem}.cols>div{min-width:0}
+"""
+
+
+def part_words(score, max_score, status):
+    """A part's status in words, for the student."""
+    if status == "ok":
+        if max_score and score >= max_score:
+            return "correct", "ok"
+        return ("partly correct" if score > 0 else "not correct"), ("partial" if score > 0 else "bad")
+    return STATUS_WORDS.get(status, status), "bad"
+
+
+def _e(text):
+    return html.escape(str(text))
+
+
+def page(final, result, *, name="", graded=""):
+    """The HTML page of one student's :class:`~kinbook.classroom.scores.Final` on one exercise (``result`` the
+    counting :class:`~kinbook.classroom.results.SubmissionResult`, or None when nothing was handed in)."""
+    who = name or final.student
+    out = [f"<h1>{_e(final.exercise)}</h1>",
+           f"<p class='meta'>Feedback for <b>{_e(who)}</b> ({_e(final.student)})"
+           + (f" · handed in {_e(final.submitted)}" if final.submitted else "")
+           + (f" · graded {_e(graded)}" if graded else "") + "</p>",
+           f"<p class='total'>Total: {final.score:g} / {final.max_score:g}</p>"]
+    if final.status != "ok":
+        out.append(f"<p class='note'><b>{_e(final.status)}</b>: {_e(STATUS_WORDS.get(final.status, ''))}"
+                   + (f" — {_e(result.message)}" if result is not None and result.message else "") + "</p>")
+    if final.late_days:
+        out.append(f"<p class='note'>Handed in {final.late_days} day(s) after the due date ({_e(final.due)}): "
+                   f"−{final.penalty:g} point(s), from {final.raw:g}.</p>")
+    overrides = [(p, o) for p, _, _, o in final.parts if o]
+    for p, (score, why) in overrides:
+        out.append(f"<p class='note'>Part <b>{_e(p)}</b>: your instructor set the score to {score:g}"
+                   + (f" — {_e(why)}" if why else "") + ".</p>")
+    out.append("<table><tr><th>part</th><th>score</th><th>status</th></tr>")
+    grades = {p.part: p for p in (result.parts if result is not None else [])}
+    for p, score, mx, o in final.parts:
+        shown = o[0] if o else score
+        words, cls = part_words(shown, mx, grades[p].status if p in grades else "missing")
+        out.append(f"<tr><td>{_e(p)}</td><td>{shown:g} / {mx:g}{' (set by your instructor)' if o else ''}</td>"
+                   f"<td class='{cls}'>{_e(words)}</td></tr>")
+    out.append("</table>")
+    for p, score, mx, o in final.parts:
+        g = grades.get(p)
+        if g is None:
+            continue
+        out.append(f"<h2>{_e(p)}: {(o[0] if o else score):g} / {mx:g}</h2>")
+        if g.reference:
+            out.append(f"<p><i>This answer was computed with kinbook's own reference: {_e(g.reference)}.</i></p>")
+        message = g.html if g.html else f"<p>{_e(g.message)}</p>"  # g.html is rendered (escaped) by CheckResult
+        mine = f"<pre>{_e(g.answer)}</pre>" if g.answer else "<p><i>(no answer read)</i></p>"
+        out.append(f"<div class='cols'><div><h3>The grader says</h3>{message}</div>"
+                   f"<div><h3>Your answer</h3>{mine}</div></div>")
+        if g.cell:
+            where, _, code = g.cell.partition("\n")
+            out.append(f"<p class='meta'>Assigned in {_e(where)}</p>" + (f"<pre>{_e(code)}</pre>" if code else ""))
+    title = f"{final.exercise}: {who}"
+    return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{_e(title)}</title>"
+            f"<style>{_CSS}</style></head><body>{''.join(out)}</body></html>")
+
+
+def _index(student, name, finals):
+    rows = "".join(f"<tr><td><a href='{_e(f.exercise)}.html'>{_e(f.exercise)}</a></td><td>{f.score:g} / "
+                   f"{f.max_score:g}</td><td>{_e(STATUS_WORDS.get(f.status, f.status))}</td></tr>" for f in finals)
+    total = sum(f.score for f in finals)
+    mx = sum(f.max_score for f in finals)
+    return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{_e(name or student)}</title>"
+            f"<style>{_CSS}</style></head><body><h1>{_e(name or student)}</h1><p class='total'>{total:g} / {mx:g}"
+            f"</p><table><tr><th>exercise</th><th>score</th><th>status</th></tr>{rows}</table></body></html>")
+
+
+def write_pages(book, out, students=None):
+    """Write ``out/<student>/<exercise>.html`` and ``out/<student>/index.html`` for ``students`` (default: every
+    student of the gradebook and of its roster). Returns the pages written."""
+    out = Path(out)
+    roster = book.roster()
+    names = {s.student: s.display for s in roster} if roster is not None else {}
+    wanted = None if students is None else set(students)
+    mine = {}
+    for exercise in book.exercises():
+        results = {r.student: r for r in book.results(exercise=exercise)}
+        graded = dict(book.db.execute("SELECT student, graded FROM submissions WHERE exercise = ?", (exercise,)))
+        for f in book.finals(exercise, roster):
+            if wanted is not None and f.student not in wanted:
+                continue
+            mine.setdefault(f.student, []).append((f, results.get(f.student), graded.get(f.student, "")))
+    written = []
+    for student, items in sorted(mine.items()):
+        for f, r, when in items:
+            written.append(atomic_write(out / student / f"{f.exercise}.html",
+                                        page(f, r, name=names.get(student, ""), graded=when)))
+        written.append(atomic_write(out / student / "index.html",
+                                    _index(student, names.get(student, ""), [f for f, _, _ in items])))
+    return written
+
+
+def feedback(gradebook, out):
+    """``kinbook feedback``: every student's pages from the gradebook directory ``gradebook`` into ``out``."""
+    with Gradebook(gradebook) as book:
+        return write_pages(book, out)

@@ -1,0 +1,167 @@
+"""What a grading run does with each entry of ``collected/`` before any notebook runs.
+
+:func:`intake` checks the source against the gradebook's pin (issue 20: a changed source stops the run unless
+``regrade``), lists every entry (:func:`kinbook.classroom.files.collect`), and decides for each one: grade it, skip
+it (this very file was graded already with this source), keep it as history (an earlier attempt), or record why it
+is not graded. Every entry becomes a row of the gradebook's ``files`` table and of ``collection.csv``; the lines
+printed say what happened to every file that is not simply graded.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from dataclasses import dataclass, field
+
+from ..errors import GradingError
+from .files import collect, read_entry
+from .results import Refused, SubmissionResult
+
+__all__ = ["intake", "Intake", "SourceChanged"]
+
+
+class SourceChanged(GradingError):
+    """The source differs from the one that graded the gradebook's results of this exercise."""
+
+
+@dataclass
+class Intake:
+    """The plan of a run.
+
+    Attributes
+    ----------
+    todo : list of Entry
+        To grade, in order; ``entry.replace`` is the attempt regraded in place (or None: a new attempt).
+    refused : list of Entry
+        Not gradable, recorded as the student's result (0 points) because the student has no other file.
+    skipped : int
+    off_roster : list of str
+    stale : list of str
+        Students whose result was graded with an earlier source and whose file was not among the submissions given.
+    """
+
+    todo: list = field(default_factory=list)
+    refused: list = field(default_factory=list)
+    skipped: int = 0
+    off_roster: list = field(default_factory=list)
+    stale: list = field(default_factory=list)
+    entries: dict = field(default_factory=dict)
+
+
+def check_pin(book, src, regrade):
+    """Stop (:class:`SourceChanged`) when ``src`` is not the source the gradebook's results were graded with."""
+    pin = book.pin(src.exercise)
+    if pin is not None and pin[0] != src.sha256 and not regrade:
+        n = book.db.execute("SELECT COUNT(*) FROM submissions WHERE exercise = ?", (src.exercise,)).fetchone()[0]
+        raise SourceChanged(
+            f"{src.exercise}: the source {str(src.path)!r} (sha256 {src.sha256[:12]}…) is not the one that graded the "
+            f"{n} result(s) in {str(book.outdir)!r} ({pin[1]!r}, sha256 {pin[0][:12]}…, pinned {pin[2]}). Nothing was "
+            "graded. To grade every submission again with the new source, run again with --regrade; to keep the "
+            "results, grade with the old source.")
+
+
+def intake(book, run, src, submissions, *, force=False, regrade=False, policy=None, pattern=None, roster=None,
+           max_bytes, progress=None):
+    """Plan a run (see the module docstring) and record every entry that is not graded by it.
+
+    Parameters
+    ----------
+    book : Gradebook
+    run : int
+    src : Source
+    submissions : list of paths
+    force : bool
+        Grade again files already graded.
+    regrade : bool
+        The source changed: grade every file again, and pin the new source.
+    policy : str or None
+        ``latest`` or ``best``; None keeps the exercise's (default latest). Stored as the exercise's rule.
+    pattern : str or None
+        ``--id-pattern``: a ready pattern's name or a regular expression.
+    roster : Roster or None
+        Stored in the gradebook when given; else the stored one (if any) maps the ids.
+    """
+    check_pin(book, src, regrade)
+    if roster is not None:
+        book.set_roster(roster)
+    else:
+        roster = book.roster()
+    if policy is not None and policy != book.rule(src.exercise).policy:
+        book.set_rule(src.exercise, policy=policy)
+    policy = book.rule(src.exercise).policy
+    book.set_pin(src)
+    plan = Intake()
+    say = progress or (lambda item: None)
+    entries = collect(submissions, src.exercise, max_bytes=max_bytes, pattern=pattern, roster=roster, policy=policy)
+    for e in entries:
+        if e.status in (None, "superseded"):
+            try:
+                digest = hashlib.sha256(read_entry(e, max_bytes)).hexdigest()
+            except Refused as exc:
+                e.status, e.message, digest = exc.status, exc.message, ""
+            if digest and digest == src.sha256:
+                e.status, e.message = "refused", "identical to the instructor's source notebook: not graded"
+                e.result = True
+        else:
+            digest = ""
+        e.sha256 = digest
+        if e.on_roster is False and e.student and e.student not in plan.off_roster and e.result:
+            plan.off_roster.append(e.student)
+        if e.status in ("ignored",):
+            book.record_file(run, src.exercise, e, "ignored", e.message)
+            say(f"ignored   {e.path}: {e.message}")
+            continue
+        if e.status == "superseded":
+            if book.attempt_of(src.exercise, e.student, digest) is None:
+                book.record(_history(src, e), run)
+            book.record_file(run, src.exercise, e, "superseded", e.message, digest)
+            say(f"history   {e.path}: {e.message}")
+            continue
+        if e.status is not None:
+            if e.result:
+                previous = book.attempt_of(src.exercise, e.student, digest)
+                if previous is not None and not (force or regrade):
+                    plan.skipped += 1
+                    book.record_file(run, src.exercise, e, "skipped", "recorded before: " + e.message)
+                    continue
+                e.replace = previous[0] if previous is not None else None
+                plan.refused.append(e)
+                book.record_file(run, src.exercise, e, e.status, e.message, digest)
+            else:
+                book.record_file(run, src.exercise, e, e.status, e.message, digest)
+                say(f"{e.status:9} {e.path}: {e.message}")
+            continue
+        previous = book.attempt_of(src.exercise, e.student, digest)
+        if previous is not None and previous[1] == src.sha256 and previous[2] != "superseded" and not force:
+            plan.skipped += 1
+            book.record_file(run, src.exercise, e, "skipped", "graded before (same file, same source)", digest)
+            continue
+        e.replace = previous[0] if previous is not None else None
+        book.record_file(run, src.exercise, e, "graded", "", digest)
+        plan.todo.append(e)
+    plan.entries = {e.path: e for e in entries}
+    graded_now = {e.student for e in plan.todo} | {e.student for e in plan.refused}
+    plan.stale = [s for s in book.stale(src.exercise) if s not in graded_now]
+    if plan.skipped:
+        say(f"skipped {plan.skipped} file(s) graded before (the same file with the same source; --force grades them "
+            "again)")
+    if plan.off_roster:
+        say(f"not on the roster ({len(plan.off_roster)}): {', '.join(plan.off_roster[:20])}"
+            + (" …" if len(plan.off_roster) > 20 else "") + " — graded, and listed in the report")
+    return plan
+
+
+def _history(src, e):
+    """An earlier attempt kept, ungraded, as history."""
+    return SubmissionResult(e.student, src.exercise, e.path, e.sha256, "superseded", e.message, [], 0.0, "",
+                            e.submitted, e.submitted_from, e.late, [], src.sha256)
+
+
+def annotate(result, plan, src):
+    """Stamp a result with what the plan knows of its file (time, late mark, the source); returns the attempt to
+    replace, or None."""
+    e = plan.entries.get(result.submission)
+    result.source_sha256 = src.sha256
+    if e is None:
+        return None
+    result.submitted, result.submitted_from, result.late = e.submitted, e.submitted_from, e.late
+    return e.replace

@@ -1,0 +1,186 @@
+"""Who handed in a file, when, and which attempt it is — read from its path.
+
+A path below ``collected/`` is read one of two ways:
+
+* with a **pattern** (``kinbook grade --id-pattern``): a regular expression searched in the path relative to the
+  directory the instructor named (``/`` between directories). Its named groups say what the name holds:
+
+  ==============  ===============================================================================================
+  ``student``     the kinbook id
+  ``lms``         an LMS id (Canvas's user id, Moodle's participant id), mapped to a kinbook id by the roster
+  ``time``        when it was handed in (``2026-03-01-23-59-00``, ``20260301T2359``, ``2026-03-01 23:59`` …)
+  ``late``        non-empty when the LMS marked the file late
+  ``attempt``     the attempt's number (a higher number is a later attempt)
+  ``file``        the file's own name, where attempt suffixes are looked for as well
+  ==============  ===============================================================================================
+
+  Ready patterns (:data:`PATTERNS`) are given by name: ``canvas``, ``moodle``, ``blackboard``.
+* without one (the default): ``<student>/<exercise>.ipynb``, ``<exercise>-<student>.ipynb`` (what ``kinbook
+  variant`` writes) or ``<student>.ipynb``.
+
+Either way the suffixes a browser or an LMS adds to a file handed in again are read as an attempt of the same
+student, never as another student: ``name (1).ipynb`` (a browser's second download), ``name-1.ipynb`` (Canvas, a
+file uploaded again under the same name) and a trailing timestamp. A trailing ``-<number>`` is read as an attempt
+only when the number has at most two digits and, with a roster, when the name with it is not itself on the roster.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import re
+from dataclasses import dataclass
+
+from ..errors import GradingError
+
+__all__ = ["PATTERNS", "Name", "read_name", "compile_pattern", "parse_time", "NamingError"]
+
+#: Ready patterns for LMS bulk downloads (``--id-pattern canvas``).
+PATTERNS = {
+    # Canvas "Download Submissions": <lastfirst>_[late_]<user id>_<submission id>_<file name as uploaded>, the file
+    # name with '-1', '-2' … when the student uploaded a file of the same name again
+    "canvas": r"(?:^|/)(?P<name>[^/_]+)_(?:(?P<late>late|LATE)_)?(?P<lms>\d+)_(?P<submission>\d+)_(?P<file>[^/]+)$",
+    # Moodle "Download all submissions": a folder '<Full Name>_<participant id>_assignsubmission_file_' holding the
+    # files (or, flat, the files named with that prefix)
+    "moodle": r"(?:^|/)(?P<name>[^/]+?)_(?P<lms>\d+)_assignsubmission_file_(?:/(?:.*/)?)?(?P<file>[^/]*)$",
+    # Blackboard "Download Assignment": <assignment>_<username>_attempt_<yyyy-mm-dd-hh-mm-ss>[_<file name>]
+    "blackboard": r"(?:^|/)[^/]*?_(?P<student>[^_/]+)_attempt_(?P<time>\d{4}-\d{2}-\d{2}-\d{2}-\d{2}-\d{2})"
+                  r"(?:_(?P<file>[^/]+))?$",
+}
+
+_GROUPS = {"student", "lms", "time", "late", "attempt", "file", "name", "submission"}
+_BROWSER = re.compile(r"^(?P<base>.*?)\s*\((?P<n>\d{1,3})\)$")  # 'name (1)'
+_SUFFIX = re.compile(r"^(?P<base>.+?)-(?P<n>\d{1,2})$")       # 'name-1'
+_STAMP = re.compile(r"^(?P<base>.+?)[-_ ](?P<time>\d{4}-?\d{2}-?\d{2}(?:[T_ -]?\d{2}[-:.h]?\d{2}(?:[-:.]?\d{2})?)?)$")
+_TIME = re.compile(r"^(\d{4})-?(\d{2})-?(\d{2})(?:[T_ -]?(\d{2})[-:.h]?(\d{2})(?:[-:.]?(\d{2}))?)?$")
+
+
+class NamingError(GradingError):
+    """A pattern the instructor gave that cannot be used (reported before anything is read)."""
+
+
+@dataclass
+class Name:
+    """What a path says about its file.
+
+    Attributes
+    ----------
+    raw : str or None
+        The student's id as written in the path (before the roster maps it), or None when the path names none.
+    key : str
+        ``"student"`` (``raw`` is a kinbook id) or ``"lms"`` (an LMS id, for the roster to map).
+    time : datetime.datetime or None
+        From the name (naive: the zone of the due date applies).
+    late : bool
+        The LMS marked the file late.
+    attempt : int
+        0 for a first attempt; higher for later ones.
+    exercise_named : bool or None
+        Whether the file is named after the exercise (None: the pattern decides, not the name).
+    why : str
+        When ``raw`` is None: why no student could be read.
+    """
+
+    raw: str | None
+    key: str = "student"
+    time: _dt.datetime | None = None
+    late: bool = False
+    attempt: int = 0
+    exercise_named: bool | None = None
+    why: str = ""
+    base: str = ""
+
+
+def compile_pattern(pattern):
+    """A ready pattern's name or a regular expression → compiled pattern (None stays None)."""
+    if pattern is None:
+        return None
+    text = PATTERNS.get(pattern, pattern)
+    try:
+        rx = re.compile(text)
+    except re.error as exc:
+        raise NamingError(f"--id-pattern {pattern!r} is not a regular expression: {exc}") from None
+    groups = set(rx.groupindex)
+    if not groups & {"student", "lms"}:
+        raise NamingError(f"--id-pattern {pattern!r} has no group (?P<student>…) or (?P<lms>…): it cannot say whose "
+                          f"file it is (ready patterns: {', '.join(PATTERNS)})")
+    unknown = groups - _GROUPS
+    if unknown:
+        raise NamingError(f"--id-pattern {pattern!r}: unknown group(s) {', '.join(sorted(unknown))} (known: "
+                          f"{', '.join(sorted(_GROUPS))})")
+    return rx
+
+
+def parse_time(text):
+    """A time written in a file name (``2026-03-01-23-59-00``, ``20260301T2359``, ``2026-03-01``) → naive datetime,
+    or None when it is not one."""
+    m = _TIME.match(text.strip())
+    if not m:
+        return None
+    y, mo, d, h, mi, s = (int(g) if g else 0 for g in m.groups())
+    try:
+        return _dt.datetime(y, mo, d, h, mi, s)
+    except ValueError:
+        return None
+
+
+def _strip_attempt(stem, keep=None):
+    """(base, attempt number, time) of a file stem or id with a browser's, an LMS's or a timestamp suffix.
+
+    ``keep(text)`` says whether a text is an id on its own (on the roster): then a ``-N`` suffix is part of it.
+    """
+    attempt, time = 0, None
+    m = _BROWSER.match(stem)
+    if m and m["base"]:
+        stem, attempt = m["base"], int(m["n"])
+    m = _STAMP.match(stem)
+    if m and parse_time(m["time"]) is not None and not (keep and keep(stem)):
+        stem, time = m["base"], parse_time(m["time"])
+    m = _SUFFIX.match(stem)
+    if m and not (keep and keep(stem)):
+        stem, attempt = m["base"], max(attempt, int(m["n"]))
+    return stem, attempt, time
+
+
+def read_name(parts, exercise, root_name, pattern=None, keep=None):
+    """Read ``parts`` (the path below the named directory, as a tuple) → :class:`Name`.
+
+    Parameters
+    ----------
+    parts : tuple of str
+    exercise : str
+    root_name : str
+        The named directory's own name (the student of a file named after the exercise directly in it).
+    pattern : compiled regular expression or None
+    keep : callable or None
+        ``keep(text)`` is True for a text that is an id on the roster (its ``-N`` ending is not an attempt).
+    """
+    filename = parts[-1]
+    stem = filename[:-len(".ipynb")] if filename.endswith(".ipynb") else filename
+    if pattern is not None:
+        m = pattern.search("/".join(parts))
+        if not m:
+            return Name(None, why=f"does not match the --id-pattern {pattern.pattern!r}")
+        g = {k: v for k, v in m.groupdict().items() if v is not None}
+        key = "student" if g.get("student") else "lms"
+        raw = g.get("student") or g.get("lms")
+        if not raw:
+            return Name(None, why="the --id-pattern matched no student id")
+        fstem = g.get("file", stem)
+        fstem = fstem[:-len(".ipynb")] if fstem.endswith(".ipynb") else fstem
+        base, attempt, time = _strip_attempt(fstem)
+        if g.get("attempt", "").isdigit():
+            attempt = int(g["attempt"])
+        if g.get("time"):
+            time = parse_time(g["time"]) or time
+        return Name(raw, key, time, bool(g.get("late")), attempt, None, base=base)
+    base, attempt, time = _strip_attempt(stem)
+    if base == exercise:
+        owner = parts[-2] if len(parts) > 1 else root_name
+        return Name(owner, "student", time, False, attempt, True, base=base)
+    if stem.startswith(exercise + "-"):
+        rest, attempt, time = _strip_attempt(stem[len(exercise) + 1:], keep)
+        return Name(rest, "student", time, False, attempt, True, base=exercise)
+    if len(parts) > 1:  # a notebook of another name in a student's directory
+        return Name(parts[-2], "student", time, False, attempt, False, base=base)
+    raw, attempt, time = _strip_attempt(stem, keep)
+    return Name(raw, "student", time, False, attempt, False, base=raw)
