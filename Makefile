@@ -25,13 +25,12 @@ $(STAMP): pyproject.toml $(PIN) | $(BIN)/python
 kernel: $(STAMP)
 
 # root (a container, a CI box) needs --allow-root; everyone else gets the plain command
-# The chapter notebooks are trusted first, so their stored animations (JavaScript players) play when opened.
-# etc/jupyterlab-overrides.json: JupyterLab's windowed notebook (its default) gave the stored animation players
-# an image of height 0 (only the slider and buttons showed); the whole notebook is laid out instead.
+# No notebook needs trust: the stored animations are animated PNGs, which every front end shows untrusted.
+# etc/jupyterlab-overrides.json: JupyterLab's windowed notebook (its default) lays out only the cells near the
+# viewport; the whole notebook is laid out instead (the live site shares the setting).
 lab: $(STAMP)
 	mkdir -p chapters $(VENV)/share/jupyter/lab/settings
 	cp etc/jupyterlab-overrides.json $(VENV)/share/jupyter/lab/settings/overrides.json
-	$(BIN)/jupyter trust chapters/*.ipynb >/dev/null
 	$(BIN)/jupyter lab --notebook-dir=chapters $(if $(filter 0,$(shell id -u)),--allow-root)
 
 # -n auto: one pytest worker per core (pytest-xdist); --dist loadfile keeps each notebook's cells in order on
@@ -97,12 +96,14 @@ notebooks: $(STAMP)
 MATHJAX_DIR = $(shell $(BIN)/python -c "import jupyter_server_mathjax, os; print(os.path.join(os.path.dirname(jupyter_server_mathjax.__file__), 'static'))" 2>/dev/null)
 # That package ships only the STIX-Web fonts: MathJax, which asks for its TeX fonts by default, then fell back to
 # the browser's serif (upright variables, no bold vectors); local/offline.js points it at STIX-Web.
+# etc/nbconvert/kinbook-html is nbconvert's lab template without its require.js from a CDN (no output uses it).
 html: $(STAMP)
 	mkdir -p build/html && rm -rf build/html/mathjax && cp -r $(MATHJAX_DIR) build/html/mathjax
 	mkdir -p build/html/mathjax/config/local
 	printf '%s\n' 'MathJax.Hub.Config({"HTML-CSS": {availableFonts: [], preferredFont: null, webFont: "STIX-Web", imageFont: null}});' \
 		'MathJax.Ajax.loadComplete("[MathJax]/config/local/offline.js");' > build/html/mathjax/config/local/offline.js
 	$(BIN)/jupyter nbconvert --to html --output-dir build/html \
+		--TemplateExporter.extra_template_basedirs=etc/nbconvert --template kinbook-html \
 		--HTMLExporter.mathjax_url="mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe,local/offline" chapters/*.ipynb
 
 # Re-pin the environment after a dependency change (run on the reference machine class: Python 3.11, Linux).

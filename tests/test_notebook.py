@@ -46,37 +46,6 @@ def test_newton_table_shows_the_solver_iterations_without_round_off():
     assert "e-1" not in repr(table).replace("1e-12", "")  # nothing at round-off level is printed
 
 
-def test_animation_buttons_are_drawn_by_the_fonts_a_browser_has():
-    """Every button of a stored animation player is a text symbol that DejaVu Sans (the fallback font of a Linux
-    desktop, bundled with matplotlib) can draw — the media symbols ⏮ ⏸ ⏭ showed as empty boxes there."""
-    import re
-
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.animation import FuncAnimation
-    from matplotlib.font_manager import findfont
-    from matplotlib.ft2font import FT2Font
-
-    from kinbook._animation import stable_jshtml
-
-    fig, ax = plt.subplots(figsize=(1, 1), dpi=20)
-    (line,) = ax.plot([0, 1], [0, 0])
-    anim = FuncAnimation(fig, lambda k: (line.set_ydata([k, k]), line)[1:], frames=3, blit=True)
-    try:
-        html = stable_jshtml(anim)
-    finally:
-        plt.close(fig)
-    buttons = re.findall(r"<button[^>]*>\s*(.*?)\s*</button>", html, re.S)
-    labels = [re.sub(r"<[^>]+>", "", b).strip() for b in buttons]
-    assert len(labels) == 9 and len(set(labels)) == 9, labels
-    assert "font-awesome" not in html and "<i class" not in html
-    dejavu = FT2Font(findfont("DejaVu Sans", fallback_to_default=False)).get_charmap()
-    missing = {ch for label in labels for ch in label if ord(ch) not in dejavu}
-    assert not missing, f"button symbols DejaVu Sans cannot draw: {sorted(missing)}"
-
-
 def test_small_as_a_relation_never_reads_equals_less_than():
     assert notebook.small(-1.5e-17, relation=True) == "< 1e-12"
     assert notebook.small(3.2e-5, 1e-9, relation=True) == "= 3.2e-05"

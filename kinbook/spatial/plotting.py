@@ -10,7 +10,7 @@ matrix A at a point) to any 3D axes, e.g. on top of a :func:`draw` (textbook §1
 In a notebook::
 
     result = mech.simulate(np.linspace(0, 1, 61))
-    animation_html(result)          # a JavaScript player (or HTML(animate(result).to_jshtml()))
+    animation_png(result)           # an animated PNG: plays in every notebook front end, trusted or not
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["Drawing", "draw", "animate", "animation_html", "equal_scales", "make_3d_axes", "joint_figure", "DrawnVector", "DrawnFrame", "draw_vector",
+__all__ = ["Drawing", "draw", "animate", "animation_png", "equal_scales", "make_3d_axes", "joint_figure", "DrawnVector", "DrawnFrame", "draw_vector",
            "draw_frame"]
 
 _FRAME_COLOURS = ("tab:red", "tab:green", "tab:blue")
@@ -208,7 +208,7 @@ def animate(result, ax=None, frames=False, every=1, interval=40, max_frames=None
     Returns
     -------
     matplotlib.animation.FuncAnimation
-        Show it in a notebook with ``IPython.display.HTML(anim.to_jshtml())``. Its ``drawing`` attribute is
+        Show it in a notebook with :func:`animation_png`. Its ``drawing`` attribute is
         the :class:`Drawing` it updates.
     """
     from matplotlib.animation import FuncAnimation
@@ -245,21 +245,21 @@ def animate(result, ax=None, frames=False, every=1, interval=40, max_frames=None
     return anim
 
 
-def animation_html(result, frame_format="jpeg", **kwargs):
-    """:func:`animate` for notebooks: an object that renders as an HTML/JavaScript player.
+def animation_png(result, colors=256, **kwargs):
+    """:func:`animate` for notebooks: an object that shows itself as an animated PNG (no notebook trust needed).
 
     The figure is closed so the notebook does not also show it as a still image. Keyword arguments go to
-    :func:`animate`; the defaults here are smaller (60 frames at most, 72 dpi, JPEG frames) because every
-    frame is stored in the notebook as an image. The player's HTML is the same on every run.
+    :func:`animate`; the defaults here are smaller (60 frames at most, 72 dpi, a 256-colour palette for the
+    shaded view) because every frame is stored in the notebook. The same sweep gives the same bytes.
 
     Returns
     -------
-    kinbook._animation.AnimationHTML
-        ``_repr_html_()`` returns the JavaScript player; ``.anim`` is the FuncAnimation.
+    kinbook._animation.Animation
+        ``_repr_png_()`` is the animated PNG; ``.anim`` is the FuncAnimation; ``.save(path)`` writes the file.
     """
     import matplotlib.pyplot as plt
 
-    from .._animation import AnimationHTML
+    from .._animation import Animation
 
     if kwargs.get("ax") is None:
         kwargs.setdefault("figsize", (5.6, 4.6))
@@ -268,7 +268,7 @@ def animation_html(result, frame_format="jpeg", **kwargs):
     anim = animate(result, **kwargs)
     anim.drawing.ax.figure.subplots_adjust(left=0, right=1, bottom=0, top=0.93)
     plt.close(anim.drawing.ax.figure)
-    return AnimationHTML(anim, frame_format)
+    return Animation(anim, colors)
 
 
 # ------------------------------------------------------------------------------------------- vectors and frames

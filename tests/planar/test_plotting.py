@@ -232,16 +232,14 @@ def test_animation_frames_follow_the_sweep(sweep):
     assert _has_circle_at(anim._fig.axes[0], A)
 
 
-def test_animation_html_plays_and_closes_its_figure(sweep):
-    h = plotting.animation_html(sweep, max_frames=2, labels=False)
+def test_animation_png_closes_its_figure_and_shows_the_driver_in_degrees(sweep):
+    h = plotting.animation_png(sweep, max_frames=2, labels=False)
     assert not plt.fignum_exists(h.anim._fig.number)
-    html = h._repr_html_()
-    assert "<script" in html and html.count("data:image/png") >= 1
-    # the same animation gives the same HTML (no random player id), a different one another id
-    again = plotting.animation_html(sweep, max_frames=2, labels=False).to_html()
-    other = plotting.animation_html(sweep, max_frames=3, labels=False).to_html()
-    player = re.compile(r'id="_anim_img([0-9a-f]+)"')
-    assert again == html and player.search(other).group(1) != player.search(html).group(1)
+    assert h.to_png().startswith(b"\x89PNG")
+    h.anim._func(1)
+    clock = [t.get_text() for t in h.anim._fig.axes[0].texts if t.get_text().startswith("t = ")]
+    phi2 = np.degrees(sweep.q[h.anim.kinbook_indices[1], 5])  # the crank's angle, driven
+    assert clock and f"    φ₂ = {phi2:.4g}°" in clock[0], clock
 
 
 # --------------------------------------------------------------------------------------------- explorer

@@ -10,7 +10,7 @@ import pytest  # noqa: E402
 
 from kinbook import examples  # noqa: E402
 from kinbook.errors import InputError  # noqa: E402
-from kinbook.spatial.plotting import animate, animation_html, draw  # noqa: E402
+from kinbook.spatial.plotting import animate, animation_png, draw  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -56,14 +56,14 @@ def test_animation_frames_follow_the_sweep(fourbar):
         plt.close("all")
 
 
-def test_animation_html_is_a_reproducible_jpeg_player_with_the_paths_drawn(fourbar):
+def test_animation_png_is_reproducible_with_the_paths_drawn(fourbar):
     mech, res = fourbar
-    h = animation_html(res, max_frames=5, trace=[("coupler", "B")])
+    h = animation_png(res, max_frames=5, trace=[("coupler", "B")])
     fig = h.anim.drawing.ax.figure
-    assert not plt.fignum_exists(fig.number)  # closed: the notebook shows only the player
-    assert repr(h) == "<AnimationHTML: 5 frames>"  # 25 instants, every 5th
-    html = h.to_html()
-    assert "data:image/jpeg" in html and html == animation_html(res, max_frames=5, trace=[("coupler", "B")]).to_html()
+    assert not plt.fignum_exists(fig.number)  # closed: the notebook shows only the animation
+    assert repr(h) == "<Animation: 5 frames, 40 ms each>"  # 25 instants, every 5th
+    png = h.to_png()
+    assert png.startswith(b"\x89PNG") and png == animation_png(res, max_frames=5, trace=[("coupler", "B")]).to_png()
     path = [line for line in h.anim.drawing.ax.lines if line.get_color() == "tab:purple"]
     np.testing.assert_allclose(line_points(path[0]), res.position("coupler", "B"))
 

@@ -27,14 +27,14 @@ Every drawing is made of artists that are created once and then moved, so :func:
 
 In notebooks
 ------------
-:func:`animation_html` and the still figure of :func:`explorer` render themselves (the figures are closed so
+:func:`animation_png` and the still figure of :func:`explorer` render themselves (the figures are closed so
 they are not shown twice). :func:`explorer` returns a live ipywidgets slider when a kernel is running — also
 under nbval, whose stored output would then be a widget model; a notebook checked by nbval should call
 ``explorer(mech, static=True)`` (or tag the cell ``nbval-ignore-output``).
 """
 
 from . import animation, explore, joints, plots, scene
-from .animation import MAX_FRAMES, animate, animation_html
+from .animation import MAX_FRAMES, animate, animation_png
 from .explore import explorer
 from .joints import Drawing, drawing_for
 from .plots import plot_history, plot_trajectories
@@ -47,7 +47,7 @@ __all__ = [
     "plot_trajectories",
     "plot_history",
     "animate",
-    "animation_html",
+    "animation_png",
     "explorer",
     "Drawing",
     "drawing_for",

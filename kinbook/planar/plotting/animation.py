@@ -1,5 +1,5 @@
 """Animations of a planar sweep: :func:`animate` (a matplotlib FuncAnimation whose artists are created once
-and moved) and :func:`animation_html` (a player that renders itself in a notebook)."""
+and moved) and :func:`animation_png` (an animated PNG that plays in every notebook front end)."""
 
 from __future__ import annotations
 
@@ -7,13 +7,13 @@ import math
 
 import numpy as np
 
-from ..._animation import AnimationHTML
+from ..._animation import Animation
 from ...errors import InputError
 from ._common import _TRACES, _plt, _size, _style_axes
 from .joints import driver_symbol
 from .scene import _Scene
 
-__all__ = ["animate", "animation_html", "MAX_FRAMES"]
+__all__ = ["animate", "animation_png", "MAX_FRAMES"]
 
 MAX_FRAMES = 120
 """Default cap on the number of frames of an animation."""
@@ -72,12 +72,14 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
     _style_axes(ax, getattr(mech, "title", None))
     driver = mech.drivers[0] if mech.drivers else None
     sym = driver_symbol(mech, driver, unicode=True) if driver is not None else None
-    values = None
+    values, unit = None, ""
     if driver is not None:
         import sympy as sp
 
         f = sp.lambdify(mech.t, driver.f, "numpy")
         values = np.broadcast_to(np.asarray(f(result.t[idx]), dtype=float), idx.shape)
+        if (driver.measures or (None,))[-1] == "angle":  # an angle is read in degrees, as the text gives it
+            values, unit = np.degrees(values), "°"
     clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, zorder=10,
                     bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="#bbbbbb", alpha=0.9))
 
@@ -85,7 +87,7 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
         artists = scene.update(qs[k])
         text = f"t = {result.t[idx[k]]:.4g}"  # plain text: mathtext would be parsed anew every frame
         if values is not None:
-            text += f"    {sym} = {values[k]:.4g}"
+            text += f"    {sym} = {values[k]:.4g}{unit}"
         if k == len(idx) - 1 and result.failure is not None:
             text += "   (last instant that assembles)"
         clock.set_text(text)
@@ -100,27 +102,28 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
     return anim
 
 
-def animation_html(result, frame_format="png", **kwargs):
-    """:func:`animate` for notebooks: an object that renders as an HTML/JavaScript player.
+def animation_png(result, colors=256, **kwargs):
+    """:func:`animate` for notebooks: an object that shows itself as an animated PNG.
 
-    The figure is closed so the notebook does not also show it as a still image. Keyword arguments go to
-    :func:`animate`; the defaults here are smaller (72 frames at most, 72 dpi) because every frame is
-    stored in the notebook as an image. The player's HTML is the same on every run (no random ids), so a
-    re-executed notebook changes only where its content does.
+    An image needs no notebook trust: it plays in JupyterLab, VS Code, the live site and the book alike (a
+    JavaScript player plays only in a trusted notebook). The figure is closed so the notebook does not also show
+    it as a still image. Keyword arguments go to :func:`animate`; the defaults here are smaller (72 frames at
+    most, 72 dpi) because every frame is stored in the notebook. The same sweep gives the same bytes.
 
     Parameters
     ----------
-    frame_format : {"png", "jpeg"}
-        How the frames are stored.
+    colors : int or None
+        Store the frames with a shared palette of this many colours (a third of the size of full colour for these
+        drawings; see :func:`kinbook._animation.apng`); None keeps full colour.
 
     Returns
     -------
-    kinbook._animation.AnimationHTML
-        ``_repr_html_()`` returns the JavaScript player; ``.anim`` is the FuncAnimation.
+    kinbook._animation.Animation
+        ``_repr_png_()`` is the animated PNG; ``.anim`` is the FuncAnimation; ``.save(path)`` writes the file.
     """
     kwargs.setdefault("figsize", (6.0, 4.5))
     kwargs.setdefault("dpi", 72)
     kwargs.setdefault("max_frames", 72)
     anim = animate(result, **kwargs)
     _plt().close(anim._fig)
-    return AnimationHTML(anim, frame_format)
+    return Animation(anim, colors)
