@@ -146,7 +146,8 @@ chromium:
 		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 
 # The Pyodide test fixture (tests/web/fixture/prepare.py) is fetched once into .venv-web/pyodide-fixture.
-test-web: book lite chromium
+# tests/web/test_lab.py opens the stored notebooks, untrusted, in the lab environment's JupyterLab ($(STAMP)).
+test-web: book lite chromium $(STAMP)
 	$(WEB_BIN)/python tests/web/fixture/prepare.py $(WEB_VENV)/pyodide-fixture
 	KINBOOK_TEST_WEB=1 $(WEB_BIN)/python -m pytest tests/web --confcutdir=tests/web -p no:cacheprovider -v -s
 

@@ -9,9 +9,10 @@ kept true by nbval in `make test`), copy them into a staging folder under build/
 * the book's pages get an "Open live" link to the same notebook in the live site (``../live/...``);
 * the live copies get the Pyodide kernel (kernelspec ``python``) and a first cell that installs kinbook
   from the site's own package index (piplite);
-* matplotlib's animation players load Font Awesome from a CDN: the copies load the site's own copy instead.
+* the live site's pages get web/lite/kinbook-live.js, which says in the page when Python (Pyodide) cannot be
+  downloaded.
 
-Everything a page needs is served by the site itself (MathJax, fonts, kinbook's wheel), except the Pyodide
+Everything a page needs is served by the site itself (MathJax, kinbook's wheel), except the Pyodide
 runtime of the live notebooks, which comes from the official Pyodide CDN (`PYODIDE_URL` in
 web/lite/jupyter-lite.json). Nothing here uses the network: the tools and assets are installed beforehand by
 `make web-env` (pip, requirements/web.txt; npm ci, web/package-lock.json).
@@ -20,6 +21,7 @@ web/lite/jupyter-lite.json). Nothing here uses the network: the tools and assets
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
 import shutil
@@ -36,12 +38,6 @@ LIVE = SITE / "live"
 VENV = Path(sys.prefix)
 NODE_MODULES = VENV / "npm" / "node_modules"   # npm ci of web/package.json (make web-env)
 WHEELS = VENV / "wheels"                       # pure-Python wheels for the browser kernel (make web-env)
-
-# Where matplotlib's jshtml animation player loads its icon font from, and where the site serves its copy.
-# Notebook pages are one folder below the site's root in both sites (book: chapters/, docs/; live: lab/,
-# notebooks/), so one relative path serves both.
-FONT_AWESOME_CDN = "https://maxcdn.bootstrapcdn.com/font-awesome/4.4.0/css/font-awesome.min.css"
-FONT_AWESOME_LOCAL = "../vendor/font-awesome/css/font-awesome.min.css"
 
 # The parts of MathJax's es5/ build the book loads: the TeX-to-HTML component and what it loads on demand
 # (TeX extensions, fonts, the accessibility menu); not the other combined components (SVG, MathML input).
@@ -89,24 +85,9 @@ def _after_title(nb):
     return 1 if cells and cells[0]["cell_type"] == "markdown" else 0
 
 
-def _local_font_awesome(nb):
-    """Point every stored output at the site's Font Awesome instead of the CDN's."""
-    for cell in nb["cells"]:
-        for out in cell.get("outputs", []):
-            data = out.get("data", {})
-            html = data.get("text/html")
-            if html is None:
-                continue
-            text = "".join(html) if isinstance(html, list) else html
-            if FONT_AWESOME_CDN in text:
-                data["text/html"] = text.replace(FONT_AWESOME_CDN, FONT_AWESOME_LOCAL)
-    return nb
-
-
 def book_notebook(nb, name):
-    """A chapter notebook as a book page: local icon font, an "Open live" link under the title, and no stored
-    widget state (rendering it would load the widget manager from a CDN)."""
-    nb = _local_font_awesome(nb)
+    """A chapter notebook as a book page: an "Open live" link under the title, and no stored widget state
+    (rendering it would load the widget manager from a CDN)."""
     nb["metadata"].pop("widgets", None)
     link = (f'<p class="kinbook-live"><a href="{LIVE_NOTEBOOK.format(name=name)}">▶ Open live</a> — run this '
             "notebook in your browser: no install (JupyterLite; the first start downloads Python, then the "
@@ -115,9 +96,27 @@ def book_notebook(nb, name):
     return nb
 
 
+def _joined(value):
+    return "".join(value) if isinstance(value, list) else value
+
+
+def _one_string_outputs(nb):
+    """Store every output's text as one string. nbformat allows a list of lines (and nbconvert writes multi-line
+    text that way); JupyterLite 0.6 shows such a list joined with commas: ",slider stroke: …" at the start of
+    every printed line after the first, and HTML outputs strewn with commas."""
+    for cell in nb["cells"]:
+        for out in cell.get("outputs", []):
+            if "text" in out:
+                out["text"] = _joined(out["text"])
+            for mime, value in out.get("data", {}).items():
+                out["data"][mime] = _joined(value)
+    return nb
+
+
 def lite_notebook(nb):
-    """A chapter notebook for JupyterLite: the Pyodide kernel, kinbook installed by the first cell."""
-    nb = _local_font_awesome(nb)
+    """A chapter notebook for JupyterLite: the Pyodide kernel, kinbook installed by the first cell, outputs
+    stored as single strings."""
+    nb = _one_string_outputs(nb)
     nb["metadata"]["kernelspec"] = dict(LITE_KERNELSPEC)
     nb["metadata"].pop("widgets", None)
     nb["cells"].insert(_after_title(nb), _cell("code", INSTALL_CELL, "kinbook-install"))
@@ -133,15 +132,6 @@ def _fresh(path):
 
 def _copy_tree(src, dst):
     shutil.copytree(src, dst, dirs_exist_ok=True)
-
-
-def _vendor(dst):
-    """The browser assets a site serves itself: Font Awesome (css + fonts) into dst/vendor/."""
-    fa = NODE_MODULES / "font-awesome"
-    if not fa.is_dir():
-        raise SystemExit(f"{fa} is missing: run `make web-env` (npm ci of web/package.json) first")
-    for sub in ("css", "fonts"):
-        _copy_tree(fa / sub, dst / "vendor" / "font-awesome" / sub)
 
 
 def _run(cmd, **kw):
@@ -166,7 +156,6 @@ def build_book():
     (src / "_extra" / "mathjax").mkdir(parents=True)
     for part in MATHJAX_PARTS:
         (shutil.copy2 if part.endswith(".js") else _copy_tree)(mathjax / part, src / "_extra" / "mathjax" / part)
-    _vendor(src / "_extra")
 
     out = STAGE / "book-out"
     if out.exists():
@@ -217,8 +206,28 @@ def build_lite():
         shutil.rmtree(LIVE)
     _run([VENV / "bin" / "jupyter", "lite", "build", "--lite-dir", lite, "--contents", contents,
           "--piplite-wheels", wheels, "--output-dir", LIVE], cwd=lite)
-    _vendor(LIVE)
+    _page_script(LIVE)
     print(f"lite: {LIVE}/index.html ({_size(LIVE)})")
+
+
+# The live site's own script (web/lite/kinbook-live.js), added to the pages that run notebooks.
+PAGE_SCRIPT = "kinbook-live.js"
+LIVE_APPS = ("lab", "notebooks")
+
+
+def _page_script(live):
+    """Copy web/lite/kinbook-live.js to the live site and load it from the pages of its apps (their index.html
+    are JupyterLite's own: the script tag goes before </head>, versioned by the script's digest so that a
+    browser cache never keeps an old copy)."""
+    script = (WEB / "lite" / PAGE_SCRIPT).read_bytes()
+    (live / PAGE_SCRIPT).write_bytes(script)
+    tag = f'<script defer src="../{PAGE_SCRIPT}?_={hashlib.sha256(script).hexdigest()[:10]}"></script>\n'
+    for app in LIVE_APPS:
+        page = live / app / "index.html"
+        text = page.read_text(encoding="utf-8")
+        if "</head>" not in text:
+            raise SystemExit(f"{page}: no </head> to put {PAGE_SCRIPT} before (JupyterLite's page changed?)")
+        page.write_text(text.replace("</head>", tag + "  </head>", 1), encoding="utf-8")
 
 
 def _size(path, skip=None):

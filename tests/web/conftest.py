@@ -227,3 +227,21 @@ class Clock:
 
     def cpu(self):
         return browser_cpu_seconds() - self.cpu0
+
+
+# The chapters whose stored notebook has an animation (a cell calling plotting.animation_png), for the tests that
+# open one: 13-3 (planar, two) and 14-5 (spatial) at least.
+ANIMATED = [p.stem for p in sorted((ROOT / "chapters").glob("*.ipynb")) if "animation_png(" in p.read_text()]
+
+
+def plays(page, img, shots=4, pause_ms=350):
+    """True when an <img> (a stored animated PNG) loaded and shows different pictures over about a second: the
+    browser is playing it."""
+    img.scroll_into_view_if_needed()
+    page.wait_for_function("i => i.complete && i.naturalWidth > 0", arg=img.element_handle())
+    pictures = set()
+    for _ in range(shots):
+        pictures.add(img.screenshot())
+        page.wait_for_timeout(pause_ms)
+    return len(pictures) > 1
+

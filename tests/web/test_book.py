@@ -9,7 +9,7 @@ from urllib.parse import parse_qs, urljoin, urlsplit
 
 import pytest
 
-from .conftest import ROOT, SITE, watch
+from .conftest import ANIMATED, ROOT, SITE, plays, watch
 
 CHAPTERS = sorted(p.stem for p in (ROOT / "chapters").glob("*.ipynb"))
 
@@ -85,47 +85,37 @@ def test_chapter_page_math_figures_and_live_link(browser, site, offline, chapter
     page.close()
 
 
-def animated_chapters():
-    out = []
-    for chapter in CHAPTERS:
-        text = (ROOT / "chapters" / f"{chapter}.ipynb").read_text()
-        if "anim_step_forward" in text:
-            out.append(chapter)
-    return out
-
-
-@pytest.mark.parametrize("chapter", animated_chapters()[:1])
-def test_animation_buttons_have_icons_and_play(browser, site, offline, screenshots, chapter):
+@pytest.mark.parametrize("chapter", ANIMATED)
+def test_stored_animations_play(browser, site, offline, screenshots, chapter):
+    """An animation is an animated PNG: the page shows it as an image, which plays with no script."""
     page = open_page(browser, offline, f"{site.url}/chapters/{chapter}.html")
-    player = page.locator(".animation").first
-    player.scroll_into_view_if_needed()
-    # every button shows its icon: kinbook draws them as text symbols (kinbook/_animation.py: no web font, they
-    # show offline); an icon font's <i> (matplotlib's own player) is drawn by the theme's Font Awesome as inline
-    # SVG, or by the site's Font Awesome 4 (vendor/), which must then have loaded
-    sizes = player.evaluate("a => [...a.querySelectorAll('.anim-buttons button')].map(b => {"
-                            " const i = b.querySelector('svg, i, span');"
-                            " return i && i.textContent.trim() !== '' || i && i.tagName !== 'SPAN'"
-                            " ? i.getBoundingClientRect().width : 0; })")
-    assert len(sizes) == 9 and min(sizes) > 4, f"animation buttons without icons: widths {sizes}"
-    if player.locator(".anim-buttons button i").count():
-        page.wait_for_function("() => [...document.fonts].some(f => f.family.replace(/[\"']/g, '') === "
-                               "'FontAwesome' && f.status === 'loaded')")
-    links = page.eval_on_selector_all("link[href*='font-awesome']", "ls => ls.map(l => l.href)")
-    assert all(h.startswith(f"{site.url}/vendor/font-awesome/") for h in links), links
-    # the buttons work: two steps forward, then play
-    img = player.locator("img").first
-    slider = player.locator("input[type=range]")
-    assert slider.input_value() == "0"
-    first = img.get_attribute("src")
-    player.locator("button[title='Next frame']").click()
-    player.locator("button[title='Next frame']").click()
-    assert slider.input_value() == "2"
-    assert img.get_attribute("src") != first
-    player.locator("button[title='Play']").click()
-    page.wait_for_function("s => Number(s.value) > 4", arg=slider.element_handle())
-    player.locator("button[title='Pause']").click()
-    page.screenshot(path=str(screenshots / "book-animation.png"))
+    cells = page.locator("div.cell", has=page.locator("pre", has_text="animation_png("))
+    assert cells.count() >= 1
+    for k in range(cells.count()):
+        img = cells.nth(k).locator(".cell_output img")
+        assert img.count() == 1 and plays(page, img), f"animation {k + 1} of {chapter} does not play"
+    assert page.locator(".cell_output script").count() == 0
+    page.screenshot(path=str(screenshots / f"book-{chapter}-animation.png"))
     page.close()
+
+
+def test_no_page_loads_thebe_or_links_a_missing_page(site):
+    """Thebe (a launcher from a public CDN, unused: the live path is JupyterLite) is on no page, and every
+    relative link of every page leads to a file of the site (the instructors page linked docs/lms, left out)."""
+    dead = []
+    for page in sorted(SITE.rglob("*.html")):
+        if "live" in page.relative_to(SITE).parts or "_static" in page.parts:
+            continue
+        text = page.read_text(encoding="utf-8")
+        assert "thebe" not in text.lower() and "unpkg.com" not in text, page
+        for href in re.findall(r'<a [^>]*href="([^"]+)"', text):
+            href = href.split("#")[0].split("?")[0]
+            if not href or re.match(r"[a-z][a-z0-9+.-]*:", href):  # in-page anchors, other sites, mailto:
+                continue
+            target = (page.parent / href).resolve()
+            if not target.exists():
+                dead.append(f"{page.relative_to(SITE)} -> {href}")
+    assert dead == [], dead
 
 
 def test_screenshot_of_a_page_with_math(browser, site, offline, screenshots):

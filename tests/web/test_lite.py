@@ -5,7 +5,7 @@ the explorer's slider. The Pyodide runtime and packages come from the test fixtu
 
 import re
 
-from .conftest import SCREENSHOTS, Clock, watch
+from .conftest import ANIMATED, SCREENSHOTS, SITE, Clock, StaticServer, plays, watch
 
 NOTEBOOK = "13-3-position-analysis.ipynb"
 
@@ -117,6 +117,8 @@ def test_a_student_runs_the_live_notebook(profile, site, offline, screenshots):
           f"after the page load ({cpu:.1f} s of browser CPU); served {own / 1e6:.1f} MB "
           f"of the site + {pyodide / 1e6:.1f} MB of Pyodide (the CDN's part)")
 
+    assert page.locator("#kinbook-no-python").count() == 0  # Python was downloaded: no banner says otherwise
+
     last = add_cell_below(page, last, SIMULATE)
     assert STROKE_END in last.locator(".jp-OutputArea").inner_text()
 
@@ -163,3 +165,43 @@ def test_a_second_visit_uses_the_browser_cache(profile, site, offline):
     again_files = sorted(((n, path) for path, kind, n in site.log[log_before:] if kind == "body"), reverse=True)
     assert again < 1e6, f"{again / 1e6:.1f} MB served again: the browser cache was not used: {again_files[:8]}"
     page.close()
+
+
+def test_stored_animations_play_in_the_live_notebooks(browser, site, offline, screenshots):
+    """The live notebooks are untrusted (JupyterLite trusts only what a session computes): a stored animation is
+    an animated PNG, which plays untrusted (the JavaScript player was a broken image strewn with commas)."""
+    for chapter in ANIMATED:
+        page = watch(browser.new_page(viewport={"width": 1280, "height": 1000}), offline)
+        page.goto(f"{site.url}/live/notebooks/index.html?path={chapter}.ipynb")
+        cells = page.locator(".jp-Notebook .jp-CodeCell", has_text="animation_png(")
+        cells.first.wait_for(timeout=120_000)
+        for k in range(cells.count()):
+            out = cells.nth(k).locator(".jp-OutputArea-output")
+            img = out.locator("img")
+            assert img.count() == 1 and plays(page, img), f"animation {k + 1} of {chapter} does not play"
+            assert out.first.inner_text().strip() == "", "text beside the animation (stray commas?)"
+        # printed text keeps its lines (JupyterLite showed a stored list of lines joined by commas)
+        streams = page.locator(".jp-OutputArea-output[data-mime-type='application/vnd.jupyter.stdout']")
+        texts = [streams.nth(k).inner_text() for k in range(streams.count())]
+        assert texts and not [t for t in texts if "\n," in t], [t for t in texts if "\n," in t][:3]
+        page.screenshot(path=str(screenshots / f"live-{chapter}-animation.png"))
+        page.close()
+
+
+def test_without_python_the_page_says_so(browser, proxy, screenshots):
+    """The site as built loads Python from the official CDN; here the proxy refuses it (offline, a firewall):
+    the page says so in a banner, instead of cells waiting at [*] forever."""
+    server = StaticServer(SITE)
+    before = len(proxy.requests)
+    try:
+        page = browser.new_page(viewport={"width": 1280, "height": 800})
+        page.goto(f"{server.url}/live/notebooks/index.html?path=13-1-transformation-matrix.ipynb")
+        banner = page.locator("#kinbook-no-python")
+        banner.wait_for(timeout=120_000)
+        text = banner.inner_text()
+        assert "Python could not be downloaded" in text and "cdn.jsdelivr.net" in text, text
+        page.screenshot(path=str(screenshots / "live-no-python.png"))
+        page.close()
+    finally:
+        server.close()
+    assert proxy.requests[before:] and all("cdn.jsdelivr.net" in r for r in proxy.requests[before:])
