@@ -79,7 +79,7 @@ def _rr_joint_gamma():
 
 
 def _spatial(constraint, quantity):
-    from kinbook.symbolic import derive
+    from kinbook.core.symbolic import derive
 
     m, t = _ex("spatial_fourbar", constraint)
     c = t if constraint is not None else None

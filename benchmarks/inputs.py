@@ -3,7 +3,7 @@
 Run: .venv/bin/python benchmarks/inputs.py [N ...]     (default N = 1000 2000 4000 8000 bodies)
 
 Prints, for a chain of N bodies (N revolute joints, N - 1 drivers written as text), the time of
-kinbook.io.build on the parsed file (TOML parsing by tomllib is shown apart) and the ratio to the previous N:
+kinbook.files.build on the parsed file (TOML parsing by tomllib is shown apart) and the ratio to the previous N:
 2.0 means linear. Then the time to read a typical driver and to refuse hostile expressions.
 """
 
@@ -13,8 +13,8 @@ import time
 import sympy as sp
 import tomllib
 
-from kinbook.expressions import ExpressionError, read_expression
-from kinbook.io import _no_gc, build
+from kinbook.core.reader import ExpressionError, read_expression
+from kinbook.files import _no_gc, build
 
 
 def chain(n):

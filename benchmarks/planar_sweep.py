@@ -111,7 +111,7 @@ def main(N=10000):
 
     t_k, res = timed(kinbook_sweep, mech, times)
     compiled = kinbook.examples.load("ch13_example2")
-    compiled.kernels = "compiled"  # every constraint through the kernel compiled from its Φ (kinbook.kernels)
+    compiled.kernels = "compiled"  # every constraint through the kernel compiled from its Φ (kinbook.core.kernels)
     compiled.simulate(times[:50])  # compiles the kernels: not counted
     t_c, res_c = timed(kinbook_sweep, compiled, times)
     np.testing.assert_allclose(res_c.q, res.q, atol=1e-9)

@@ -30,11 +30,11 @@ __version__ = "0.1.0"
 # Subpackages are imported when first used (PEP 562): `import kinbook` itself stays cheap — no sympy, no
 # numpy — so a notebook, a command or a browser (Pyodide) starts at once; `kinbook.planar`, `from kinbook
 # import spatial`, `kinbook.load(...)` work as before.
-_SUBMODULES = ("examples", "planar", "spatial", "grading", "analysis", "model", "symbolic", "book", "io",
-               "expressions", "classroom", "kernels", "notebook")
+_SUBMODULES = ("examples", "planar", "spatial", "grading", "core", "book", "files", "classroom")
 
 
-_FROM = {"load": "io", "loads": "io", "notebook_setup": "notebook", "try_it": "book.tryits", "reveal": "book.tryits"}
+_FROM = {"load": "files", "loads": "files", "notebook_setup": "book.display", "try_it": "book.tryits",
+         "reveal": "book.tryits"}
 _RENAMED = {"notebook_setup": "setup"}
 
 

@@ -20,7 +20,7 @@ import numpy as np
 
 from . import examples
 from .errors import KinbookError
-from .io import load
+from .files import load
 
 __all__ = ["main", "build_parser", "student_id"]
 
@@ -41,7 +41,7 @@ class _Parser(argparse.ArgumentParser):
 # ----------------------------------------------------------------------------------------- argument types
 def _number(text, expected):
     """A number from the command line, read by the one reader of untrusted text (so ``-t pi/4`` works)."""
-    from .expressions import ExpressionError, read_number
+    from .core.reader import ExpressionError, read_number
 
     try:
         return read_number(text, where="the argument")

@@ -11,7 +11,7 @@ The hierarchy::
     │   ├── UnknownPointError
     │   └── MechanismFileError     a mechanism file (TOML) that cannot be read; names the key
     ├── InputError                 wrong shapes, NaN/inf, values out of their domain
-    │   ├── ExpressionError        text that is not an allowed expression (kinbook.expressions)
+    │   ├── ExpressionError        text that is not an allowed expression (kinbook.core.reader)
     │   └── DriverValueError       a driver's f(t), f'(t) or f''(t) is not finite and real where needed
     ├── DriverCountError           more or fewer drivers than degrees of freedom
     └── AnalysisError              the numbers went wrong during an analysis
@@ -84,7 +84,7 @@ class InputError(KinbookError, ValueError):
 
 class ExpressionError(InputError):
     """Text (from a mechanism file, a student or the command line) that is not an allowed expression, or
-    exceeds a bound of :class:`kinbook.expressions.Limits`.
+    exceeds a bound of :class:`kinbook.core.reader.Limits`.
 
     Attributes
     ----------

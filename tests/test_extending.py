@@ -30,7 +30,7 @@ def tutorial():
 
 def test_the_tutorial_runs_and_its_joint_works_everywhere(tutorial):
     m, cls = tutorial["m"], tutorial["CamFollower"]
-    assert kinbook.model.constraint_class("planar", "cam-follower") is cls
+    assert kinbook.core.mechanism.constraint_class("planar", "cam-follower") is cls
     q = m.solve_position(1.0)
     from kinbook.planar import plotting
 
@@ -41,7 +41,7 @@ def test_the_tutorial_runs_and_its_joint_works_everywhere(tutorial):
 
 
 def test_the_file_block_declares_the_same_joint(tutorial):
-    pytest.importorskip("kinbook.expressions", reason="functions written as text need the safe reader")
+    pytest.importorskip("kinbook.core.reader", reason="functions written as text need the safe reader")
     (table,) = _blocks("toml")
     head = """
     [[bodies]]

@@ -6,9 +6,11 @@ its notation, how to check a printed formula, and the notebooks' "Try it" exerci
 - :mod:`~kinbook.book.notation` — the book's symbols, its two-body joints, a book-notation LaTeX printer
 - :mod:`~kinbook.book.verify` — printed-vs-derived tables, finite-difference and second-derivative checks
 - :mod:`~kinbook.book.tryits` — every notebook's "Try it": checker, target and worked answer as data
+- :mod:`~kinbook.book.display` — the notebooks' display helpers (``kinbook.notebook_setup()``, ``show``, ``small``,
+  ``agrees``) that keep stored outputs free of round-off
 """
 
-from . import errata, notation, printed, verify
+from . import display, errata, notation, printed, verify
 from .tryits import reveal, try_it
 
-__all__ = ["errata", "notation", "printed", "verify", "try_it", "reveal"]
+__all__ = ["display", "errata", "notation", "printed", "verify", "try_it", "reveal"]

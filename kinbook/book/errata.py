@@ -17,7 +17,7 @@ from typing import Callable
 import numpy as np
 import sympy as sp
 
-from ..notebook import agrees, small, tolerance_text
+from .display import agrees, small, tolerance_text
 from .notation import html_math
 
 __all__ = ["Erratum", "Evidence", "ERRATA", "table", "show", "get", "book_n1_acceleration"]

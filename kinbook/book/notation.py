@@ -37,7 +37,7 @@ def as_sympy(expr):
     """A sympy object of kinbook's own making, as it is (numbers become sympy numbers, lists a Matrix).
 
     Text is refused: these helpers read the library's expressions, never a reader's text
-    (untrusted text goes through :mod:`kinbook.expressions`)."""
+    (untrusted text goes through :mod:`kinbook.core.reader`)."""
     if isinstance(expr, (sp.Basic, sp.MatrixBase)):
         return expr
     if isinstance(expr, bool) or isinstance(expr, str):
@@ -451,7 +451,7 @@ def equations(rows, mech=None, first=1, label=r"\Phi"):
 def matrix(values, digits=4, row_labels=None, column_labels=None):
     """A numeric matrix or vector as a LaTeX array, rounded to ``digits`` decimals without round-off
     (exact zeros as 0, no −0)."""
-    from ..notebook import fmt
+    from .display import fmt
 
     a = np.atleast_2d(np.asarray(values, dtype=float))
 

@@ -2,7 +2,7 @@
 γ against the second time derivative of Φ along a path — each rendered as a small table in a notebook.
 
 Every check evaluates both sides at seeded random states and reports the largest difference in words
-(":func:`kinbook.notebook.agrees`"), so the stored output is the same on every CPU.
+(":func:`kinbook.book.display.agrees`"), so the stored output is the same on every CPU.
 
 >>> from kinbook.book import notation, printed, verify
 >>> c = verify.compare(printed.TABLES["13.1"][1], notation.pair("r").symbolic().Phi_q, notation.pair("r"))
@@ -17,7 +17,7 @@ import html
 import numpy as np
 import sympy as sp
 
-from ..notebook import agrees, tolerance_text
+from .display import agrees, tolerance_text
 from .notation import S, as_sympy, from_book, html_math, latex
 
 __all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table",
@@ -225,7 +225,7 @@ class SolutionTable:
         self.residual = mech.Phi(self.q_printed, t)
 
     def _rows(self):
-        from ..notebook import fmt
+        from .display import fmt
 
         for name, a, b in zip(self.mech.coordinate_names(), self.q, self.q_printed):
             if name.startswith("phi"):
@@ -235,7 +235,7 @@ class SolutionTable:
                 yield name, fmt(a, self.digits), fmt(b, self.digits), abs(a - b) > 1.1 * 10**-self.digits
 
     def verdict(self):
-        from ..notebook import small
+        from .display import small
 
         worst = int(np.argmax(np.abs(self.residual)))
         size = float(np.abs(self.residual[worst]))
@@ -329,7 +329,7 @@ def motion_table(mech, q, constraint, motions, body="j"):
 
 class _Motion(Check):
     def __init__(self, what, values):
-        from ..notebook import clean
+        from .display import clean
 
         self.values = clean(np.round(np.asarray(values, dtype=float), 4))
         super().__init__(what, float(np.abs(values).max()), 1e-9)
@@ -357,7 +357,7 @@ class JointSummary:
         self.tex = head + " = " + latex(Phi[0] if c.n_eq == 1 else Phi, mech)
 
     def text(self):
-        from ..notebook import clean
+        from .display import clean
 
         c, rows = self.constraint, " ".join(f"{v:g}" for v in clean(np.round(self.value, 4)))
         return (f"at this configuration Φ = [{rows}];  {c.label}: {c.n_eq} equation{'s' if c.n_eq > 1 else ''}, "
@@ -395,7 +395,7 @@ def columns(mech, constraint):
 def _numeric(c, qc, qdc=None, compiled=False):
     """(Φ_q, γ) of one constraint from its kernel — its own or the one compiled from its symbolic Φ —, at the
     coordinates ``qc`` (and velocities ``qdc``) of its bodies. Drivers: the geometric part g(q) only."""
-    from ..model import stack_params
+    from ..core.mechanism import stack_params
 
     nb, nc = len(c.bodies), len(c.COORDS)
     kernel, params = c.numeric(compiled=compiled)
@@ -442,7 +442,7 @@ class Table:
 
 
 def _small(x):
-    from ..notebook import small
+    from .display import small
 
     return small(x, 1e-12)
 

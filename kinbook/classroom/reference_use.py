@@ -8,7 +8,7 @@ read as data (:func:`ast.parse` parses, it runs nothing) in the grader's process
 :func:`reference_use` follows, cell by cell in order, which names hold values that came from the reference:
 
 * a call of a reference function or method — :data:`REFERENCE_CALLS` (``symbolic()``, ``derivation()``,
-  ``constraint_phi()``, a constraint's ``phi()``, ``kinbook.symbolic.derive`` …) — or of a function whose
+  ``constraint_phi()``, a constraint's ``phi()``, ``kinbook.core.symbolic.derive`` …) — or of a function whose
   body makes one;
 * a value given as ``expected=`` to a ``part(...)`` in the notebook (a locked cell may compute it in sight);
 * anything computed from such a name (assignments, augmented assignments, ``for`` targets, ``with … as``,

@@ -15,7 +15,7 @@ In the grader, :func:`decode` rebuilds the value. It never gives anything the st
 ``sympify`` or pickle: the record's structure is checked first (shape, number of entries and nodes, depth,
 literal sizes, symbol names), then each tree is written out as an expression with every operation
 parenthesized and read back by the team's one whitelisting reader,
-:func:`kinbook.expressions.read_expression`, which bounds integer sizes, exponents and the magnitude of every
+:func:`kinbook.core.reader.read_expression`, which bounds integer sizes, exponents and the magnitude of every
 numeric sub-expression *before* any arithmetic (a tower of powers is refused in microseconds, never computed).
 Text entries are handed to the checker as text, which reads them with the same reader.
 """
@@ -201,19 +201,19 @@ def _entry(t, budget, where):
     names = set()
     pieces = []
     _text(t, 0, budget, names, pieces)
-    from .. import expressions
+    from ..core import reader
     from ..errors import KinbookError
 
-    reserved = set(expressions.FUNCTIONS) | set(expressions.ALIASES) | set(expressions.CONSTANTS)
+    reserved = set(reader.FUNCTIONS) | set(reader.ALIASES) | set(reader.CONSTANTS)
     clash = sorted(names & reserved)
     if clash:
         raise DecodeError(f"{where}: a symbol is named like a function or constant ({clash[0]!r})")
     import sympy as sp
 
-    limits = dataclasses.replace(expressions.DEFAULT_LIMITS, length=40 * MAX_NODES, nodes=MAX_NODES, digits=MAX_DIGITS + 1,
+    limits = dataclasses.replace(reader.DEFAULT_LIMITS, length=40 * MAX_NODES, nodes=MAX_NODES, digits=MAX_DIGITS + 1,
                                  depth=2 * MAX_DEPTH + 10)
     try:
-        return expressions.read_expression("".join(pieces), symbols={n: sp.Symbol(n) for n in names}, where=where,
+        return reader.read_expression("".join(pieces), symbols={n: sp.Symbol(n) for n in names}, where=where,
                                            limits=limits)
     except KinbookError as exc:
         raise DecodeError(f"the answer is not gradable data: {getattr(exc, 'reason', None) or exc}") from None

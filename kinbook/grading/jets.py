@@ -19,7 +19,7 @@ catalogue from the same tape (:data:`RULES`): cos and sin of a coordinate differ
 chain-rule term ∂(A s')/∂φ dropped) or as themselves (A where B belongs), or chosen coordinates frozen.
 
 Supported: numbers, π and E, the symbols of q, q̇ and t, + − × ÷, powers, and the functions of the safe
-reader (:mod:`kinbook.expressions`): sin cos tan asin acos atan atan2 sqrt exp log Abs sign (plus sinh,
+reader (:mod:`kinbook.core.reader`): sin cos tan asin acos atan atan2 sqrt exp log Abs sign (plus sinh,
 cosh, tanh). Anything else raises :class:`UnsupportedExpression`.
 """
 

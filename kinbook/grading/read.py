@@ -3,13 +3,13 @@
 :func:`read` turns any accepted form into an :class:`Answer`, or raises :class:`Refused` — with a catalogue
 code and a message saying what was expected — which the checker turns into a failed result.
 
-* **Text** is read by the team's one safe reader, :func:`kinbook.expressions.read_expression`: an
+* **Text** is read by the team's one safe reader, :func:`kinbook.core.reader.read_expression`: an
   allow-list of names (the mechanism's coordinates, velocities and t, in any of the spellings of
   :meth:`~kinbook.grading.target.Target.symbols`: ``phi2``, ``phi_2``, ``φ2``; ``dphi2``, ``phi2_dot``),
   numbers, + − × ÷ ^ and the reader's functions; bounds on size checked before any arithmetic. Never
   ``sympify``, ``eval`` or ``exec``.
 * **sympy objects** a student built in Python are checked against the same bounds
-  (:func:`kinbook.expressions.check_expression`) and their symbols are matched *by name*: a student who
+  (:func:`kinbook.core.reader.check_expression`) and their symbols are matched *by name*: a student who
   writes ``sp.symbols("x1 phi2")`` (without ``real=True``) gets the mechanism's x1 and phi2.
 * **A function** ``f(q, t)`` (``f(q, qd, t)`` for γ, or ``f(q)``) is called once per sample instant with
   copies of the coordinates; what it returns must be real numbers of a bounded size. It runs as it is (in a
@@ -38,9 +38,9 @@ MAX_OUTPUT = 100_000
 
 
 def _reader():
-    from .. import expressions  # the team's one safe reader
+    from ..core import reader  # the team's one safe reader
 
-    return expressions
+    return reader
 
 
 def _limits():

@@ -3,11 +3,11 @@
 A :class:`Target` names the rows of Φ that are graded (the book numbers them from 1: Φ_4 …), the columns of
 Φ_q (every coordinate for a mechanism, the coordinates of the constraint's bodies for a constraint), and
 evaluates kinbook's reference — Φ, Φ_q, ν and γ — with the mechanism's fast numeric kernels
-(:meth:`kinbook.model.MechanismBase.evaluate`), never with a symbolic derivation at check time. The
+(:meth:`kinbook.core.mechanism.MechanismBase.evaluate`), never with a symbolic derivation at check time. The
 symbolic Φ of the target (for the mistake catalogue and equivalent formulations) is built only when a
 diagnosis needs it, and compiled into a :class:`~kinbook.grading.jets.Tape`.
 
-Targets and their samples are kept by the mechanism itself (:meth:`~kinbook.model.MechanismBase.cached`),
+Targets and their samples are kept by the mechanism itself (:meth:`~kinbook.core.mechanism.MechanismBase.cached`),
 for its current version: a mechanism that changes (a constraint removed and another added under the same
 name) empties that cache, so no stale target can be reached.
 """

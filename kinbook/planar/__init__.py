@@ -1,6 +1,6 @@
 """Planar kinematics in body coordinates (textbook chapter 13)."""
 
-from ..analysis import Diagnosis, SimulationResult
+from ..core.solve import Diagnosis, SimulationResult
 from . import constraints, mechanism, transforms
 from .constraints import (
     CONSTRAINT_TYPES,

@@ -1,7 +1,7 @@
 """Planar constraints (textbook §13.5): one class per joint type on a common base.
 
 Each constraint writes its Φ once, symbolically, in :meth:`Constraint.phi`; Φ_q, ν and γ are derived from it by
-:mod:`kinbook.symbolic`. For speed each type also has a *kernel*: closed-form numpy code that evaluates Φ, Φ_q
+:mod:`kinbook.core.symbolic`. For speed each type also has a *kernel*: closed-form numpy code that evaluates Φ, Φ_q
 and γ for every constraint of that type at once and for many instants at once. The tests check every kernel
 against the symbolic derivation at seeded random configurations.
 
@@ -17,10 +17,10 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from ..core.mechanism import ConstraintBase, constraint_types, lookup_point
+from ..core.reader import read_constant
+from ..core.symbolic import t as t_symbol
 from ..errors import ModelError
-from ..expressions import read_constant
-from ..model import ConstraintBase, constraint_types, lookup_point
-from ..symbolic import t as t_symbol
 from .transforms import A as A_matrix
 
 __all__ = [
@@ -69,7 +69,7 @@ def _sq(w):
 
 # --------------------------------------------------------------------------------------------------------- base
 class Constraint(ConstraintBase):
-    """Base class of planar constraints (see :class:`kinbook.model.ConstraintBase` for the class attributes,
+    """Base class of planar constraints (see :class:`kinbook.core.mechanism.ConstraintBase` for the class attributes,
     naming, rows, binding and registration; docs/extending.md for a new type).
 
     A subclass sets ``type_name``, ``label``, ``n_eq``, ``kind`` and ``roles``, and implements :meth:`phi`

@@ -1,5 +1,5 @@
 """Planar mechanisms: bodies with (x, y, φ) and their point kinematics. The assembly, the symbolic model and
-the analysis entry points are shared with the spatial half in :mod:`kinbook.model`.
+the analysis entry points are shared with the spatial half in :mod:`kinbook.core.mechanism`.
 
 Coordinates are q = [x1, y1, φ1, x2, y2, φ2, …] in the order the bodies were added, as the book numbers its
 bodies (ground first in the book's examples). Rows of Φ follow the order in which constraints were added.
@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..core.mechanism import ConstraintTable, MechanismBase
+from ..core.reader import read_constant
 from ..errors import ModelError
-from ..expressions import read_constant
-from ..model import ConstraintTable, MechanismBase
 from . import transforms
 from .constraints import Constraint
 
@@ -45,7 +45,7 @@ class Body:
 def _number(v, what, symbols=False):
     """A finite real number as a sympy number; with ``symbols``, a symbolic parameter such as ξ_i is accepted
     too (for symbolic derivations; numeric evaluation then refuses the mechanism). Text is read by
-    :func:`kinbook.expressions.read_constant`."""
+    :func:`kinbook.core.reader.read_constant`."""
     return read_constant(v, where=what, symbolic=symbols)
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from .._arrays import no_overflow, real_array, symbolic_leaves
+from ..core.arrays import no_overflow, real_array, symbolic_leaves
 from ..errors import InputError
 
 __all__ = ["A", "B", "point_position", "point_velocity", "point_acceleration"]

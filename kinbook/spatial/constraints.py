@@ -1,7 +1,7 @@
 """Spatial constraints (textbook §14.4–14.5): one class per joint type on a common base.
 
 Each constraint writes its Φ once, symbolically, in :meth:`Constraint.phi` — the single source of truth;
-Φ_q, ν and γ are derived from it by :func:`kinbook.symbolic.derive`. For speed each type also has a
+Φ_q, ν and γ are derived from it by :func:`kinbook.core.symbolic.derive`. For speed each type also has a
 *kernel*: closed-form numpy code evaluating Φ, Φ_q and γ for every constraint of that type and many
 instants at once, built from the Jacobian blocks of Table 14.1. The tests check every kernel against the
 symbolic derivation at seeded random configurations.
@@ -46,10 +46,10 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from ..core.mechanism import ConstraintBase, constraint_types, lookup_point, stack_params
+from ..core.reader import read_number
+from ..core.symbolic import t as t_symbol
 from ..errors import ModelError, UnknownPointError
-from ..expressions import read_number
-from ..model import ConstraintBase, constraint_types, lookup_point, stack_params
-from ..symbolic import t as t_symbol
 from .rotations import A_from_p as _A_sym
 from .rotations import E as _E_sym
 from .rotations import _mv
@@ -312,7 +312,7 @@ _KERNELS = {}
 def _kernel(*builders):
     """The kernel whose rows are those of the row ``builders``, in order; one kernel per tuple of builders.
     ``combine`` lets a composite joint fuse its parts' builders into one kernel
-    (:func:`kinbook.kernels.stacked`)."""
+    (:func:`kinbook.core.kernels.stacked`)."""
     if builders in _KERNELS:
         return _KERNELS[builders]
 
@@ -383,7 +383,7 @@ def _sym3(v):
 
 # ======================================================================================= base class
 class Constraint(ConstraintBase):
-    """Base class of spatial constraints (see :class:`kinbook.model.ConstraintBase` for the class attributes,
+    """Base class of spatial constraints (see :class:`kinbook.core.mechanism.ConstraintBase` for the class attributes,
     naming, rows, binding and registration; docs/extending.md for a new type).
 
     A subclass declares the points and vectors it reads (or resolves them in its own :meth:`_bind_points`)

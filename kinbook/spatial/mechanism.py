@@ -7,7 +7,7 @@ kind "normalization", counted as geometric), so rows of Φ follow the order of t
 calls. A mechanism file lists its bodies first, so its normalization rows come first.
 
 The assembly, the symbolic model and the analysis entry points (Newton–Raphson, velocity, acceleration,
-sweeps, diagnosis) are shared with the planar half in :mod:`kinbook.model` and :mod:`kinbook.analysis`.
+sweeps, diagnosis) are shared with the planar half in :mod:`kinbook.core.mechanism` and :mod:`kinbook.core.solve`.
 """
 
 from __future__ import annotations
@@ -17,9 +17,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
+from ..core.mechanism import ConstraintTable, MechanismBase
+from ..core.reader import read_constant
 from ..errors import InputError, ModelError
-from ..expressions import read_constant
-from ..model import ConstraintTable, MechanismBase
 from . import rotations, transforms
 from .constraints import NCOORD, Constraint, Normalization
 

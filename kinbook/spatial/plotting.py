@@ -254,12 +254,12 @@ def animation_png(result, colors=256, **kwargs):
 
     Returns
     -------
-    kinbook._animation.Animation
+    kinbook.core._animation.Animation
         ``_repr_png_()`` is the animated PNG; ``.anim`` is the FuncAnimation; ``.save(path)`` writes the file.
     """
     import matplotlib.pyplot as plt
 
-    from .._animation import Animation
+    from ..core._animation import Animation
 
     if kwargs.get("ax") is None:
         kwargs.setdefault("figsize", (5.6, 4.6))

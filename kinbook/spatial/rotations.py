@@ -26,7 +26,7 @@ import warnings
 import numpy as np
 import sympy as sp
 
-from .._arrays import no_overflow, real_array, symbolic_leaves
+from ..core.arrays import no_overflow, real_array, symbolic_leaves
 from ..errors import InputError, KinbookError, SingularityWarning
 
 __all__ = [

@@ -45,7 +45,7 @@ def test_tidy_writes_float_noise_as_a_person_would():
     assert str(N.tidy(2.0 * x + 1.2000000000000002 * x**2 - 0.5)) == "1.2*x**2 + 2*x - 0.5"
     assert "2.0" not in N.latex(2.0 * x) and N.latex(2.0 * x) == "2 x"
     with pytest.raises(TypeError):
-        N.tidy("2.0*x")  # text is never parsed here (kinbook.expressions reads text)
+        N.tidy("2.0*x")  # text is never parsed here (kinbook.core.reader reads text)
 
 
 @pytest.mark.parametrize("name", sorted(JOINTS))

@@ -10,7 +10,7 @@ from kinbook.classroom.reference_use import reference_use
     (["Phi = mech.symbolic().Phi"], "mech.symbolic() (cell 1)"),
     (["d = mech.derivation('3')", "Phi = d[2]"], "mech.derivation() (cell 1)"),
     (["c = mech.constraint('1')", "Phi = sp.Matrix(c.phi(Q))"], "c.phi() (cell 2)"),
-    (["from kinbook.symbolic import derive as dv", "Phi = dv(P, q, qd).Phi_q"], "kinbook.symbolic.derive (cell 1)"),
+    (["from kinbook.core.symbolic import derive as dv", "Phi = dv(P, q, qd).Phi_q"], "kinbook.core.symbolic.derive (cell 1)"),
     (["def mine():\n    return mech.symbolic()", "Phi = mine()"], "mech.symbolic() (cell 1)"),
     (["Phi = []", "for row in mech.symbolic().Phi:\n    Phi.append(row)"], "mech.symbolic() (cell 2)"),
     (["Phi = []", "Phi.extend(mech.constraint_phi('1'))"], "mech.constraint_phi() (cell 2)"),

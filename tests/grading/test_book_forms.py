@@ -13,8 +13,8 @@ import sympy as sp
 from kinbook import planar as P
 from kinbook import spatial as S
 from kinbook.book import errata
+from kinbook.core.symbolic import derive
 from kinbook.grading import check_gamma, check_jacobian, check_nu, check_phi
-from kinbook.symbolic import derive
 
 BOOK = {"order": "book"}
 

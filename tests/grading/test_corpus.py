@@ -6,7 +6,7 @@ import pytest
 import sympy as sp
 
 from kinbook import grading
-from kinbook.symbolic import derive
+from kinbook.core.symbolic import derive
 
 from . import corpus, corpus2
 
@@ -74,7 +74,7 @@ def test_the_book_tables_typed_in_the_corpus_are_the_derivatives_of_the_typed_ph
     env = dict(zip(names, q)) | {"d" + n: s for n, s in zip(names, qd)} | {"t": t}
 
     def parse(text):
-        from kinbook.expressions import read_expression
+        from kinbook.core.reader import read_expression
 
         return read_expression(text, symbols=env, where="the corpus")
 

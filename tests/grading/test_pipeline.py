@@ -7,12 +7,12 @@ import sympy as sp
 
 import kinbook
 from kinbook import spatial as S
+from kinbook.core.symbolic import derive
 from kinbook.grading import check_gamma, check_jacobian, check_nu, check_phi
 from kinbook.grading.jets import Tape, UnsupportedExpression
 from kinbook.grading.read import Refused, read
 from kinbook.grading.target import target_for
 from kinbook.spatial.rotations import A_from_p, E, a_bar
-from kinbook.symbolic import derive
 
 from .corpus import EX1_PHI_SIMPLE, mechanism
 

@@ -71,7 +71,7 @@ def test_constraint_objects_of_a_spatial_mechanism_are_targets(pendulum):
 
 def test_every_joint_of_the_spatial_fourbar():
     import kinbook
-    from kinbook.symbolic import derive
+    from kinbook.core.symbolic import derive
 
     if "spatial_fourbar" not in kinbook.examples.names():
         pytest.skip("spatial example not shipped yet")

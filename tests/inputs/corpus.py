@@ -333,7 +333,7 @@ def _zoo_data(text):  # callers deep-copy before mutating
 
 
 def _build(data, source):
-    from kinbook.io import build
+    from kinbook.files import build
 
     return build(data, source)
 
@@ -354,7 +354,7 @@ _DELETE = object()
 
 
 def reader_cases():
-    from kinbook.expressions import check_expression, read_expression, read_number
+    from kinbook.core.reader import check_expression, read_expression, read_number
 
     t = sp.Symbol("t", real=True)
     out = []

@@ -1,4 +1,4 @@
-"""Every spatial constraint type: the fast kernels agree with the symbolic derivation (kinbook.symbolic.derive
+"""Every spatial constraint type: the fast kernels agree with the symbolic derivation (kinbook.core.symbolic.derive
 of the constraint's own Φ), Φ_q with finite differences of Φ, ν with −∂Φ/∂t and γ with the second time
 derivative of Φ along a smooth trajectory; and the Jacobian blocks of Table 14.1 (B_k, C_k) with sympy.
 
@@ -64,7 +64,7 @@ _DERIVED = {}
 
 
 def derived(type_name):
-    """Lambdified Φ, Φ_q, ν, γ of mech.symbolic() (kinbook.symbolic.derive), cached for the module."""
+    """Lambdified Φ, Φ_q, ν, γ of mech.symbolic() (kinbook.core.symbolic.derive), cached for the module."""
     if type_name not in _DERIVED:
         if type_name == "revolute-driver":  # atan2's second derivatives are large: axis Z, references X
             mech = Mechanism("driver")

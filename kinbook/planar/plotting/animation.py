@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..._animation import Animation
+from ...core._animation import Animation
 from ...errors import InputError
 from ._common import _TRACES, _plt, _size, _style_axes
 from .joints import driver_symbol
@@ -114,11 +114,11 @@ def animation_png(result, colors=256, **kwargs):
     ----------
     colors : int or None
         Store the frames with a shared palette of this many colours (a third of the size of full colour for these
-        drawings; see :func:`kinbook._animation.apng`); None keeps full colour.
+        drawings; see :func:`kinbook.core._animation.apng`); None keeps full colour.
 
     Returns
     -------
-    kinbook._animation.Animation
+    kinbook.core._animation.Animation
         ``_repr_png_()`` is the animated PNG; ``.anim`` is the FuncAnimation; ``.save(path)`` writes the file.
     """
     kwargs.setdefault("figsize", (6.0, 4.5))

@@ -40,7 +40,7 @@ def sweep():
 def test_blitted_frames_match_matplotlibs_player(sweep):
     from matplotlib import rc_context
 
-    from kinbook import _animation
+    from kinbook.core import _animation
     from kinbook.planar import plotting
 
     ours = _animation.render_frames(plotting.animation_png(sweep, every=4, trace=[("coupler", "B")]).anim)
@@ -57,7 +57,7 @@ def test_blitted_frames_match_matplotlibs_player(sweep):
 def test_the_still_part_is_drawn_once(sweep, monkeypatch):
     from matplotlib.figure import Figure
 
-    from kinbook import _animation
+    from kinbook.core import _animation
     from kinbook.planar import plotting
 
     draws = []

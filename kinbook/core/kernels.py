@@ -10,7 +10,7 @@ None when ``jacobian`` is false). The mechanism applies the drivers' f(t) (:meth
 attributes (its ``parameters``: local points, lengths, radii …) are replaced by symbols, so Φ is written once
 per type with symbolic parameters. Φ_q is its Jacobian, and the velocity-quadratic γ = −(Φ_q q̇)_q q̇ is
 −d²Φ(q + s q̇)/ds² at s = 0, both differentiated through the nodes of Φ (:func:`_chain`: γ forward, Φ_q in
-reverse; the same values as :func:`kinbook.symbolic.derive` gives, at a cost linear in the size of Φ); all are
+reverse; the same values as :func:`kinbook.core.symbolic.derive` gives, at a cost linear in the size of Φ); all are
 lambdified, the chain of nodes serving as the common-subexpression elimination, into numpy code that
 broadcasts over instants (B) and constraints (k), the lambdified functions built when first called. The
 compiled kernel is cached per type and per *template*:
@@ -29,7 +29,7 @@ import copy
 import numpy as np
 import sympy as sp
 
-from .errors import ModelError
+from ..errors import ModelError
 from .symbolic import t as t_symbol
 
 __all__ = ["compiled", "stacked", "CompiledKernel", "StackedKernel"]

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from .errors import ExpressionError
+from ..errors import ExpressionError
 
 __all__ = [
     "read_expression",

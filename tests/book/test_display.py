@@ -3,37 +3,37 @@
 import numpy as np
 import pytest
 
-from kinbook import notebook
+from kinbook.book import display
 
 
 @pytest.mark.parametrize("noise", [0.0, -0.0, 1.5e-17, -1.5e-17, 9.9e-13, -4e-16])
 def test_round_off_prints_as_the_same_zero(noise, capsys):
-    notebook.show(np.array([noise, 0.5]), noise, [noise], (noise,))
+    display.show(np.array([noise, 0.5]), noise, [noise], (noise,))
     assert capsys.readouterr().out == "[0.  0.5] 0 [0.0] (0.0,)\n"
-    assert notebook.fmt(noise) == "0.0000"
-    assert notebook.small(noise) == "< 1e-12"
-    assert notebook.agrees(noise) == "agrees to within 1e-12"
+    assert display.fmt(noise) == "0.0000"
+    assert display.small(noise) == "< 1e-12"
+    assert display.agrees(noise) == "agrees to within 1e-12"
 
 
 def test_values_above_the_tolerance_are_kept():
     x = np.array([1e-11, -2e-3, 3.0])
-    assert np.array_equal(notebook.clean(x), x)
-    assert notebook.fmt(-2e-3, 3) == "-0.002"
-    assert notebook.agrees(0.0451) == "differs by 0.045"
-    assert notebook.agrees(22111.7) == "differs by 22112"
+    assert np.array_equal(display.clean(x), x)
+    assert display.fmt(-2e-3, 3) == "-0.002"
+    assert display.agrees(0.0451) == "differs by 0.045"
+    assert display.agrees(22111.7) == "differs by 22112"
 
 
 def test_clean_leaves_other_objects_alone():
     import sympy as sp
 
     x = sp.Symbol("x")
-    assert notebook.clean({"a": x, "b": "text", "c": 3, "d": True}) == {"a": x, "b": "text", "c": 3, "d": True}
-    assert notebook.clean(np.arange(3)).dtype.kind == "i"
+    assert display.clean({"a": x, "b": "text", "c": 3, "d": True}) == {"a": x, "b": "text", "c": 3, "d": True}
+    assert display.clean(np.arange(3)).dtype.kind == "i"
 
 
 def test_newton_table_shows_the_solver_iterations_without_round_off():
     import kinbook
-    from kinbook.notebook import newton_table
+    from kinbook.book.display import newton_table
 
     m = kinbook.examples.load("ch13_example1")
     q, hist = m.solve_position(0.0, history=True)
@@ -41,13 +41,13 @@ def test_newton_table_shows_the_solver_iterations_without_round_off():
     assert len(table.rows) == len(hist) >= 3
     # row k is the iterate q_k: its residual is max |Φ(q_k)|, recomputed here from the mechanism
     k = 1
-    assert table.rows[k][1] == notebook.small(np.abs(m.Phi(hist.q[k], 0.0)).max())
+    assert table.rows[k][1] == display.small(np.abs(m.Phi(hist.q[k], 0.0)).max())
     assert table.rows[-1][1] == "< 1e-12" and np.abs(hist.q[-1] - q).max() == 0
     assert "e-1" not in repr(table).replace("1e-12", "")  # nothing at round-off level is printed
 
 
 def test_small_as_a_relation_never_reads_equals_less_than():
-    assert notebook.small(-1.5e-17, relation=True) == "< 1e-12"
-    assert notebook.small(3.2e-5, 1e-9, relation=True) == "= 3.2e-05"
-    assert notebook.small(2.35, relation=True) == "= 2.4"
-    assert notebook.small(4.7e-7, 1e-6, relation=True) == "< 1e-6"
+    assert display.small(-1.5e-17, relation=True) == "< 1e-12"
+    assert display.small(3.2e-5, 1e-9, relation=True) == "= 3.2e-05"
+    assert display.small(2.35, relation=True) == "= 2.4"
+    assert display.small(4.7e-7, 1e-6, relation=True) == "< 1e-6"

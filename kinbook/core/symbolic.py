@@ -84,7 +84,7 @@ def derive(Phi, q, qd, time=t):
     >>> d.Phi_q, d.nu, d.gamma
     (Matrix([[2*x]]), Matrix([[cos(t)]]), Matrix([[-2*dx**2 - sin(t)]]))
     """
-    from ._arrays import symbolic_leaves
+    from .arrays import symbolic_leaves
 
     symbolic_leaves(Phi, q, qd)  # refuses text, which sympy's Matrix would evaluate as Python
     Phi = sp.Matrix(Phi)
@@ -106,7 +106,7 @@ def time_function(f, where, time=t):
     Parameters
     ----------
     f : str, number or sympy expression
-        Text is read by :func:`kinbook.expressions.read_expression` with the one symbol ``t``; a sympy
+        Text is read by :func:`kinbook.core.reader.read_expression` with the one symbol ``t``; a sympy
         expression may use any symbol *named* ``t`` (with or without assumptions).
     where : str
         Named in the messages ("driver on body 'crank', f").
@@ -125,8 +125,8 @@ def time_function(f, where, time=t):
         two continuous derivatives for ν and γ). ``Abs`` is accepted: its kink is reported, as a
         :class:`~kinbook.errors.DriverValueError`, only at an instant an analysis asks f'' there.
     """
-    from .errors import ExpressionError
-    from .expressions import check_expression, read_constant, read_expression
+    from ..errors import ExpressionError
+    from .reader import check_expression, read_constant, read_expression
 
     key = (f if isinstance(f, (str, sp.Basic)) else None, time)
     if key[0] is not None and key in _VALID:  # a mechanism of many bodies repeats the same few functions
@@ -220,7 +220,7 @@ def _checked(f, k, expr, where):
         with np.errstate(all="ignore"):
             v = f(tt)
         if not np.all(np.isfinite(v)):
-            from .errors import DriverValueError
+            from ..errors import DriverValueError
 
             v = np.asarray(v, dtype=float)
             first = int(np.flatnonzero(~np.isfinite(v))[0])

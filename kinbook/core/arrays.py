@@ -7,7 +7,7 @@ import functools
 
 import numpy as np
 
-from .errors import InputError
+from ..errors import InputError
 
 __all__ = ["real_array", "no_overflow", "symbolic_leaves"]
 
@@ -64,7 +64,7 @@ def symbolic_leaves(*values):
     """True when any of ``values`` (or an entry of a list, tuple, matrix or array of them) is a sympy object —
     the caller then takes its symbolic path — after checking that no entry is text: sympy's Matrix, cos …
     would evaluate text as Python (``sp.Matrix([x, "__import__('os')…"])`` runs it). Sympy entries get the
-    bounds of :func:`kinbook.expressions.check_expression`."""
+    bounds of :func:`kinbook.core.reader.check_expression`."""
     import sympy as sp
 
     leaves, stack = [], list(values)
@@ -80,12 +80,12 @@ def symbolic_leaves(*values):
             leaves.append(v)
     if not any(isinstance(v, sp.Basic) for v in leaves):
         return False
-    from .expressions import check_expression
+    from .reader import check_expression
 
     for v in leaves:
         if isinstance(v, (str, bytes)):
             raise InputError(f"a sympy expression mixed with text {_show(v)}: text is never evaluated; build the "
-                             "expression with sympy, or read the text with kinbook.expressions.read_expression")
+                             "expression with sympy, or read the text with kinbook.core.reader.read_expression")
         if isinstance(v, sp.Basic):
             check_expression(v, where="a symbolic argument")
     return True

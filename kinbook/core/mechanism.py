@@ -18,10 +18,10 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
-from . import analysis, kernels
-from ._arrays import real_array
-from .errors import InputError, ModelError, UnknownBodyError, UnknownPointError
-from .expressions import check_expression, read_constant, read_expression, read_number
+from ..errors import InputError, ModelError, UnknownBodyError, UnknownPointError
+from . import kernels, solve
+from .arrays import real_array
+from .reader import check_expression, read_constant, read_expression, read_number
 from .symbolic import derive, time_derivatives
 from .symbolic import t as t_symbol
 from .symbolic import time_function as read_time_function
@@ -47,7 +47,7 @@ MAX_BODIES = 100_000
 
 def time_function(f, owner):
     """A driver's prescribed function of time as a sympy expression of ``t`` (text, a number or a sympy
-    expression), validated by :func:`kinbook.symbolic.time_function`."""
+    expression), validated by :func:`kinbook.core.symbolic.time_function`."""
     bodies = ", ".join(f"'{b}'" for b in owner.body_names)
     return read_time_function(f, f"{owner.type_name} on bod{'y' if len(owner.body_names) == 1 else 'ies'} {bodies}, f")
 
@@ -114,8 +114,8 @@ class ConstraintBase(abc.ABC):
     that sets ``type_name`` and ``n_eq``, declares what it reads from a mechanism file (``points``,
     ``vectors``, ``numbers``, ``functions``) and writes :meth:`phi`, its Φ — the single source of truth.
     Everything else follows from that (docs/extending.md): the class registers itself under ``type_name``
-    in its chapter (mechanism files find it there), Φ_q, ν and γ are derived by :mod:`kinbook.symbolic`, and
-    the numeric path is compiled from :meth:`phi` (:mod:`kinbook.kernels`) unless the type gives a
+    in its chapter (mechanism files find it there), Φ_q, ν and γ are derived by :mod:`kinbook.core.symbolic`, and
+    the numeric path is compiled from :meth:`phi` (:mod:`kinbook.core.kernels`) unless the type gives a
     hand-written ``kernel`` as an optimization (tested equal to the compiled one).
 
     Class attributes
@@ -342,7 +342,7 @@ class ConstraintBase(abc.ABC):
 
         The type's hand-written ``kernel`` and :meth:`params` when it has one and ``compiled`` is false;
         otherwise the kernel compiled from :meth:`phi` (one per type, shared by every constraint of the type,
-        :func:`kinbook.kernels.compiled`). A composite stacks the numeric paths of its parts.
+        :func:`kinbook.core.kernels.compiled`). A composite stacks the numeric paths of its parts.
         """
         if self.parts:
             return kernels.stacked([v.numeric(compiled) for v in self.part_views()])
@@ -786,7 +786,7 @@ class MechanismBase:
         return sp.Matrix(rows)
 
     def symbolic(self):
-        """Φ, Φ_q, ν and γ as sympy matrices (a :class:`kinbook.symbolic.Derivation`), derived from Φ."""
+        """Φ, Φ_q, ν and γ as sympy matrices (a :class:`kinbook.core.symbolic.Derivation`), derived from Φ."""
         def build():
             Phi = (sp.Matrix.vstack(*[self.constraint_phi(c) for c in self.constraints])
                    if self.constraints else sp.zeros(0, 1))
@@ -796,11 +796,11 @@ class MechanismBase:
 
     def derivation(self, constraint):
         """Φ, Φ_q, ν and γ of one constraint (a name or the object) with respect to the coordinates of its own
-        bodies only (the rows of the book's Jacobian tables), derived by :func:`kinbook.symbolic.derive`.
+        bodies only (the rows of the book's Jacobian tables), derived by :func:`kinbook.core.symbolic.derive`.
 
         Returns
         -------
-        kinbook.symbolic.Derivation
+        kinbook.core.symbolic.Derivation
             Its ``q`` lists the coordinates of the constraint's bodies (body i's, then body j's …). Computed
             once per constraint until the mechanism changes.
         """
@@ -971,7 +971,7 @@ class MechanismBase:
             if sparse:
                 if not single:
                     raise InputError("a sparse Φ_q is available for one instant at a time")
-                import scipy.sparse as sps  # imported when first needed (see analysis._solve)
+                import scipy.sparse as sps  # imported when first needed (see solve._solve)
 
                 rows = np.concatenate([g.jac_rows for g in groups])
                 cols = np.concatenate([g.jac_cols for g in groups])
@@ -1051,30 +1051,30 @@ class MechanismBase:
     def check_drivers(self):
         """Raise :class:`~kinbook.errors.DriverCountError` unless there are exactly as many driver equations
         as degrees of freedom."""
-        analysis.check_drivers(self)
+        solve.check_drivers(self)
 
     def solve_position(self, t=0.0, q0=None, tol=1e-10, max_iter=50, history=False):
         """Newton–Raphson solution of Φ(q, t) = 0 from ``q0`` (default: the bodies' q0); with ``history``,
-        ``(q, NewtonHistory)``. See :func:`kinbook.analysis.solve_position`."""
-        return analysis.solve_position(self, t, q0=q0, tol=tol, max_iter=max_iter, history=history)
+        ``(q, NewtonHistory)``. See :func:`kinbook.core.solve.solve_position`."""
+        return solve.solve_position(self, t, q0=q0, tol=tol, max_iter=max_iter, history=history)
 
     def solve_velocity(self, q, t=0.0):
         """Solve Φ_q q̇ = ν for q̇."""
-        return analysis.solve_velocity(self, q, t)
+        return solve.solve_velocity(self, q, t)
 
     def solve_acceleration(self, q, qd, t=0.0):
         """Solve Φ_q q̈ = γ for q̈."""
-        return analysis.solve_acceleration(self, q, qd, t)
+        return solve.solve_acceleration(self, q, qd, t)
 
     def simulate(self, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=512):
         """Position, velocity and acceleration at every instant of ``times``: a
-        :class:`~kinbook.analysis.SimulationResult`. See :func:`kinbook.analysis.simulate`."""
-        return analysis.simulate(self, times, q0=q0, tol=tol, on_failure=on_failure, anchor_every=anchor_every)
+        :class:`~kinbook.core.solve.SimulationResult`. See :func:`kinbook.core.solve.simulate`."""
+        return solve.simulate(self, times, q0=q0, tol=tol, on_failure=on_failure, anchor_every=anchor_every)
 
     def diagnose(self, q, t=0.0):
         """Rank of Φ_q at ``q`` and, when singular, which constraints are dependent: see
-        :func:`kinbook.analysis.diagnose`."""
-        return analysis.diagnose(self, q, t)
+        :func:`kinbook.core.solve.diagnose`."""
+        return solve.diagnose(self, q, t)
 
     def __repr__(self):
         prefix = "" if self.kind == "planar" else f"{self.kind} "

@@ -166,7 +166,7 @@ def newton_table(history, tol=TOL):
     -------
     kinbook.book.verify.Table
     """
-    from .book.verify import Table
+    from .verify import Table
 
     rows = [[str(k), small(r, tol), small(s, tol), f"{c:.3g}"]
             for k, (r, s, c) in enumerate(zip(history.residual, history.step, history.cond))]
@@ -196,7 +196,7 @@ def setup(language=None, *, precision=PRECISION):
         Default: leave the current language as it is (English unless changed).
     precision : int
     """
-    from .grading import set_language
+    from ..grading import set_language
 
     np.set_printoptions(precision=precision, suppress=True)
     if language is not None:
@@ -231,7 +231,7 @@ def sweep_both_ways(mech, backward, forward):
     SimulationResult
         The solved instants in increasing time; ``failure`` is the forward sweep's.
     """
-    from .analysis import SimulationResult
+    from ..core.solve import SimulationResult
 
     back = mech.simulate(backward, on_failure="truncate")
     fwd = mech.simulate(forward, on_failure="truncate")

@@ -1,4 +1,4 @@
-"""The compiled kernels' Φ_q and γ, taken through the nodes of Φ (kinbook.kernels._chain), against the same Φ
+"""The compiled kernels' Φ_q and γ, taken through the nodes of Φ (kinbook.core.kernels._chain), against the same Φ
 differentiated numerically in 50-digit arithmetic (mpmath, central differences with step 1e-12: exact to far
 below the 1e-12 compared): Φ_q column by column, γ as −d²Φ(q + s q̇)/ds² at s = 0 — for every planar and
 spatial type and for expressions that exercise every kind of node."""
@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from kinbook import kernels
+from kinbook.core import kernels
 
-from .planar.zoo import zoo
-from .spatial.zoo import FACTORIES, states, two_bodies
+from ..planar.zoo import zoo
+from ..spatial.zoo import FACTORIES, states, two_bodies
 
 
 def _reference(kernel, values, q, qd):

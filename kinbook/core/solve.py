@@ -1,7 +1,7 @@
 """Kinematic analysis (textbook §13.6–13.8, §14.5): position by Newton–Raphson, velocity, acceleration,
 sweeps and the diagnosis of singular configurations.
 
-The functions take any mechanism built on :class:`kinbook.model.MechanismBase` (planar or spatial): they use
+The functions take any mechanism built on :class:`kinbook.core.mechanism.MechanismBase` (planar or spatial): they use
 only its numeric interface (``evaluate``, ``n``, ``m``, ``constraints`` …).
 """
 
@@ -14,8 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._arrays import real_array
-from .errors import (
+from ..errors import (
     AssemblyError,
     ConvergenceError,
     DeadPointError,
@@ -26,6 +25,7 @@ from .errors import (
     RedundantConstraintsError,
     SingularJacobianError,
 )
+from .arrays import real_array
 
 __all__ = [
     "check_drivers",

@@ -1,4 +1,4 @@
-"""The safe expression reader (kinbook.expressions): what it accepts builds the same sympy object as the
+"""The safe expression reader (kinbook.core.reader): what it accepts builds the same sympy object as the
 expression written in Python; what it refuses is refused before any arithmetic, with a message naming the
 place, and quickly (the bad-input corpus in tests/inputs/ adds hundreds of cases under a hard timeout)."""
 
@@ -8,8 +8,7 @@ import time
 import pytest
 import sympy as sp
 
-from kinbook.errors import ExpressionError, InputError, KinbookError
-from kinbook.expressions import (
+from kinbook.core.reader import (
     ALIASES,
     FUNCTIONS,
     Limits,
@@ -18,6 +17,7 @@ from kinbook.expressions import (
     read_expression,
     read_number,
 )
+from kinbook.errors import ExpressionError, InputError, KinbookError
 
 t = sp.Symbol("t", real=True)
 x, phi2 = sp.symbols("x2 phi2", real=True)
