@@ -231,7 +231,7 @@ def sweep_both_ways(mech, backward, forward):
     SimulationResult
         The solved instants in increasing time; ``failure`` is the forward sweep's.
     """
-    from ..core.solve import SimulationResult
+    from ..core.sweep import SimulationResult
 
     back = mech.simulate(backward, on_failure="truncate")
     fwd = mech.simulate(forward, on_failure="truncate")

@@ -395,7 +395,7 @@ def columns(mech, constraint):
 def _numeric(c, qc, qdc=None, compiled=False):
     """(Φ_q, γ) of one constraint from its kernel — its own or the one compiled from its symbolic Φ —, at the
     coordinates ``qc`` (and velocities ``qdc``) of its bodies. Drivers: the geometric part g(q) only."""
-    from ..core.mechanism import stack_params
+    from ..core.assembly import stack_params
 
     nb, nc = len(c.bodies), len(c.COORDS)
     kernel, params = c.numeric(compiled=compiled)

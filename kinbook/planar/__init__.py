@@ -1,6 +1,7 @@
 """Planar kinematics in body coordinates (textbook chapter 13)."""
 
-from ..core.solve import Diagnosis, SimulationResult
+from ..core.diagnose import Diagnosis
+from ..core.sweep import SimulationResult
 from . import constraints, mechanism, transforms
 from .constraints import (
     CONSTRAINT_TYPES,

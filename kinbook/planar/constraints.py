@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from ..core.mechanism import ConstraintBase, constraint_types, lookup_point
+from ..core.constraint import ConstraintBase, constraint_types, lookup_point
 from ..core.reader import read_constant
 from ..core.symbolic import t as t_symbol
 from ..errors import ModelError
@@ -69,7 +69,7 @@ def _sq(w):
 
 # --------------------------------------------------------------------------------------------------------- base
 class Constraint(ConstraintBase):
-    """Base class of planar constraints (see :class:`kinbook.core.mechanism.ConstraintBase` for the class attributes,
+    """Base class of planar constraints (see :class:`kinbook.core.constraint.ConstraintBase` for the class attributes,
     naming, rows, binding and registration; docs/extending.md for a new type).
 
     A subclass sets ``type_name``, ``label``, ``n_eq``, ``kind`` and ``roles``, and implements :meth:`phi`

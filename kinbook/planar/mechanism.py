@@ -1,5 +1,5 @@
 """Planar mechanisms: bodies with (x, y, φ) and their point kinematics. The assembly, the symbolic model and
-the analysis entry points are shared with the spatial half in :mod:`kinbook.core.mechanism`.
+the analysis entry points are shared with the spatial half in :mod:`kinbook.core`.
 
 Coordinates are q = [x1, y1, φ1, x2, y2, φ2, …] in the order the bodies were added, as the book numbers its
 bodies (ground first in the book's examples). Rows of Φ follow the order in which constraints were added.
@@ -95,17 +95,17 @@ class Mechanism(MechanismBase):
     # ------------------------------------------------------------------------------------------- points
     def point_position(self, q, body, point):
         """Global position r^P = r + A s'^P of a body point, shape (2,) or (N, 2)."""
-        qb = self._body_q(self._check_q(q), body)
+        qb = self._body_q(self.check_q(q), body)
         return transforms.point_position(qb[..., :2], qb[..., 2], self.point_local(body, point))
 
     def point_velocity(self, q, qd, body, point):
         """Global velocity ṙ^P = ṙ + B s'^P φ̇ of a body point."""
-        qb, vb = self._body_q(self._check_q(q), body), self._body_q(self._check_q(qd, "qd"), body)
+        qb, vb = self._body_q(self.check_q(q), body), self._body_q(self.check_q(qd, "qd"), body)
         return transforms.point_velocity(vb[..., :2], qb[..., 2], vb[..., 2], self.point_local(body, point))
 
     def point_acceleration(self, q, qd, qdd, body, point):
         """Global acceleration r̈^P = r̈ + B s'^P φ̈ − A s'^P φ̇² of a body point."""
-        qb = self._body_q(self._check_q(q), body)
-        vb = self._body_q(self._check_q(qd, "qd"), body)
-        ab = self._body_q(self._check_q(qdd, "qdd"), body)
+        qb = self._body_q(self.check_q(q), body)
+        vb = self._body_q(self.check_q(qd, "qd"), body)
+        ab = self._body_q(self.check_q(qdd, "qdd"), body)
         return transforms.point_acceleration(ab[..., :2], qb[..., 2], vb[..., 2], ab[..., 2], self.point_local(body, point))

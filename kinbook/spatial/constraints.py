@@ -46,7 +46,8 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from ..core.mechanism import ConstraintBase, constraint_types, lookup_point, stack_params
+from ..core.assembly import stack_params
+from ..core.constraint import ConstraintBase, constraint_types, lookup_point
 from ..core.reader import read_number
 from ..core.symbolic import t as t_symbol
 from ..errors import ModelError, UnknownPointError
@@ -383,7 +384,7 @@ def _sym3(v):
 
 # ======================================================================================= base class
 class Constraint(ConstraintBase):
-    """Base class of spatial constraints (see :class:`kinbook.core.mechanism.ConstraintBase` for the class attributes,
+    """Base class of spatial constraints (see :class:`kinbook.core.constraint.ConstraintBase` for the class attributes,
     naming, rows, binding and registration; docs/extending.md for a new type).
 
     A subclass declares the points and vectors it reads (or resolves them in its own :meth:`_bind_points`)

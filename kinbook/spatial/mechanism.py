@@ -7,7 +7,7 @@ kind "normalization", counted as geometric), so rows of Φ follow the order of t
 calls. A mechanism file lists its bodies first, so its normalization rows come first.
 
 The assembly, the symbolic model and the analysis entry points (Newton–Raphson, velocity, acceleration,
-sweeps, diagnosis) are shared with the planar half in :mod:`kinbook.core.mechanism` and :mod:`kinbook.core.solve`.
+sweeps, diagnosis) are shared with the planar half in :mod:`kinbook.core`.
 """
 
 from __future__ import annotations
@@ -149,14 +149,14 @@ class Mechanism(MechanismBase):
             one-body constraint).
         """
         c = self._constraint(constraint)
-        q = self._check_q(q)
+        q = self.check_q(q)
         if q.ndim != 1:
             raise InputError(f"`q` must be one configuration of shape ({self.n},), got {q.shape}")
         return c.blocks(np.concatenate([self._body_q(q, b.name) for b in c.bodies]))
 
     # ------------------------------------------------------------------------------------------- bodies and points
     def _pq(self, q, body, name="q", unit=True):
-        qb = self._body_q(self._check_q(q, name), body)
+        qb = self._body_q(self.check_q(q, name), body)
         if unit:
             norm = np.linalg.norm(qb[..., 3:], axis=-1)
             if np.any(np.abs(norm - 1) > rotations.P_TOL):
@@ -209,7 +209,7 @@ class Mechanism(MechanismBase):
         >>> bool(np.allclose(A1, [-A0[1], A0[0], A0[2]]))  # a quarter turn about Z
         True
         """
-        q = self._check_q(q)
+        q = self.check_q(q)
         if q.ndim != 1:
             raise InputError(f"`q` must be one configuration of shape ({self.n},), got {q.shape}")
         b = self.body(body)

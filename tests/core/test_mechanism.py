@@ -7,7 +7,7 @@ import sympy as sp
 
 import kinbook
 from kinbook import ModelError, planar, spatial
-from kinbook.core.mechanism import constraint_class, constraint_types
+from kinbook.core.constraint import constraint_class, constraint_types
 
 
 # --------------------------------------------------------------------------------------------- a new type
@@ -132,7 +132,7 @@ def test_declaration_mistakes_are_named_when_the_class_is_written():
                 return [Q[0][0]]
 
     with pytest.raises(ModelError, match="subclass kinbook.planar.Constraint or kinbook.spatial.Constraint"):
-        class Loose(kinbook.core.mechanism.ConstraintBase):
+        class Loose(kinbook.core.constraint.ConstraintBase):
             type_name = "test-loose"
             n_eq = 1
 

@@ -176,7 +176,7 @@ def test_no_reduction_without_a_fully_fixed_body():
 def test_hermite_guess_is_exact_for_quintics():
     """The sweep's guesses between two solved instants interpolate q, q̇, q̈ at both ends; a quintic in t is
     reproduced exactly (so the guess error is O(h⁶) for a smooth motion)."""
-    from kinbook.core.solve import _hermite5
+    from kinbook.core.sweep import _hermite5
 
     rng = np.random.default_rng(8)
     c = rng.normal(size=(6, 3))  # q(t) = Σ c_k t^k, three coordinates
@@ -195,7 +195,7 @@ def test_hermite_guess_is_exact_for_quintics():
 
 # --------------------------------------------------------------------------------------------- continuation
 def test_following_past_the_dead_point_stops_at_the_limit_configuration():
-    from kinbook.core.solve import follow
+    from kinbook.core.sweep import follow
 
     m, q_limit, t_limit = example1_at_limit()
     q0 = m.solve_position(0.0)
@@ -213,7 +213,7 @@ def test_following_past_the_dead_point_stops_at_the_limit_configuration():
 
 
 def test_following_many_instants_goes_outward_from_the_start():
-    from kinbook.core.solve import follow_times
+    from kinbook.core.sweep import follow_times
 
     m, _, t_limit = example1_at_limit()
     times = [0.03, 0.0, -0.005, 0.01, -0.02]  # 306.9° (past), 135°, 106.4°, 192.3°, 20.4° (past 70.53°)

@@ -1,7 +1,7 @@
 """The explorer: move a mechanism's driver by hand and watch max|Φ| and the condition number of Φ_q.
 
 A slider in JupyterLab (a live kernel with ipywidgets), or a still grid of configurations elsewhere. Every
-configuration is found by continuation (:func:`kinbook.core.solve.follow`) from the assembly at the driver's
+configuration is found by continuation (:func:`kinbook.core.sweep.follow`) from the assembly at the driver's
 start value, so the drawings stay on one assembly branch; where the mechanism stops (a dead point), the
 explorer says so and shows the limit configuration, the last one that assembles. Rotations are shown in
 degrees.
@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from ...core.solve import follow, follow_times
+from ...core.sweep import follow, follow_times
 from ...errors import InputError
 from ._common import _plt, _size, _style_axes
 from .joints import driver_symbol
@@ -131,7 +131,7 @@ def explorer(mech, driver=None, values=None, *, degrees=False, static=None, fram
 
     Notes
     -----
-    Each configuration is solved by continuation (:func:`kinbook.core.solve.follow_times`) outward from the
+    Each configuration is solved by continuation (:func:`kinbook.core.sweep.follow_times`) outward from the
     assembly at the driver's start value, so the drawings stay on one assembly branch. Textbook §13.6
     (Newton–Raphson) and the dead points of §13.5.
     """
