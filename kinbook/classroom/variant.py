@@ -27,7 +27,7 @@ from ..errors import GradingError, KinbookError
 from .notebook import find_parameters, grader_code, load_source, student_notebook
 from .parts import parameters, part, recording
 
-__all__ = ["student_parameters", "variant", "references", "seed_from", "MAX_DRAWS"]
+__all__ = ["student_parameters", "variant", "references", "seed_from", "draw", "MAX_DRAWS"]
 
 MAX_DRAWS = 25
 
@@ -39,6 +39,12 @@ def seed_from(text):
 
 def _seed(exercise, student, attempt):
     return seed_from(f"{exercise}:{student}:{attempt}")
+
+
+def draw(ranges, defaults, seed):
+    """One draw of parameter values from ``ranges`` (as in ``parameters(...)``) with a seeded generator: the
+    rule per-student parameters use, shared with the notebooks' ``kb.another``."""
+    return _draw(ranges, defaults, np.random.default_rng(seed))
 
 
 def _draw(ranges, defaults, rng):

@@ -19,7 +19,8 @@ from ._i18n import add_texts
 
 __all__ = ["Mistake", "MISTAKES", "explain", "codes", "CONTEXTS"]
 
-CONTEXTS = ("planar", "spatial", "gear", "rack", "driver", "speed", "accel", "rotation", "parameters", "vector")
+CONTEXTS = ("planar", "spatial", "gear", "rack", "driver", "speed", "accel", "rotation", "parameters", "vector",
+            "position", "omega", "angles", "value")
 """Contexts a hint can be written for (the first that the mistake has is used)."""
 
 
@@ -221,8 +222,90 @@ _ENTRIES = [
        N_("A maps local to global components (s = A s'); the local components of a global vector are s' = Aᵀ s")),
 ]
 
+# ------------------------------------------------------------- numeric answers (try-its, exercise parts; issue 25)
+_ENTRIES += [
+    _m("wrong_data",
+       N_("computed for other data"),
+       N_("the answer fits other data than the question's: the values printed earlier in the notebook, or the "
+          "notebook's own case instead of this variant's; reread the data of the question")),
+    _m("relative_speed",
+       N_("speed relative to the carrier"),
+       N_("eq. 38 relates the turns relative to the carrier k, (φ_j − φ_j⁰) − (φ_k − φ_k⁰); the absolute speed adds "
+          "the carrier's own φ̇_k back")),
+    _m("rate_exchanged",
+       N_("φ̈ and φ̇² exchanged"),
+       N_("in r̈^P = r̈ + B s' φ̈ − A s' φ̇² (eq. 13) the tangential part B s' carries the angular acceleration φ̈ "
+          "and the centripetal part −A s' the square of the angular velocity")),
+    _m("angle_rates",
+       N_("angle rates for ω"),
+       N_("[ψ̇, θ̇, φ̇] are not the components of ω or ω': the three rates turn about three different axes (z, the "
+          "line of nodes, ζ), and ω' = [ψ̇ sin θ sin φ + θ̇ cos φ, ψ̇ sin θ cos φ − θ̇ sin φ, ψ̇ cos θ + φ̇] (§14.2)")),
+    _m("assembly_mode",
+       N_("the other assembly mode"),
+       N_("Φ(q) = 0 has another solution here — the same driver angle with the loop closed the other way; "
+          "Newton–Raphson finds the one nearest its starting guess, so start from the guess the question gives")),
+    _m("not_converged",
+       N_("iteration not converged"),
+       N_("stop Newton–Raphson only when the residual |Φ(q)| and the step |Δq| are both tiny (1e-10, say): an earlier "
+          "iterate is not yet a solution")),
+    _m("newton_step",
+       N_("not a Newton–Raphson step"),
+       N_("each step solves Φ_q(q_k) Δq = −Φ(q_k) at the current iterate, then q_{k+1} = q_k + Δq: mind the minus "
+          "sign, evaluate Φ_q and Φ at the current q_k (and at the question's t)")),
+]
+
 MISTAKES = {m.code: m for m in _ENTRIES}
 """Catalogue entries by code."""
+
+
+def _hints_for(code, **contexts):
+    """More context hints for an entry (the hint follows the quantity asked: a number, a point's position …)."""
+    MISTAKES[code].hints.update(contexts)
+
+
+_hints_for(
+    "sign_flip",
+    position=N_("a term has the opposite sign: x^P = x + ξ cos φ − η sin φ, y^P = y + ξ sin φ + η cos φ (eq. 5)"),
+    omega=N_("a sign is wrong: ω = 2Eṗ with E = [−e, ẽ + e0 I], ω' = 2Gṗ with G = [−e, −ẽ + e0 I] (§14.3)"),
+    angles=N_("a sign is wrong: read θ = arccos a33, ψ = atan2(a13, −a23), φ = atan2(a31, a32) from the z-x-z A "
+              "(§14.2)"),
+    value=N_("the sign of your number is wrong: write the formula term by term and check each term's sign against the "
+             "book's equation"))
+_hints_for(
+    "local_vector",
+    position=N_("s' has local components (ξ, η); turn it into global ones with A before adding it to r: r^P = r + A "
+                "s' (eq. 5)"))
+_hints_for(
+    "A_for_B",
+    position=N_("a position uses A: r^P = r + A s' (eq. 5); B = dA/dφ belongs to velocities (eq. 10)"),
+    speed=N_("differentiate A s' in time: d(A s')/dt = B s' φ̇ with B = dA/dφ (eq. 10), not A s' φ̇"),
+    accel=N_("in r̈^P = r̈ + B s' φ̈ − A s' φ̇² (eq. 13) B goes with φ̈ and A with φ̇²"))
+_hints_for(
+    "swapped_entries",
+    angles=N_("the z-x-z angles come in the order of the turns: ψ (about z), θ (about the line of nodes), φ (about ζ)"),
+    vector=N_("the right numbers in the wrong places: a vector's components come in the order x, y(, z)"),
+    value=N_("the right numbers in the wrong places: check which entry each number belongs to"))
+_hints_for(
+    "wrong_frame",
+    vector=N_("s (global components) and s' (body components) are one arrow in two frames: s = A s', s' = Aᵀ s (eq. "
+              "9)"),
+    position=N_("r^P = r + A s': r is already in global components, only s' is turned"),
+    omega=N_("ω (global components) and ω' (body components) are the same vector in two frames: ω = A ω'"))
+_hints_for(
+    "transposed",
+    angles=N_("these are the angles of Aᵀ (the passive reading): the book's A maps body to global components, its "
+              "third row is [sin θ sin φ, sin θ cos φ, cos θ]"))
+_hints_for(
+    "extrinsic_order",
+    angles=N_("ψ and φ exchanged: ψ is read from the third column (a13, −a23), φ from the third row (a31, a32)"))
+_hints_for(
+    "degrees",
+    value=N_("angles and angular velocities are in radians (np.radians(90) = π/2): convert before you multiply or "
+             "take a sine"),
+    angles=N_("give the angles in radians (np.radians converts; atan2 and arccos already return radians)"))
+_hints_for(
+    "missing_term",
+    position=N_("r^P = r + A s' (eq. 5): the body's origin plus the turned local vector"))
 
 
 def codes():
@@ -255,5 +338,7 @@ add_texts({
     "d.factor_local_pair": N_("the length |{a} − {b}| of body {body}"),
     "d.factor_joint_length": N_("the joint's length {name}"),
     "d.multiplied_by": N_("multiplied by {c}, {what}"),
+    "d.jacobian_of": N_("the Jacobian of {c}·{ref}: the derivative of {ref} keeps all its factors (the 2 of ∂(dᵀd)/∂q = "
+                        "2dᵀ∂d/∂q, of A(p) = 2[…]); pass your own Φ as phi= if you scaled it"),
     "d.degrees_value": N_("{got} is {expected} rad in degrees"),
 })

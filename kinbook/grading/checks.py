@@ -117,7 +117,8 @@ def check_jacobian(answer, mechanism, *, phi=None, order=None, rtol=None, at=Non
         or the reference's row with the student's factor.
     order : {"book", "any"}, optional
         Without ``phi``: "book" (default) expects the rows in the book's order; "any" in any order. A row may
-        carry any constant factor (the Jacobian of c·Φ_k).
+        carry the factor −1 (the Jacobian of −Φ_k); any other constant c is named ``scaled`` (the Jacobian of
+        c·Φ_k: a factor of the derivative is missing). Pass your own Φ as ``phi=`` to grade against it.
     rtol, at, symbolic
         As for :func:`check_phi`.
 
@@ -190,11 +191,26 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
             return report.derived_result(target, quantity, m, data, rtol, notes=notes)
         return _refused(quantity, Refused("malformed", "needs_configuration"))
     diagnose.derived(target, quantity, A, data, m, rtol, own)
+    if quantity == "Phi_q" and own is None:
+        _factored_rows(target, m)
     result = report.derived_result(target, quantity, m, data, rtol, notes=notes,
                                    extra_codes=["transposed"] if data.transposed else [])
     if symbolic and A.kind == "symbolic":
         result = _confirm(result, target, A, m, quantity)
     return result
+
+
+def _factored_rows(target, m):
+    """A Φ_q row that is c × the reference row with c ≠ ±1 is the Jacobian of c·Φ_k: Φ_k is given (the book's
+    form), so its derivative keeps every factor — a forgotten 2 of ∂(dᵀd)/∂q is a mistake, not a
+    reformulation (issue 25; −1, the sign of Φ_k, stays free). With ``phi=`` the student's own factor rules."""
+    from .report import fmt
+
+    for r in m.rows:
+        c = r.factor
+        if r.status == "ok" and r.how == "multiple" and c is not None and abs(abs(c) - 1.0) > 1e-6:
+            r.status, r.code, r.score = "wrong", "scaled", 0.0
+            r.detail = Msg("d.jacobian_of", c=fmt(c), ref=target.label(r.ref))
 
 
 def _own(target, phi, quantity, data, rtol, notes):

@@ -6,15 +6,24 @@ The expected value is computed by the caller with kinbook — a plain number or 
 knows the other right answers (−p, the second triple of Euler angles) and the wrong answers students give,
 each computed with kinbook's functions. The checkers compare and diagnose, the same way for every number:
 the Expected's named mistakes first; then, for any value, degrees for radians (wherever the answer is the
-expected angle in degrees: no flag needed), a transposed matrix, the sign, a plausible factor (2, ½, π …),
-and for matrices and parameters their own conditions (orthogonality, det = +1, pᵀp = 1).
+expected angle in degrees: no flag needed), a transposed matrix, the sign, a plausible factor (2, ½, π, 1000 …)
+of a nonzero reference, and for matrices and parameters their own conditions (orthogonality, det = +1,
+pᵀp = 1).
+
+``reveal=False`` (the notebooks' try-its) keeps the reference value out of the feedback: a wrong answer is
+told which entries are off and how — the sign, too large or too small, the length or the direction of a
+vector — and the mistake's name, never the number it should have been.
 """
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
-from ._i18n import Msg
+from ..errors import InputError
+from ..i18n import N_
+from ._i18n import Msg, add_texts
 from .expected import DEG, Expected
 from .read import Refused, _as_numbers
 from .report import fmt, hints
@@ -22,9 +31,113 @@ from .result import CheckResult, RowResult
 
 __all__ = ["check_value", "check_rotation", "check_euler_parameters"]
 
-_PLAUSIBLE = (2.0, 0.5, -2.0, -0.5, np.pi, 1 / np.pi, 2 * np.pi, 1 / (2 * np.pi), np.pi / 180, 3.0, 1 / 3)
+_PLAUSIBLE = (2.0, 0.5, -2.0, -0.5, np.pi, 1 / np.pi, 2 * np.pi, 1 / (2 * np.pi), np.pi / 180, 3.0, 1 / 3, 1000.0,
+              1e-3)
+"""Factors a slip can put on a whole answer (a forgotten 2, π, a unit); "multiplied by c" only for these."""
+_MAX_RTOL = 0.1
+
+add_texts({
+    "v.off_head": N_("wrong: {k} of {n} entries are off — {entries}"),
+    "v.off_scalar": N_("wrong: your value {how}"),
+    "v.entry_how": N_("{where} {how}"),
+    "v.more": N_("and {k} more"),
+    "v.too_large": N_("is too large"),
+    "v.too_small": N_("is too small"),
+    "v.far_too_large": N_("is far too large (more than 10 times)"),
+    "v.far_too_small": N_("is far too small (less than a tenth)"),
+    "v.too_large_abs": N_("is too large in magnitude"),
+    "v.is_zero": N_("is zero and should not be"),
+    "v.wrong_sign": N_("has the wrong sign (its size is right)"),
+    "v.wrong_sign_size": N_("has the wrong sign, and its size is off too"),
+    "v.angle_high": N_("is too large (compared modulo 360°)"),
+    "v.angle_low": N_("is too small (compared modulo 360°)"),
+    "v.length_right": N_("the length of your vector is right; its direction is not"),
+    "v.direction_right": N_("your vector points the right way; its length is not right"),
+    "v.got_type": N_("{what}: expected real numbers (a number, a list or an array), got {type}"),
+    "v.scaled_units": N_("your answer is the expected one multiplied by {c} (a unit conversion: m and mm?)"),
+})
 
 
+# ================================================================================================ options
+def _real(value, arg, *, low=None, high=None, positive=False):
+    """A finite real option as a float, or InputError naming the argument."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
+        raise InputError(f"`{arg}` must be a real number, got {value!r}")
+    x = float(value)
+    if not np.isfinite(x):
+        raise InputError(f"`{arg}` must be finite, got {value!r}")
+    if (low is not None and x < low) or (high is not None and x > high) or (positive and x <= 0):
+        bound = f"in [{low:g}, {high:g}]" if high is not None else ("> 0" if positive else f"≥ {low:g}")
+        raise InputError(f"`{arg}` must be {bound}, got {value!r}")
+    return x
+
+
+def _tolerances(rtol, atol, e):
+    """Validated (rtol, atol). A tolerance that would pass a wrong answer (rtol > 0.1, atol as large as a
+    tenth of the reference) or fail a right one (negative) is refused."""
+    rtol = _real(rtol, "rtol", low=0.0, high=_MAX_RTOL)
+    atol = _real(atol, "atol", low=0.0)
+    scale = float(np.max(np.abs(e), initial=0.0))
+    if scale > 0 and atol >= 0.1 * scale:
+        raise InputError(f"`atol` = {atol:g} would accept wrong answers: the reference's largest entry is "
+                         f"{scale:.6g}; use at most a tenth of it (or rtol)")
+    if scale == 0 and atol > 1e-3:
+        raise InputError(f"`atol` = {atol:g} would accept wrong answers: the reference is zero; use at most 1e-3")
+    return rtol, atol
+
+
+def _periodic(periodic, shape):
+    """`periodic` (flat 0-based indices of angles, or a boolean mask of the value's shape) as a mask."""
+    size = int(np.prod(shape)) if shape else 1
+    if periodic is None:
+        return np.zeros(shape, bool)
+    if isinstance(periodic, (bool, np.bool_)):
+        return np.full(shape, bool(periodic))
+    if isinstance(periodic, (numbers.Integral, np.integer)):
+        periodic = (periodic,)
+    try:
+        arr = np.asarray(periodic)
+    except (TypeError, ValueError):
+        raise InputError(f"`periodic` must be flat indices of the angles or a boolean mask, got {periodic!r}") \
+            from None
+    if arr.dtype.kind == "b":
+        if arr.size != size:
+            raise InputError(f"`periodic` as a mask must have {size} entries (the value's), got {arr.size}")
+        return arr.reshape(shape)
+    if arr.size == 0:
+        return np.zeros(shape, bool)
+    if arr.dtype.kind not in "iu" or arr.ndim != 1:
+        raise InputError(f"`periodic` must be a list of flat indices (integers) or a boolean mask, got "
+                         f"{periodic!r}")
+    if arr.min() < 0 or arr.max() >= size:
+        raise InputError(f"`periodic` index out of range for a value with {size} entries: {arr.tolist()}")
+    mask = np.zeros(size, bool)
+    mask[arr] = True
+    return mask.reshape(shape)
+
+
+def _name(name, default):
+    if name is None:
+        return default
+    if isinstance(name, str) or (isinstance(name, dict) and "en" in name and all(isinstance(v, str) for v in
+                                                                                   name.values())):
+        return name
+    raise InputError(f"`name` must be a text (or {{'en': …, 'es': …}}), got {name!r}")
+
+
+def _angles_flag(angles):
+    if angles is not None and not isinstance(angles, (bool, np.bool_)):
+        raise InputError(f"`angles` must be True, False or None, got {angles!r}")
+    return angles is not False
+
+
+def _reveal_flag(reveal):
+    if not isinstance(reveal, (bool, np.bool_)):
+        raise InputError(f"`reveal` must be True or False, got {reveal!r}")
+    return bool(reveal)
+
+
+# ================================================================================================ reading
 def _fmt_array(a):
     """Numbers as they are shown: 6 significant digits, no round-off noise, nested brackets."""
     a = np.asarray(a, float)
@@ -42,11 +155,46 @@ def _close(a, b, rtol, atol, periodic=None):
     return bool(np.all(np.abs(d) <= atol + rtol * np.max(np.abs(b), initial=0.0)))
 
 
+def _texts(answer):
+    """A text or a (nested) list of texts read as numbers through kinbook's reader ("pi/4", "-0.5"); None
+    when the answer holds no text."""
+    from ..expressions import read_number
+
+    def walk(x, where):
+        if isinstance(x, str):
+            return read_number(x, where=where)
+        if isinstance(x, (list, tuple)):
+            return [walk(v, f"{where}[{k + 1}]") for k, v in enumerate(x)]
+        return x
+
+    def has_text(x):
+        return isinstance(x, str) or (isinstance(x, (list, tuple)) and any(has_text(v) for v in x))
+
+    if isinstance(answer, np.ndarray) and answer.dtype.kind in "US":
+        answer = answer.tolist()
+    if not has_text(answer):
+        return None
+    return walk(answer, "answer")
+
+
 def _read(answer, name):
-    """The answer as a float array of its own shape (refuses bools, complex values, text, objects)."""
+    """The answer as a float array of its own shape (refuses bools, complex values, objects; texts of numbers
+    are read by kinbook's reader)."""
+    from ..errors import ExpressionError
+
+    try:
+        parsed = _texts(answer)
+    except ExpressionError as exc:
+        return None, Refused("malformed", "reader", message=str(exc))
+    except RecursionError:
+        return None, Refused("malformed", "nested_deeper")
+    if parsed is not None:
+        answer = parsed
     try:
         arr = _as_numbers(answer, Msg("answer"))
     except Refused as exc:
+        if exc.key == "not_numbers":
+            return None, Refused("malformed", "v.got_type", what=Msg("answer"), type=_type_name(answer))
         return None, exc
     try:
         raw = np.asarray(answer, dtype=float)
@@ -55,20 +203,39 @@ def _read(answer, name):
     return (raw if raw.size == arr.size and raw.ndim <= 2 else arr), None
 
 
+def _type_name(x):
+    if isinstance(x, (list, tuple)):
+        inner = sorted({type(v).__name__ for v in x})[:3]
+        return f"a {type(x).__name__} of {', '.join(inner)}" if inner else f"an empty {type(x).__name__}"
+    return type(x).__name__
+
+
 def _failed(name, msg, code):
     return CheckResult(False, 0.0, [msg], [code], (), name)
 
 
 def _expected(expected):
+    """The expected value as an :class:`Expected` (a copy: checking never changes the caller's object), or
+    None when it is not real finite numbers."""
     if isinstance(expected, Expected):
-        return expected
+        value = np.asarray(expected.value, dtype=float)
+        if value.size == 0 or not np.all(np.isfinite(value)):
+            return None
+        return expected.copy()
+    if isinstance(expected, (bool, np.bool_)):
+        return None
     try:
         value = np.asarray(expected, dtype=float)
     except (TypeError, ValueError):
         return None
-    if value.dtype.kind != "f" or value.size == 0:
+    if value.size == 0 or not np.all(np.isfinite(value)):
         return None
     return Expected(value)
+
+
+def _bad_expected(expected):
+    raise InputError(f"`expected` must be real finite numbers (computed with kinbook) or an "
+                     f"kinbook.grading.expected.Expected, got {_type_name(expected)}")
 
 
 def _shape(a, e, name):
@@ -82,31 +249,42 @@ def _shape(a, e, name):
     return None, _failed(name, Msg("wrong_shape", expected=e.shape, got=a.shape), "wrong_shape")
 
 
-def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name=None, angles=None, periodic=()):
+# ================================================================================================ check_value
+def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name=None, angles=None, periodic=(), reveal=True):
     """Check a number, vector or matrix against the expected value.
 
     Parameters
     ----------
     answer : number, array_like, sympy Matrix of numbers
-        Real numbers; True/False, complex numbers and text are refused.
+        Real numbers (texts of numbers, "pi/4", are read by kinbook's reader); True/False, complex numbers and
+        other objects are refused.
     expected : number, array_like or :class:`~kinbook.grading.expected.Expected`
         Computed by the caller with kinbook (an Expected also names the mistakes of that computation).
     rtol, atol : float
         |answer − expected| ≤ atol + rtol · max|expected| entry-wise (the book prints 4–6 significant
-        digits, hence the default rtol = 1e-3).
-    name : str, optional
+        digits, hence the default rtol = 1e-3). rtol in [0, 0.1]; atol ≥ 0 and below a tenth of the
+        reference's largest entry: a tolerance that would pass a wrong answer is refused.
+    name : str or dict, optional
         How to call the value in messages ("q̈", "Φ_q at t = 0" …); default "value" ("valor").
     angles : bool, optional
-        Kept for compatibility: degrees for radians are diagnosed wherever they occur (``angles=False`` turns
-        that off for values that cannot be angles).
-    periodic : sequence of int
-        Flat indices of entries that are angles, compared modulo 2π (φ = −π/2 and 3π/2 are the same
-        orientation).
+        Degrees for radians are diagnosed wherever they occur; ``angles=False`` turns that off for values that
+        cannot be angles.
+    periodic : sequence of int, or boolean mask
+        Flat (0-based) indices of entries that are angles, compared modulo 2π (φ = −π/2 and 3π/2 are the same
+        orientation); added to the Expected's own.
+    reveal : bool
+        True (exercises, graded after the deadline): a wrong answer's feedback shows the expected value.
+        False (self-tests): it says which entries are off and how, never the expected value.
 
     Returns
     -------
     CheckResult
         One row per entry (flattened; 1-based positions).
+
+    Raises
+    ------
+    InputError
+        A bad option or expected value; the message names the argument.
 
     Examples
     --------
@@ -115,11 +293,14 @@ def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name=None, angles=Non
     >>> check_value([[1, 3], [2, 4]], [[1, 2], [3, 4]]).mistakes
     ['transposed']
     """
-    name = {"en": "value", "es": "valor"} if name is None else name
+    name = _name(name, {"en": "value", "es": "valor"})
     exp = _expected(expected)
     if exp is None:
-        return _failed(name, Msg("bad_type", expected="numbers", type=type(expected).__name__), "malformed")
-    return _check(answer, exp, rtol, atol, name, angles is not False, periodic)
+        _bad_expected(expected)
+    e = np.asarray(exp.value, float)
+    rtol, atol = _tolerances(rtol, atol, e)
+    per = _periodic(periodic, e.shape) | _periodic(tuple(exp.periodic), e.shape)
+    return _check(answer, exp, rtol, atol, name, _angles_flag(angles), per, reveal=_reveal_flag(reveal))
 
 
 def _indexed(name, idx):
@@ -130,8 +311,9 @@ def _indexed(name, idx):
     return name + suffix
 
 
-def _check(answer, exp, rtol, atol, name, degrees=True, periodic=(), extra=None):
+def _check(answer, exp, rtol, atol, name, degrees=True, per=None, extra=None, reveal=True):
     e = np.asarray(exp.value, dtype=float)
+    per = np.zeros(e.shape, bool) if per is None else per
     a, refused = _read(answer, name)
     if refused is not None:
         return _failed(name, Msg(refused.key, **refused.fields), refused.code)
@@ -140,28 +322,20 @@ def _check(answer, exp, rtol, atol, name, degrees=True, periodic=(), extra=None)
         return problem
     if not np.all(np.isfinite(a)):
         return _failed(name, Msg("not_finite", where=name), "not_finite")
-    per = np.zeros(e.size, bool)
-    per[list(periodic or exp.periodic)] = True
-    per = per.reshape(e.shape)
+    contexts = tuple(exp.context) or (exp.kind,)
     if problem == "transposed":
         ok = _close(a.T, e, rtol, atol)
         msg = Msg("transposed", expected=e.shape, got=a.shape)
         notes = [msg] + ([Msg("transposed_right")] if ok else [])
-        return CheckResult(False, 0.5 if ok else 0.0, notes + hints(["transposed"], {"transposed": (exp.kind,)}),
+        return CheckResult(False, 0.5 if ok else 0.0, notes + hints(["transposed"], {"transposed": contexts}),
                            ["transposed"], (), name)
     if _close(a, e, rtol, atol, per):
-        return CheckResult(True, 1.0, [Msg("value_ok")], [], _rows(a, e, rtol, atol, per, name, None), name)
+        return CheckResult(True, 1.0, [Msg("value_ok")], [], _rows(a, e, rtol, atol, per, name, None, True), name)
     for value, why in exp.equivalents:
         if _close(a, np.asarray(value, float).reshape(e.shape), rtol, atol, per):
             return CheckResult(True, 1.0, [why], [], (), name)
     code, detail, erratum, note = _diagnose(a, e, exp, rtol, atol, per, degrees, extra, name)
-    err = np.abs(a - e)
-    if per.any():
-        err = np.where(per, np.abs((a - e + np.pi) % (2 * np.pi) - np.pi), err)
-    where = np.unravel_index(int(np.argmax(err)), err.shape) if err.ndim else ()
-    where_text = _indexed(name, where)
-    head = Msg("value_wrong", expected=_fmt_array(e), got=_fmt_array(a), err=fmt(err.max()), where=where_text)
-    notes = [head]
+    notes = _head(a, e, rtol, atol, per, name, reveal)
     if note is not None:
         notes.append(note)
     if erratum:
@@ -170,17 +344,70 @@ def _check(answer, exp, rtol, atol, name, degrees=True, periodic=(), extra=None)
         notes.append(Msg("book_misprint", id=erratum) if code in PRINTED else Msg("d.book_row", id=erratum))
     if detail is not None:
         notes.append(detail)
-    rows = _rows(a, e, rtol, atol, per, name, code)
+    rows = _rows(a, e, rtol, atol, per, name, code, reveal)
     # a mistake of some entries (an entry's sign, two entries exchanged) keeps the credit of the right ones
     global_codes = code not in ("wrong_value", "sign_flip", "swapped_entries")
     good = sum(1 for r in rows if r.status == "ok")
     score = 0.0 if global_codes or not rows else good / len(rows)
     codes = [code]
-    return CheckResult(False, round(score, 6), notes + hints(codes, {c: (exp.kind,) for c in codes}), codes,
+    return CheckResult(False, round(score, 6), notes + hints(codes, {c: contexts for c in codes}), codes,
                        tuple(rows), name)
 
 
-def _rows(a, e, rtol, atol, per, name, code):
+def _head(a, e, rtol, atol, per, name, reveal):
+    """The first line of a wrong answer's feedback: the expected value (reveal) or which entries are off."""
+    err = np.abs(_diff(a, e, per))
+    if reveal:
+        where = np.unravel_index(int(np.argmax(err)), err.shape) if err.ndim else ()
+        return [Msg("value_wrong", expected=_fmt_array(e), got=_fmt_array(a), err=fmt(err.max()),
+                    where=_indexed(name, where))]
+    scale = np.max(np.abs(e), initial=0.0)
+    if e.size == 1:
+        return [Msg("v.off_scalar", how=_how(a.ravel()[0], e.ravel()[0], per.ravel()[0], rtol, atol, scale))]
+    wrong = [idx for idx in np.ndindex(e.shape) if err[idx] > atol + rtol * scale]
+    shown = [Msg("v.entry_how", where=_indexed(name, idx), how=_how(a[idx], e[idx], per[idx], rtol, atol, scale))
+             for idx in wrong[:6]]
+    if len(wrong) > 6:
+        shown.append(Msg("v.more", k=len(wrong) - 6))
+    head = Msg("v.off_head", k=len(wrong), n=e.size, entries=shown)
+    if e.ndim == 1 and e.size in (2, 3) and not per.any():
+        na, ne = np.linalg.norm(a), np.linalg.norm(e)
+        if ne > 0 and na > 0:
+            if abs(na - ne) <= atol + rtol * ne:
+                return [head, Msg("v.length_right")]
+            if float(a @ e) / (na * ne) > 1 - 1e-9:
+                return [head, Msg("v.direction_right")]
+    return [head]
+
+
+def _diff(a, e, per):
+    d = a - e
+    if per.any():
+        d = np.where(per, (d + np.pi) % (2 * np.pi) - np.pi, d)
+    return d
+
+
+def _how(x, y, periodic, rtol, atol, scale):
+    """How one entry is off, without its reference value: sign, too large or small (or by how much)."""
+    tol = atol + rtol * scale
+    if periodic:
+        d = (x - y + np.pi) % (2 * np.pi) - np.pi
+        return Msg("v.angle_high" if d > 0 else "v.angle_low")
+    if abs(y) <= tol:
+        return Msg("v.too_large_abs")
+    if abs(x) <= tol:
+        return Msg("v.is_zero")
+    if np.sign(x) != np.sign(y):
+        return Msg("v.wrong_sign" if abs(abs(x) - abs(y)) <= tol else "v.wrong_sign_size")
+    r = abs(x) / abs(y)
+    if r > 10:
+        return Msg("v.far_too_large")
+    if r < 0.1:
+        return Msg("v.far_too_small")
+    return Msg("v.too_large" if r > 1 else "v.too_small")
+
+
+def _rows(a, e, rtol, atol, per, name, code, reveal):
     if a.size > 64:
         return []
     scale = np.max(np.abs(e), initial=0.0)
@@ -192,8 +419,13 @@ def _rows(a, e, rtol, atol, per, name, code):
             d = (d + np.pi) % (2 * np.pi) - np.pi
         good = abs(d) <= atol + rtol * scale
         label = _indexed(name, idx)
-        rows.append(RowResult(label, "ok" if good else "wrong", "" if good else
-                              Msg("value_entry", got=fmt(x), expected=fmt(y)), None if good else (code or "wrong_value"),
+        if good:
+            text = ""
+        elif reveal:
+            text = Msg("value_entry", got=fmt(x), expected=fmt(y))
+        else:
+            text = _how(x, y, per[idx], rtol, atol, scale)
+        rows.append(RowResult(label, "ok" if good else "wrong", text, None if good else (code or "wrong_value"),
                               (), 1.0 if good else 0.0))
     return rows
 
@@ -226,21 +458,30 @@ def _diagnose(a, e, exp, rtol, atol, per, degrees, extra, name="value"):
     found = _entry_signs(a, e, rtol, atol, per, name) or _exchanged(a, e, rtol, atol, name)
     if found is not None:
         return found
+    return _scaled(a, e, rtol, atol)
+
+
+def _scaled(a, e, rtol, atol):
+    """"scaled" only for a plausible factor (2, ½, π, 1000 …) of a nonzero reference by a nonzero answer: a
+    coincidence (a midpoint, a zero) is not a diagnosis."""
     flat_a, flat_e = a.ravel(), e.ravel()
     ee = float(flat_e @ flat_e)
-    c = float(flat_a @ flat_e) / ee if ee > 0 else 0.0
-    if c not in (0.0, 1.0) and np.isfinite(c) and _close(a, c * e, rtol, atol):
-        several = int(nz.sum()) >= 2
-        if several or any(abs(c - p) <= 1e-3 * abs(p) for p in _PLAUSIBLE):
-            return "scaled", Msg("value_scaled", c=fmt(c)), None, None
+    scale = np.max(np.abs(flat_e), initial=0.0)
+    if ee == 0 or np.max(np.abs(flat_a), initial=0.0) <= atol + rtol * scale:
+        return "wrong_value", None, None, None
+    c = float(flat_a @ flat_e) / ee
+    if not np.isfinite(c) or not _close(a, c * e, rtol, atol):
+        return "wrong_value", None, None, None
+    for p in _PLAUSIBLE:
+        if abs(c - p) <= 1e-3 * abs(p):
+            key = "v.scaled_units" if p in (1000.0, 1e-3) else "value_scaled"
+            return "scaled", Msg(key, c=fmt(p)), None, None
     return "wrong_value", None, None, None
 
 
 def _wrong_entries(a, e, rtol, atol, per):
     scale = np.max(np.abs(e), initial=0.0)
-    d = a - e
-    if per.any():
-        d = np.where(per, (d + np.pi) % (2 * np.pi) - np.pi, d)
+    d = _diff(a, e, per)
     return np.abs(d) > atol + rtol * scale, scale
 
 
@@ -285,7 +526,17 @@ def _exchanged(a, e, rtol, atol, name):
 
 
 # ================================================================================================ rotations
-def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name="A"):
+def _triple(value, arg):
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"`{arg}` must be three real numbers (radians), got {value!r}") from None
+    if arr.shape != (3,) or not np.all(np.isfinite(arr)) or isinstance(value, (bool, np.bool_)):
+        raise InputError(f"`{arg}` must be three finite real numbers (radians), got {value!r}")
+    return arr
+
+
+def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name="A", reveal=True):
     """Check a 3×3 rotation (direction-cosine) matrix.
 
     Parameters
@@ -294,25 +545,46 @@ def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name=
     expected : array_like, shape (3, 3), or Expected
         Computed with kinbook.spatial (it maps local to global components: s = A s'); an Expected
         (``expected.A_from_euler``, ``expected.A_from_p``, ``expected.A_from_axes``) names its mistakes.
+    rtol, atol : float
+        As in :func:`check_value`.
     angles : (ψ, θ, φ), optional
         The z-x-z Euler angles (radians) the exercise gave: the same as passing
         ``expected.A_from_euler(ψ, θ, φ)``.
+    reveal : bool
+        As in :func:`check_value`.
 
     Returns
     -------
     CheckResult
         Mistakes: ``wrong_shape``, ``transposed``, ``degrees``, ``extrinsic_order``, ``factor_2_missing``,
         ``book_misprint``, ``not_orthogonal``, ``left_handed``, ``wrong_value``.
+
+    Raises
+    ------
+    InputError
+        A bad option or expected value; the message names the argument.
     """
     from .expected import A_from_euler
 
-    if angles is not None and not isinstance(expected, Expected):
-        exp = A_from_euler(*np.asarray(angles, float))
-        exp.value = np.asarray(expected, float) if _expected(expected) is not None else exp.value
+    name = _name(name, "A")
+    reveal = _reveal_flag(reveal)
+    base = _expected(expected)
+    if base is None:
+        _bad_expected(expected)
+    if np.asarray(base.value).shape != (3, 3):
+        raise InputError(f"`expected` must be a 3×3 matrix, got shape {np.shape(base.value)}")
+    if angles is not None:
+        triple = _triple(angles, "angles")
+        if not isinstance(expected, Expected):
+            exp = A_from_euler(*triple)
+            if not _close(np.asarray(exp.value), np.asarray(base.value, float), 1e-6, 1e-9):
+                raise InputError("`angles` do not give `expected`: A_from_euler(*angles) differs from it")
+            exp.value = np.asarray(base.value, float)
+        else:
+            exp = base
     else:
-        exp = _expected(expected)
-    if exp is None or np.asarray(exp.value).shape != (3, 3):
-        return _failed(name, Msg("wrong_shape", expected="(3, 3)", got=np.shape(expected)), "malformed")
+        exp = base
+    rtol, atol = _tolerances(rtol, atol, exp.value)
     exp.kind = "rotation"
     if not any(v[0] == "book_misprint" for v in exp.variants):
         exp.variants = list(exp.variants) + _from_matrix(exp.value)
@@ -331,23 +603,26 @@ def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name=
     a, refused = _read(answer, name)
     if refused is None and a.shape != (3, 3):
         return _failed(name, Msg("wrong_shape", expected="(3, 3)", got=a.shape), "wrong_shape")
-    return _check(answer, exp, rtol, atol, name, True, (), properties)
+    return _check(answer, exp, rtol, atol, name, True, None, properties, reveal=reveal)
 
 
 def _from_matrix(A_):
     """Variants of any rotation matrix: the book's A(p) misprint and ½A, at the p of A."""
+    from ..errors import KinbookError
+
     try:
         from ..spatial.rotations import p_from_A
         from .expected import _book_A_of_p
 
         p = np.asarray(p_from_A(np.asarray(A_, float)), float)
-    except Exception:  # not a rotation matrix: no p
+    except (KinbookError, ValueError, np.linalg.LinAlgError):  # not a rotation matrix: no p
         return []
     return [("factor_2_missing", 0.5 * np.asarray(A_), None, "14.3-A-of-p"),
             ("book_misprint", _book_A_of_p(p), None, "14.3-A-of-p")]
 
 
-def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None, angle=None, name="p"):
+def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None, angle=None, name="p",
+                           reveal=True):
     """Check Euler parameters p = [e0, e1, e2, e3].
 
     Parameters
@@ -355,31 +630,59 @@ def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None,
     answer, expected : array_like, shape (4,)
         ``expected`` computed with kinbook.spatial (or an Expected: ``expected.p_from_axis_angle(u, χ)``,
         ``expected.p_from_A(A)``). p and −p describe the same orientation: both pass.
+    rtol, atol : float
+        As in :func:`check_value`.
     axis, angle : optional
-        The rotation the exercise gave (axis u, angle χ in radians): the same as passing
-        ``expected.p_from_axis_angle(u, χ)``. Without them the axis and angle are read from ``expected``.
+        The rotation the exercise gave (axis u — three numbers, not zero — and angle χ in radians): the same
+        as passing ``expected.p_from_axis_angle(u, χ)``; give both or neither. Without them the axis and angle
+        are read from ``expected``.
+    reveal : bool
+        As in :func:`check_value`.
 
     Returns
     -------
     CheckResult
         Mistakes: ``wrong_shape``, ``not_normalized``, ``degrees``, ``full_angle``, ``scalar_last``,
         ``wrong_value``.
+
+    Raises
+    ------
+    InputError
+        A bad option or expected value; the message names the argument.
     """
     from .expected import p_from_axis_angle
 
+    name = _name(name, "p")
+    reveal = _reveal_flag(reveal)
     base = _expected(expected)
-    if base is None or np.asarray(base.value).size != 4:
-        return _failed(name, Msg("wrong_shape", expected="(4,)", got=np.shape(expected)), "malformed")
+    if base is None:
+        _bad_expected(expected)
+    if np.asarray(base.value).size != 4:
+        raise InputError(f"`expected` must be 4 Euler parameters, got shape {np.shape(base.value)}")
     value = np.asarray(base.value, float).reshape(4)
+    if abs(value @ value - 1.0) > 1e-6:
+        raise InputError(f"`expected` must be unit Euler parameters (pᵀp = 1), got pᵀp = {value @ value:.6g}")
+    rtol, atol = _tolerances(rtol, atol, value)
+    if (axis is None) != (angle is None):
+        raise InputError("`axis` and `angle` go together: give both (the rotation the exercise gave) or neither")
+    if axis is not None:
+        axis = _triple(axis, "axis")
+        if np.linalg.norm(axis) == 0:
+            raise InputError("`axis` must not be the zero vector")
+        angle = _real(angle, "angle")
     if isinstance(expected, Expected):
-        exp = expected
+        exp = base
     else:
-        if axis is None or angle is None:
+        if axis is None:
             e0, e = value[0], value[1:]
             chi = 2 * np.arctan2(np.linalg.norm(e), e0)
             axis = e / np.linalg.norm(e) if np.linalg.norm(e) > 1e-12 else np.array([0.0, 0.0, 1.0])
             angle = chi
         exp = p_from_axis_angle(axis, angle)
+        given = np.asarray(exp.value, float)
+        if not (_close(given, value, 1e-6, 1e-9) or _close(-given, value, 1e-6, 1e-9)):
+            raise InputError("`axis` and `angle` do not give `expected`: p_from_axis_angle(axis, angle) differs "
+                             "from it (and from −expected)")
         exp.value = value
         exp.equivalents = [(-value, Msg("p_negated"))]
     exp.kind = "parameters"
@@ -400,5 +703,4 @@ def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None,
     if refused is None:
         answer = a.reshape(4)
     exp.value = value
-    return _check(answer, exp, rtol, atol, name, True, (), normalization)
-
+    return _check(answer, exp, rtol, atol, name, True, None, normalization, reveal=reveal)

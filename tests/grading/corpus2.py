@@ -309,7 +309,7 @@ def planar_cases():
     add("p-rr-phi-local", "phi", m, c, rr_phi(local=True), False, 0.0, ["local_vector"])
     add("p-rr-jac", "jacobian", m, c, rr_jac(), True, 1.0)
     add("p-rr-jac-table-13-3", "jacobian", m, c, rr_jac(zeros=True), False, None, ["book_misprint"])
-    add("p-rr-jac-halved", "jacobian", m, c, [[f"0.5*({e})" for e in rr_jac()[0]]], True, 1.0)
+    add("p-rr-jac-halved", "jacobian", m, c, [[f"0.5*({e})" for e in rr_jac()[0]]], False, 0.0, ["scaled"])
     add("p-rr-nu", "nu", m, c, ["0"], True, 1.0)
     add("p-rr-gamma", "gamma", m, c, rr_gamma(), True, 1.0)
     add("p-rr-gamma-table-13-5", "gamma", m, c, rr_gamma(dy_square=""), False, 0.0, ["book_misprint"])

@@ -74,12 +74,24 @@ def exercise_parts():
 
 
 def tryit_parts(tryits):
+    """The try-its as parts: a chapter try-it with the notebook's target (its lookalikes included) and options
+    (``reveal=False``)."""
     names = {c.__name__[len("check_"):]: k for k, c in CHECKERS.items()}
-    out = []
+    out, seen = [], set()
     for t in tryits:
-        check = names[t.checker.__name__[len("check_"):]]
+        key = t.checker.__name__[len("check_"):]
+        if key not in names or t.id in seen:  # the Newton iteration has its own test
+            continue
+        seen.add(t.id)
         angles = "degrees" in {code for _, code in t.wrong}
-        out.append(Part(t.id, check, t.target(), dict(t.options), angles))
+        item = getattr(t, "item", None)
+        if item is None:
+            out.append(Part(t.id, names[key], t.target(), dict(t.options), angles))
+            continue
+        target, options = item.target(**item.data), dict(item.options)
+        if "reveal" in options or names[key] in ("value", "rotation", "euler_parameters"):
+            target, options = item._with_lookalikes(target, item.data), dict(options, reveal=False)
+        out.append(Part(t.id, names[key], target, options, angles))
     return out
 
 

@@ -29,7 +29,10 @@ def test_corpus_codes_are_catalogued_and_cover_the_planar_catalogue():
     elsewhere = {"missing_qt_term", "wrong_value", "missing_normalization", "scaled", "not_orthogonal",
                  "not_normalized", "dependent_row", "eg_jacobian", "book_misprint", "left_handed", "factor_2_missing",
                  "full_angle", "G_for_E", "wrong_frame", "extrinsic_order", "A_for_AT", "scalar_last", "extra_row",
-                 "swapped_entries"}
+                 "swapped_entries",
+                 # numeric try-its (tests/grading/test_tryits.py)
+                 "wrong_data", "relative_speed", "rate_exchanged", "angle_rates", "assembly_mode", "not_converged",
+                 "newton_step"}
     assert set(MISTAKES) - seen <= elsewhere, set(MISTAKES) - seen - elsewhere
 
 

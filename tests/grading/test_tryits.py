@@ -9,7 +9,7 @@ and at most 1 in 10 gets only the generic "wrong value" (the figure is printed).
 import pytest
 
 from .generated import exercise_parts, tryit_parts, wrong_answers
-from .tryits import all_tryits
+from .tryits import GLOBAL_ROWS, all_tryits
 
 TRY_ITS = all_tryits()
 WRONG = [(t, answer, code) for t in TRY_ITS for answer, code in t.wrong]
@@ -17,21 +17,24 @@ WRONG = [(t, answer, code) for t in TRY_ITS for answer, code in t.wrong]
 
 @pytest.mark.parametrize("t", TRY_ITS, ids=[t.id for t in TRY_ITS])
 def test_the_right_answer_passes(t):
-    r = t.checker(t.right, t.target(), **t.options)
+    r = t.check(t.right)
     assert r.passed, r
 
 
 @pytest.mark.parametrize("t, answer, code", WRONG, ids=[f"{t.id}:{c}:{k}" for k, (t, _, c) in enumerate(WRONG)])
 def test_a_typical_wrong_answer_is_named(t, answer, code):
-    r = t.checker(answer, t.target(), **t.options)
+    r = t.check(answer)
     assert not r.passed, r
-    assert code in r.mistakes, r
+    if code is None:
+        assert r.mistakes and r.mistakes != ["wrong_value"], r
+    else:
+        assert code in r.mistakes, r
 
 
 def test_at_most_one_in_ten_wrong_answers_gets_the_generic_wrong_value():
     generic = 0
     for t, answer, _ in WRONG:
-        r = t.checker(answer, t.target(), **t.options)
+        r = t.check(answer)
         generic += r.mistakes == ["wrong_value"]
     assert len(WRONG) >= 80
     assert generic / len(WRONG) <= 0.1, generic
@@ -57,3 +60,12 @@ def test_every_exercise_part_and_try_it_with_generated_wrong_answers_is_named():
     assert not accepted, accepted
     assert total >= 400
     assert generic / total <= 0.1, by_part
+
+
+@pytest.mark.xfail(reason="issue 22 items 1-2 (H22): the equivalence rule passes rows that lose rank away from the "
+                          "samples", strict=False)
+@pytest.mark.parametrize("id_, answer", GLOBAL_ROWS)
+def test_rows_that_lose_rank_do_not_pass(id_, answer):
+    from kinbook.book import tryits
+
+    assert not tryits.get(id_).check(answer).passed
