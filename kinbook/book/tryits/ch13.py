@@ -1,16 +1,26 @@
-"""Try-its of the chapter-13 notebooks (planar kinematics). Each worked answer is a function: its parameters
-are the notebook variables it reads, its body is what ``kb.reveal`` shows. Names assigned in a worked answer
-are new in their notebook (``my_…`` or local to the exercise), so pasting one never rebinds a name the notebook
-uses elsewhere."""
+"""Try-its of the chapter-13 notebooks (planar kinematics). Each worked answer is a function: its positional
+parameters are the notebook variables it reads, its keyword-only parameters the try-it's data, its body is what
+``kb.reveal`` shows. Names assigned in a worked answer are new in their notebook (``my_…`` or local to the
+exercise), so pasting one never rebinds a name the notebook uses elsewhere.
+
+Each try-it asks for something the notebook does not print above it — another point, another instant, another
+driver — and ``kb.another`` draws other data from ``ranges``. Numeric answers are graded against
+:mod:`kinbook.grading.expected` objects, so a wrong number is named (A for B, the centripetal term, degrees,
+the value printed a few cells above …) without being given.
+"""
 
 from __future__ import annotations
 
 from functools import lru_cache
 
 import numpy as np
+import tomllib
 
 from ... import examples
 from ...grading import check_gamma, check_jacobian, check_nu, check_phi, check_value
+from ...grading import expected as X
+from ...grading.newton import Problem, check_iterates
+from ...io import build
 from ...planar import (
     A,
     B,
@@ -18,50 +28,82 @@ from ...planar import (
     Revolute,
     RevoluteRevolute,
     Translational,
-    point_acceleration,
-    point_position,
     point_velocity,
 )
 from . import register
 
+DEGREES = list(range(15, 346, 15))
+
+
+def _printed(en, es):
+    """A lookalike's detail: what it is the answer to (the notebook prints it above)."""
+    from ...grading._i18n import Msg
+
+    return Msg("x.other_data", what={"en": en, "es": es})
+
 
 # ------------------------------------------------------------------------------------------------- 13-1
-def _s13_1_1():
-    phi = np.radians(120)
+def _s13_1_1(*, phi_deg):
+    phi = np.radians(phi_deg)
     my_A = np.array([[np.cos(phi), -np.sin(phi)],
                      [np.sin(phi), np.cos(phi)]])
     return my_A
 
 
-register("13-1/try-1", "my_A", check_value, lambda: A(np.radians(120)), _s13_1_1,
-         {"name": "A(120°)", "angles": True})
+register("13-1/try-1", "my_A", check_value, lambda phi_deg: X.A(np.radians(phi_deg)), _s13_1_1,
+         {"name": "A(φ)"}, data={"phi_deg": 120}, ranges={"phi_deg": [d for d in DEGREES if d % 90]},
+         statement="φ = {phi_deg}°",
+         explanation={"en": "eq. 6 with the angle in radians: np.cos and np.sin take radians, so convert first "
+                            "(np.radians). The columns of A are the body's ξ and η axes in global components.",
+                      "es": "la ec. 6 con el ángulo en radianes: np.cos y np.sin toman radianes, así que convierta "
+                            "primero (np.radians). Las columnas de A son los ejes ξ y η del elemento en "
+                            "componentes globales."})
+
+_BODY = {"x_Oi": 1.5, "y_Oi": -0.5, "phi_i_deg": 45, "xi_Q": 0.8, "eta_Q": 0.3}
+_BODY_RANGES = {"x_Oi": (-2.0, 2.0), "y_Oi": (-2.0, 2.0), "phi_i_deg": DEGREES, "xi_Q": (0.3, 1.5),
+                "eta_Q": (-0.8, 0.8)}
+_BODY_TEXT = "q_i = [{x_Oi}, {y_Oi}, {phi_i_deg}°], (ξ_i^Q, η_i^Q) = ({xi_Q}, {eta_Q})"
 
 
-def _s13_1_2():
-    x, y, phi = 1.5, -0.5, np.radians(45)
-    xi, eta = 0.8, 0.3
-    my_rQ = [x + xi * np.cos(phi) - eta * np.sin(phi),
-             y + xi * np.sin(phi) + eta * np.cos(phi)]
+def _s13_1_2(*, x_Oi, y_Oi, phi_i_deg, xi_Q, eta_Q):
+    phi = np.radians(phi_i_deg)
+    my_rQ = [x_Oi + xi_Q * np.cos(phi) - eta_Q * np.sin(phi),      # eq. 4: r^Q = r + A s'^Q
+             y_Oi + xi_Q * np.sin(phi) + eta_Q * np.cos(phi)]
     return my_rQ
 
 
 register("13-1/try-2", "my_rQ", check_value,
-         lambda: point_position([1.5, -0.5], np.radians(45), [0.8, 0.3]), _s13_1_2, {"name": "r_i^Q", "angles": True})
+         lambda x_Oi, y_Oi, phi_i_deg, xi_Q, eta_Q: X.point_position([x_Oi, y_Oi], np.radians(phi_i_deg), [xi_Q, eta_Q]),
+         _s13_1_2, {"name": "r_i^Q"}, data=_BODY, ranges=_BODY_RANGES, statement=_BODY_TEXT,
+         explanation={"en": "r^Q = r + A s'^Q (eq. 4): the local coordinates are turned by A into global "
+                            "components before they are added to the origin's position.",
+                      "es": "r^Q = r + A s'^Q (ec. 4): las coordenadas locales se giran con A a componentes "
+                            "globales antes de sumarlas a la posición del origen."})
+
+_MOTION = dict(_BODY, xd_i=0.2, yd_i=0.0, w_i=2.0, a_i=-1.0)
+_MOTION_RANGES = dict(_BODY_RANGES, xd_i=(-1.0, 1.0), yd_i=(-1.0, 1.0), w_i=(0.5, 3.0), a_i=(-2.0, 2.0))
 
 
-def _s13_1_3():
-    phi, s_Q = np.radians(45), np.array([0.8, 0.3])
-    my_vaQ = np.r_[np.array([0.2, 0.0]) + B(phi) @ s_Q * 2.0,          # eq. 10
-                   B(phi) @ s_Q * (-1.0) - A(phi) @ s_Q * 2.0**2]      # eq. 13
+def _s13_1_3(*, phi_i_deg, xi_Q, eta_Q, xd_i, yd_i, w_i, a_i):
+    phi, s_Q = np.radians(phi_i_deg), np.array([xi_Q, eta_Q])
+    my_vaQ = np.r_[np.array([xd_i, yd_i]) + B(phi) @ s_Q * w_i,       # eq. 10
+                   B(phi) @ s_Q * a_i - A(phi) @ s_Q * w_i**2]        # eq. 13 with r̈_i = 0
     return my_vaQ
 
 
-def _t13_1_3():
-    phi, s_Q = np.radians(45), [0.8, 0.3]
-    return np.r_[point_velocity([0.2, 0.0], phi, 2.0, s_Q), point_acceleration([0.0, 0.0], phi, 2.0, -1.0, s_Q)]
+def _t13_1_3(x_Oi, y_Oi, phi_i_deg, xi_Q, eta_Q, xd_i, yd_i, w_i, a_i):
+    phi, s_Q = np.radians(phi_i_deg), [xi_Q, eta_Q]
+    return X.stack(X.point_velocity([xd_i, yd_i], phi, w_i, s_Q), X.point_acceleration([0.0, 0.0], phi, w_i, a_i, s_Q))
 
 
-register("13-1/try-3", "my_vaQ", check_value, _t13_1_3, _s13_1_3, {"name": "[v_Q, a_Q]"})
+register("13-1/try-3", "my_vaQ", check_value, _t13_1_3, _s13_1_3, {"name": "[v_Q, a_Q]"}, data=_MOTION,
+         ranges=_MOTION_RANGES,
+         statement=_BODY_TEXT + ", ṙ_i = [{xd_i}, {yd_i}] m/s, φ̇_i = {w_i} rad/s, r̈_i = 0, φ̈_i = {a_i} rad/s²",
+         explanation={"en": "eq. 10 differentiates A s' into B s' φ̇ (B = dA/dφ); eq. 13 differentiates once more: "
+                            "a tangential part B s' φ̈ and a centripetal part −A s' φ̇², which points from Q back to "
+                            "the body's origin.",
+                      "es": "la ec. 10 deriva A s' en B s' φ̇ (B = dA/dφ); la ec. 13 deriva otra vez: una parte "
+                            "tangencial B s' φ̈ y una centrípeta −A s' φ̇², que apunta de Q al origen del elemento."})
 
 
 # ------------------------------------------------------------------------------------------------- 13-2
@@ -73,37 +115,48 @@ def _two_bodies(name, points_1, points_2, joint):
     return m.constraint("1")
 
 
-def _s13_2_1():
-    my_Phi = ["x1 + cos(phi1) - x2 + 1.5*cos(phi2) + 0.2*sin(phi2)",
-              "y1 + sin(phi1) - y2 + 1.5*sin(phi2) - 0.2*cos(phi2)"]
+def _s13_2_1(*, xi_1A, eta_1A, xi_2A, eta_2A):
+    my_Phi = [f"x1 + {xi_1A}*cos(phi1) - {eta_1A}*sin(phi1) - (x2 + {xi_2A}*cos(phi2) - {eta_2A}*sin(phi2))",
+              f"y1 + {xi_1A}*sin(phi1) + {eta_1A}*cos(phi1) - (y2 + {xi_2A}*sin(phi2) + {eta_2A}*cos(phi2))"]
     return my_Phi
 
 
 register("13-2/try-1", "my_Phi", check_phi,
-         lambda: _two_bodies("crank and coupler", {"A": (1, 0)}, {"A": (-1.5, 0.2)}, Revolute("b1", "b2", point="A")),
-         _s13_2_1)
+         lambda xi_1A, eta_1A, xi_2A, eta_2A: _two_bodies("crank and coupler", {"A": (xi_1A, eta_1A)},
+                                                          {"A": (xi_2A, eta_2A)}, Revolute("b1", "b2", point="A")),
+         _s13_2_1, data={"xi_1A": 1, "eta_1A": 0, "xi_2A": -1.5, "eta_2A": 0.2},
+         ranges={"xi_1A": (0.5, 2.0), "eta_1A": (-0.5, 0.5), "xi_2A": (-2.0, -0.5), "eta_2A": (-0.5, 0.5)},
+         statement="(ξ_1^A, η_1^A) = ({xi_1A}, {eta_1A}), (ξ_2^A, η_2^A) = ({xi_2A}, {eta_2A})")
 
 
-def _s13_2_2():
-    # r_1^P = (x1, y1), r_1^Q = (x1 + cos φ1, y1 + sin φ1), r_2^P = (x2, y2); eq. 26 with O → Q
-    my_Phi_t = ["(x1 - (x1 + cos(phi1)))*(y2 - y1) - (y1 - (y1 + sin(phi1)))*(x2 - x1)",
+def _s13_2_2(*, xi_Q1):
+    # r_1^P = (x1, y1), r_1^Q = (x1 + ξ cos φ1, y1 + ξ sin φ1), r_2^P = (x2, y2); eq. 26 with O → Q
+    my_Phi_t = [f"(x1 - (x1 + {xi_Q1}*cos(phi1)))*(y2 - y1) - (y1 - (y1 + {xi_Q1}*sin(phi1)))*(x2 - x1)",
                 "phi1 - phi2 - (0 - 0)"]
     return my_Phi_t
 
 
 register("13-2/try-2", "my_Phi_t", check_phi,
-         lambda: _two_bodies("guide and slider", {"P": (0, 0), "Q": (1, 0)}, {"P": (0, 0)},
-                             Translational("b1", "b2", axis=("P", "Q"), point_j="P")), _s13_2_2)
+         lambda xi_Q1: _two_bodies("guide and slider", {"P": (0, 0), "Q": (xi_Q1, 0)}, {"P": (0, 0)},
+                                   Translational("b1", "b2", axis=("P", "Q"), point_j="P")), _s13_2_2,
+         data={"xi_Q1": 1}, ranges={"xi_Q1": (0.5, 2.5)}, statement="Q_1 = ({xi_Q1}, 0)")
 
 
-def _s13_2_3():
-    my_Phi_rr = ["(x1 + 2*cos(phi1) - x2 + 0.5*sin(phi2))**2 + (y1 + 2*sin(phi1) - y2 - 0.5*cos(phi2))**2 - 9"]
+def _s13_2_3(*, xi_B, eta_B, xi_C, eta_C, l_BC):
+    dx = f"(x1 + {xi_B}*cos(phi1) - {eta_B}*sin(phi1) - x2 - {xi_C}*cos(phi2) + {eta_C}*sin(phi2))"
+    dy = f"(y1 + {xi_B}*sin(phi1) + {eta_B}*cos(phi1) - y2 - {xi_C}*sin(phi2) - {eta_C}*cos(phi2))"
+    my_Phi_rr = [f"{dx}**2 + {dy}**2 - {l_BC}**2"]
     return my_Phi_rr
 
 
 register("13-2/try-3", "my_Phi_rr", check_phi,
-         lambda: _two_bodies("two bodies and a link", {"B": (2, 0)}, {"C": (0, 0.5)},
-                             RevoluteRevolute("b1", "b2", "B", "C", length=3)), _s13_2_3)
+         lambda xi_B, eta_B, xi_C, eta_C, l_BC: _two_bodies("two bodies and a link", {"B": (xi_B, eta_B)},
+                                                             {"C": (xi_C, eta_C)},
+                                                             RevoluteRevolute("b1", "b2", "B", "C", length=l_BC)),
+         _s13_2_3, data={"xi_B": 2, "eta_B": 0, "xi_C": 0, "eta_C": 0.5, "l_BC": 3},
+         ranges={"xi_B": (1.0, 3.0), "eta_B": (-0.5, 0.5), "xi_C": (-1.0, 1.0), "eta_C": (-1.0, 1.0),
+                 "l_BC": (2.0, 5.0)},
+         statement="B = ({xi_B}, {eta_B}) on body 1, C = ({xi_C}, {eta_C}) on body 2, l = {l_BC}")
 
 
 # ------------------------------------------------------------------------------------------------- 13-3
@@ -113,72 +166,182 @@ def _example(name):
     return m, m.solve_position(0.0)
 
 
-def _s13_3_1():
-    my_Phi_45 = ["x1 - x2 + cos(phi2)",
-                 "y1 - y2 + sin(phi2)"]
+@lru_cache(maxsize=64)
+def _edited(name, body, point, value):
+    """The book's example ``name`` with one local point of one body moved (a try-it's own data)."""
+    data = tomllib.loads(examples.path(name).read_text(encoding="utf-8"))
+    for b in data["bodies"]:
+        if b["name"] == body:
+            b["points"][point] = [float(v) for v in value]
+    return build(data, source=f"{name} with {body}.{point} = {list(value)}")
+
+
+@lru_cache(maxsize=64)
+def _driven(name, f):
+    """The book's example ``name`` with its driver's f(t) replaced."""
+    data = tomllib.loads(examples.path(name).read_text(encoding="utf-8"))
+    for c in data["constraints"]:
+        if c["type"] == "driver":
+            c["f"] = f
+    return build(data, source=f"{name} driven by {f}")
+
+
+def _s13_3_1(*, xi_OA, eta_OA):
+    my_Phi_45 = [f"x1 - (x2 + {xi_OA}*cos(phi2) - {eta_OA}*sin(phi2))",
+                 f"y1 - (y2 + {xi_OA}*sin(phi2) + {eta_OA}*cos(phi2))"]
     return my_Phi_45
 
 
-register("13-3/try-1", "my_Phi_45", check_phi, lambda: _example("ch13_example1")[0].constraint("1"), _s13_3_1)
+def _printed_joint(name, what_en, what_es):
+    def lookalikes(**_):
+        return [(_example(name)[0].constraint("1"), _printed(what_en, what_es))]
+    return lookalikes
 
 
-def _s13_3_2(m3):
-    q_it = m3.q0                                   # the guess stored in the mechanism file
-    for _ in range(8):                             # Φ_q Δq = −Φ, then q ← q + Δq
-        q_it = q_it + np.linalg.solve(m3.Phi_q(q_it, 0.0), -m3.Phi(q_it, 0.0))
-    my_q3 = q_it
-    return my_q3
+register("13-3/try-1", "my_Phi_45", check_phi,
+         lambda xi_OA, eta_OA: _edited("ch13_example1", "crank", "OA", (xi_OA, eta_OA)).constraint("1"), _s13_3_1,
+         data={"xi_OA": -1.2, "eta_OA": 0.2}, ranges={"xi_OA": (-1.4, -0.6), "eta_OA": (-0.3, 0.3)},
+         statement="(ξ_2^{{O_A}}, η_2^{{O_A}}) = ({xi_OA}, {eta_OA})",
+         lookalikes=_printed_joint("ch13_example1", "Φ_4, Φ_5 of example 1 as printed above, with the crank's own "
+                                   "O_A at (−1, 0)", "Φ_4, Φ_5 del ejemplo 1 como se imprimen arriba, con el O_A "
+                                   "propio de la manivela en (−1, 0)"))
 
 
-register("13-3/try-2", "my_q3", check_value, lambda: _example("ch13_example3")[1], _s13_3_2,
-         {"name": "q(0) of example 3", "angles": True}, context=lambda: {"m3": _example("ch13_example3")[0]})
+def _s13_3_2(m3, *, t_newton):
+    q_it = m3.q0.copy()                         # the guess stored in the mechanism file
+    my_iterates = [q_it]
+    for _ in range(8):                          # Φ_q Δq = −Φ at the current iterate, then q ← q + Δq
+        q_it = q_it + np.linalg.solve(m3.Phi_q(q_it, t_newton), -m3.Phi(q_it, t_newton))
+        my_iterates.append(q_it)
+    return my_iterates
 
 
-def _s13_3_3(q1):
-    x4, y4, phi4 = q1[9], q1[10], q1[11]
-    my_rB = np.array([x4 - 1.5 * np.cos(phi4),
-                      y4 - 1.5 * np.sin(phi4)])
-    return my_rB
+register("13-3/try-2", "my_iterates", check_iterates,
+         lambda t_newton: Problem(_example("ch13_example3")[0], t_newton, _example("ch13_example3")[0].q0),
+         _s13_3_2, data={"t_newton": 0.005},
+         ranges={"t_newton": [round(0.001 * k, 3) for k in range(-9, 22) if k]},
+         statement="t = {t_newton} s (φ_2 = 3π/4 + 100 t)", context=lambda: {"m3": _example("ch13_example3")[0]},
+         explanation={"en": "each pass solves the linear system Φ_q(q_k, t) Δq = −Φ(q_k, t) at the current iterate "
+                            "and steps to q_k + Δq. Near the solution the error is squared at every step (quadratic "
+                            "convergence): max |Φ| goes roughly 1e-1, 1e-2, 1e-5, 1e-10. Further passes change "
+                            "nothing.",
+                      "es": "cada paso resuelve el sistema lineal Φ_q(q_k, t) Δq = −Φ(q_k, t) en el iterado actual "
+                            "y avanza a q_k + Δq. Cerca de la solución el error se eleva al cuadrado en cada paso "
+                            "(convergencia cuadrática): max |Φ| pasa aproximadamente por 1e-1, 1e-2, 1e-5, 1e-10. "
+                            "Los pasos siguientes no cambian nada."})
 
 
-register("13-3/try-3", "my_rB", check_value,
-         lambda: _example("ch13_example1")[0].point_position(_example("ch13_example1")[1], "rocker", "B"), _s13_3_3,
-         {"name": "r^B"}, context=lambda: {"q1": _example("ch13_example1")[1]})
+def _s13_3_3(q1, *, xi_C, eta_C):
+    x3, y3, phi3 = q1[6], q1[7], q1[8]
+    my_rC = np.array([x3 + xi_C * np.cos(phi3) - eta_C * np.sin(phi3),
+                      y3 + xi_C * np.sin(phi3) + eta_C * np.cos(phi3)])
+    return my_rC
+
+
+def _l13_3_3(xi_C, eta_C):
+    m1, q1 = _example("ch13_example1")
+    return [(m1.point_position(q1, b, p), _printed(f"the position of {p} printed above", f"la posición de {p} "
+                                                                                          "impresa arriba"))
+            for b, p in (("crank", "A"), ("rocker", "B"), ("coupler", "B"))]
+
+
+register("13-3/try-3", "my_rC", check_value,
+         lambda xi_C, eta_C: X.point_position(_example("ch13_example1")[1][6:8], _example("ch13_example1")[1][8],
+                                              [xi_C, eta_C]), _s13_3_3,
+         {"name": "r^C"}, context=lambda: {"q1": _example("ch13_example1")[1]}, data={"xi_C": 2.0, "eta_C": 0.5},
+         ranges={"xi_C": (-3.0, 3.0), "eta_C": (-1.0, 1.0)}, statement="(ξ_3^C, η_3^C) = ({xi_C}, {eta_C})",
+         lookalikes=_l13_3_3)
 
 
 # ------------------------------------------------------------------------------------------------- 13-4
-def _s13_4_1():
-    my_gear_row = ["2*((phi1 - 0) - (phi2 - 0)) + 1*((phi3 - 0) - (phi2 - 0))"]    # eq. 38, all φ⁰ = 0
+@lru_cache(maxsize=64)
+def _planetary(rho_sun, rho_planet, w_arm):
+    """The workbook's planetary train (fixed sun, arm, planet) with other radii and arm speed."""
+    data = tomllib.loads(examples.path("ch13_planetary").read_text(encoding="utf-8"))
+    arm = (rho_sun + rho_planet) / 2
+    bodies = {b["name"]: b for b in data["bodies"]}
+    bodies["ground"]["points"] = {"O": [0.0, 0.0], "S": [float(rho_sun), 0.0]}
+    bodies["arm"].update(q0=[arm, 0.0, 0.0], points={"O": [-arm, 0.0], "C": [arm, 0.0]})
+    bodies["planet"].update(q0=[2 * arm, 0.0, 0.0], points={"C": [0.0, 0.0], "M": [float(rho_planet), 0.0]})
+    for c in data["constraints"]:
+        if c["type"] == "gear":
+            c["radius_i"], c["radius_j"] = float(rho_sun), float(rho_planet)
+        if c["type"] == "driver":
+            c["f"] = f"{w_arm}*t"
+    return build(data, source=f"planetary train ρ = {rho_sun}, {rho_planet}, arm {w_arm} rad/s")
+
+
+def _s13_4_1(*, rho_sun, rho_planet):
+    my_gear_row = [f"{rho_sun}*((phi1 - 0) - (phi2 - 0)) + {rho_planet}*((phi3 - 0) - (phi2 - 0))"]  # eq. 38
     return my_gear_row
 
 
-register("13-4/try-1", "my_gear_row", check_phi, lambda: _example("ch13_planetary")[0].constraints[3], _s13_4_1)
+register("13-4/try-1", "my_gear_row", check_phi,
+         lambda rho_sun, rho_planet: _planetary(rho_sun, rho_planet, 1.0).constraints[3], _s13_4_1,
+         data={"rho_sun": 2, "rho_planet": 1}, ranges={"rho_sun": (1.5, 3.0), "rho_planet": (0.5, 1.5)},
+         statement="ρ_1 = {rho_sun}, ρ_3 = {rho_planet}")
+
+_TRAIN = {"w_arm": 1.5, "rho_sun": 2.5, "rho_planet": 1.0}
 
 
-def _s13_4_2():
-    my_w3 = 1 * (1 + 2 / 1)        # relative to the arm: (ω3 − ω2) = −(ρ1/ρ3)(ω1 − ω2), with ω1 = 0, ω2 = 1 rad/s
+def _s13_4_2(*, w_arm, rho_sun, rho_planet):
+    my_w3 = w_arm * (1 + rho_sun / rho_planet)   # relative to the arm: φ̇3 − φ̇2 = −(ρ1/ρ3)(φ̇1 − φ̇2), φ̇1 = 0
     return my_w3
 
 
-def _t13_4_2():
+def _t13_4_2(w_arm, rho_sun, rho_planet):
+    pl = _planetary(rho_sun, rho_planet, w_arm)
+    q = pl.solve_position(0.0)
+    w3 = pl.solve_velocity(q, 0.0)[pl.index("phi3")]
+    return X.planet_speed(w3, w_arm, 0.0, rho_sun, rho_planet)
+
+
+def _l13_4_2(**_):
     pl, q = _example("ch13_planetary")
-    return pl.solve_velocity(q, 0.0)[pl.index("phi3")]
+    return [(pl.solve_velocity(q, 0.0)[pl.index("phi3")],
+             _printed("the planet's speed printed above, for the notebook's train (arm at 1 rad/s, ρ = 2 and 1)",
+                      "la velocidad del satélite impresa arriba, para el tren del cuaderno (brazo a 1 rad/s, ρ = 2 "
+                      "y 1)"))]
 
 
-register("13-4/try-2", "my_w3", check_value, _t13_4_2, _s13_4_2, {"name": "φ̇_3 (rad/s)"})
+register("13-4/try-2", "my_w3", check_value, _t13_4_2, _s13_4_2, {"name": "φ̇_3 (rad/s)"}, data=_TRAIN,
+         ranges={"w_arm": (0.5, 3.0), "rho_sun": (1.5, 3.0), "rho_planet": (0.5, 1.5)},
+         statement="φ̇_2 = {w_arm} rad/s, φ̇_1 = 0, ρ_1 = {rho_sun}, ρ_3 = {rho_planet}", lookalikes=_l13_4_2,
+         explanation={"en": "eq. 38 relates the turns relative to the arm: (φ̇_3 − φ̇_2) ρ_3 = −(φ̇_1 − φ̇_2) ρ_1. With "
+                            "the sun fixed the planet turns relative to the arm at (ρ_1/ρ_3) φ̇_2, and the arm's own "
+                            "turn comes on top: φ̇_3 = φ̇_2 (1 + ρ_1/ρ_3).",
+                      "es": "la ec. 38 relaciona los giros relativos al brazo: (φ̇_3 − φ̇_2) ρ_3 = −(φ̇_1 − φ̇_2) ρ_1. "
+                            "Con el sol fijo, el satélite gira respecto al brazo a (ρ_1/ρ_3) φ̇_2, y encima va el "
+                            "giro del propio brazo: φ̇_3 = φ̇_2 (1 + ρ_1/ρ_3)."})
 
 
-def _s13_4_3():
-    my_dx = 1 * np.pi / 2          # eq. 40: x_j − x_j⁰ = ρ (φ_i − φ_i⁰), the angle in radians
+@lru_cache(maxsize=64)
+def _rack(rho):
+    data = tomllib.loads(examples.path("ch13_rack_pinion").read_text(encoding="utf-8"))
+    bodies = {b["name"]: b for b in data["bodies"]}
+    bodies["ground"]["points"].update(P=[0.0, -float(rho)], Q=[1.0, -float(rho)])
+    bodies["rack"]["q0"] = [0.0, -float(rho), 0.0]
+    for c in data["constraints"]:
+        if c["type"] == "rack-pinion":
+            c["radius"] = float(rho)
+    return build(data, source=f"rack and pinion, ρ = {rho}")
+
+
+def _s13_4_3(*, rho_p, turn_deg):
+    my_dx = rho_p * np.radians(turn_deg)          # eq. 40: x_j − x_j⁰ = ρ (φ_i − φ_i⁰), the angle in radians
     return my_dx
 
 
-def _t13_4_3():
-    rp = examples.load("ch13_rack_pinion")
-    return rp.solve_position(np.pi / 2)[rp.index("x3")] - rp.solve_position(0.0)[rp.index("x3")]
+def _t13_4_3(rho_p, turn_deg):
+    rp, turn = _rack(rho_p), np.radians(turn_deg)          # the driver turns the pinion at 1 rad/s
+    out = X.rack_displacement(rho_p, turn)
+    out.value = np.asarray(rp.solve_position(turn)[rp.index("x3")] - rp.solve_position(0.0)[rp.index("x3")])
+    return out
 
 
-register("13-4/try-3", "my_dx", check_value, _t13_4_3, _s13_4_3, {"name": "rack displacement (m)", "angles": True})
+register("13-4/try-3", "my_dx", check_value, _t13_4_3, _s13_4_3, {"name": "rack displacement (m)"},
+         data={"rho_p": 1, "turn_deg": 90}, ranges={"rho_p": (0.5, 2.0), "turn_deg": list(range(30, 301, 15))},
+         statement="ρ = {rho_p} m, a turn of {turn_deg}°")
 
 
 # ------------------------------------------------------------------------------------------------- 13-5
@@ -202,28 +365,49 @@ def _s13_5_2():
 register("13-5/try-2", "my_J8", check_jacobian, lambda: _example("ch13_example3")[0].constraint("3"), _s13_5_2)
 
 
-def _s13_5_3(mech, q0):
-    rA, rB = mech.point_position(q0, "crank", "A"), mech.point_position(q0, "rocker", "B")
-    my_J88 = 2 * (rA[0] - rB[0]) * (rB[1] - q0[7]) - 2 * (rA[1] - rB[1]) * (rB[0] - q0[6])   # corrected Table 13.3
+def _s13_5_3(mech, *, t_J):
+    q_t = mech.solve_position(t_J)
+    rA, rB = mech.point_position(q_t, "crank", "A"), mech.point_position(q_t, "rocker", "B")
+    my_J88 = 2 * (rA[0] - rB[0]) * (rB[1] - q_t[7]) - 2 * (rA[1] - rB[1]) * (rB[0] - q_t[6])   # corrected Table 13.3
     return my_J88
 
 
-def _t13_5_3():
+def _t13_5_3(t_J):
+    m = _example("ch13_example3")[0]
+    q = m.solve_position(t_J)
+    rA, rB = m.point_position(q, "crank", "A"), m.point_position(q, "rocker", "B")
+    arm = rB - q[6:8]                                             # A_3 s'_3^B
+    out = X.rr_jacobian_phi(rA - rB, np.array([-arm[1], arm[0]]))  # B_3 s'_3^B: the arm turned by 90°
+    out.value = np.asarray(m.Phi_q(q, t_J)[7, 8])
+    return out
+
+
+def _l13_5_3(t_J):
     m, q = _example("ch13_example3")
-    return m.Phi_q(q, 0.0)[7, 8]
+    return [(m.Phi_q(q, 0.0)[7, 8], _printed("the entry at t = 0, printed in Φ_q above",
+                                             "el elemento en t = 0, impreso en Φ_q arriba"))]
 
 
-register("13-5/try-3", "my_J88", check_value, _t13_5_3, _s13_5_3, {"name": "∂Φ_8/∂φ_3 at t = 0"},
-         context=lambda: dict(zip(("mech", "q0"), _example("ch13_example3"))))
+register("13-5/try-3", "my_J88", check_value, _t13_5_3, _s13_5_3, {"name": "∂Φ_8/∂φ_3"},
+         context=lambda: {"mech": _example("ch13_example3")[0]}, data={"t_J": 0.004},
+         ranges={"t_J": [round(0.001 * k, 3) for k in range(-9, 22) if k]}, statement="t = {t_J} s",
+         lookalikes=_l13_5_3)
 
 
 # ------------------------------------------------------------------------------------------------- 13-6
-def _s13_6_1():
-    my_nu = ["0", "0", "0", "0", "0", "0", "0", "0", "100"]
+def _s13_6_1(*, w_drive, alpha_drive):
+    my_nu = ["0"] * 8 + [f"{w_drive} + {alpha_drive}*t"]     # ν = −Φ_t: only the driver's row depends on t
     return my_nu
 
 
-register("13-6/try-1", "my_nu", check_nu, lambda: _example("ch13_example3")[0], _s13_6_1)
+register("13-6/try-1", "my_nu", check_nu,
+         lambda w_drive, alpha_drive: _driven("ch13_example3", f"3*pi/4 + {w_drive}*t + {alpha_drive / 2}*t**2"),
+         _s13_6_1, data={"w_drive": 100, "alpha_drive": 500},
+         ranges={"w_drive": list(range(50, 151, 10)), "alpha_drive": list(range(-1000, 1001, 250))},
+         statement="φ_2 = 3π/4 + {w_drive} t + ½·{alpha_drive} t²",
+         lookalikes=lambda **_: [(_example("ch13_example3")[0], _printed(
+             "ν of the book's driver φ_2 = 3π/4 + 100 t, printed above", "ν de la motriz del libro, "
+             "φ_2 = 3π/4 + 100 t, impresa arriba"))])
 
 
 @lru_cache(maxsize=None)
@@ -233,58 +417,115 @@ def _ex3_motion():
     return m, q, qd, m.solve_acceleration(q, qd, 0.0)
 
 
-def _s13_6_2(qd0):
-    my_speed_B = 3 * abs(qd0[8])         # B turns about the fixed O_B at 3 m
-    return my_speed_B
+def _s13_6_2(qd0, *, d_D):
+    my_speed_D = d_D * abs(qd0[8])         # D turns about the fixed O_B, at d_D from it
+    return my_speed_D
 
 
-register("13-6/try-2", "my_speed_B", check_value,
-         lambda: np.linalg.norm(_ex3_motion()[0].point_velocity(*_ex3_motion()[1:3], "rocker", "B")), _s13_6_2,
-         {"name": "|v_B| at t = 0 (m/s)"}, context=lambda: {"qd0": _ex3_motion()[2]})
+def _t13_6_2(d_D):
+    m, q, qd, _ = _ex3_motion()
+    v = point_velocity(qd[6:8], q[8], qd[8], [1.5 - d_D, 0.0])    # O_B is at ξ_3 = 1.5, B at −1.5
+    vB = m.point_velocity(q, qd, "rocker", "B")
+    return X.speed(float(np.linalg.norm(v)), others=[
+        ("wrong_data", float(np.linalg.norm(vB)), _printed("|v_B| printed above", "|v_B| impresa arriba")),
+        ("wrong_data", d_D * abs(qd[5]), _printed("the crank's φ̇_2 used: D is on the rocker, which turns at φ̇_3",
+                                                  "se usó φ̇_2 de la manivela: D está en el balancín, que gira a "
+                                                  "φ̇_3"))])
 
 
-def _s13_6_3(q0, qd0):
+register("13-6/try-2", "my_speed_D", check_value, _t13_6_2, _s13_6_2, {"name": "|v_D| (m/s)"},
+         context=lambda: {"qd0": _ex3_motion()[2]}, data={"d_D": 2}, ranges={"d_D": (0.5, 2.9)},
+         statement="|O_B D| = {d_D} m")
+
+
+def _s13_6_3(q0, qd0, *, xi_C3, eta_C3):
     x3d, y3d, w3, phi3 = qd0[6], qd0[7], qd0[8], q0[8]
-    my_vB = [x3d - (-1.5) * np.sin(phi3) * w3,          # ẋ^P = ẋ − (ξ sin φ + η cos φ) φ̇, with η = 0
-             y3d + (-1.5) * np.cos(phi3) * w3]          # ẏ^P = ẏ + (ξ cos φ − η sin φ) φ̇
-    return my_vB
+    my_vC = [x3d - (xi_C3 * np.sin(phi3) + eta_C3 * np.cos(phi3)) * w3,     # eq. 10 written out
+             y3d + (xi_C3 * np.cos(phi3) - eta_C3 * np.sin(phi3)) * w3]
+    return my_vC
 
 
-register("13-6/try-3", "my_vB", check_value,
-         lambda: _ex3_motion()[0].point_velocity(*_ex3_motion()[1:3], "rocker", "B"), _s13_6_3,
-         {"name": "v_B at t = 0 (m/s)"}, context=lambda: {"q0": _ex3_motion()[1], "qd0": _ex3_motion()[2]})
+def _l13_6(which):
+    def lookalikes(**_):
+        m, q, qd, qdd = _ex3_motion()
+        if which == "v":
+            return [(m.point_velocity(q, qd, "rocker", "B"), _printed("v_B printed above", "v_B impresa arriba"))]
+        return [(m.point_acceleration(q, qd, qdd, "rocker", "B"), _printed("a_B printed above",
+                                                                          "a_B impresa arriba"))]
+    return lookalikes
+
+
+register("13-6/try-3", "my_vC", check_value,
+         lambda xi_C3, eta_C3: X.point_velocity(_ex3_motion()[2][6:8], _ex3_motion()[1][8], _ex3_motion()[2][8],
+                                                [xi_C3, eta_C3]), _s13_6_3,
+         {"name": "v_C (m/s)"}, context=lambda: {"q0": _ex3_motion()[1], "qd0": _ex3_motion()[2]},
+         data={"xi_C3": 0.5, "eta_C3": 0.4}, ranges={"xi_C3": (-1.5, 1.5), "eta_C3": (-0.8, 0.8)},
+         statement="(ξ_3^C, η_3^C) = ({xi_C3}, {eta_C3})", lookalikes=_l13_6("v"))
 
 
 # ------------------------------------------------------------------------------------------------- 13-7
-def _s13_7_1():
-    my_gamma_1 = ["dphi2**2*cos(phi2)", "dphi2**2*sin(phi2)"]     # Table 13.5, revolute row, ξ_2 = −1, η_2 = 0
+def _s13_7_1(*, xi_OA, eta_OA):
+    # γ = A_1 s'_1 φ̇_1² − A_2 s'_2 φ̇_2² (Table 13.5, revolute), with s'_1 = 0 at the ground's origin
+    my_gamma_1 = [f"({xi_OA}*cos(phi2) - {eta_OA}*sin(phi2))*(-dphi2**2)",
+                  f"({xi_OA}*sin(phi2) + {eta_OA}*cos(phi2))*(-dphi2**2)"]
     return my_gamma_1
 
 
-register("13-7/try-1", "my_gamma_1", check_gamma, lambda: _example("ch13_example3")[0].constraint("1"), _s13_7_1)
+register("13-7/try-1", "my_gamma_1", check_gamma,
+         lambda xi_OA, eta_OA: _edited("ch13_example3", "crank", "OA", (xi_OA, eta_OA)).constraint("1"), _s13_7_1,
+         data={"xi_OA": -1.0, "eta_OA": 0.3}, ranges={"xi_OA": (-1.4, -0.6), "eta_OA": (-0.4, 0.4)},
+         statement="(ξ_2^{{O_A}}, η_2^{{O_A}}) = ({xi_OA}, {eta_OA})",
+         lookalikes=_printed_joint("ch13_example3", "γ_4, γ_5 of the book's example printed above, with the crank's "
+                                   "own O_A at (−1, 0)", "γ_4, γ_5 del ejemplo del libro impresos arriba, con el O_A "
+                                   "propio de la manivela en (−1, 0)"))
 
 
-def _s13_7_2(mech, q0, qd0):
-    rA, rB = mech.point_position(q0, "crank", "A"), mech.point_position(q0, "rocker", "B")
-    vel_A, vel_B = mech.point_velocity(q0, qd0, "crank", "A"), mech.point_velocity(q0, qd0, "rocker", "B")
-    cA = mech.point_acceleration(q0, qd0, np.zeros(9), "crank", "A")      # the velocity-dependent part only
-    cB = mech.point_acceleration(q0, qd0, np.zeros(9), "rocker", "B")
+def _s13_7_2(mech, *, t_g):
+    q_t = mech.solve_position(t_g)
+    qd_t = mech.solve_velocity(q_t, t_g)
+    rA, rB = mech.point_position(q_t, "crank", "A"), mech.point_position(q_t, "rocker", "B")
+    vel_A, vel_B = mech.point_velocity(q_t, qd_t, "crank", "A"), mech.point_velocity(q_t, qd_t, "rocker", "B")
+    cA = mech.point_acceleration(q_t, qd_t, np.zeros(9), "crank", "A")      # the velocity-dependent part only
+    cB = mech.point_acceleration(q_t, qd_t, np.zeros(9), "rocker", "B")
     my_gamma_8 = -2 * (vel_A - vel_B) @ (vel_A - vel_B) - 2 * (rA - rB) @ (cA - cB)
     return my_gamma_8
 
 
-register("13-7/try-2", "my_gamma_8", check_value,
-         lambda: _ex3_motion()[0].gamma(*_ex3_motion()[1:3], 0.0)[7], _s13_7_2, {"name": "γ_8 at t = 0"},
-         context=lambda: dict(zip(("mech", "q0", "qd0"), _ex3_motion()[:3])))
+def _t13_7_2(t_g):
+    m = _example("ch13_example3")[0]
+    q = m.solve_position(t_g)
+    qd = m.solve_velocity(q, t_g)
+    z = np.zeros(m.n)
+    pos = [m.point_position(q, b, p) for b, p in (("crank", "A"), ("rocker", "B"))]
+    vel = [m.point_velocity(q, qd, b, p) for b, p in (("crank", "A"), ("rocker", "B"))]
+    acc = [m.point_acceleration(q, qd, z, b, p) for b, p in (("crank", "A"), ("rocker", "B"))]
+    out = X.rr_gamma(pos[0] - pos[1], vel[0] - vel[1], acc[0] - acc[1])
+    out.value = np.asarray(m.gamma(q, qd, t_g)[7])
+    return out
 
 
-def _s13_7_3(q0, qd0, qdd0):
+def _l13_7_2(t_g):
+    m, q, qd, _ = _ex3_motion()
+    return [(m.gamma(q, qd, 0.0)[7], _printed("γ_8 at t = 0, printed above", "γ_8 en t = 0, impreso arriba"))]
+
+
+register("13-7/try-2", "my_gamma_8", check_value, _t13_7_2, _s13_7_2, {"name": "γ_8"},
+         context=lambda: {"mech": _ex3_motion()[0]}, data={"t_g": 0.004},
+         ranges={"t_g": [round(0.001 * k, 3) for k in range(-9, 22) if k]}, statement="t = {t_g} s",
+         lookalikes=_l13_7_2)
+
+
+def _s13_7_3(q0, qd0, qdd0, *, xi_C3, eta_C3):
     x3dd, y3dd, a3, w3, phi3 = qdd0[6], qdd0[7], qdd0[8], qd0[8], q0[8]
-    my_aB = [x3dd - (-1.5) * (a3 * np.sin(phi3) + w3**2 * np.cos(phi3)),       # eq. 13 with ξ = −1.5, η = 0
-             y3dd + (-1.5) * (a3 * np.cos(phi3) - w3**2 * np.sin(phi3))]
-    return my_aB
+    s_C = np.array([xi_C3, eta_C3])
+    my_aC = np.array([x3dd, y3dd]) + B(phi3) @ s_C * a3 - A(phi3) @ s_C * w3**2      # eq. 13
+    return my_aC
 
 
-register("13-7/try-3", "my_aB", check_value,
-         lambda: _ex3_motion()[0].point_acceleration(*_ex3_motion()[1:], "rocker", "B"), _s13_7_3,
-         {"name": "a_B at t = 0 (m/s²)"}, context=lambda: dict(zip(("q0", "qd0", "qdd0"), _ex3_motion()[1:])))
+register("13-7/try-3", "my_aC", check_value,
+         lambda xi_C3, eta_C3: X.point_acceleration(_ex3_motion()[3][6:8], _ex3_motion()[1][8], _ex3_motion()[2][8],
+                                                    _ex3_motion()[3][8], [xi_C3, eta_C3]), _s13_7_3,
+         {"name": "a_C (m/s²)"}, context=lambda: dict(zip(("q0", "qd0", "qdd0"), _ex3_motion()[1:])),
+         data={"xi_C3": 0.5, "eta_C3": 0.4}, ranges={"xi_C3": (-1.5, 1.5), "eta_C3": (-0.8, 0.8)},
+         statement="(ξ_3^C, η_3^C) = ({xi_C3}, {eta_C3})", lookalikes=_l13_6("a"))
+

@@ -5,60 +5,84 @@ from __future__ import annotations
 import numpy as np
 
 from ...grading import check_euler_parameters, check_gamma, check_jacobian, check_phi, check_rotation, check_value
-from ...spatial import (
-    A_from_axes,
-    A_from_euler,
-    A_from_p,
-    euler_from_A,
-    omega_from_euler_rates,
-    omega_from_p_dot,
-    p_from_A,
-    p_from_axis_angle,
-    point_position,
-)
+from ...grading import expected as X
+from ...spatial import A_from_p
+from ...spatial import rotations as R
 from . import register
 
-_AXES_14_1 = ([0, 0.6, 0.8], [0, -0.8, 0.6], [1, 0, 0])
+_TRIPLES = [[3, 4, 5], [4, 3, 5], [5, 12, 13], [12, 5, 13], [8, 15, 17], [15, 8, 17], [7, 24, 25], [20, 21, 29],
+            [3, -4, 5], [-4, 3, 5], [5, -12, 13], [-8, 15, 17]]
+
+
+def _axes(triple):
+    """The body of notebook 14-1 (u_ζ along global x) turned to another angle: cos, sin = a/c, b/c; rounded to
+    the 6 digits the question shows."""
+    a, b, c = triple
+    co, si = round(a / c, 6), round(b / c, 6)
+    return [[0.0, co, si], [0.0, -si, co], [1.0, 0.0, 0.0]]
+
+
+_AXES = [_axes(t) for t in _TRIPLES]
+
+
+def _axes_text(axes_given):
+    f = lambda x: "[" + ", ".join(f"{e:.6g}" for e in x) + "]"  # noqa: E731
+    u, v, w = axes_given
+    return f"u_ξ = {f(u)}, u_η = {f(v)}, u_ζ = {f(w)}"
 
 
 # ------------------------------------------------------------------------------------------------- 14-1
-def _s14_1_1():
-    my_A = np.array([[0.0, 0.0, 1.0],
-                     [0.6, -0.8, 0.0],
-                     [0.8, 0.6, 0.0]])          # the columns are u_ξ, u_η, u_ζ (eq. 7)
+def _s14_1_1(*, axes_given):
+    my_A = np.column_stack(axes_given)          # the columns are u_ξ, u_η, u_ζ (eq. 7)
     return my_A
 
 
-register("14-1/try-1", "my_A", check_rotation, lambda: A_from_axes(*_AXES_14_1), _s14_1_1, {"name": "A"})
+register("14-1/try-1", "my_A", check_rotation, lambda axes_given: X.A_from_axes(*axes_given), _s14_1_1, {"name": "A"},
+         data={"axes_given": _AXES[0]}, ranges={"axes_given": _AXES}, statement=_axes_text,
+         explanation={"en": "eq. 7: the columns of A are the body's unit vectors in global components, so that "
+                            "s = A s' (a local vector's global components). The axes as rows give Aᵀ.",
+                      "es": "ec. 7: las columnas de A son los vectores unitarios del elemento en componentes "
+                            "globales, de modo que s = A s'. Los ejes como filas dan Aᵀ."})
+
+_S_GLOBAL = [[2, 1, -1], [1, -2, 3], [0, 2, 1], [-1, 1, 2], [3, 0, -2], [2, -1, 1]]
 
 
-def _s14_1_2():
-    A_try = np.column_stack([[0, 0.6, 0.8], [0, -0.8, 0.6], [1, 0, 0]])
-    my_s_local = A_try.T @ np.array([2.0, 1.0, -1.0])        # eq. 9: s' = Aᵀ s
+def _s14_1_2(*, axes_given, s_glob):
+    A_try = np.column_stack(axes_given)
+    my_s_local = A_try.T @ np.array(s_glob, float)          # eq. 9: s' = Aᵀ s
     return my_s_local
 
 
-register("14-1/try-2", "my_s_local", check_value, lambda: A_from_axes(*_AXES_14_1).T @ np.array([2.0, 1.0, -1.0]),
-         _s14_1_2, {"name": "s'"})
+register("14-1/try-2", "my_s_local", check_value,
+         lambda axes_given, s_glob: X.local_components(R.A_from_axes(*axes_given), s_glob), _s14_1_2,
+         {"name": "s'"}, data={"axes_given": _AXES[0], "s_glob": [2, 1, -1]},
+         ranges={"axes_given": _AXES, "s_glob": _S_GLOBAL},
+         statement=lambda axes_given, s_glob: f"{_axes_text(axes_given)}; s = {s_glob}")
 
 
-def _s14_1_3():
-    A_try = np.column_stack([[0, 0.6, 0.8], [0, -0.8, 0.6], [1, 0, 0]])
-    my_rQ = np.array([0.5, -1.0, 2.0]) + A_try @ np.array([0.4, 0.0, 1.5])     # r^Q = r + A s'^Q
+def _s14_1_3(*, axes_given, r_O, s_Q):
+    A_try = np.column_stack(axes_given)
+    my_rQ = np.array(r_O, float) + A_try @ np.array(s_Q, float)     # r^Q = r + A s'^Q
     return my_rQ
 
 
 register("14-1/try-3", "my_rQ", check_value,
-         lambda: point_position([0.5, -1.0, 2.0], p_from_A(A_from_axes(*_AXES_14_1)), [0.4, 0.0, 1.5]), _s14_1_3,
-         {"name": "r^Q"})
+         lambda axes_given, r_O, s_Q: X.spatial_point_position(r_O, R.p_from_A(R.A_from_axes(*axes_given)), s_Q),
+         _s14_1_3, {"name": "r^Q"}, data={"axes_given": _AXES[0], "r_O": [0.5, -1.0, 2.0], "s_Q": [0.4, 0.0, 1.5]},
+         ranges={"axes_given": _AXES, "r_O": [[0.5, -1.0, 2.0], [1.0, 0.5, -0.5], [-2.0, 1.0, 0.0]],
+                 "s_Q": [[0.4, 0.0, 1.5], [1.0, 0.5, 0.0], [0.0, -0.8, 1.2], [0.6, 0.6, 0.6]]},
+         statement=lambda axes_given, r_O, s_Q: f"{_axes_text(axes_given)}; r = {r_O}, s'^Q = {s_Q}")
 
 
 # ------------------------------------------------------------------------------------------------- 14-2
-_ANGLES_14_2 = np.radians([40.0, 25.0, -60.0])
+_ANG = {"psi_deg": 40, "theta_deg": 25, "phi_deg": -60}
+_ANG_RANGES = {"psi_deg": list(range(-150, 151, 10)), "theta_deg": list(range(10, 171, 5)),
+               "phi_deg": list(range(-150, 151, 10))}
+_ANG_TEXT = "ψ = {psi_deg}°, θ = {theta_deg}°, φ = {phi_deg}°"
 
 
-def _s14_2_1():
-    a1, a2, a3 = np.radians([40.0, 25.0, -60.0])
+def _s14_2_1(*, psi_deg, theta_deg, phi_deg):
+    a1, a2, a3 = np.radians([psi_deg, theta_deg, phi_deg])
     turn_z1 = np.array([[np.cos(a1), -np.sin(a1), 0], [np.sin(a1), np.cos(a1), 0], [0, 0, 1]])
     turn_x = np.array([[1, 0, 0], [0, np.cos(a2), -np.sin(a2)], [0, np.sin(a2), np.cos(a2)]])
     turn_z2 = np.array([[np.cos(a3), -np.sin(a3), 0], [np.sin(a3), np.cos(a3), 0], [0, 0, 1]])
@@ -66,52 +90,75 @@ def _s14_2_1():
     return my_A
 
 
-register("14-2/try-1", "my_A", check_rotation, lambda: A_from_euler(*_ANGLES_14_2), _s14_2_1,
-         {"name": "A(40°, 25°, −60°)", "angles": tuple(_ANGLES_14_2)})
+register("14-2/try-1", "my_A", check_rotation,
+         lambda psi_deg, theta_deg, phi_deg: X.A_from_euler(*np.radians([psi_deg, theta_deg, phi_deg])), _s14_2_1,
+         {"name": "A(ψ, θ, φ)"}, data=_ANG, ranges=_ANG_RANGES, statement=_ANG_TEXT)
 
 
-def _s14_2_2():
-    a2, a3 = np.radians([25.0, -60.0])          # θ and φ; ψ does not enter ω'
-    psi_d, theta_d, phi_d = 2.0, 0.0, -1.0     # ψ̇, θ̇, φ̇ in rad/s
-    my_omega_body = np.array([np.sin(a2) * np.sin(a3) * psi_d + np.cos(a3) * theta_d,
-                              np.sin(a2) * np.cos(a3) * psi_d - np.sin(a3) * theta_d,
-                              np.cos(a2) * psi_d + phi_d])
+def _s14_2_2(*, theta_deg, phi_deg, psi_rate, theta_rate, phi_rate):
+    a2, a3 = np.radians([theta_deg, phi_deg])          # θ and φ; ψ does not enter ω'
+    my_omega_body = np.array([np.sin(a2) * np.sin(a3) * psi_rate + np.cos(a3) * theta_rate,
+                              np.sin(a2) * np.cos(a3) * psi_rate - np.sin(a3) * theta_rate,
+                              np.cos(a2) * psi_rate + phi_rate])
     return my_omega_body
 
 
-register("14-2/try-2", "my_omega_body", check_value,
-         lambda: omega_from_euler_rates(_ANGLES_14_2, [2.0, 0.0, -1.0], frame="body"), _s14_2_2,
-         {"name": "ω' (rad/s)", "angles": True})
+_RATES = dict(_ANG, psi_rate=2.0, theta_rate=0.0, phi_rate=-1.0)
 
+
+register("14-2/try-2", "my_omega_body", check_value,
+         lambda psi_deg, theta_deg, phi_deg, psi_rate, theta_rate, phi_rate: X.omega_from_euler_rates(
+             np.radians([psi_deg, theta_deg, phi_deg]), [psi_rate, theta_rate, phi_rate], frame="body"), _s14_2_2,
+         {"name": "ω' (rad/s)"}, data=_RATES,
+         ranges=dict(_ANG_RANGES, psi_rate=(-3.0, 3.0), theta_rate=(-2.0, 2.0), phi_rate=(-3.0, 3.0)),
+         statement=_ANG_TEXT + ", ψ̇ = {psi_rate}, θ̇ = {theta_rate}, φ̇ = {phi_rate} rad/s")
 
 _A_14_2_3 = np.array([[2.0, -1.0, 2.0], [2.0, 2.0, -1.0], [-1.0, 2.0, 2.0]]) / 3
+_A_GIVEN = [_A_14_2_3] + [np.round(R.A_from_euler(*np.radians(a)), 4) for a in
+                          ([30, 50, 70], [-120, 35, 20], [150, 110, -45], [60, 140, 160], [-30, 80, -100],
+                           [100, 20, 10], [-80, 65, 135])]
 
 
-def _s14_2_3(A_given):
+def _s14_2_3(*, A_given):
     my_angles = [np.arctan2(A_given[0, 2], -A_given[1, 2]),      # ψ
                  np.arccos(A_given[2, 2]),                        # θ
                  np.arctan2(A_given[2, 0], A_given[2, 1])]       # φ
     return my_angles
 
 
-register("14-2/try-3", "my_angles", check_value, lambda: euler_from_A(_A_14_2_3), _s14_2_3,
-         {"name": "(ψ, θ, φ)", "angles": True}, context=lambda: {"A_given": _A_14_2_3})
+register("14-2/try-3", "my_angles", check_value, lambda A_given: X.euler_from_A(A_given), _s14_2_3,
+         {"name": "(ψ, θ, φ)"}, data={"A_given": _A_14_2_3}, ranges={"A_given": _A_GIVEN},
+         statement=lambda A_given: "A_given = " + np.array2string(np.asarray(A_given), precision=4,
+                                                                 separator=", ").replace("\n", ""),
+         explanation={"en": "the third row of A = A_z(ψ) A_x(θ) A_z(φ) is [sin θ sin φ, sin θ cos φ, cos θ] and its "
+                            "third column [sin ψ sin θ, −cos ψ sin θ, cos θ]. arccos gives θ in [0, π]; the triple "
+                            "(ψ + π, −θ, φ + π) gives the same A and is accepted too.",
+                      "es": "la tercera fila de A = A_z(ψ) A_x(θ) A_z(φ) es [sen θ sen φ, sen θ cos φ, cos θ] y su "
+                            "tercera columna [sen ψ sen θ, −cos ψ sen θ, cos θ]. arccos da θ en [0, π]; la terna "
+                            "(ψ + π, −θ, φ + π) da la misma A y también se acepta."})
 
 
 # ------------------------------------------------------------------------------------------------- 14-3
-def _s14_3_1():
-    half_angle = np.radians(90) / 2
-    u_unit = np.array([0.0, 1.0, 1.0]) / np.sqrt(2)
+def _s14_3_1(*, axis_u, chi_deg):
+    half_angle = np.radians(chi_deg) / 2
+    u_unit = np.array(axis_u, float) / np.linalg.norm(axis_u)
     my_p = [np.cos(half_angle), *(u_unit * np.sin(half_angle))]
     return my_p
 
 
-register("14-3/try-1", "my_p", check_euler_parameters, lambda: p_from_axis_angle([0, 1, 1], 90, degrees=True),
-         _s14_3_1, {"name": "p (90° about [0, 1, 1])", "axis": np.array([0, 1, 1]) / np.sqrt(2), "angle": np.pi / 2})
+register("14-3/try-1", "my_p", check_euler_parameters,
+         lambda axis_u, chi_deg: X.p_from_axis_angle(axis_u, np.radians(chi_deg)), _s14_3_1, {"name": "p"},
+         data={"axis_u": [0, 1, 1], "chi_deg": 90},
+         ranges={"axis_u": [[0, 1, 1], [1, 0, 1], [1, 1, 0], [1, 2, 2], [2, -1, 2], [1, -1, 1], [0, 3, 4]],
+                 "chi_deg": list(range(30, 331, 30))},
+         statement="χ = {chi_deg}° about u = {axis_u}")
+
+_P_TRY = [[0.5, 0.5, 0.5, 0.5], [0.2, 0.4, 0.4, 0.8], [0.8, 0.4, 0.4, 0.2], [6 / 7, 2 / 7, 3 / 7, 0.0],
+          [2 / 9, 4 / 9, 5 / 9, 6 / 9], [0.6, 0.0, 0.8, 0.0], [4 / 9, 4 / 9, 7 / 9, 0.0]]
 
 
-def _s14_3_2():
-    e0_, e_ = 0.5, np.array([0.5, 0.5, 0.5])
+def _s14_3_2(*, p_try):
+    e0_, e_ = p_try[0], np.array(p_try[1:])
     e_tilde = np.array([[0.0, -e_[2], e_[1]],
                         [e_[2], 0.0, -e_[0]],
                         [-e_[1], e_[0], 0.0]])
@@ -119,19 +166,30 @@ def _s14_3_2():
     return my_A_p
 
 
-register("14-3/try-2", "my_A_p", check_rotation, lambda: A_from_p([0.5, 0.5, 0.5, 0.5]), _s14_3_2, {"name": "A(p)"})
+register("14-3/try-2", "my_A_p", check_rotation, lambda p_try: X.A_from_p(p_try), _s14_3_2, {"name": "A(p)"},
+         data={"p_try": [0.5, 0.5, 0.5, 0.5]}, ranges={"p_try": _P_TRY},
+         statement=lambda p_try: "p = [" + ", ".join(f"{e:.6g}" for e in p_try) + "]",
+         explanation={"en": "A sends [1, 0, 0] to its first column. For p = [½, ½, ½, ½] that is [0, 1, 0], and "
+                            "[0, 1, 0] goes to [0, 0, 1]: x → y → z → x, the turn of 120° about [1, 1, 1] of section 1 "
+                            "(e0 = cos 60° = 0.5, e = u sin 60° with u = [1, 1, 1]/√3).",
+                      "es": "A lleva [1, 0, 0] a su primera columna. Para p = [½, ½, ½, ½] es [0, 1, 0], y [0, 1, 0] "
+                            "va a [0, 0, 1]: x → y → z → x, el giro de 120° alrededor de [1, 1, 1] de la sección 1 "
+                            "(e0 = cos 60° = 0,5, e = u sen 60° con u = [1, 1, 1]/√3)."})
 
 
-def _s14_3_3():
+def _s14_3_3(*, p_dot):
     e0_, e_ = 0.5, np.array([0.5, 0.5, 0.5])
     e_tilde = np.array([[0.0, -e_[2], e_[1]], [e_[2], 0.0, -e_[0]], [-e_[1], e_[0], 0.0]])
     E_try = np.column_stack([-e_, e_tilde + e0_ * np.eye(3)])      # E = [−e, ẽ + e0 I]
-    my_omega = 2 * E_try @ np.array([-0.1, 0.3, -0.1, -0.1])
+    my_omega = 2 * E_try @ np.array(p_dot, float)
     return my_omega
 
 
-register("14-3/try-3", "my_omega", check_value,
-         lambda: omega_from_p_dot([0.5, 0.5, 0.5, 0.5], [-0.1, 0.3, -0.1, -0.1]), _s14_3_3, {"name": "ω (rad/s)"})
+register("14-3/try-3", "my_omega", check_value, lambda p_dot: X.omega_from_p_dot([0.5, 0.5, 0.5, 0.5], p_dot),
+         _s14_3_3, {"name": "ω (rad/s)"}, data={"p_dot": [-0.1, 0.3, -0.1, -0.1]},
+         ranges={"p_dot": [[-0.1, 0.3, -0.1, -0.1], [0.1, -0.1, 0.2, -0.2], [0.2, 0.0, -0.1, -0.1],
+                           [0.0, 0.1, -0.2, 0.1], [0.3, -0.1, -0.1, -0.1], [-0.2, 0.1, 0.1, 0.0]]},
+         statement="ṗ = {p_dot}")
 
 
 # ------------------------------------------------------------------------------------------------- 14-4
@@ -145,23 +203,26 @@ def _two_spatial_bodies(points_i, points_j, constraint):
     return m.constraints[-1]
 
 
-def _s14_4_1():
+def _s14_4_1(*, s_i_P, s_j_P):
     import sympy as sp
 
     x1, y1, z1, e01, e11, e21, e31 = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True)   # body i
     x2, y2, z2, e02, e12, e22, e32 = sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)   # body j
-    my_Phi_s = (sp.Matrix([x1, y1, z1]) + A_from_p([e01, e11, e21, e31]) * sp.Matrix([0, 0, 1])
-                - sp.Matrix([x2, y2, z2]) - A_from_p([e02, e12, e22, e32]) * sp.Matrix([-1, sp.Rational(1, 2), 0]))
+    my_Phi_s = (sp.Matrix([x1, y1, z1]) + A_from_p([e01, e11, e21, e31]) * sp.Matrix(s_i_P)
+                - sp.Matrix([x2, y2, z2]) - A_from_p([e02, e12, e22, e32]) * sp.Matrix(s_j_P))
     return my_Phi_s
 
 
-def _t14_4_1():
+def _t14_4_1(s_i_P, s_j_P):
     from ...spatial import Spherical
 
-    return _two_spatial_bodies({"P": (0, 0, 1)}, {"P": (-1, 0.5, 0)}, Spherical("i", "j", point="P", name="ball"))
+    return _two_spatial_bodies({"P": tuple(s_i_P)}, {"P": tuple(s_j_P)}, Spherical("i", "j", point="P", name="ball"))
 
 
-register("14-4/try-1", "my_Phi_s", check_phi, _t14_4_1, _s14_4_1)
+register("14-4/try-1", "my_Phi_s", check_phi, _t14_4_1, _s14_4_1, data={"s_i_P": [0, 0, 1], "s_j_P": [-1, 0.5, 0]},
+         ranges={"s_i_P": [[0, 0, 1], [1, 0, 0], [0.5, 0.5, 0], [0, -1, 0.5], [1, 1, 1]],
+                 "s_j_P": [[-1, 0.5, 0], [0, 0, -1], [0.5, -0.5, 1], [2, 0, 0], [0, 1.5, 0]]},
+         statement="s'_i^P = {s_i_P}, s'_j^P = {s_j_P}")
 
 
 def _s14_4_2():
@@ -211,7 +272,19 @@ def _t14_4_3():
                                Revolute("i", "j", point="P", axis_i=["P", "Q"], axis_j=["T", "U"], name="r"))
 
 
-register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3)
+register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3,
+         explanation={"en": "the checker accepts the two rows although they are not kinbook's h_1ᵀs_j, h_2ᵀs_j letter "
+                            "for letter: with s'_i along ζ, kinbook's h'_1 = η and h'_2 = −ξ, so these rows are "
+                            "kinbook's rows times a constant (−0.8 here): the same constraint. That is the idea of "
+                            "kinbook's p1: the two rows are picked in body i's frame, where the redundant one is "
+                            "known once and for all — global rows 1–2 of s̃_i s_j lose rank wherever s_i lies in "
+                            "the global x-y plane.",
+                      "es": "el comprobador acepta las dos filas aunque no sean letra por letra las h_1ᵀs_j, h_2ᵀs_j "
+                            "de kinbook: con s'_i a lo largo de ζ, h'_1 = η y h'_2 = −ξ, así que estas filas son las "
+                            "de kinbook por una constante (−0,8 aquí): la misma restricción. Es la idea del p1 de "
+                            "kinbook: las dos filas se eligen en el sistema del elemento i, donde la fila redundante "
+                            "se conoce de una vez — las filas globales 1–2 de s̃_i s_j pierden rango allí donde s_i "
+                            "queda en el plano x-y global."})
 
 
 # ------------------------------------------------------------------------------------------------- 14-5
@@ -221,12 +294,38 @@ def _fourbar():
     return examples.load("spatial_fourbar")
 
 
-def _s14_5_1():
-    my_gamma_norm = "-2*(de02**2 + de12**2 + de22**2 + de32**2)"      # −2 ṗᵀṗ
-    return my_gamma_norm
+def _s14_5_1(mech, *, t_n):
+    q_t = mech.solve_position(t_n)
+    qd_t = mech.solve_velocity(q_t, t_n)
+    pdot_4 = mech.p(qd_t, "rocker")                       # ṗ of the rocker, body 4: e04 … e34 in q̇
+    my_gamma_4 = -2 * pdot_4 @ pdot_4                      # γ of pᵀp − 1 = 0 is −2ṗᵀṗ
+    return my_gamma_4
 
 
-register("14-5/try-1", "my_gamma_norm", check_gamma, lambda: _fourbar().constraint("normalization crank"), _s14_5_1)
+def _t14_5_1(t_n):
+    m = _fourbar()
+    q = m.solve_position(t_n)
+    qd = m.solve_velocity(q, t_n)
+    row = m.constraint("normalization rocker").rows.start
+    value = float(m.gamma(q, qd, t_n)[row])
+    out = X.Expected(np.asarray(value), kind="value", context=("value",))
+    out.add("gamma_sign", -value).add("scaled", value / 2, _msg("x.term", term="−ṗᵀṗ"))
+    for body in ("crank", "coupler"):
+        other = float(m.gamma(q, qd, t_n)[m.constraint(f"normalization {body}").rows.start])
+        out.add("wrong_data", other, _msg("x.other_data", what={"en": f"γ of the {body}'s normalization",
+                                                                "es": f"γ de la normalización de '{body}'"}))
+    return out
+
+
+def _msg(key, **fields):
+    from ...grading._i18n import Msg
+
+    return Msg(key, **fields)
+
+
+register("14-5/try-1", "my_gamma_4", check_value, _t14_5_1, _s14_5_1, {"name": "γ_4"},
+         context=lambda: {"mech": _fourbar()}, data={"t_n": 0.15},
+         ranges={"t_n": [round(0.05 * k, 2) for k in range(1, 20)]}, statement="t = {t_n} s")
 
 
 def _s14_5_2(mech):
@@ -261,4 +360,15 @@ def _s14_5_3(mech):
 
 
 register("14-5/try-3", "my_gamma_A", check_gamma, lambda: _fourbar().constraint("A"), _s14_5_3,
-         context=lambda: {"mech": _fourbar()})
+         context=lambda: {"mech": _fourbar()},
+         explanation={"en": "B(ṗ)ṗ = 2E(ṗ)āṗ + 2a(ṗᵀṗ) and 2ĖĠᵀa = 2E(ṗ)āṗ (because Gᵀa = āp), so the book's form lacks "
+                            "2a ṗᵀṗ — a vector along a. For the coupler a = s'^A_3 = 0 and nothing is lost; for the "
+                            "crank a = s'^A_2 = (1, 0, 0), so only the x row, Φ_16, changes: the checker rejects that "
+                            "row alone. (On the unit sphere the two forms differ only by this term, the same 2apᵀ "
+                            "difference between ∂(Aa)/∂p and ∂(EGᵀa)/∂p seen in notebook 14-3.)",
+                      "es": "B(ṗ)ṗ = 2E(ṗ)āṗ + 2a(ṗᵀṗ) y 2ĖĠᵀa = 2E(ṗ)āṗ (porque Gᵀa = āp), así que a la forma del "
+                            "libro le falta 2a ṗᵀṗ — un vector a lo largo de a. Para el acoplador a = s'^A_3 = 0 y no "
+                            "se pierde nada; para la manivela a = s'^A_2 = (1, 0, 0), así que solo cambia la fila x, "
+                            "Φ_16: el comprobador rechaza esa fila sola. (Sobre la esfera unidad las dos formas "
+                            "difieren solo en este término, la misma diferencia 2apᵀ entre ∂(Aa)/∂p y ∂(EGᵀa)/∂p "
+                            "vista en el cuaderno 14-3.)"})
