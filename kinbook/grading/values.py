@@ -158,7 +158,7 @@ def _close(a, b, rtol, atol, periodic=None):
 def _texts(answer):
     """A text or a (nested) list of texts read as numbers through kinbook's reader ("pi/4", "-0.5"); None
     when the answer holds no text."""
-    from ..expressions import read_number
+    from ..core.reader import read_number
 
     def walk(x, where):
         if isinstance(x, str):

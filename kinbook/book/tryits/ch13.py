@@ -17,10 +17,10 @@ import numpy as np
 import tomllib
 
 from ... import examples
+from ...files import build
 from ...grading import check_gamma, check_jacobian, check_nu, check_phi, check_value
 from ...grading import expected as X
 from ...grading.newton import Problem, check_iterates
-from ...io import build
 from ...planar import (
     A,
     B,
