@@ -26,6 +26,12 @@ SECRET = "PRIVATE-SECRET-b7e1"
 BWRAP = bwrap.available()
 WHY_NO_BWRAP = "" if BWRAP else f"no operating-system sandbox here: {bwrap._probe()} (install `bubblewrap`)"
 needs_bwrap = pytest.mark.skipif(not BWRAP, reason=WHY_NO_BWRAP)
+#: The timeout (s) of every grading run whose submissions finish: far beyond what they take on a loaded machine
+#: (a few seconds on a quiet one), so that no verdict here depends on the machine's speed.
+ENOUGH = 300
+#: The timeout (s) of the submissions that never finish (an infinite loop): their verdict is "timeout" at any speed.
+RUNAWAY = 5
+RUNAWAYS = ("loop",)
 #: The student id of the over-long file name (as kinbook.classroom.files.student_id shortens it).
 LONG_NAME = "x" * 240
 #: A file name that is not UTF-8, with a terminal's escape sequence and a newline in it.
@@ -74,11 +80,13 @@ def descendants(pid):
 
 
 def make_collected(root):
-    """A `collected/` directory: every committed fixture, and the entries that cannot be committed."""
+    """A `collected/` directory: every committed fixture but the runaways, and the entries that cannot be
+    committed; and a `runaway/` directory holding the runaways (graded with a short timeout)."""
     collected = root / "collected"
     collected.mkdir()
+    (root / "runaway").mkdir()
     for f in sorted(os.listdir(SUBMISSIONS)):
-        shutil.copy(os.path.join(SUBMISSIONS, f), collected / f)
+        shutil.copy(os.path.join(SUBMISSIONS, f), (root / "runaway" if f[:-6] in RUNAWAYS else collected) / f)
     good = open(submission("good"), "rb").read()
     nb = json.loads(good)
     # a 20 MB notebook of 150,000 cells, and a small one with too many cells: refused before parsing
@@ -109,8 +117,9 @@ def make_collected(root):
 
 @pytest.fixture(scope="session")
 def batch(tmp_path_factory):
-    """Every fixture submission graded once, in one batch, two at a time (timeout 5 s, memory 400 MB), in the
-    sandbox where bubblewrap works (else with the audit hook only)."""
+    """Every fixture submission graded once, two at a time (memory 400 MB), in the sandbox where bubblewrap works
+    (else with the audit hook only): `collected/` in one batch with a timeout no finishing notebook reaches, then
+    the runaways into the same gradebook with a short one (a re-run grades only what is new)."""
     root = tmp_path_factory.mktemp("hostile")
     collected = make_collected(root)
     out = root / "graded"
@@ -119,14 +128,18 @@ def batch(tmp_path_factory):
     os.makedirs(CANARY_DIR, exist_ok=True)
     if os.path.exists(EVIL):
         os.remove(EVIL)
-    files = sorted(str(collected / f) for f in os.listdir(collected))
+    files = sorted(str(d / f) for d in (collected, root / "runaway") for f in os.listdir(d))
     before = {f: (open(f, "rb").read(), os.stat(f).st_mtime_ns) for f in files
               if os.path.isfile(f) and not os.path.islink(f) and not f.endswith("fifo.ipynb")}
     checkout = checkout_hash()
     seen = []
     t0 = time.monotonic()
-    results = grade(SOURCE, [collected], out, timeout=5, memory=400, jobs=2, isolation=BWRAP,
-                    progress=lambda item: seen.append(item if isinstance(item, str) else item.student))
+    def progress(item):
+        seen.append(item if isinstance(item, str) else item.student)
+
+    results = grade(SOURCE, [collected], out, timeout=ENOUGH, memory=400, jobs=2, isolation=BWRAP, progress=progress)
+    results += grade(SOURCE, [root / "runaway"], out, timeout=RUNAWAY, memory=400, jobs=2, isolation=BWRAP,
+                     progress=progress)
     seconds = time.monotonic() - t0
     return {"out": out, "results": {r.student: r for r in results}, "before": before, "seconds": seconds,
             "collected": collected, "checkout": checkout, "checkout_after": checkout_hash(),

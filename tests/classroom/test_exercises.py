@@ -14,6 +14,8 @@ from kinbook.classroom.release import write_notebook
 from kinbook.classroom.serialize import decode, dumps
 from kinbook.classroom.variant import references
 
+from .conftest import BWRAP, ENOUGH
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
 EXERCISES = sorted(glob.glob(os.path.join(ROOT, "exercises", "*.ipynb")))
 
@@ -81,7 +83,8 @@ def test_variant_solutions_are_graded_in_the_sandbox_and_swapped_variants_are_ta
                        subs / student / f"{source.exercise}.ipynb")
     (subs / "carol").mkdir()
     shutil.copy(subs / "alice" / f"{source.exercise}.ipynb", subs / "carol" / f"{source.exercise}.ipynb")
-    results = {r.student: r for r in grade(src, [subs], tmp_path / "graded", timeout=30, memory=600, jobs=2)}
+    results = {r.student: r for r in grade(src, [subs], tmp_path / "graded", timeout=ENOUGH, memory=600, jobs=2,
+                                           isolation=BWRAP)}
     assert results["alice"].status == results["bob"].status == "ok"
     assert results["alice"].score == results["alice"].max_score == 10
     assert results["bob"].score == 10

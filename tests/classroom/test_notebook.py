@@ -103,10 +103,10 @@ def test_a_power_tower_is_refused_in_microseconds():
     big = sp.Integer(10 ** 40)
     tower = sp.Pow(big, sp.Pow(big, sp.Pow(big, 99, evaluate=False), evaluate=False), evaluate=False)
     rec = encode(sp.Matrix([tower * sp.Symbol("x1"), tower]))
-    t0 = time.perf_counter()
+    t0 = time.process_time()  # CPU time, not the clock: a loaded machine is slower, not wrong
     with pytest.raises(DecodeError, match="not gradable data"):
         decode(rec)
-    assert time.perf_counter() - t0 < 0.5  # (in practice well under a millisecond; the bound is for a loaded CI)
+    assert time.process_time() - t0 < 0.5  # (in practice well under a millisecond)
 
 
 @pytest.mark.parametrize("record, match", [

@@ -197,13 +197,14 @@ def test_non_text_is_refused():
 
 
 def test_refusals_take_microseconds_not_seconds():
-    # not a speed target (those live in benchmarks/): a hang here would mean evaluation to find out
+    # not a speed target (those live in benchmarks/): a hang here would mean evaluation to find out. CPU time,
+    # not the clock: a loaded machine is slower, not wrong
     slow = []
     for text, _ in REFUSED:
-        start = time.perf_counter()
+        start = time.process_time()
         with pytest.raises(ExpressionError):
             read_expression(text, symbols=T, where="w")
-        if time.perf_counter() - start > 1.0:
+        if time.process_time() - start > 1.0:
             slow.append(text[:40])
     assert not slow
 

@@ -4,6 +4,10 @@ Every case asserts the exact exception class (from kinbook.errors) and words of 
 thing concerned, or the value / exit status the input must give. A case that does not answer within its
 timeout fails as a hang (the worker is killed and a new one started); one that ends the worker fails as such;
 one that creates the canary file fails as code execution.
+
+A case's timeout counts the worker's CPU time, not the clock, so that a loaded machine (slower, not wrong) does
+not fail a case; a case that blocks without computing (a FIFO opened for reading) is caught by a wall-clock
+bound far beyond it (:data:`WALL_FACTOR`).
 """
 
 import json
@@ -11,6 +15,7 @@ import os
 import selectors
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -18,6 +23,20 @@ from . import corpus
 
 WORKER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "worker.py")
 CASES = corpus.cases()
+#: A case that has not answered after this many times its timeout of wall-clock time (at least WALL_MIN s) is
+#: a hang even if it used no CPU time.
+WALL_FACTOR, WALL_MIN = 10, 120.0
+
+
+def cpu_seconds(pid):
+    """CPU time (user + system, its waited-for children included) of a live process, from /proc; None where there
+    is no /proc (the wall-clock bound then decides alone)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return sum(int(x) for x in fields[11:15]) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
 
 
 class Worker:
@@ -50,12 +69,16 @@ class Worker:
     def run(self, cid, timeout):
         if self.proc is None or self.proc.poll() is not None:
             self.start()
+        cpu0 = cpu_seconds(self.proc.pid)
+        wall_end = time.monotonic() + max(WALL_FACTOR * timeout, WALL_MIN)
         self.proc.stdin.write(cid + "\n")
         self.proc.stdin.flush()
-        out = self._line(timeout)
-        if out is None:
-            self.stop()
-            return {"outcome": "hang", "timeout": timeout}
+        while (out := self._line(0.25)) is None:
+            cpu = cpu_seconds(self.proc.pid)
+            used = None if cpu is None or cpu0 is None else cpu - cpu0
+            if (used is not None and used > timeout) or time.monotonic() > wall_end:
+                self.stop()
+                return {"outcome": "hang", "timeout": timeout, "cpu_seconds": used}
         if out.get("outcome") == "died":
             self.proc = None
         return out
