@@ -30,7 +30,7 @@ __version__ = "0.1.0"
 # Subpackages are imported when first used (PEP 562): `import kinbook` itself stays cheap — no sympy, no
 # numpy — so a notebook, a command or a browser (Pyodide) starts at once; `kinbook.planar`, `from kinbook
 # import spatial`, `kinbook.load(...)` work as before.
-_SUBMODULES = ("examples", "planar", "spatial", "grading", "core", "book", "files", "classroom")
+_SUBMODULES = ("examples", "exercises", "planar", "spatial", "grading", "core", "book", "files", "classroom")
 
 
 _FROM = {"load": "files", "loads": "files", "notebook_setup": "book.display", "try_it": "book.tryits",

@@ -219,9 +219,48 @@ def _course_arguments(p):
                    "graded: grade every submission again with it (without this, such a run stops)")
 
 
+# ------------------------------------------------------------------------------------- kinbook exercises
+def _cmd_exercises_list(args):
+    import json
+
+    from . import exercises
+
+    for name in exercises.names():
+        with exercises.path(name).open("rb") as f:
+            title = next((c["source"] for c in json.load(f)["cells"] if c["cell_type"] == "markdown"), "")
+        title = "".join(title).strip().splitlines()[0].lstrip("# ") if title else ""
+        print(f"{name:36} {title}")
+
+
+def _cmd_exercises_copy(args):
+    from . import exercises
+
+    for name in args.names:  # every name checked before anything is copied
+        exercises.path(name)
+    for name in args.names:
+        print(exercises.copy(name, args.directory))
+
+
+def _add_exercises(sub):
+    p = sub.add_parser("exercises", help="list the shipped exercises, or copy them out to edit and release")
+    cmds = p.add_subparsers(dest="action", metavar="{list,copy}", required=True, parser_class=_Parser)
+    cmds.add_parser("list", help="the shipped exercises and their titles").set_defaults(func=_cmd_exercises_list)
+    c = cmds.add_parser("copy", help="copy shipped exercises into a directory (never overwriting a file)")
+    c.add_argument("names", nargs="+", metavar="NAME", help="an exercise's name or its prefix (ex01 ... ex12)")
+    c.add_argument("directory", type=output_dir, metavar="DIR", help="where to copy them (created if missing)")
+    c.set_defaults(func=_cmd_exercises_copy)
+
+
+#: Modules of the `grading` extra: a command that needs one when it is missing says how to install it.
+GRADING_EXTRA = {"nbformat", "nbclient", "jupyter_client", "ipykernel", "IPython"}
+
+
 def build_parser():
+    from . import __version__
+
     parser = _Parser(prog="kinbook", description="Kinematics of mechanisms in body coordinates.")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    parser.add_argument("--version", action="version", version=f"kinbook {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     p = sub.add_parser("examples", help="list the shipped example mechanisms")
     p.set_defaults(func=_cmd_examples)
@@ -267,6 +306,7 @@ def build_parser():
                    help="grade without the bubblewrap sandbox (audit hook only; recorded as 'isolation: none')")
     _course_arguments(p)
     p.set_defaults(func=_cmd_grade)
+    _add_exercises(sub)
     return parser
 
 
@@ -295,6 +335,12 @@ def main(argv=None):
     except Exception as exc:  # a bug: say so in one line, the traceback with --debug
         if debug:
             raise
+        missing = exc.name if isinstance(exc, ModuleNotFoundError) else None
+        if missing and missing.split(".")[0] in GRADING_EXTRA:  # not a bug: an extra not installed
+            command = argv[0] if argv else ""
+            print(f"kinbook: error: `kinbook {command}` needs {missing}, which comes with the grading extra: "
+                  "pip install 'kinbook[grading]'", file=sys.stderr)
+            return 2
         print(f"kinbook: internal error: {type(exc).__name__}: {_one_line(exc)} (run with --debug for the "
               "traceback, and please report it)", file=sys.stderr)
         return 1

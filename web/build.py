@@ -176,9 +176,10 @@ def kinbook_wheel(dst):
     """Build kinbook's wheel from a clean copy of the package (no stale build/lib, no network)."""
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        for f in ("pyproject.toml", "README.md"):
+        for f in ("pyproject.toml", "setup.py", "README.md", "LICENSE"):
             shutil.copy2(ROOT / f, tmp / f)
-        shutil.copytree(ROOT / "kinbook", tmp / "kinbook", ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+        for d in ("kinbook", "exercises"):  # exercises/ is the package kinbook.exercises (setup.py)
+            shutil.copytree(ROOT / d, tmp / d, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
         _run([sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps", "--no-build-isolation",
               "--disable-pip-version-check", "--wheel-dir", dst, tmp])
     return sorted(Path(dst).glob("kinbook-*.whl"))

@@ -32,6 +32,8 @@ from ...planar import (
 )
 from . import register
 
+__all__ = []  # nothing to import from here: importing the module registers its try-its
+
 DEGREES = list(range(15, 346, 15))
 
 

@@ -10,6 +10,8 @@ from ...spatial import A_from_p
 from ...spatial import rotations as R
 from . import register
 
+__all__ = []  # nothing to import from here: importing the module registers its try-its
+
 _TRIPLES = [[3, 4, 5], [4, 3, 5], [5, 12, 13], [12, 5, 13], [8, 15, 17], [15, 8, 17], [7, 24, 25], [20, 21, 29],
             [3, -4, 5], [-4, 3, 5], [5, -12, 13], [-8, 15, 17]]
 

@@ -23,6 +23,8 @@ import signal
 import socket
 import sys
 
+__all__ = ["main", "request", "returncode", "unix_address"]
+
 _LIMITS = ("RLIMIT_AS", "RLIMIT_CPU", "RLIMIT_FSIZE", "RLIMIT_DATA", "RLIMIT_STACK", "RLIMIT_CORE",
            "RLIMIT_NOFILE", "RLIMIT_NPROC", "RLIMIT_MEMLOCK", "RLIMIT_RSS")
 
