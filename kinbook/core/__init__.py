@@ -15,3 +15,5 @@ It imports nothing above it (no chapter, no grading, no book); each name has one
 - :mod:`~kinbook.core._linalg` — the linear solve and the scaled conditioning the analyses share
 - :mod:`~kinbook.core._animation` — the animation writer both chapters' plotting uses
 """
+
+__all__ = []  # nothing is imported from the package itself: each name from its module
