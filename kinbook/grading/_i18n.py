@@ -133,10 +133,10 @@ _TEXT = {
     "h.failed": N_("failed"),
     "all_correct": Np_("{what} is correct: its only row matches kinbook's reference.",
                        "{what} is correct: all {n} rows match kinbook's reference."),
-    "all_correct_equivalent": Np_("{what} is correct: your row defines the same constraint as the reference's {m} "
-                                  "(same zero set and rank where the mechanism is assembled).",
-                                  "{what} is correct: your {n} rows define the same constraints as the "
-                                  "reference's {m} (same zero set and rank where the mechanism is assembled)."),
+    "all_correct_equivalent": Np_("{what} is correct: your row is equivalent to the reference's {m}, constraint by "
+                                  "constraint (the rows written differently say how this was checked).",
+                                  "{what} is correct: your {n} rows are equivalent to the reference's {m}, constraint "
+                                  "by constraint (the rows written differently say how this was checked)."),
     "all_consistent": Np_("{what} is consistent with your Φ: its only row follows from it (full credit) and differs "
                           "from the reference because your Φ does.",
                           "{what} is consistent with your Φ: all {n} rows follow from it (full credit); {k} of "
@@ -158,10 +158,14 @@ _TEXT = {
     "row_ok": pN_("a row", "correct"),
     "row_ok_scaled": N_("correct: the reference row multiplied by {c}, which defines the same constraint"),
     "row_ok_jacobian_scaled": N_("correct: the reference row multiplied by {c} (the Jacobian of {c}·{ref})"),
-    "row_equivalent": N_("correct: not the reference's form, but it vanishes exactly where {refs} do(es) and adds "
-                         "the same independent equation"),
-    "row_equivalent_jacobian": N_("correct: not the reference's row, but at every configuration a combination of "
-                                  "{refs} — the Jacobian of an equivalent formulation of the constraint"),
+    "row_equivalent": N_("correct: not the reference's form, but where {owner} alone holds it vanishes with the rank "
+                         "of {refs} (compared at {N} configurations), and the {S} configurations where a seeded search "
+                         "found it zero all satisfy {owner}"),
+    "row_equivalent_book": N_("correct: the book's form of {refs} — a row of s̃_i s_j (§14.4), equivalent to kinbook's "
+                              "where {owner} holds (compared at {N} configurations)"),
+    "row_equivalent_jacobian": N_("correct: not the reference's row, but at each of the {N} configurations compared a "
+                                  "combination of {refs} — the Jacobian of an equivalent formulation of the "
+                                  "constraint"),
     "row_moved": N_("right, but it is {ref}: the exercise asks for the book's order (half credit)"),
     "row_depends_repeat": N_("row {k} depends on row {j}: it repeats it{times}, so it adds no equation"),
     "times": N_(" multiplied by {c}"),
@@ -170,8 +174,14 @@ _TEXT = {
                                "equation"),
     "row_depends_combination": N_("row {k} depends on rows {rows}: it is a constant combination of them, so it adds "
                                   "no equation"),
+    "row_depends_redundant": Np_("row {k} is redundant: {owner} has {n} independent equation, and your rows {rows} "
+                                 "already give it",
+                                 "row {k} is redundant: {owner} has {n} independent equations, and your rows {rows} "
+                                 "already give them"),
     "row_depends_free": N_("row {k} adds nothing to this constraint: it is {what}, which holds anyway (a row of the "
                            "body, not of this joint)"),
+    "row_masked": N_("{text}; it holds here only because of {others} — as a row of {owner} alone it does not"),
+    "the_rest": N_("the other constraints"),
     "row_wrong": N_("wrong: it is not {ref} ({owner}), nor a multiple of any other row"),
     "row_extra": N_("extra row: it matches no row of the reference"),
     "row_missing": N_("missing: no row of your answer is {ref} ({owner})"),

@@ -91,6 +91,15 @@ _ENTRIES = [
        N_("a row that repeats others (twice the same row, a multiple of one, their square or product, a constant "
            "combination) adds no equation: the set of rows must keep the rank of the constraints — write each "
            "independent equation once")),
+    _m("masked_row",
+       N_("true only because of another constraint"),
+       N_("each constraint's rows must hold for every position of its own bodies: a row that is true only because "
+          "another constraint holds too (the ground's φ1 = 0, a driver's angle) is not that constraint's equation — "
+          "write each joint's rows without using the other constraints")),
+    _m("vanishing_factor",
+       N_("a factor that vanishes"),
+       N_("a row multiplied by a function of q (cos φ2, e0, x1 …) vanishes wherever that factor does, even where the "
+          "joint is broken: its zero set is larger than the constraint's. Multiply a row by a nonzero constant only")),
     _m("row_order",
        N_("rows not in the book's order"),
        N_("the exercise asks for the book's order: constraints in the order of the joint table, drivers last")),
@@ -341,4 +350,10 @@ add_texts({
     "d.jacobian_of": N_("the Jacobian of {c}·{ref}: the derivative of {ref} keeps all its factors (the 2 of ∂(dᵀd)/∂q = "
                         "2dᵀ∂d/∂q, of A(p) = 2[…]); pass your own Φ as phi= if you scaled it"),
     "d.degrees_value": N_("{got} is {expected} rad in degrees"),
+    "d.on_body": N_("{what} on body {body} only"),
+    "d.vanishing": N_("the factor {factor} vanishes at {where}, where your row is zero although {ref} = {value} is "
+                      "not"),
+    "d.vanishing_jacobian": N_("your row is f(q) × {ref}'s row, and f goes from {lo} to {hi} over the "
+                               "configurations compared: it vanishes in between"),
+    "d.vanishing_at": N_("your row vanishes at {where}, where {ref} = {value} does not"),
 })

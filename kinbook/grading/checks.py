@@ -92,8 +92,8 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
         data = evaluate.phi_data(target, A)
     except Refused as exc:
         return _refused("Phi", exc)
-    m = match.match_phi(data.S_G, data.R_G, data.S_M, data.R_M, data.gR_M, data.F_M, data.grads, rtol, order,
-                        target.wrap, data.on_manifold)
+    m = match.match_phi(data, rtol, order, target.wrap)
+    m.searched = match.vanishing(m, data, rtol)
     diagnose.phi(target, A, data, m, rtol)
     result = report.phi_result(target, m, order)
     if symbolic and A.kind == "symbolic":
@@ -180,7 +180,15 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
     if quantity == "Phi_q":
         diagnose.eg_rows(target, data, m, rtol)  # 2Eā without 2apᵀ: named before equivalents are sought
         F = target.reference("assembled")["free_q"][:, :, data.cols]
-        match.jacobian_equivalents(m, data.S, data.R, [target.block(c) for c in target.constraints], rtol, F)
+        blocks = [target.block(c) for c in target.constraints]
+
+        def book(block):
+            from .mistakes import book_form
+
+            c = target.constraints[blocks.index(block)]
+            return book_form(target, c, "assembled", jacobian=data.cols)
+
+        match.jacobian_equivalents(m, data.S, data.R, blocks, rtol, F, book)
     if data.transposed:
         notes.insert(0, Msg("transposed", expected=f"({target.m}, {len(data.cols)})",
                             got=f"({data.S.shape[2]}, {data.S.shape[1]})"))
@@ -223,8 +231,7 @@ def _own(target, phi, quantity, data, rtol, notes):
     except Refused as exc:
         notes.append(Msg("phi_unusable", reason=Msg(exc.key, **exc.fields)))
         return None
-    pm = match.match_phi(pdata.S_G, pdata.R_G, pdata.S_M, pdata.R_M, pdata.gR_M, pdata.F_M, pdata.grads, rtol,
-                         "any", target.wrap, pdata.on_manifold)
+    pm = match.match_phi(pdata, rtol, "any", target.wrap)
     factors = {r.k: (r.ref, r.factor) for r in pm.rows if r.status == "ok" and r.how == "multiple"}
     for r in pm.rows:
         if r.status == "ok" and r.how == "equivalent":

@@ -28,6 +28,9 @@ def phi(target, answer, data, matching, rtol):
     """Diagnose the wrong rows of a Φ answer in place: each gets the reference row it was meant to be (when
     one is missing) and a code."""
     rows = matching.rows
+    for r in rows:
+        if r.code == "vanishing_factor" and r.where is not None:
+            r.detail = _vanishing_detail(target, answer, r)
     wrong = [r for r in rows if r.status == "wrong"]
     free = list(matching.missing)
     if wrong and free:
@@ -44,13 +47,62 @@ def phi(target, answer, data, matching, rtol):
             r.ref = j
             if j is not None:
                 free.remove(j)
-                r.code = "wrong_value"
+                r.code = "masked_row" if r.masked else "wrong_value"
             else:
                 r.status, r.code = "extra", "extra_row"
     matching.missing = free
     for r in rows:
         if r.status == "wrong" and r.ref is not None:
             r.context = M.contexts_of(target.owner(r.ref))
+
+
+def _book_name(name):
+    return name.replace("phi", "φ")
+
+
+def _where(target, Q, names):
+    """"φ2 = 1.5708 (90°), x1 = 0.3" for the coordinates ``names`` at the configuration Q (n,)."""
+    idx = {n: i for i, n in enumerate(target.names)}
+    out = []
+    for name in names:
+        v = float(Q[idx[name]])
+        text = f"{_book_name(name)} = {v:.6g}"
+        if name.startswith("phi"):
+            text += f" ({np.degrees(v):.4g}°)"
+        out.append(text)
+    return ", ".join(out)
+
+
+def _vanishing_detail(target, answer, r):
+    """What vanishes where (a row accepted only up to a factor f(q) that is zero somewhere): the factor of a
+    symbolic row that is zero there, the coordinates it depends on, and the reference row that is not zero."""
+    import sympy as sp
+
+    Q, T, refs = r.where
+    j, value = next(((j, v) for j, v in refs.items() if abs(v) > 0), next(iter(refs.items())))
+    factor = None
+    if answer.kind == "symbolic":
+        expr = answer.bound(target)[r.k, 0]
+        if sp.count_ops(expr) <= 300:
+            try:
+                _, parts = sp.factor_list(sp.together(expr))
+                parts = [f for f, _ in parts if f.free_symbols]
+                if len(parts) > 1:
+                    vals = target.tape(parts)(Q[None], None, np.array([T]))["value"][0]
+                    small = [f for f, v in zip(parts, vals) if abs(v) <= 1e-6 * (1 + float(np.max(np.abs(vals))))]
+                    factor = small[0] if small else None
+            except Exception:  # pragma: no cover - sympy cannot factor it: named by where it vanishes only
+                factor = None
+    mech = target.mech
+    if factor is not None:
+        names = [str(x) for x in mech.q if x in factor.free_symbols]
+        text = sp.sstr(factor).replace("**", "^")
+        return Msg("d.vanishing", factor=_book_name(text), where=_where(target, Q, names), ref=target.label(j),
+                   value=f"{value:.3g}")
+    owner = target.owner(j)
+    ncoord = len(mech.COORDS)
+    names = [target.names[ncoord * (b.number - 1) + k] for b in owner.bodies for k in range(ncoord)]
+    return Msg("d.vanishing_at", where=_where(target, Q, names), ref=target.label(j), value=f"{value:.3g}")
 
 
 def _variant_values(target, v, which, quantity="Phi"):
@@ -87,11 +139,15 @@ def _structural_phi(target, data, wrong, free, rtol):
                     continue
                 hits = {}
                 used = set()
+                agree = 0  # rows the variant leaves as the reference's, where the answer has them right too
                 for pos, j in enumerate(block):
-                    if j not in todo or not np.all(np.isfinite(V[:, pos])):
+                    if not np.all(np.isfinite(V[:, pos])):
                         continue
                     if _phi_equal(V[:, pos], data.R_G[:, j], rtol):
+                        agree += j not in todo
                         continue  # the variant equals the reference on this row
+                    if j not in todo:
+                        continue
                     for r in left:
                         if r.k in used:
                             continue
@@ -99,11 +155,11 @@ def _structural_phi(target, data, wrong, free, rtol):
                             hits[j] = r
                             used.add(r.k)
                             break
-                if hits and (best is None or len(hits) > len(best[1])):
-                    best = (v, hits)
+                if hits and (best is None or (len(hits), agree) > (len(best[1]), best[2])):
+                    best = (v, hits, agree)
             if best is None:
                 break
-            v, hits = best
+            v, hits, _ = best
             for j, r in hits.items():
                 r.ref, r.code, r.detail, r.erratum = j, v.code, v.detail, v.erratum
                 free.remove(j)
@@ -185,12 +241,16 @@ def _terms_phi(target, data, wrong, free, rtol):
         if not cands:
             continue
         vals = target.tape([e for _, e, _ in cands])(G.Q, G.QD, G.T)["value"]
+        hits = []
         for i, (code, _, term) in enumerate(cands):
-            hit = next((r for r in left if scale_match(data.S_G[:, r.k], vals[:, i], rtol) is not None), None)
-            if hit is not None:
-                hit.ref, hit.code, hit.detail = j, code, _term_detail(code, term)
-                free.remove(j)
-                break
+            for r in left:
+                c = scale_match(data.S_G[:, r.k], vals[:, i], rtol)
+                if c is not None:
+                    hits.append((abs(c - 1.0) > 1e-9, i, r, code, term))  # a factor 1 names the term best
+        if hits:
+            _, _, hit, code, term = min(hits, key=lambda h: h[:2])
+            hit.ref, hit.code, hit.detail = j, code, _term_detail(code, term)
+            free.remove(j)
 
 
 def _pair(target, answer, wrong, free):
@@ -272,6 +332,11 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
         r.context = M.contexts_of(target.owner(r.ref), quantity) if r.ref is not None and \
             not isinstance(r.ref, tuple) else (quantity,)
         expected = _expected_row(ex, r, own)
+        if r.code == "vanishing_factor":  # named by the matching: f(q) × the reference row
+            _, lo, hi = r.where
+            r.detail = Msg("d.vanishing_jacobian", ref=target.label(r.ref), lo=f"{lo:.3g}", hi=f"{hi:.3g}")
+            cands[r.k] = (expected, [])
+            continue
         cands[r.k] = (expected, _candidates(target, ex, r, own, expected))
         S = data.S[:, r.k]
         hit = next(((code, detail, err) for code, V, detail, err in cands[r.k][1]
@@ -435,6 +500,8 @@ def _structural_derived(target, ex, c, rows, rtol):
     block = target.block(c)
     best = None
     for v in M.structural(target, c):
+        if not v.derived:
+            continue
         try:
             d = _variant_values(target, v, "assembled", ex.quantity)
         except Exception:  # pragma: no cover
@@ -471,6 +538,8 @@ def _variant_spans(target, ex, c, rows, rtol):
         D = ex.rule_values("phi", tape, rule, frozen)["Phi_q"][:, block, :][:, :, ex.data.cols]
         blocks.append((M.Variant(code, []), D))
     for v in list(M.structural(target, c)) + list(M.alternative_variants(target, c)):
+        if not v.derived:
+            continue
         try:
             blocks.append((v, _variant_values(target, v, "assembled", "Phi_q")["Phi_q"][:, :, ex.data.cols]))
         except Exception:  # pragma: no cover

@@ -19,8 +19,37 @@ __all__ = ["PhiData", "DerivedData", "phi_data", "derived_data", "orient"]
 
 
 @dataclass
+class Block:
+    """An answer Φ and the reference rows of *one* constraint at that constraint's own assembled samples (its
+    rows and the bodies' normalization rows hold there, nothing else): where its rows are judged.
+
+    Attributes
+    ----------
+    refs : list of int
+        The constraint's rows (positions among the graded rows).
+    S, gS : ndarray (N, ms), (N, ms, n)
+        Every answer row and its gradient there.
+    gR : ndarray (N, len(refs), n)
+        Gradients of the constraint's reference rows there.
+    F : ndarray (N, f, n)
+        Gradients of the rows that hold anyway there (the bodies' normalization rows).
+    target : Target
+        The constraint graded alone (its samples, its reference).
+    """
+
+    refs: list
+    S: np.ndarray
+    gS: np.ndarray
+    gR: np.ndarray
+    F: np.ndarray
+    on_manifold: bool
+    target: object
+
+
+@dataclass
 class PhiData:
-    """An answer Φ and the reference at the generic (G) and assembled (M) samples."""
+    """An answer Φ and the reference at the generic (G) and assembled (M) samples; ``blocks[i]`` are the rows of
+    the target's i-th constraint and ``block(i)`` (computed when first asked) its :class:`Block`."""
 
     S_G: np.ndarray
     S_M: np.ndarray
@@ -30,6 +59,12 @@ class PhiData:
     F_M: np.ndarray
     grads: object  # callable: "assembled" | "generic" -> (N, ms, n)
     on_manifold: bool
+    blocks: list = None
+    block: object = None  # callable: i -> Block
+    block_cols: list = None  # per constraint, a mask (n,) of its bodies' coordinates
+    together: object = None  # callable: list of constraint indices -> the answer (N, ms) where only they hold
+    search: object = None  # callable: (constraint index, answer rows) -> (Q, T, its reference rows) at their zeros
+    book: object = None  # callable: constraint index -> the book's own rows of it at the generic samples, or None
 
 
 @dataclass
@@ -82,7 +117,63 @@ def phi_data(target, answer):
             cache[which] = np.where(np.isfinite(g), g, 0.0)
         return cache[which]
 
-    return PhiData(S_G, S_M, RG["Phi"], RM["Phi"], RM["Phi_q"], RM["free_q"], grads, M.on_manifold)
+    blocks = [target.block(c) for c in target.constraints]
+    made = {}
+
+    def block(i):
+        if i not in made:
+            made[i] = _block(target, answer, i, blocks[i], S_M, grads, RM)
+        return made[i]
+
+    ncoord = len(target.mech.COORDS)
+    cols = []
+    for c in target.constraints:
+        mask = np.zeros(target.n, bool)
+        for b in c.bodies:
+            mask[ncoord * (b.number - 1): ncoord * b.number] = True
+        cols.append(mask)
+    def together(indices):
+        from .target import group_target
+
+        g = group_target(target.mech, [target.constraints[i] for i in indices])
+        s = g.samples("assembled")
+        return column(answer.values(target, s), target, "Phi") if s.on_manifold else None
+
+    def search(i, ks):
+        from .sample import Samples, zeros
+
+        own = target.own_target(target.constraints[i])
+
+        def F(Q, T):
+            v, g, d = answer.jet(target, Q, T)
+            return v[:, ks], np.where(np.isfinite(g[:, ks]), g[:, ks], 0.0), d[:, ks]
+
+        Q, T = zeros(own, F)
+        if not len(Q):
+            return None
+        ref = own.evaluate(Samples(Q, np.zeros_like(Q), T))["Phi"]
+        return Q, T, ref
+
+    def book(i):
+        from .mistakes import book_form
+
+        return book_form(target, target.constraints[i])
+
+    return PhiData(S_G, S_M, RG["Phi"], RM["Phi"], RM["Phi_q"], RM["free_q"], grads, M.on_manifold, blocks, block,
+                   cols, together, search, book)
+
+
+def _block(target, answer, i, refs, S_M, grads, RM):
+    own = target.own_target(target.constraints[i])
+    if own is target:  # a constraint graded alone: its samples are the target's
+        return Block(refs, S_M, grads("assembled"), RM["Phi_q"][:, refs, :], RM["free_q"], target.samples(
+            "assembled").on_manifold, target)
+    s = own.samples("assembled")
+    S = column(answer.values(target, s), target, "Phi")
+    gS = answer.gradient(target, s)
+    ref = own.reference("assembled")
+    S = np.where(np.isfinite(S), S, np.nan)
+    return Block(refs, S, np.where(np.isfinite(gS), gS, 0.0), ref["Phi_q"], ref["free_q"], s.on_manifold, own)
 
 
 def orient(V, target, quantity):

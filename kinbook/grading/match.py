@@ -167,34 +167,31 @@ class Row:
     erratum: str | None = None
     entries: tuple = ()
     score: float = 0.0
+    owner: int | None = None
+    masked: list = field(default_factory=list)
+    book: bool = False
+    where: tuple | None = None
 
 
 @dataclass
 class Matching:
     rows: list
     missing: list  # reference rows (0-based) nobody stands for
+    searched: dict = field(default_factory=dict)  # constraint index -> zeros found by the search (vanishing)
 
     def answer_rows(self, status=None):
         return [r for r in self.rows if r.k is not None and (status is None or r.status == status)]
 
 
 # ================================================================================================ Φ
-def match_phi(S_G, R_G, S_M, R_M, gR_M, F_M, grads, rtol, order="any", wrap=None, on_manifold=True):
-    """Match the rows of an answer Φ to the reference's.
+def match_phi(data, rtol, order="any", wrap=None):
+    """Match the rows of an answer Φ to the reference's, constraint by constraint.
 
     Parameters
     ----------
-    S_G, R_G : ndarray (N_G, ms), (N_G, m)
-        Answer and reference at the generic samples.
-    S_M, R_M : ndarray (N_M, ms), (N_M, m)
-        The same at the assembled samples.
-    gR_M : ndarray (N_M, m, n)
-        Gradients of the reference rows at the assembled samples.
-    F_M : ndarray (N_M, f, n)
-        Gradients of rows that hold anyway (the normalization rows of a joint graded alone).
-    grads : callable
-        ``grads(which)`` → the answer's gradients (N, ms, n) at "assembled" or "generic" samples; called only
-        when a row is not a multiple of a reference row.
+    data : :class:`~kinbook.grading.evaluate.PhiData`
+        The answer and the reference at the generic samples (S_G, R_G), at the target's assembled samples
+        (S_M, gR_M, F_M) and, per constraint, at that constraint's own assembled samples (``data.block(i)``).
     order : {"any", "book"}
     wrap : dict
         {reference row: period} of wrapped angle rows.
@@ -202,13 +199,19 @@ def match_phi(S_G, R_G, S_M, R_M, gR_M, F_M, grads, rtol, order="any", wrap=None
     Returns
     -------
     Matching
+        Each row's ``owner`` is the constraint (index of ``data.blocks``) it was judged as a row of; ``masked``
+        the constraints that alone make a row true where the whole mechanism is assembled.
     """
+    S_G, R_G = data.S_G, data.R_G
     wrap = wrap or {}
     ms, m = S_G.shape[1], R_G.shape[1]
+    blocks = data.blocks or [list(range(m))]
+    owner_of = {j: b for b, refs in enumerate(blocks) for j in refs}
     C = scale_matrix(S_G, R_G, rtol, True, wrap)
     rows = [Row(k, None, "wrong") for k in range(ms)]
     taken = {}
-    # 1. multiples of a reference row: in book order the diagonal first, then the first free candidate
+    # 1. multiples of a reference row (at generic configurations: nothing else holds there): in book order the
+    #    diagonal first, then the first free candidate
     prefer = [(k, k) for k in range(min(ms, m)) if not np.isnan(C[k, k])] if order == "book" else []
     for k, j in prefer:
         rows[k].ref, rows[k].status, rows[k].factor = j, "ok", C[k, j]
@@ -226,38 +229,13 @@ def match_phi(S_G, R_G, S_M, R_M, gR_M, F_M, grads, rtol, order="any", wrap=None
             j = cands[0]
             rows[k].status, rows[k].ref, rows[k].factor = "dependent", j, C[k, j]
             rows[k].depends_on, rows[k].dependence = [taken[j]], "repeat"
-    # 2. the other rows: zero set and gradient on the manifold
+    for r in rows:
+        if r.ref is not None:
+            r.owner = owner_of[r.ref]
+    # 2. the other rows: an equivalent formulation of one constraint, judged where that constraint alone holds
     rest = [r for r in rows if r.status == "wrong"]
-    gS_M = gS_G = None
-    if rest and on_manifold:
-        gS_M = grads("assembled")
-        basis = np.concatenate([gR_M, F_M], axis=1) if F_M is not None and F_M.size else gR_M
-        for r in rest:
-            k = r.k
-            if gS_G is None:
-                gS_G = grads("generic")
-            g = gS_M[:, k, :]
-            gnorm = np.linalg.norm(g, axis=1)
-            gscale = max(float(np.max(np.linalg.norm(gS_G[:, k, :], axis=1))), float(np.max(gnorm)))
-            magnitude = max(scale_of(S_G[:, k]), gscale)  # a row zero off the manifold too (pᵀp − 1 on the sphere)
-            if magnitude == 0.0:
-                continue  # identically zero: wrong
-            if scale_of(S_M[:, k]) > 1e3 * rtol * magnitude:
-                continue  # not zero where the mechanism is assembled: wrong (diagnosed later)
-            if np.all(gnorm <= 1e3 * rtol * gscale):
-                r.status, r.dependence = "dependent", "function"
-                r.depends_on = _function_of(S_G[:, k], R_G, rtol)
-                continue
-            alpha, inspan = _in_span(g, basis, rtol)
-            if not inspan:
-                continue
-            contrib = np.abs(alpha[:, : R_G.shape[1]]) * np.linalg.norm(gR_M, axis=2)
-            covers = sorted({int(j) for j in range(m) if np.any(contrib[:, j] > 1e-3 * gnorm)})
-            if not covers:  # a combination of the always-true rows only (a normalization row, given again)
-                r.status, r.dependence, r.depends_on = "dependent", "free", []
-                continue
-            r.status, r.how, r.covers = "ok", "equivalent", covers
-            r.ref = next((j for j in covers if j not in taken), covers[0])
+    if rest:
+        _equivalents(data, rest, blocks, owner_of, taken, rtol)
     # 3. constant combinations among the accepted rows
     accepted = [r for r in rows if r.status == "ok"]
     for r in accepted:
@@ -274,35 +252,224 @@ def match_phi(S_G, R_G, S_M, R_M, gR_M, F_M, grads, rtol, order="any", wrap=None
                 r.depends_on = [k for k, _ in used]
                 if len(used) == 1:
                     r.dependence, r.factor = "repeat", nice(used[0][1])
-    # 4. coverage: every reference row a multiple of an answer row, or in the span of the accepted rows
+    # 4. counting: a constraint has as many independent equations as reference rows; more rows are redundant
+    for b, refs in enumerate(blocks):
+        mine = [r for r in rows if r.status == "ok" and r.owner == b]
+        if len(mine) > len(refs):
+            keep = sorted(mine, key=lambda r: (r.how != "multiple", r.k))[: len(refs)]
+            for r in mine:
+                if r not in keep:
+                    r.status, r.dependence = "dependent", "redundant"
+                    r.depends_on = sorted(o.k for o in mine)
+    # 5. coverage, per constraint: every reference row a multiple of an answer row, or in the span of the
+    #    accepted rows' gradients where that constraint holds
     accepted = [r for r in rows if r.status == "ok"]
     covered = {r.ref for r in accepted if r.how == "multiple"}
-    missing = [j for j in range(m) if j not in covered]
-    if missing and any(r.how == "equivalent" for r in accepted) and on_manifold:
-        parts = [gR_M[:, [r.ref for r in accepted if r.how == "multiple"], :]]
-        eq = [r.k for r in accepted if r.how == "equivalent"]
-        if gS_M is None:
-            gS_M = grads("assembled")
-        parts.append(gS_M[:, eq, :])
-        if F_M is not None and F_M.size:
-            parts.append(F_M)
-        basis = np.concatenate(parts, axis=1)
-        still = []
-        for j in missing:
-            _, ok = _in_span(gR_M[:, j, :], basis, rtol)
-            if not ok:
-                still.append(j)
-        # as many rows missing as the rank lacks (one cross-product row for two h-rows lacks one)
-        nf = 0 if F_M is None else F_M.shape[1]
-        acc = np.linalg.matrix_rank(basis[0].T, tol=1e-8 * max(np.abs(basis[0]).max(), 1e-300)) - (
-            np.linalg.matrix_rank(F_M[0].T) if nf else 0)
-        full = np.linalg.matrix_rank(gR_M[0].T, tol=1e-8 * max(np.abs(gR_M[0]).max(), 1e-300))
-        deficit = max(full - acc, 0)
-        missing = still[len(still) - deficit:] if deficit < len(still) else still
-    # 5. book order
+    missing = []
+    for b, refs in enumerate(blocks):
+        lack = [j for j in refs if j not in covered]
+        eq = [r.k for r in accepted if r.how == "equivalent" and r.owner == b]
+        if lack and eq:
+            lack = _still_missing(data.block(b), refs, lack, [r.ref for r in accepted if r.how == "multiple" and
+                                                              r.owner == b], eq, rtol)
+        missing += lack
+    # 6. book order
     if order == "book":
         _mark_moved(rows, m)
-    return Matching(rows, missing)
+    return Matching(rows, sorted(missing))
+
+
+def _equivalents(data, rest, blocks, owner_of, taken, rtol):
+    """Rows that are no multiple of a reference row: right when, where one constraint alone holds (its own
+    assembled samples), they vanish and their gradient lies in the span of that constraint's rows' gradients
+    (and of the bodies' normalization rows). A row that is right only where the *whole* mechanism is assembled
+    is "masked": wrong, and the constraints that make it true are named."""
+    S_G = data.S_G
+    gG = data.grads("generic")
+    for r in rest:
+        k = r.k
+        g_gen = gG[:, k, :]
+        gscale = float(np.max(np.linalg.norm(g_gen, axis=1)))
+        magnitude = max(scale_of(S_G[:, k]), gscale)
+        if magnitude == 0.0:
+            continue  # identically zero: wrong
+        support = np.max(np.abs(g_gen), axis=0) > 1e-9 * max(gscale, 1e-300)
+        cols = data.block_cols or [np.ones_like(support)] * len(blocks)
+        # constraints with rows left first, then those whose bodies the row moves (a row may carry a factor of
+        # another body's coordinates that never vanishes: right, if odd)
+        cands = sorted(range(len(blocks)), key=lambda b: (all(j in taken for j in blocks[b]),
+                                                           bool(np.any(support & ~cols[b])), b))
+        for b in cands:
+            B = data.block(b)
+            verdict = _judge(B, k, magnitude, gscale, S_G, data.R_G, rtol)
+            if verdict is None:
+                continue
+            r.owner = b
+            kind, covers = verdict
+            if kind == "equivalent":
+                r.status, r.how, r.covers = "ok", "equivalent", covers
+                r.ref = next((j for j in covers if j not in taken), covers[0])
+            else:
+                r.status, r.dependence, r.depends_on = "dependent", kind, covers
+            break
+        if r.status == "wrong" and data.on_manifold and len(blocks) > 1:
+            _masked(data, r, blocks, owner_of, cands, magnitude, gscale, rtol)
+
+
+def _judge(B, k, magnitude, gscale, S_G, R_G, rtol):
+    """("equivalent", covered rows) / ("function" | "free", depends_on) / None for answer row k in block B."""
+    if not B.on_manifold:
+        return None
+    S = B.S[:, k]
+    if not np.all(np.isfinite(S)) or scale_of(S) > 1e3 * rtol * magnitude:
+        return None  # not zero where the constraint holds: wrong (diagnosed later)
+    g = B.gS[:, k, :]
+    gnorm = np.linalg.norm(g, axis=1)
+    gscale = max(gscale, float(np.max(gnorm)))
+    if np.all(gnorm <= 1e3 * rtol * gscale):
+        return "function", _function_of(S_G[:, k], R_G[:, B.refs], rtol, B.refs)
+    basis = np.concatenate([B.gR, B.F], axis=1) if B.F is not None and B.F.size else B.gR
+    alpha, inspan = _in_span(g, basis, rtol)
+    if not inspan:
+        return None
+    contrib = np.abs(alpha[:, : len(B.refs)]) * np.linalg.norm(B.gR, axis=2)
+    covers = [j for i, j in enumerate(B.refs) if np.any(contrib[:, i] > 1e-3 * gnorm)]
+    if not covers:  # a combination of the always-true rows only (a normalization row, given again)
+        return "free", []
+    return "equivalent", covers
+
+
+def _masked(data, r, blocks, owner_of, cands, magnitude, gscale, rtol):
+    """A row true where the whole mechanism is assembled but not where its own constraint alone holds: which
+    constraint it was meant for (``owner``) and which others make it true (``masked``)."""
+    k = r.k
+    if scale_of(data.S_M[:, k]) > 1e3 * rtol * magnitude:
+        return
+    g = data.grads("assembled")[:, k, :]
+    gnorm = np.linalg.norm(g, axis=1)
+    if np.all(gnorm <= 1e3 * rtol * max(gscale, float(np.max(gnorm)))):
+        return
+    basis = np.concatenate([data.gR_M, data.F_M], axis=1) if data.F_M is not None and data.F_M.size else data.gR_M
+    alpha, inspan = _in_span(g, basis, rtol)
+    if not inspan:
+        return
+    m = data.gR_M.shape[1]
+    contrib = np.abs(alpha[:, :m]) * np.linalg.norm(data.gR_M, axis=2)
+    weight = {}
+    for j in range(m):
+        w = float(np.max(contrib[:, j] / np.maximum(gnorm, 1e-300)))
+        if w > 1e-3:
+            weight[owner_of[j]] = weight.get(owner_of[j], 0.0) + w
+    if not weight:
+        return
+    mine = [b for b in cands if b in weight] or sorted(weight, key=lambda b: -weight[b])
+    r.owner = mine[0]
+    r.masked = sorted((b for b in weight if b != r.owner), key=lambda b: -weight[b])
+    if not r.masked and data.together is not None:  # the gradients do not tell: try each neighbour with it
+        cols = data.block_cols
+        near = [b for b in range(len(blocks)) if b != r.owner and np.any(cols[b] & cols[r.owner])]
+        for b in near:
+            S = data.together(sorted([r.owner, b]))
+            if S is not None and np.all(np.isfinite(S[:, k])) and scale_of(S[:, k]) <= 1e3 * rtol * magnitude:
+                r.masked.append(b)
+    r.masked = r.masked or [None]
+
+
+def _still_missing(B, refs, lack, multiples, eq, rtol):
+    """Reference rows of one constraint that the accepted rows do not span where it holds; as many as the rank
+    lacks (one cross-product row for two h-rows lacks one)."""
+    pos = {j: i for i, j in enumerate(refs)}
+    parts = [B.gR[:, [pos[j] for j in multiples], :], B.gS[:, eq, :]]
+    if B.F is not None and B.F.size:
+        parts.append(B.F)
+    basis = np.concatenate(parts, axis=1)
+    still = [j for j in lack if not _in_span(B.gR[:, pos[j], :], basis, rtol)[1]]
+    nf = 0 if B.F is None else B.F.shape[1]
+    tol = 1e-8 * max(np.abs(basis[0]).max(), 1e-300)
+    acc = np.linalg.matrix_rank(basis[0].T, tol=tol) - (np.linalg.matrix_rank(B.F[0].T) if nf else 0)
+    full = np.linalg.matrix_rank(B.gR[0].T, tol=1e-8 * max(np.abs(B.gR[0]).max(), 1e-300))
+    deficit = max(full - acc, 0)
+    return still[len(still) - deficit:] if deficit < len(still) else still
+
+
+def vanishing(matching, data, rtol):
+    """Rows accepted as an equivalent formulation of a constraint whose zero set is larger than the constraint's:
+    a factor f(q) that vanishes somewhere (cos φ2 · Φ_4, e0 · Φ_k). The zeros of the constraint's answer rows are
+    searched (seeded Newton, the bodies free: :func:`kinbook.grading.sample.zeros`); where they vanish and a row
+    they stand for does not, the row is wrong ("vanishing_factor", ``where`` = that configuration). The book's own
+    rows of the constraint (two of the three cross-product rows of a parallel constraint) are its accepted form.
+
+    Returns
+    -------
+    dict {constraint index: number of configurations found where its answer rows vanish} for the constraints
+    searched (what the verdict may then claim).
+    """
+    searched = {}
+    if data.search is None:
+        return searched
+    for b, refs in enumerate(data.blocks or []):
+        mine = [r for r in matching.rows if r.status == "ok" and r.owner == b]
+        eq = [r for r in mine if r.how == "equivalent"]
+        if not eq:
+            continue
+        book = data.book(b) if data.book is not None else None
+        if book is not None:
+            for r in eq:
+                if any(scale_match(data.S_G[:, r.k], book[:, i], rtol) is not None for i in range(book.shape[1])):
+                    r.book = True
+            eq = [r for r in eq if not r.book]
+            if not eq:
+                continue
+        found = data.search(b, [r.k for r in mine])
+        if found is None:
+            searched[b] = 0
+            continue
+        Q, T, R = found
+        searched[b] = len(Q)
+        tol = 1e-6 * max(scale_of(data.R_G[:, refs]), 1.0)
+        bad = np.flatnonzero(np.max(np.abs(R), axis=1) > tol)
+        if not bad.size:
+            continue
+        i = int(bad[0])
+        pos = {j: p for p, j in enumerate(refs)}
+        culprits = [r for r in eq if any(abs(R[i, pos[j]]) > tol for j in r.covers)] or eq
+        for r in culprits:
+            r.status, r.code, r.how = "wrong", "vanishing_factor", "multiple"
+            r.where = (Q[i], T[i], {j: float(R[i, pos[j]]) for j in r.covers})
+            r.ref = next(j for j in r.covers if abs(R[i, pos[j]]) > tol) if any(
+                abs(R[i, pos[j]]) > tol for j in r.covers) else r.covers[0]
+    return searched
+
+
+def _singular_combinations(matching, S, R, touched, rtol, F, book):
+    """Equivalent Φ_q rows of a block: S_block = M(q) R_block (+ normalization rows); where det M changes sign
+    between samples (or nearly vanishes) M(q) is singular somewhere — a factor f(q) that vanishes ("vanishing
+    factor"), unless the rows are the Jacobian of the book's own formulation."""
+    for block in touched:
+        mine = [r for r in matching.rows if r.status == "ok" and (r.ref in block or set(r.covers) & set(block))]
+        eq = [r for r in mine if r.how == "equivalent"]
+        if not eq or len(mine) != len(block):
+            continue
+        B = book(block) if book is not None else None
+        if B is not None:
+            eq = [r for r in eq if not any(scale_match(S[:, r.k], B[:, i], rtol) is not None
+                                           for i in range(B.shape[1]))]
+            if not eq:
+                continue
+        basis = R[:, block, :] if F is None or not F.size else np.concatenate([R[:, block, :], F], axis=1)
+        M = np.stack([_in_span(S[:, r.k, :], basis, rtol)[0][:, : len(block)] for r in mine], axis=1)
+        det = np.linalg.det(M)
+        size = np.prod(np.linalg.norm(M, axis=2), axis=1)
+        rel = det / np.maximum(size, 1e-300)
+        if np.all(rel > 1e-6) or np.all(rel < -1e-6):
+            continue
+        for r in eq:
+            coef = M[:, mine.index(r), :]
+            if np.ptp(coef / np.where(np.abs(coef[:1]) > 0, coef[:1], 1.0), axis=0).max() > 1e3 * rtol:
+                a = int(np.argmax(np.abs(coef).max(axis=0)))
+                r.status, r.code, r.how = "wrong", "vanishing_factor", "multiple"
+                r.ref, r.factor = block[a], None
+                r.where = ("ratio", float(coef[:, a].min()), float(coef[:, a].max()))
 
 
 def _in_span(g, basis, rtol):
@@ -316,18 +483,20 @@ def _in_span(g, basis, rtol):
     return alpha, ok
 
 
-def _function_of(s, R, rtol):
+def _function_of(s, R, rtol, refs=None):
     """For a row that vanishes with its gradient on the manifold: the reference rows it is a power or a
-    product of (["Φ_j"] as 0-based reference positions), found at the generic samples."""
+    product of (["Φ_j"] as 0-based reference positions: ``refs[i]`` for column i of R), found at the generic
+    samples."""
     m = R.shape[1]
+    refs = list(range(m)) if refs is None else list(refs)
     for j in range(m):
         for p in (2, 3):
             if scale_match(s, R[:, j] ** p, rtol) is not None:
-                return [("ref", j)]
+                return [("ref", refs[j])]
     for a in range(m):
         for b in range(a + 1, m):
             if scale_match(s, R[:, a] * R[:, b], rtol) is not None:
-                return [("ref", a), ("ref", b)]
+                return [("ref", refs[a]), ("ref", refs[b])]
     return []
 
 
@@ -468,7 +637,7 @@ def _permutation(C):
     return out
 
 
-def jacobian_equivalents(matching, S, R, blocks, rtol, F=None):
+def jacobian_equivalents(matching, S, R, blocks, rtol, F=None, book=None):
     """Φ_q rows of an equivalent formulation: a row that is no constant multiple of a reference row but, at
     every assembled sample, a combination of the rows of one constraint (the Jacobian of M(q)·Φ, e.g. the
     book's cross-product rows of a parallel constraint) is right; reference rows whose gradients the accepted
@@ -480,6 +649,11 @@ def jacobian_equivalents(matching, S, R, blocks, rtol, F=None):
         The reference rows of each constraint.
     F : ndarray (N, f, w), optional
         Rows that hold anyway (the normalization rows of a joint graded alone), free to be added.
+    book : callable, optional
+        ``book(block)`` → the Jacobian rows of the book's own formulation of that constraint (N, r, w), or None.
+        Rows of an equivalent formulation whose combination of the constraint's rows changes with q (M(q)·Φ_q)
+        are right only if M(q) is regular at every sample (its determinant keeps its sign): the book's own
+        rows are its accepted form.
     """
     touched = []
     for r in matching.rows:
@@ -507,20 +681,23 @@ def jacobian_equivalents(matching, S, R, blocks, rtol, F=None):
             break
     if not touched:
         return matching
+    _singular_combinations(matching, S, R, touched, rtol, F, book)
     accepted = [r for r in matching.rows if r.status == "ok"]
     multiples = {r.ref for r in accepted if r.how == "multiple"}
     basis = S[:, [r.k for r in accepted], :]
     if F is not None and F.size:
         basis = np.concatenate([basis, F], axis=1)
     still = []
+    held = {r.ref for r in matching.rows if r.code == "vanishing_factor"}
     for j in sorted(set(matching.missing) | {j for b in touched for j in b} - multiples):
-        if j in multiples:
+        if j in multiples or j in held:
             continue
         _, ok = _in_span(R[:, j, :], basis, rtol)
         if not ok:
             still.append(j)
     for r in matching.rows:  # wrong rows paired with a reference row that turned out covered
-        if r.status == "wrong" and r.ref is not None and r.ref not in still and r.ref not in multiples:
+        if r.status == "wrong" and r.ref is not None and r.ref not in still and r.ref not in multiples and \
+                r.code != "vanishing_factor":
             r.status, r.code = "extra", None
     matching.missing = still
     return matching

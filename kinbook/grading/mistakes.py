@@ -29,7 +29,7 @@ import numpy as np
 from ._i18n import Msg
 
 __all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "alternative_variants", "contexts_of", "register",
-           "length_factors"]
+           "length_factors", "book_form", "book_rows"]
 
 DEG = 180.0 / np.pi
 
@@ -147,6 +147,8 @@ class Variant:
     detail: object = None
     erratum: str | None = None
     cache: dict = field(default_factory=dict, repr=False)
+    derived: bool = True
+    """Also tried on Φ_q, ν and γ (A left local on one body is, in γ, a missing term: named so there)."""
 
 
 # ============================================================================================ structural
@@ -253,6 +255,14 @@ def _structural(target, c):
         e = safe(lambda: _phi_points_only(target, c, QL, spec))
         if e is not None:
             yield from add("local_vector", e)
+        if len(Q) >= 2:  # on one body only (the ground's A transposed, the crank's s' left local …)
+            for role in range(len(Q)):
+                for code, Qmod, what in (("A_transposed", QT, "Aᵀ"), ("local_vector", QL, "s'")):
+                    Qr = [Qmod[k] if k == role else sp.Matrix(Q[k]) for k in range(len(Q))]
+                    e = safe(lambda Qr=Qr: _phi_points_only(target, c, Qr, spec))
+                    if e is not None:
+                        yield Variant(code, e, Msg("d.on_body", what=what, body=names[role]),
+                                      derived=code == "A_transposed")
     # the sign of one local coordinate, of a whole A s', of a coordinate term
     for attr, role in spec.points + spec.vectors:
         v = getattr(c, attr, None)
@@ -433,7 +443,8 @@ def _defaults():
                                       lengths=("length",), frame="planar",
                                       derived_book=(_book_table_13_3, _book_gamma_rr)))
     register(P.RevoluteTranslational, Spec(points=(("s_Pi", 0), ("s_Pj", 1), ("s_Qj", 1)), swap_bodies=True,
-                                           frame="planar", derived_book=(_book_table_13_4,)))
+                                           frame="planar", extra=(_book_ex4_phi8,),
+                                           derived_book=(_book_table_13_4,)))
     register(P.Gear, Spec(radii=("radius_i", "radius_j"), angles=("phi0",), context=("gear",),
                           book=(_book_gear_eq37,), extra=(_gear_fixed_carrier,)))
     register(P.RackPinion, Spec(radii=("radius",), swap_bodies=True, angles=("initial[phi_i]",), context=("rack",),
@@ -479,6 +490,19 @@ def _book_translational_dot(target, c, Q):
     d = c._global_point(Q[1], c.s_Pj) - c._global_point(Q[0], c.s_Pi)
     rows = list(c.phi(Q, target.mech.t))
     yield ("book_misprint", [s[0] * d[0] + s[1] * d[1], rows[1]], None, "13.5-eq24")
+
+
+def _book_ex4_phi8(target, c, Q):
+    """§13.5, example 4 prints its Φ_8 simplified with the ground's φ_1 = 0, and wrongly (erratum 13.5-ex4-phi8):
+    the printed row, for that example's joint."""
+    if target.mech.name != "ch13_example4" or c.name != "3":
+        return
+    from ..book.printed import EX4
+
+    symbols = target.symbols()
+    printed = EX4["Phi8"]
+    yield ("book_misprint", [printed.xreplace({x: symbols[x.name] for x in printed.free_symbols})], None,
+           "13.5-ex4-phi8")
 
 
 def _book_gear_eq37(c):
@@ -618,6 +642,22 @@ def book_rows(c, Q, t):
         return [e for v in c.part_views() for e in book_rows(v, Q, t)]
     alt = spec_of(c).alternative
     return list(alt(c, Q)) if alt is not None else list(c.phi(Q, t))
+
+
+def book_form(target, c, which="generic", jacobian=None):
+    """The book's own rows of ``c`` (its cross-product rows s̃_i s_j where kinbook writes h-rows) at the target's
+    samples ``which`` (N, r) — or their Jacobian (N, r, len(jacobian)) in the columns ``jacobian`` —, or None
+    when the book writes ``c`` as kinbook does."""
+    if not _has_alternative(c):
+        return None
+    key = ("book-form", tuple(target.block(c)), which, None if jacobian is None else tuple(jacobian))
+    if key not in target.store:
+        mech = target.mech
+        rows = book_rows(c, [mech.body_symbols(b.name) for b in c.bodies], mech.t)
+        s = target.samples(which)
+        out = target.tape(rows)(s.Q, s.QD, s.T, grad=jacobian is not None)
+        target.store[key] = out["value"] if jacobian is None else out["grad"][:, :, list(jacobian)]
+    return target.store[key]
 
 
 def _has_alternative(c):

@@ -135,6 +135,17 @@ class Answer:
             return _finite_differences(lambda Q, T: self._batch(Q, T, target), s)
         raise Refused("malformed", "needs_expression")
 
+    def jet(self, target, Q, T):
+        """This answer read as rows Φ(q, t) at the instants (Q, T): values (B, k), Φ_q (B, k, n) and Φ_t (B, k)."""
+        from .sample import Samples
+
+        s = Samples(Q, np.zeros_like(Q), T)
+        if self.kind == "symbolic":
+            r = self.tape(target)(s.Q, s.QD, s.T, grad=True, order=1)
+            return r["value"], r["grad"], r["d1"]
+        d = self.derived(target, s)
+        return d["Phi"], d["Phi_q"], -d["nu"]
+
     def gradient(self, target, s):
         """Φ_q (N, k, n) of this answer read as Φ(q, t): the tape's gradients, or finite differences."""
         if self.kind == "symbolic":

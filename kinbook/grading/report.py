@@ -111,7 +111,7 @@ def _unique(codes):
 # ================================================================================================ Φ
 def phi_result(target, matching, order):
     """The CheckResult of a Φ check."""
-    rows, messages, codes, contexts = [], [], [], {}
+    rows, messages, codes, contexts, infos = [], [], [], {}, []
     labels = {}
     for r in matching.rows:
         label = target.label(r.ref) if r.ref is not None else Msg("your_row", k=r.k + 1)
@@ -119,7 +119,12 @@ def phi_result(target, matching, order):
             if r.how == "equivalent":
                 refs = ", ".join(target.label(j) for j in r.covers)
                 label = refs if len(r.covers) <= 2 else f"{target.label(r.covers[0])}…"
-                msg = Msg("row_equivalent", refs=refs)
+                own = target.own_target(target.constraints[r.owner])
+                N = own.samples("assembled").N
+                owner = _constraints_text(target, [r.owner])
+                msg = Msg("row_equivalent_book", refs=refs, owner=owner, N=N) if r.book else \
+                    Msg("row_equivalent", refs=refs, owner=owner, N=N, S=matching.searched.get(r.owner, 0))
+                infos.append(Msg("row_line_short", label=Msg("your_row", k=r.k + 1), text=msg))
             elif r.factor not in (None, 1.0):
                 msg = Msg("row_ok_scaled", c=fmt(r.factor))
             else:
@@ -138,9 +143,18 @@ def phi_result(target, matching, order):
             messages.append(Msg("row_extra_at", k=r.k + 1))
             codes.append("extra_row")
         else:  # wrong
-            code = r.code or "wrong_value"
-            msg = mistake_message(r) if r.code else Msg("row_wrong", ref=target.label(r.ref),
-                                                        owner=owner_text(target, r.ref))
+            code = r.code or ("masked_row" if r.masked else "wrong_value")
+            if r.code == "masked_row":
+                msg = Msg("row_mistake", title=_title("masked_row"))
+            elif r.code:
+                msg = mistake_message(r)
+            elif r.masked:
+                msg = Msg("row_mistake", title=_title("masked_row"))
+            else:
+                msg = Msg("row_wrong", ref=target.label(r.ref), owner=owner_text(target, r.ref))
+            if r.masked:
+                msg = Msg("row_masked", text=msg, others=_constraints_text(target, r.masked),
+                          owner=_constraints_text(target, [r.owner]))
             rows.append(RowResult(label, "wrong", msg, code, (), 0.0))
             messages.append(Msg("row_line", label=label, owner=owner_text(target, r.ref), text=msg))
             codes.append(code)
@@ -152,10 +166,27 @@ def phi_result(target, matching, order):
         rows.append(RowResult(target.label(j), "missing", msg, code, (), 0.0))
         messages.append(Msg("row_line_short", label=target.label(j), text=msg))
         codes.append(code)
-    return _finish("Phi", rows, messages, codes, contexts, target, matching)
+    return _finish("Phi", rows, messages, codes, contexts, target, matching, notes_after=infos)
+
+
+def _constraints_text(target, blocks):
+    """The constraints of ``blocks`` (indices into target.constraints; None: the others), named when shown."""
+    from ._i18n import render
+
+    cs = target.constraints
+
+    def text(lang):
+        return ", ".join(constraint_label(cs[b], lang) if b is not None else render(Msg("the_rest"), lang)
+                         for b in blocks)
+
+    return both(text)
 
 
 def _dependence(target, r):
+    if r.dependence == "redundant":
+        others = [k for k in r.depends_on if k != r.k]
+        return Msg("row_depends_redundant", k=r.k + 1, rows=", ".join(str(k + 1) for k in others),
+                   owner=_constraints_text(target, [r.owner]), n=len(target.block(target.constraints[r.owner])))
     if r.dependence == "repeat":
         times = "" if r.factor in (None, 1.0) else Msg("times", c=fmt(r.factor))
         return Msg("row_depends_repeat", k=r.k + 1, j=r.depends_on[0] + 1, times=times)
@@ -223,7 +254,7 @@ def derived_result(target, quantity, matching, data, rtol, transposed=False, not
             elif r.how == "both":
                 msg = Msg("consistent_correct")
             elif r.how == "equivalent":
-                msg = Msg("row_equivalent_jacobian", refs=", ".join(target.label(j) for j in r.covers))
+                msg = Msg("row_equivalent_jacobian", refs=", ".join(target.label(j) for j in r.covers), N=data.S.shape[0])
             elif quantity == "Phi_q" and r.factor not in (None, 1.0):
                 msg = Msg("row_ok_jacobian_scaled", c=fmt(r.factor), ref=target.label(r.ref))
             else:

@@ -22,11 +22,13 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["Samples", "generic", "assembled", "at", "N_GENERIC", "N_ASSEMBLED", "SEED"]
+__all__ = ["Samples", "generic", "assembled", "at", "zeros", "N_GENERIC", "N_ASSEMBLED", "N_SEARCH", "SEED"]
 
 N_GENERIC = 16
 N_ASSEMBLED = 16
 SEED = 20241121
+N_SEARCH = 48
+"""Seeded starts of the search for the zeros of an answer's rows (:func:`zeros`)."""
 _NEWTON_STEPS = 40
 _TOL = 1e-12
 
@@ -76,9 +78,9 @@ def assembled(target):
     base, _, ok = _project(target, q0[None], np.zeros(1))
     base = base if ok.all() else q0[None]
     found_Q, found_T = [], []
-    for size in (0.25, 0.6):
+    for size in ((None,) if getattr(target, "partial", False) else ()) + (0.25, 0.6):
         idx = rng.integers(0, len(base), 2 * N_ASSEMBLED)
-        starts = _perturbed(target, rng, base[idx], size)
+        starts = _spread(target, rng, 2 * N_ASSEMBLED) if size is None else _perturbed(target, rng, base[idx], size)
         Q, T, ok = _project(target, starts, rng.uniform(0.0, 0.3, len(starts)))
         Q, T = _regular(target, Q[ok], T[ok])
         found_Q.append(Q)
@@ -96,6 +98,57 @@ def assembled(target):
     return Samples(Q, QD, T, on_manifold=True)
 
 
+def zeros(target, F, count=N_SEARCH):
+    """Configurations where the rows ``F`` vanish (with the bodies' normalization rows, in space): seeded
+    minimum-norm Newton searches from starts spread over the whole configuration space and around the target's
+    assembled samples — in (q, t) when the target's rows depend on time.
+
+    Parameters
+    ----------
+    F : callable
+        ``F(Q, T) -> (values (B, r), gradients (B, r, n), time derivatives (B, r))``.
+
+    Returns
+    -------
+    Q (K, n), T (K,) : the starts that converged.
+    """
+    rng = np.random.default_rng(SEED + 2)
+    starts = [_spread(target, rng, count // 2)]
+    base = target.samples("assembled").Q
+    starts.append(_perturbed(target, rng, base[rng.integers(0, len(base), count - count // 2)], 0.8))
+    Q = np.vstack(starts)
+    T = rng.uniform(0.0, 1.0, len(Q))
+    norm = np.array([r for c in target.mech.constraints if c.kind == "normalization"
+                     for r in range(c.rows.start, c.rows.stop)], dtype=int)
+    with_t = target.time_dependent
+    ok = np.zeros(len(Q), bool)
+    active = np.arange(len(Q))
+    with np.errstate(all="ignore"):
+        for _ in range(_NEWTON_STEPS):
+            v, g, d = F(Q[active], T[active])
+            J = np.concatenate([g, d[:, :, None]], axis=2)
+            if norm.size:
+                ev = target.mech.evaluate(Q[active], T[active])
+                v = np.concatenate([v, ev["Phi"][:, norm]], axis=1)
+                Jn = np.concatenate([ev["Phi_q"][:, norm, :], np.zeros((len(active), len(norm), 1))], axis=2)
+                J = np.concatenate([J, Jn], axis=1)
+            if not with_t:
+                J = J[:, :, :-1]
+            res = np.abs(v).max(axis=1)
+            scale = 1.0 + np.abs(Q[active]).max(axis=1) + np.abs(J).max(axis=(1, 2))
+            done = np.isfinite(res) & (res < 1e-11 * scale)
+            ok[active[done]] = True
+            keep = ~done & np.isfinite(res) & (res < 1e6) & np.all(np.isfinite(J), axis=(1, 2))
+            active, v, J = active[keep], v[keep], J[keep]
+            if not len(active):
+                break
+            step = _min_norm_step(J, v)
+            Q[active] -= step[:, : target.n]
+            if with_t:
+                T[active] -= step[:, -1]
+    return Q[ok], T[ok]
+
+
 def at(target, configuration):
     """One instant given by the caller: ``{"q": …, "qd": …, "t": …}`` (missing q̇ solved when possible)."""
     mech = target.mech
@@ -110,6 +163,17 @@ def at(target, configuration):
 
 
 # ---------------------------------------------------------------------------------------------- helpers
+def _spread(target, rng, count):
+    """Starts anywhere in the configuration space (a joint graded alone: its bodies may be anywhere)."""
+    n = target.n
+    Q = rng.uniform(-3.0, 3.0, (count, n))
+    if target.kind == "planar":
+        Q[:, 2::3] = rng.uniform(-np.pi, np.pi, (count, n // 3))
+    else:
+        Q.reshape(count, n // 7, 7)[:, :, 3:] = _unit_p(rng, count, n // 7)
+    return Q
+
+
 def _perturbed(target, rng, base, size):
     count, n = base.shape
     Q = base + rng.normal(0.0, size, (count, n))

@@ -21,7 +21,7 @@ import numpy as np
 from . import sample
 from ._i18n import constraint_label, row_name
 
-__all__ = ["Target", "target_for", "NotATarget"]
+__all__ = ["Target", "target_for", "group_target", "NotATarget"]
 
 
 class NotATarget(TypeError):
@@ -59,6 +59,13 @@ def target_for(obj):
     return mech.cached(key, lambda: Target(mech, constraint))
 
 
+def group_target(mech, constraints):
+    """The cached :class:`Target` of several constraints of ``mech`` together (where only they and the bodies'
+    normalization rows hold): to find which other constraint makes a row true."""
+    key = ("grading", "target", tuple(c.name for c in constraints))
+    return mech.cached(key, lambda: Target(mech, None, list(constraints)))
+
+
 class Target:
     """A mechanism or one of its constraints, prepared for grading.
 
@@ -79,12 +86,18 @@ class Target:
         normalization pᵀp − 1 (single joints included: Euler parameters are on the unit sphere).
     """
 
-    def __init__(self, mech, constraint=None):
+    def __init__(self, mech, constraint=None, group=None):
         self._mech = weakref.ref(mech)  # nothing here holds the mechanism (or its constraints) strongly
         self.kind = mech.kind
-        self._index = [mech.constraints.index(constraint)] if constraint is not None else \
-            list(range(len(mech.constraints)))
+        if group is not None:
+            self._index = sorted(mech.constraints.index(c) for c in group)
+        else:
+            self._index = [mech.constraints.index(constraint)] if constraint is not None else \
+                list(range(len(mech.constraints)))
         self._single = constraint is not None
+        self.partial = constraint is not None or group is not None
+        """Some of the mechanism's constraints only: the other bodies' motion is free, so the samples spread
+        over the whole configuration space of these constraints, not around the mechanism's assembly."""
         constraints = [mech.constraints[i] for i in self._index]
         self.rows = np.array([r for c in constraints for r in range(c.rows.start, c.rows.stop)], dtype=int)
         self.n = mech.n
@@ -143,6 +156,13 @@ class Target:
     def owner_label(self, k):
         """"revolute joint 3 (rows Φ_8–Φ_9)", in the current language."""
         return constraint_label(self.owner(k))
+
+    def own_target(self, c):
+        """The Target of constraint ``c`` graded alone (its own samples: only its rows and the bodies'
+        normalization rows hold there) — this target itself when it is that constraint."""
+        if self._single and self.constraint is c:
+            return self
+        return target_for((self.mech, c))
 
     def block(self, c):
         """Positions (0-based, among the graded rows) of constraint ``c``'s rows."""

@@ -8,7 +8,7 @@ import sympy as sp
 from kinbook import grading
 from kinbook.core.symbolic import derive
 
-from . import corpus, corpus2
+from . import corpus, corpus2, corpus3
 
 CHECKS = {
     "phi": grading.check_phi,
@@ -17,7 +17,8 @@ CHECKS = {
     "gamma": grading.check_gamma,
 }
 
-CASES = [(case, corpus.target) for case in corpus.CASES] + [(case, corpus2.target) for case in corpus2.cases()]
+CASES = ([(case, corpus.target) for case in corpus.CASES] + [(case, corpus2.target) for case in corpus2.cases()]
+         + [(case, corpus3.target) for case in corpus3.cases()])
 
 
 def _run(case, target):

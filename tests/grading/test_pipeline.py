@@ -196,10 +196,23 @@ def _p1_pair():
     return m
 
 
-@pytest.mark.parametrize("which", [(0, 1), (0, 1, 2), (1, 2), (0, 2)])
+def test_all_three_cross_product_rows_of_a_parallel_constraint_are_one_row_too_many():
+    """s̃_i s_j has three rows, of which the book keeps two ("only two are independent", §14.4): the third is
+    named redundant (issue 22: p1 has two equations)."""
+    m = _p1_pair()
+    c = m.constraint("p")
+    qi, qj = m.body_symbols("i"), m.body_symbols("j")
+    cross = (A_from_p(list(qi[3:])) * sp.Matrix([0, 0, 1])).cross(A_from_p(list(qj[3:])) * sp.Matrix([0, 0, 2]))
+    r = check_phi(cross, c)
+    assert not r.passed and r.mistakes == ["dependent_row"] and r.score == pytest.approx(2 / 3), r
+    assert "row 3 is redundant: parallel-1 constraint p (rows Φ_3–Φ_4) has 2 independent equations, and your " \
+           "rows 1, 2 already give them" in r.messages[1], r
+
+
+@pytest.mark.parametrize("which", [(0, 1), (1, 2), (0, 2)])
 def test_the_books_cross_product_rows_of_a_parallel_constraint_pass(which):
-    """The book writes p1 as (two or all three) rows of s̃_i s_j = 0; kinbook as two h-rows. Same zero set
-    and rank where assembled: accepted, in Φ and in Φ_q (the Jacobian of that formulation)."""
+    """The book writes p1 as two rows of s̃_i s_j = 0; kinbook as two h-rows. Same zero set and rank where
+    assembled: accepted, in Φ and in Φ_q (the Jacobian of that formulation)."""
     m = _p1_pair()
     c = m.constraint("p")
     qi, qj = m.body_symbols("i"), m.body_symbols("j")

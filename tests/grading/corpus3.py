@@ -1,0 +1,171 @@
+"""Student answers that a whole-mechanism comparison cannot judge (issue 22): rows true only because *another*
+constraint holds (masking), rows multiplied by a factor that vanishes somewhere, redundant rows.
+
+Every answer is typed from the bodies' points the way a student types it — eq. 7 for a point, eq. 17 for a
+revolute joint, eq. 26 for a translational joint (the relative-angle row φ_i − φ_j), eq. 32 for a r-r joint —
+never copied from kinbook. The verdicts follow from the geometry, by hand:
+
+* masking: the ground's rows make x1 = y1 = φ1 = 0 wherever the mechanism is assembled, so φ1 + φ6 vanishes
+  there exactly where φ1 − φ6 does; −x2 + cos φ2 where x1 − x2 + cos φ2; y1 − 3 sin φ1 (Aᵀ for the ground's A)
+  where y1 + 3 sin φ1. As rows of their joint alone (body 1 free) they are wrong: each one is the named slip;
+* vanishing factors: cos φ2 is zero at φ2 = ±π/2, e0 at a half-turn, x1 at x1 = 0 — there the row vanishes
+  while the joint is broken. 2 + cos φ3 ≥ 1, 2 + e0 ≥ 1 (|e0| ≤ 1), D + 1 ≥ 1 never vanish: right; √D − l is
+  (D − l²)/(√D + l), the factor 1/(√D + l) > 0: right;
+* redundancy: s̃_i s_j has three rows of which two are independent (§14.4); the parallel constraint has two
+  equations, so one row of three is one too many.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from pathlib import Path
+
+import sympy as sp
+
+from . import corpus, corpus2
+from .corpus import Case
+
+EXERCISES = Path(__file__).resolve().parents[2] / "exercises"
+
+
+@lru_cache(maxsize=None)
+def _exercise(stem):
+    from kinbook.classroom.variant import references
+
+    path = next(EXERCISES.glob(f"{stem}*.ipynb"))
+    return next(p.target for p in references(path) if p.name == "whole_phi")
+
+
+def target(name, constraint=None):
+    if name.startswith("ex"):
+        m = _exercise(name)
+        return m if constraint is None else m.constraint(constraint)
+    if name.startswith(("p-", "s-")):
+        return corpus2.target(name, constraint)
+    return corpus.target(name, constraint)
+
+
+# ------------------------------------------------------------------------------------------ a student's formulas
+def pt(b, s):
+    """Global x, y of the local point s = (ξ, η) of body b (eq. 7)."""
+    x, y, f = f"x{b}", f"y{b}", f"phi{b}"
+    return (f"({x} + ({s[0]})*cos({f}) - ({s[1]})*sin({f}))", f"({y} + ({s[0]})*sin({f}) + ({s[1]})*cos({f}))")
+
+
+def rev(i, si, j, sj):
+    (xi, yi), (xj, yj) = pt(i, si), pt(j, sj)
+    return [f"{xi} - {xj}", f"{yi} - {yj}"]
+
+
+def trans(i, p, q, j, pj, phi0="0"):
+    """Eq. 26: (x_i^P − x_i^Q)(y_j^P − y_i^P) − (y_i^P − y_i^Q)(x_j^P − x_i^P) and φ_i − φ_j − φ⁰."""
+    (xp, yp), (xq, yq), (xj, yj) = pt(i, p), pt(i, q), pt(j, pj)
+    return [f"({xp} - {xq})*({yj} - {yp}) - ({yp} - {yq})*({xj} - {xp})", f"phi{i} - phi{j} - ({phi0})"]
+
+
+def rr(i, si, j, sj, l2):
+    (xi, yi), (xj, yj) = pt(i, si), pt(j, sj)
+    return [f"({xi} - {xj})**2 + ({yi} - {yj})**2 - ({l2})"]
+
+
+GROUND = ["x1", "y1", "phi1"]
+
+# ex04's six-bar: ground 1 (OA, OB = (3, 0), P = (0, 4), Q = (1, 4)), crank 2, coupler 3, rocker 4, rod 5, slider 6
+SIX_BAR = (GROUND + rev(1, (0, 0), 2, (-1, 0)) + rev(1, (3, 0), 4, (1.5, 0)) + rev(2, (1, 0), 3, (-3, 0))
+           + rev(3, (3, 0), 4, (-1.5, 0)) + rev(3, (0, 1), 5, (-1.25, 0)) + rev(5, (1.25, 0), 6, (0, 0))
+           + trans(1, (0, 4), (1, 4), 6, (0, 0)) + ["phi2 - 3*pi/4 - 2*t"])
+
+# ex03's quick return: ground 1 (O, C = (0, −3)), crank 2, rocker 3 (C, P = (0, 0), Q = (1, 0)), block 4
+QUICK_RETURN = (GROUND + rev(1, (0, 0), 2, (0, 0)) + rev(1, (0, -3), 3, (0, 0)) + rev(2, (1, 0), 4, (0, 0))
+                + trans(3, (0, 0), (1, 0), 4, (0, 0)) + ["phi2 - pi/3 - 2*t"])
+
+# ex06's steering: ground 1 (O, P = (0, −0.5), Q = (1, −0.5), KL = (−4, −2), KR = (4, −2)), pinion 2, rack 3
+# (P, L = (−3, 0), R = (3, 0)), knuckles 4, 5 (K, T = (0, 1)); the tie rods are √5/2 long
+STEERING = (GROUND + rev(1, (0, 0), 2, (0, 0)) + trans(1, (0, -0.5), (1, -0.5), 3, (0, 0)) + ["0.3*phi2 - x3"]
+            + rev(1, (-4, -2), 4, (0, 0)) + rev(1, (4, -2), 5, (0, 0)) + rr(3, (-3, 0), 4, (0, 1), "5/4")
+            + rr(3, (3, 0), 5, (0, 1), "5/4") + ["phi2 - 0.5*sin(2*t)"])
+
+
+def _with(rows, k, value):
+    out = list(rows)
+    out[k] = value
+    return out
+
+
+def _spatial_rows(kind):
+    return corpus2._spatial_phi(kind)
+
+
+def cases():
+    C = []
+
+    def add(id, check, mech, c, answer, passed, score, mistakes=(), **opts):
+        C.append(Case(id, check, mech, c, answer, passed, score, list(mistakes), opts))
+
+    # ------------------------------------------------------------------ masking: the whole Φ of ex01, ex03, ex04, ex06
+    add("mask-six-bar-right", "phi", "ex04", None, SIX_BAR, True, 1.0)
+    add("mask-six-bar-relative-angle-sign", "phi", "ex04", None, _with(SIX_BAR, 16, "phi1 + phi6"), False, 17 / 18,
+        ["sign_flip"])
+    add("mask-six-bar-x1-dropped", "phi", "ex04", None, _with(SIX_BAR, 3, "-x2 + cos(phi2)"), False,
+        17 / 18, ["missing_term"])
+    add("mask-six-bar-ground-A-transposed", "phi", "ex04", None,
+        _with(SIX_BAR, 6, "(y1 - 3*sin(phi1)) - (y4 + 1.5*sin(phi4))"), False, 17 / 18, ["A_transposed"])
+    add("mask-six-bar-slide-simplified", "phi", "ex04", None, _with(SIX_BAR, 15, "y6 - 4"), False, 17 / 18,
+        ["masked_row"])
+    add("mask-quick-return-right", "phi", "ex03", None, QUICK_RETURN, True, 1.0)
+    add("mask-quick-return-ground-dropped", "phi", "ex03", None, _with(QUICK_RETURN, 5, "-x3"),
+        False, 11 / 12, ["missing_term"])
+    add("mask-quick-return-ground-A-transposed", "phi", "ex03", None,
+        _with(QUICK_RETURN, 5, "x1 - 3*sin(phi1) - x3"), False, 11 / 12, ["A_transposed"])
+    add("mask-steering-right", "phi", "ex06", None, STEERING, True, 1.0)
+    add("mask-steering-relative-angle-sign", "phi", "ex06", None, _with(STEERING, 6, "phi1 + phi3"), False, 14 / 15,
+        ["sign_flip"])
+    add("mask-steering-knuckle-simplified", "phi", "ex06", None, _with(STEERING, 10, "4 - x5"), False, 14 / 15,
+        ["masked_row"])
+    ex1 = list(corpus.EX1_PHI_SIMPLE)
+    add("mask-ex1-ground-A-transposed", "phi", "ch13_example1", None,
+        _with(ex1, 6, "y1 - 3*sin(phi1) - y4 - 1.5*sin(phi4)"), False, 11 / 12, ["A_transposed"])
+    add("mask-ex1-whole-simplified-with-the-ground", "phi", "ch13_example1", None,
+        _with(ex1, 5, "3 - x4 - 1.5*cos(phi4)"), False, 11 / 12,
+        ["masked_row"])
+    ex4 = list(corpus.EX4_PHI)
+    add("mask-ex4-printed-phi8", "phi", "ch13_example4", None,
+        _with(ex4, 7, "(x3 + 3*cos(phi3) - x1*cos(phi1))*sin(phi1) + (y3 + 3*sin(phi3) - y1 - sin(phi1))*cos(phi1)"),
+        False, 8 / 9, ["book_misprint"])
+    # the same slips in the joint graded alone: plainly wrong, no masking needed
+    add("mask-alone-relative-angle-sign", "phi", "ex04", "7", trans(1, (0, 4), (1, 4), 6, (0, 0))[:1]
+        + ["phi1 + phi6"], False, 0.5, ["sign_flip"])
+
+    # ------------------------------------------------------------------ factors that vanish (and that do not)
+    r1 = ["x1 - x2 + cos(phi2)", "y1 - y2 + sin(phi2)"]  # joint 1 of example 1, s'_2 = (−1, 0)
+    add("factor-cos-phi2-joint", "phi", "ch13_example1", "1", [f"cos(phi2)*({r1[0]})", r1[1]], False, 0.5,
+        ["vanishing_factor"])
+    add("factor-x1-joint", "phi", "ch13_example1", "1", [r1[0], f"x1*({r1[1]})"], False, 0.5, ["vanishing_factor"])
+    add("factor-cos-phi2-whole", "phi", "ch13_example1", None, _with(ex1, 3, f"cos(phi2)*({ex1[3]})"), False,
+        11 / 12, ["vanishing_factor"])
+    add("factor-never-zero-joint", "phi", "ch13_example1", "1", [f"(2 + cos(phi3))*({r1[0]})", r1[1]], True, 1.0)
+    add("factor-never-zero-whole", "phi", "ch13_example1", None, _with(ex1, 4, f"(2 + cos(phi3))*({ex1[4]})"),
+        True, 1.0)
+    d3 = "(x2 + cos(phi2) - x3 + 1.5*cos(phi3))**2 + (y2 + sin(phi2) - y3 + 1.5*sin(phi3))**2"  # ex. 3's r-r, l = 6
+    add("factor-rr-sqrt", "phi", "ch13_example3", "3", [f"sqrt({d3}) - 6"], True, 1.0)
+    add("factor-rr-positive", "phi", "ch13_example3", "3", [f"({d3} - 36)*({d3} + 1)"], True, 1.0)
+    add("factor-rr-times-D", "phi", "ch13_example3", "3", [f"({d3} - 36)*({d3})"], False, 0.0, ["vanishing_factor"])
+    sph = _spatial_rows("sph")
+    add("factor-e0-spherical", "phi", "s-sph", "c", [sph[0] * sp.Symbol("e01"), sph[1], sph[2]], False, 2 / 3,
+        ["vanishing_factor"])
+    add("factor-2-plus-e0-spherical", "phi", "s-sph", "c", [sph[0] * (2 + sp.Symbol("e01")), sph[1], sph[2]], True,
+        1.0)
+    J1 = [["1", "0", "0", "-1", "0", "-sin(phi2)"], ["0", "1", "0", "0", "-1", "cos(phi2)"]]
+    add("factor-jacobian-cos-phi2", "jacobian", "ch13_example1", "1", [[f"cos(phi2)*({e})" for e in J1[0]], J1[1]],
+        False, 0.5, ["vanishing_factor"])
+    add("factor-jacobian-never-zero", "jacobian", "ch13_example1", "1",
+        [[f"(2 + sin(phi2))*({e})" for e in J1[0]], J1[1]], True, 1.0)
+
+    # ------------------------------------------------------------------ redundant rows
+    Ai, Aj = corpus2.A_of(corpus2._syms(1)[3:]), corpus2.A_of(corpus2._syms(2)[3:])
+    si, sj = Ai * sp.Matrix(corpus2.AI), Aj * sp.Matrix(corpus2.AI)
+    add("redundant-p1-three-cross-rows", "phi", "s-p1", "c", list(si.cross(sj)), False, 2 / 3, ["dependent_row"])
+    add("redundant-revolute-six-rows", "phi", "s-rev", "c", _spatial_rows("sph") + list(si.cross(sj)), False, 5 / 6,
+        ["dependent_row"])
+    add("redundant-p1-two-cross-rows-right", "phi", "s-p1", "c", list(si.cross(sj))[1:], True, 1.0)
+    return C
