@@ -366,6 +366,8 @@ def read_entry(entry, max_bytes):
             raise Refused("refused", f"{_kind(st.st_mode)}: not read")
         if entry.ident is not None and (st.st_dev, st.st_ino) != entry.ident[:2]:
             raise Refused("refused", "the file was replaced after it was listed: not read")
+        if st.st_nlink > 1:  # another name of a file elsewhere (the instructor's source, a classmate's notebook)
+            raise Refused("refused", f"a hard link (this file has {st.st_nlink} names): not read — submit a copy")
         if st.st_size > max_bytes:
             raise Refused("too-large", f"the file has {st.st_size:,} bytes (at most {max_bytes:,}); not read")
         chunks, total = [], 0

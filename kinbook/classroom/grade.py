@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import re
 import signal
 import sys
 import time
@@ -38,9 +39,9 @@ from .gradebook import Gradebook
 from .intake import annotate, check_pin, intake
 from .notebook import (
     MAX_NOTEBOOK_BYTES,
+    checksum,
     find_parameters,
     load_source,
-    locked_sequence,
     missing_locked,
     parse_submission,
     student_notebook,
@@ -48,6 +49,7 @@ from .notebook import (
 from .parts import CHECKS
 from .reference_use import reference_use
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, worst
+from .sanitize import clean, clean_result
 from .serialize import DecodeError, decode
 from .variant import references, student_parameters
 
@@ -99,6 +101,53 @@ def _too_large(p, decoded):
     return None
 
 
+def check_memory(memory):
+    """Refuse a memory budget (MB) that is not positive or more than this machine has (before anything runs)."""
+    from .sandbox.cgroup import machine_memory_mb
+
+    have = machine_memory_mb()
+    if not memory > 0:
+        raise GradingError(f"--memory must be a positive number of megabytes, got {memory!r}")
+    if have is not None and memory > have:
+        raise GradingError(f"--memory {memory:g} MB is more than this machine has ({have:,} MB): each notebook "
+                           f"may use at most {have:,} MB (and --jobs N runs N notebooks at once)")
+
+
+def _release_kind(data):
+    """"generic" or "student" as the notebook's kinbook metadata says, None when it cannot tell."""
+    try:
+        meta = parse_submission(data, metadata=True)[1]
+    except Refused:
+        return None
+    if "student" not in meta:
+        return None
+    return "generic" if meta["student"] is None else "student"
+
+
+def _contents(entries):
+    """The bytes of each entry that can still be read (the others are refused when their turn comes)."""
+    for entry in entries:
+        data, refused = _read_again(entry)
+        if refused is None:
+            yield data
+
+
+def _same_release_as_graded(kinds, per_student, exercise):
+    """Stop before any grading when most submissions are the other kind of release than the one graded: the
+    generic release graded per student (every student would be refused), or per-student variants graded with
+    ``--generic``. That is the instructor's mistake, not the students'."""
+    known = [k for k in kinds if k is not None]
+    wrong = sum(1 for k in known if k == ("generic" if per_student else "student"))
+    if not known or wrong * 2 <= len(known):
+        return
+    if per_student:
+        raise GradingError(f"{wrong} of {len(known)} submissions of {exercise} are its generic release (made by "
+                           "`kinbook release`), not per-student variants: grade them with --generic. Nothing was "
+                           "graded.")
+    raise GradingError(f"{wrong} of {len(known)} submissions of {exercise} are per-student variants (made by "
+                       "`kinbook variant`): grade them without --generic. Nothing was graded.")
+
+
 def _refused(source, entry, status, message, isolation=""):
     parts = references(source)
     return SubmissionResult(entry.student, source.exercise, entry.path, "", status, message,
@@ -148,6 +197,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     SubmissionResult
     """
     _needs_a_real_machine()
+    check_memory(memory)
     source = load_source(source)
     entries = collect([submission], source.exercise, max_bytes=MAX_NOTEBOOK_BYTES)
     entry = entries[0] if entries else Entry(str(submission), ".", (os.path.basename(str(submission)),), None,
@@ -166,10 +216,10 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
         from .sandbox import Sandbox
 
         with Sandbox(isolation) as sb:
-            return _grade_bytes(source, entry, data, timeout=timeout, memory=memory, generic=generic,
-                                reveal_hidden=reveal_hidden, sandbox=sb)
-    return _grade_bytes(source, entry, data, timeout=timeout, memory=memory, generic=generic,
-                        reveal_hidden=reveal_hidden, sandbox=sandbox)
+            return clean_result(_grade_bytes(source, entry, data, timeout=timeout, memory=memory, generic=generic,
+                                             reveal_hidden=reveal_hidden, sandbox=sb))
+    return clean_result(_grade_bytes(source, entry, data, timeout=timeout, memory=memory, generic=generic,
+                                     reveal_hidden=reveal_hidden, sandbox=sandbox))
 
 
 def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden, sandbox):
@@ -183,27 +233,44 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
     parts = references(source, values)
     isolation = "bubblewrap" if sandbox.isolation else "none"
 
-    def done(status, message, grades, ran=False):
+    def done(status, message, grades, ran=None):
         return SubmissionResult(student, source.exercise, entry.path, digest, status, message, grades,
-                                round(time.monotonic() - t0, 3), isolation if ran else "")
+                                round(time.monotonic() - t0, 3), f"{isolation}; {ran}" if ran else "")
 
+    if digest == source.sha256:
+        msg = "the file is the exercise's source notebook itself, not a submission: not run"
+        return done("refused", msg, _all_parts(parts, "refused", msg))
     try:
-        cells = parse_submission(data)
+        cells, meta = parse_submission(data, metadata=True)
     except Refused as exc:
         return done(exc.status, exc.message, _all_parts(parts, exc.status, exc.message))
-    expected = locked_sequence(student_notebook(source, values, student if values is not None else None))
-    missing = missing_locked(expected, cells)
+    other, named = _released_for(meta, cells, student, values is not None)
+    if other:
+        res = done("wrong-release", other, _all_parts(parts, "wrong-release", other))
+        if named is not None:  # a copying signal, for the instructor's report
+            res.signals = [("released-for", clean(named, 80))]
+        return res
+    released = student_notebook(source, values, student if values is not None else None)
+    locked = [c for c in released.cells if c.get("metadata", {}).get("kinbook", {}).get("locked")]
+    code_locked = [c for c in locked if c.cell_type == "code"]
+    missing = set(missing_locked([(c["id"], checksum(c)) for c in code_locked], cells))
     if missing:
-        where = ", ".join(missing[:5]) + (" …" if len(missing) > 5 else "")
-        msg = (f"{len(missing)} locked cell(s) were changed, moved or deleted ({where}); the notebook was not run. "
-               "Start again from the released notebook and only edit the answer cells.")
+        where = [_released_cell(released, c) for c in code_locked if c["id"] in missing]
+        shown = "; ".join(where[:3]) + (f"; and {len(where) - 3} more" if len(where) > 3 else "")
+        msg = (f"{len(where)} locked code cell(s) of the released notebook were changed, moved or deleted "
+               f"({shown}); the notebook was not run. Start again from the released notebook and only edit the "
+               "answer cells.")
         return done("tampered", msg, _all_parts(parts, "tampered", msg))
+    # locked text (markdown) cells a student edited are restored from the release, as nbgrader does: they are
+    # never run, so only the code cells are checked, and the text they read is the release's
+    restored = missing_locked([(c["id"], checksum(c)) for c in locked if c.cell_type != "code"], cells)
 
     code = [c["source"] for c in cells if c["cell_type"] == "code"]
     names = sorted({p.answer for p in parts} | {p.options["phi"] for p in parts if isinstance(p.options.get("phi"), str)})
     ex = sandbox.run(code, names, timeout=timeout, memory_mb=memory, files={"submission.ipynb": data})
-    if ex.status != "ok":
-        return done(ex.status, ex.message, _all_parts(parts, ex.status, ex.message), ran=True)
+    limits = ex.limits or getattr(sandbox, "limits", "")
+    if ex.status != "ok" and ex.answers is None and ex.cell is None:
+        return done(ex.status, ex.message, _all_parts(parts, ex.status, ex.message), ran=limits)
 
     decoded, problems = {}, {}
     for name in names:
@@ -214,7 +281,11 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
             decoded[name] = decode(rec, name)
         except DecodeError as exc:
             problems[name] = str(exc)
-    errors = {e["cell"]: f"{e['ename']}: {e['evalue']}" for e in ex.errors}
+    stopped = None
+    if ex.status != "ok":
+        where = f" at {_cell_name(cells, ex.cell)}" if ex.cell else ""
+        stopped = (ex.status, f"{ex.message}{where}" + (f"; {_raised(cells, ex.errors, ex.cell)}"
+                                                          if _raised(cells, ex.errors, ex.cell) else ""))
     used = reference_use(code, [p.answer for p in parts])
     grades = []
     for p in parts:
@@ -222,10 +293,13 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
             grades.append(PartGrade(p.name, 0.0, p.points, "error", f"`{p.answer}`: {problems[p.answer]}"))
             continue
         if p.answer not in decoded:
-            hint = ""
-            if errors:
-                hint = " (exceptions in code cells " + ", ".join(str(c) for c in sorted(errors)[:5]) + ")"
-            grades.append(PartGrade(p.name, 0.0, p.points, "missing-answer", f"`{p.answer}` is not assigned{hint}"))
+            if stopped is not None:
+                grades.append(PartGrade(p.name, 0.0, p.points, stopped[0],
+                                        f"`{p.answer}` was not assigned before the notebook stopped: {stopped[1]}"))
+                continue
+            why = _raised(cells, ex.errors)
+            grades.append(PartGrade(p.name, 0.0, p.points, "missing-answer",
+                                    f"`{p.answer}` is not assigned" + (f": {why}" if why else "")))
             continue
         too_large = _too_large(p, decoded)
         if too_large:
@@ -238,17 +312,111 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
             continue
         score = round(max(0.0, min(1.0, float(result.score))) * p.points, 4)
         if p.hidden and not reveal_hidden:  # the verdict, not the expected value, of a hidden check
-            verdict = "correct" if result.passed else "not correct" + (
-                f" (mistakes: {', '.join(result.mistakes)})" if result.mistakes else "")
-            grades.append(PartGrade(p.name, score, p.points, "ok", f"hidden check: {verdict}", "", used[p.answer],
+            grades.append(PartGrade(p.name, score, p.points, "ok", _hidden_verdict(result), "", used[p.answer],
                                     mistakes=mistake_rows(result)))
             continue
         grades.append(PartGrade(p.name, score, p.points, "ok", " | ".join(result.messages)[:1000],
                                 result._repr_html_(), used[p.answer], mistakes=mistake_rows(result)))
     describe(grades, parts, decoded, cells)
-    status = worst(g.status for g in grades)
-    message = "" if status == "ok" else next(g.message for g in grades if g.status == status)
-    return done(status, message, grades, ran=True)
+    status = worst([g.status for g in grades] + ([stopped[0]] if stopped else []))
+    if stopped is not None:
+        message = stopped[1]
+    else:
+        message = "" if status == "ok" else next(g.message for g in grades if g.status == status)
+    if restored:
+        note = (f"{len(restored)} locked text cell(s) edited in the notebook were restored from the release "
+                "(only answer cells are yours to edit)")
+        message = f"{message}; {note}" if message else note
+    return done(status, message, grades, ran=limits)
+
+
+def _first_line(text, limit=60):
+    for line in str(text).splitlines():
+        if line.strip():
+            return clean(line.strip(), limit)
+    return ""
+
+
+def _cell_name(cells, code_index):
+    """The code cell ``code_index`` (from 1, among code cells) as the student sees it: its position among all
+    cells, its first line and the heading above it."""
+    seen = 0
+    for position, cell in enumerate(cells, 1):
+        if cell["cell_type"] != "code":
+            continue
+        seen += 1
+        if seen == code_index:
+            heading = ""
+            for above in reversed(cells[:position - 1]):
+                if above["cell_type"] == "markdown" and above["source"].strip():
+                    lines = [line for line in above["source"].splitlines() if line.strip()]
+                    titled = [line for line in lines if line.lstrip().startswith("#")]
+                    heading = _first_line((titled or lines)[0].lstrip("# "))
+                    break
+            first = _first_line(cell["source"])
+            return (f"cell {position}" + (f" (“{first}”" if first else " (empty") + ")"
+                    + (f", under “{heading}”" if heading else ""))
+    return f"code cell {code_index}"
+
+
+def _raised(cells, errors, only=None):
+    """The first cell that raised (or cell ``only``), named, with its exception: a sentence, or ""."""
+    errors = [e for e in errors if only is None or e["cell"] == only]
+    if not errors:
+        return ""
+    e = errors[0]
+    more = f" (and {len(errors) - 1} more cell(s) raised)" if len(errors) > 1 and only is None else ""
+    evalue = clean(e["evalue"], 300)
+    return f"{_cell_name(cells, e['cell'])} raised {clean(e['ename'], 100)}" + (f": {evalue}" if evalue else "") + more
+
+
+def _released_cell(released, cell):
+    """A locked cell of the released notebook, as the student saw it there: its position and first line."""
+    position = next(i for i, c in enumerate(released.cells, 1) if c is cell)
+    first = _first_line(cell.source)
+    return f"cell {position}" + (f" “{first}”" if first else "")
+
+
+def _hidden_verdict(result):
+    """A hidden check's feedback: the verdict and, for each mistake found, its name and hint from the
+    catalogue — never the checker's messages, which may quote the expected value."""
+    from ..grading.catalogue import MISTAKES, explain
+
+    if result.passed:
+        return "hidden check: correct"
+    out = "hidden check: not correct"
+    hints = []
+    for code in result.mistakes:
+        if code in MISTAKES:
+            title, hint = explain(code)
+            hints.append(f"{code}: {title}" + (f" — {hint}" if hint else ""))
+        else:
+            hints.append(code)
+    return out + (" — " + " | ".join(hints) if hints else "")
+
+
+_RELEASED_FOR = re.compile(r"#\s*parameters of student (['\"])(.{1,200}?)\1\s*$", re.MULTILINE)
+
+
+def _released_for(meta, cells, student, per_student):
+    """``(why, other student)`` when the notebook is not this student's release, else ``(None, None)``: the
+    notebook released for another student (its metadata or its parameters cell name them: a copying signal for
+    the instructor, not tampering), or the generic release where each student got their own (no other student)."""
+    from .files import id_key
+
+    named = meta.get("student") if isinstance(meta.get("student"), str) else None
+    if named is None:
+        for c in cells:
+            if c["cell_type"] == "code":
+                m = _RELEASED_FOR.search(c["source"])
+                if m:
+                    named = m.group(2)
+                    break
+    if named is not None and id_key(named) != id_key(student):
+        return f"this notebook was released for {clean(named, 80)}, not for {student}", named
+    if per_student and "student" in meta and meta["student"] is None:
+        return f"this is the exercise's generic release, not the notebook released for {student}", None
+    return None, None
 
 
 # ================================================================================================== batch
@@ -330,6 +498,7 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         The submissions graded in this run (not the skipped ones).
     """
     _needs_a_real_machine()
+    check_memory(memory)
     src = load_source(source)
     references(src)  # an exercise that cannot be graded stops here, before any submission is run
     if isolation:
@@ -353,15 +522,24 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
                   roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress)
 
     def record(res):
+        res = clean_result(res)  # everything a student controls, made inert before it is stored or printed
         book.record(res, run, replace=annotate(res, plan, src))
         results.append(res)
         touched.add(res.student)
         if progress:
             progress(res)
+            if res.status == "wrong-release":
+                progress(f"copying signal: {res.student} submitted a notebook that was not released for them "
+                         f"({res.message})")
         if src.changed_on_disk():
             raise GradingError(f"the source notebook {str(src.path)!r} changed during grading; the run was stopped "
                                "(every result recorded so far is kept). Grade again once it is final.")
 
+    # an instructor's mistake (the generic release graded per student, or variants with --generic) stops the run
+    # here, before any grading
+    if find_parameters(src.nb) is not None:
+        _same_release_as_graded([_release_kind(d) for d in _contents(plan.todo)],
+                                not generic, src.exercise)
     for entry in plan.refused:
         record(_refused(src, entry, entry.status, entry.message))
     todo = plan.todo

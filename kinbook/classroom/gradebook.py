@@ -48,6 +48,7 @@ from pathlib import Path
 from .files import atomic_write
 from .results import PartGrade, SubmissionResult
 from .scores import Final, Rule, final
+from .sanitize import csv_field
 
 __all__ = ["Gradebook", "COLUMNS", "TOTALS", "DATABASE", "FILES"]
 
@@ -118,9 +119,9 @@ _ADDED = {
 
 
 def _cell(text):
-    """A CSV field a spreadsheet will not read as a formula (messages can quote students' answers)."""
-    text = str(text).replace("\n", " ").replace("\r", " ")
-    return "'" + text if text[:1] in ("=", "+", "-", "@", "\t") else text
+    """A CSV field a spreadsheet will not read as a formula or split into rows (messages can quote students'
+    answers): :func:`kinbook.classroom.sanitize.csv_field`."""
+    return csv_field(text)
 
 
 def _utf8(value):
@@ -134,9 +135,10 @@ def _now():
 
 
 def write_csv(path, header, rows):
-    """A CSV export, written atomically; every text field guarded against spreadsheet formulas."""
+    """A CSV export, written atomically; every field quoted and every text field sanitized and guarded against
+    spreadsheet formulas (:func:`kinbook.classroom.sanitize.csv_field`)."""
     buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
+    w = csv.writer(buf, lineterminator="\n", quoting=csv.QUOTE_ALL)
     w.writerow(header)
     for row in rows:
         w.writerow([_cell(v) if isinstance(v, str) else v for v in row])

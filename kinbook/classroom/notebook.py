@@ -279,8 +279,9 @@ def missing_locked(expected, cells):
 
 
 # ================================================================================================ submissions
-def parse_submission(data):
-    """The cells of a submitted notebook (bytes): a list of ``{"cell_type", "source", "id"}`` dicts.
+def parse_submission(data, metadata=False):
+    """The cells of a submitted notebook (bytes): a list of ``{"cell_type", "source", "id"}`` dicts — and,
+    with ``metadata``, also its ``kinbook`` metadata (a dict, empty when absent): ``(cells, metadata)``.
 
     Refused before parsing when larger than :data:`MAX_NOTEBOOK_BYTES` or holding more than :data:`MAX_CELLS`
     cells (``too-large``); read as JSON, which must be an nbformat-4 notebook whose cells have a type and a
@@ -314,6 +315,10 @@ def parse_submission(data):
         if len(source) > MAX_CELL_CHARS:
             raise Refused("too-large", f"cell {i + 1} has more than {MAX_CELL_CHARS:,} characters; not read")
         cells.append({"cell_type": c["cell_type"], "source": source, "id": str(c.get("id", ""))[:64]})
+    if metadata:
+        meta = nb.get("metadata")
+        meta = meta.get("kinbook") if isinstance(meta, dict) else None
+        return cells, (meta if isinstance(meta, dict) else {})
     return cells
 
 

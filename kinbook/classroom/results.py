@@ -10,11 +10,14 @@ missing-answer     the variable was not assigned (cell left as released, or it r
 error              the answer is not gradable data (or too large to read), or the kernel died
 timeout            the notebook did not finish within ``timeout`` seconds
 memory             the notebook exceeded its memory budget
-tampered           a locked cell differs from the release (or is missing): not run, 0 points
+tampered           a locked code cell differs from the release (or is missing): not run, 0 points (edited
+                   locked text cells are restored from the release instead)
+wrong-release      the notebook was released for another student (a copying signal for the instructor), or
+                   is the generic release where each student got their own: not run, 0 points
 corrupt-notebook   the file is not a readable notebook: not run, 0 points
 too-large          the file is over the size or cell-count cap: refused before parsing, 0 points
-refused            a symbolic link, device, FIFO or socket in ``collected/`` (never followed or opened), or a
-                   file replaced while it was being read: 0 points
+refused            a symbolic link, hard link, device, FIFO or socket in ``collected/`` (never followed or
+                   opened), a file replaced while it was being read, or the exercise's source itself: 0 points
 bad-id             the student id taken from the path is too long: not graded (rename and grade again)
 duplicate-id       two files give the same student under different spellings (ids equal once case and Unicode
                    forms are folded): neither is graded
@@ -32,8 +35,8 @@ from dataclasses import asdict, dataclass, field
 
 __all__ = ["STATUSES", "PartGrade", "SubmissionResult", "Refused", "worst"]
 
-STATUSES = ("ok", "missing-answer", "error", "timeout", "memory", "tampered", "corrupt-notebook", "too-large",
-            "refused", "bad-id", "duplicate-id")
+STATUSES = ("ok", "missing-answer", "error", "timeout", "memory", "tampered", "wrong-release", "corrupt-notebook",
+            "too-large", "refused", "bad-id", "duplicate-id")
 _SEVERITY = {s: i for i, s in enumerate(STATUSES)}
 
 
@@ -88,8 +91,10 @@ class SubmissionResult:
     Attributes
     ----------
     isolation : str
-        ``"bubblewrap"`` (the notebook ran in the operating-system sandbox), ``"none"`` (``--no-isolation``:
-        the audit hook only), or ``""`` when nothing was run.
+        ``"bubblewrap"`` (the notebook ran in the operating-system sandbox) or ``"none"`` (``--no-isolation``:
+        the audit hook only), then the limits that were in force: ``"bubblewrap; cgroup v1 (memory, pids,
+        cpu)"`` (a control group held all the sandbox's processes), ``"bubblewrap; rlimits, no fork"``
+        (per-process limits, the kernel unable to fork); ``""`` when nothing was run.
     submitted, submitted_from, late :
         When it was handed in (ISO 8601), read from ``"name"`` or ``"file"``, and whether the LMS marked it late.
     signals : list of (kind, detail)

@@ -107,6 +107,15 @@ def make_collected(root):
         os.mknod(collected / "device.ipynb", 0o20644, os.makedev(1, 3))
     except PermissionError:  # not root: the device case is left out
         pass
+    # a hard link to the instructor's source (what `tar -xf` of a student's archive at the course root can make),
+    # a hard link between two students' files, and a plain copy of the source
+    course = root / "course"
+    course.mkdir()
+    shutil.copy(SOURCE, course / "tiny.ipynb")
+    os.link(course / "tiny.ipynb", collected / "hardlink.ipynb")
+    (course / "mine.ipynb").write_bytes(good)
+    os.link(course / "mine.ipynb", collected / "hardlink_classmate.ipynb")
+    shutil.copy(SOURCE, collected / "source_copy.ipynb")
     # ids that clash once normalized (NFC and NFD of the same name) and one too long for a file system's taste
     for form in ("NFC", "NFD"):
         (collected / (unicodedata.normalize(form, "José") + ".ipynb")).write_bytes(good)

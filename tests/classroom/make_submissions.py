@@ -111,6 +111,29 @@ CASES = {
     # took the grader's checker some 80 s here (about 15 minutes against a mechanism's 12 rows): wrong anyway
     # (rows cheap to build: the kernel's 5 s budget in the tests is for the grader's guard, not for sympy)
     "many_rows": ("Phi_OA = sp.Matrix([x1 + k for k in range(1, 2001)])", RIGHT_ANGLE, []),
+    # a flood of output after every answer is assigned: capped in the kernel, then graded (the same verdict on
+    # every run: before, one run said "the kernel died", the next "memory", both 0/6)
+    "flood": (RIGHT_PHI, RIGHT_ANGLE, ["for i in range(300_000):\n    print('debug line', i)"]),
+    # an exception before (b)'s answer: (a) stands, (b) is missing and the message names the cell and exception
+    "exception": (RIGHT_PHI, "e0 = np.ones(1)\nangle = np.concatenate([e0, np.ones((2, 2))])", []),
+    # text a student controls reaching the gradebook, a spreadsheet and a terminal: escapes that set the window
+    # title and overwrite a line, a carriage return starting a row that is a formula, bidirectional controls
+    "ansi": (RIGHT_PHI, "raise ValueError('\\x1b]0;pwned\\x07\\x1b[2K\\rok 6/6\\r\\n=cmd|\\' /C calc\\'!A0 \\u202e"
+                        "gnp.exe\\u2028next')", []),
+    # five children of 300 MB each under a 400 MB budget (refused by the hook here; by the control group, or the
+    # no-fork filter, with the hook off: tests/classroom/test_sandbox.py)
+    "fork_hog": (RIGHT_PHI, RIGHT_ANGLE, ["""import os, time
+kids = []
+for k in range(5):
+    pid = os.fork()
+    if pid == 0:
+        hog = bytearray(300 * 2**20)
+        for i in range(0, len(hog), 4096):
+            hog[i] = 1
+        time.sleep(3)
+        os._exit(0)
+    kids.append(pid)
+held = sum(os.waitpid(pid, 0)[1] == 0 for pid in kids)"""]),
     "power_tower": ("big = sp.Integer(10**40)\n"
                     "tower = sp.Pow(big, sp.Pow(big, sp.Pow(big, 99, evaluate=False), evaluate=False), evaluate=False)\n"
                     "Phi_OA = sp.Matrix([tower * x1, tower])", RIGHT_ANGLE, []),
@@ -242,6 +265,40 @@ attempt("uid", os.getuid)
 attempt("leftovers", lambda: sorted(os.listdir("/tmp")) + sorted(os.listdir(os.path.expanduser("~")))
         + sorted(os.listdir("/run/kinbook")))
 attempt("mounts", lambda: open("/proc/self/mounts").read().count("\\n"))
+def dirstate():
+    out = {}
+    for d in ("/tmp", os.path.expanduser("~"), "/run/kinbook", "/run/kinbook/work"):
+        st = os.stat(d)
+        try:
+            xattrs = sorted(os.listxattr(d))
+        except OSError as exc:
+            xattrs = "refused: " + exc.strerror
+        out[d] = {"atime": st.st_atime_ns, "mtime": st.st_mtime_ns, "mode": oct(st.st_mode & 0o7777), "xattrs": xattrs}
+    return out
+attempt("dirstate", dirstate)
+def pid1():
+    out = {}
+    for what in ("environ", "cmdline", "status"):
+        try:
+            out[what] = open("/proc/1/" + what, "rb").read()[:200].decode(errors="replace")
+        except OSError as exc:
+            out[what] = "refused: " + exc.strerror
+    for fd in range(4):
+        try:
+            with open(f"/proc/1/fd/{fd}", "w") as f:
+                f.write("kinbook: ok 11/11\\n")
+            out[f"fd{fd}"] = "written"
+        except OSError as exc:
+            out[f"fd{fd}"] = "refused: " + exc.strerror
+    import signal
+    try:
+        os.kill(1, signal.SIGKILL)
+        out["kill"] = "sent"
+    except OSError as exc:
+        out["kill"] = "refused: " + exc.strerror
+    out["comm"] = open("/proc/1/comm").read().strip()
+    return out
+attempt("pid1", pid1)
 """,
     # writes to the installed package, the source notebook, a classmate's file and the canary
     "writes": """import glob
@@ -270,7 +327,95 @@ attempt("canary", lambda: write("/tmp/kinbook-canary.txt"))
             out.append(path + ": " + str(exc.strerror))
     return out
 attempt("left", leave)
-attempt("socket", lambda: os.remove("/run/kinbook/zygote/fork.sock") or "removed")
+""",
+    # state that could outlive a reset without any file: times, extended attributes, modes of the kept directories
+    "stamps": """STAMP = 0x7E57_C0DE_1234_5678
+def stamp():
+    out = {}
+    for d in ("/tmp", os.path.expanduser("~"), "/run/kinbook", "/run/kinbook/work"):
+        try:
+            os.setxattr(d, "user.kinbook-note", b"x" * 4000)
+            out[d + " xattr"] = "set"
+        except OSError as exc:
+            out[d + " xattr"] = "refused: " + exc.strerror
+        os.utime(d, ns=(STAMP, STAMP))
+        out[d + " times"] = os.stat(d).st_atime_ns
+    os.chmod("/run/kinbook", 0o755)
+    return out
+attempt("stamp", stamp)
+""",
+    # a second kernel, asked for by the student's own code: the zygote's socket, the launch channel of this run
+    # (held by the launcher), or the launcher itself with a guessed descriptor
+    "second_kernel": """import socket, subprocess, glob
+def socket_paths():
+    found = []
+    for d in ("/run/kinbook", "/run/kinbook/zygote", "/run/kinbook/work", "/tmp"):
+        try:
+            found += [os.path.join(d, n) for n in os.listdir(d)]
+        except OSError:
+            pass
+    out = {}
+    for path in found:
+        s = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+        try:
+            s.connect(path)
+            s.sendall(b'{"role": "kernel", "argv": [], "env": {}, "cwd": "/tmp", "umask": 0}')
+            out[path] = s.recv(64).decode()
+        except OSError as exc:
+            out[path] = "refused: " + exc.strerror
+    return out or "no socket"
+def channel_fds():
+    out = {}
+    for pid in [p for p in os.listdir("/proc") if p.isdigit() and int(p) != os.getpid()]:
+        try:
+            fds = os.listdir(f"/proc/{pid}/fd")
+        except OSError as exc:
+            out[pid] = "refused: " + exc.strerror
+            continue
+        for fd in fds:
+            try:
+                target = os.readlink(f"/proc/{pid}/fd/{fd}")
+            except OSError:
+                continue
+            if target.startswith("socket:"):
+                try:
+                    s = socket.socket(fileno=os.open(f"/proc/{pid}/fd/{fd}", os.O_RDWR))
+                    s.sendall(b"launch")
+                    out[f"{pid}/{fd}"] = s.recv(64).decode()
+                except OSError as exc:
+                    out[f"{pid}/{fd}"] = "refused: " + exc.strerror
+    return out
+def own_fds():
+    out = {}
+    for fd in range(3, 64):
+        try:
+            s = socket.socket(fileno=os.dup(fd))
+        except OSError:
+            continue
+        try:
+            if s.family == socket.AF_UNIX and s.type == socket.SOCK_SEQPACKET:
+                s.sendall(b"launch")
+                s.settimeout(2)
+                out[fd] = s.recv(64).decode()
+        except OSError as exc:
+            out[fd] = "refused: " + exc.strerror
+        finally:
+            s.detach()
+    return out
+def launcher():
+    import kinbook.classroom.sandbox.launch as launch
+    out = {}
+    for fd in range(3, 12):
+        r = subprocess.run([sys.executable, "-I", "-S", launch.__file__, str(fd), "/tmp/pid"], capture_output=True,
+                           timeout=20)
+        out[fd] = r.returncode
+    return out
+attempt("socket_paths", socket_paths)
+attempt("channel_fds", channel_fds)
+attempt("own_fds", own_fds)
+attempt("launcher", launcher)
+attempt("kernels", lambda: sorted(p for p in os.listdir("/proc") if p.isdigit()
+                                   and b"kinbook" in open(f"/proc/{p}/cmdline", "rb").read()))
 """,
     # the grader's command and event pipes, taken from bubblewrap's init (pid 1) — reopened through /proc or
     # copied with pidfd_getfd —, and a daemon that answers the next "reset" in the zygote's place, lives on and
@@ -407,6 +552,16 @@ def main():
         if "part(\"revolute\"" in c.source:
             c.source = c.source.replace("points=4", "points=400")
     nbformat.write(nb, str(OUT / "tampered.ipynb"))
+    nb = copy.deepcopy(released)  # a locked text cell edited (a name in the title): restored, not refused
+    nb.cells[0].source = nb.cells[0].source.replace("# Tiny exercise", "# Tiny exercise — by Ana García")
+    for c in nb.cells:
+        if c["id"] in answer_ids:
+            c.source = RIGHT_PHI if c["id"] == answer_ids[0] else RIGHT_ANGLE
+    nbformat.write(nb, str(OUT / "edited_title.ipynb"))
+    nb = copy.deepcopy(nb)  # a classmate's notebook: its metadata names the student it was released for
+    nb.cells[0].source = released.cells[0].source
+    nb.metadata["kinbook"]["student"] = "chen.wei"
+    nbformat.write(nb, str(OUT / "classmate.ipynb"))
     nb = copy.deepcopy(released)  # a locked cell deleted
     nb.cells = [c for c in nb.cells if "mech = kinbook" not in c.source]
     nbformat.write(nb, str(OUT / "deleted_cell.ipynb"))

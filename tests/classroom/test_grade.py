@@ -14,7 +14,7 @@ from kinbook.classroom.gradebook import COLUMNS, TOTALS
 from .conftest import BWRAP, CANARY, CANARY_DIR, ENOUGH, EVIL, LONG_NAME, ODD_NAME, SECRET, SOURCE, submission
 
 FULL = 6.0
-ESCAPES = ["unhook", "unaudited", "recon", "writes", "daemon", "leftovers", "hijack"]
+ESCAPES = ["unhook", "unaudited", "recon", "writes", "daemon", "leftovers", "hijack", "stamps", "second_kernel"]
 
 
 def parts(batch, student):
@@ -25,17 +25,29 @@ def test_good_submission_gets_full_score_among_bad_ones(batch):
     r = batch["results"]["good"]
     assert (r.status, r.score, r.max_score) == ("ok", FULL, FULL)
     assert {p.status for p in r.parts} == {"ok"}
-    assert r.isolation == ("bubblewrap" if BWRAP else "none")
+    assert r.isolation.startswith("bubblewrap; " if BWRAP else "none; ")
+    assert r.isolation.split("; ")[1] in ("cgroup v1 (memory, pids, cpu)", "cgroup v2 (memory, pids, cpu)",
+                                          "rlimits, no fork")
 
 
 @pytest.mark.parametrize("student, status, score", [
     ("wrong", "ok", 0.0),
     ("partial", "missing-answer", 4.0),
-    ("loop", "timeout", 0.0),
-    ("memory", "memory", 0.0),
+    # a runtime failure costs the parts not answered before it, not those answered before
+    ("loop", "timeout", 4.0),
+    ("memory", "memory", 4.0),
     ("sys_exit", "missing-answer", 4.0),     # SystemExit is an ordinary error in a kernel: part (a) stands
-    ("os_exit", "error", 0.0),               # the kernel is gone before its answers can be read
-    ("kill_kernel", "error", 0.0),           # os.kill is refused; raise_signal(SIGKILL) kills the kernel
+    ("os_exit", "error", 4.0),               # the kernel is gone: (a) was read after its cell, (b) never was
+    ("kill_kernel", "error", 4.0),           # os.kill is refused; raise_signal(SIGKILL) kills the kernel
+    ("flood", "ok", FULL),                   # 300,000 lines of output: capped, then graded
+    ("exception", "missing-answer", 4.0),
+    ("ansi", "missing-answer", 4.0),
+    ("fork_hog", "ok", FULL),                # the hook refuses the fork; the answers are right
+    ("edited_title", "ok", FULL),            # a locked text cell edited: restored from the release, not refused
+    ("classmate", "wrong-release", 0.0),     # released for another student: said so, not "tampered"
+    ("hardlink", "refused", 0.0),            # a hard link to the instructor's source
+    ("hardlink_classmate", "refused", 0.0),  # a hard link to another file
+    ("source_copy", "refused", 0.0),         # the source notebook itself
     ("monkeypatch", "ok", 0.0),              # patched checkers live and die in the student's kernel
     ("patch_serializer", "error", 0.0),      # a forged answer record: not whitelisted data
     ("fake_score", "ok", 0.0),               # what the notebook prints is never read
@@ -132,7 +144,9 @@ def test_monkeypatching_the_checkers_in_the_notebook_changes_nothing(batch):
 def test_reading_the_source_is_refused(batch):
     p = parts(batch, "read_source")
     assert p["revolute"].status == "missing-answer"
-    assert "code cells" in p["revolute"].message
+    assert p["revolute"].message.startswith("`Phi_OA` is not assigned: cell 4 (“import os, glob, kinbook”), under "
+                                            "“**(a)** Φ of revolute joint 1, in `Phi_OA`.” raised PermissionError: "
+                                            "kinbook sandbox: opening")
 
 
 def test_nothing_outside_the_sandbox_was_touched(batch):
@@ -155,8 +169,77 @@ def test_submissions_are_never_modified(batch):
 
 
 def test_tampering_is_explained(batch):
+    """The cell is named as the student saw it in the release (its position and first line), not by an id."""
     r = batch["results"]["tampered"]
-    assert "tiny-04" in r.message and "locked" in r.message
+    assert r.message.startswith("1 locked code cell(s) of the released notebook were changed, moved or deleted "
+                                "(cell 5 “part(\"revolute\", points=4, answer=\"Phi_OA\", check=\"phi\", ta…”)")
+    assert "tiny-04" not in r.message
+
+
+def test_a_runtime_failure_costs_only_the_parts_not_answered_before_it(batch):
+    loop = parts(batch, "loop")
+    assert loop["revolute"].status == "ok" and loop["revolute"].score == 4
+    assert loop["angle"].status == "timeout"
+    assert loop["angle"].message == ("`angle` was not assigned before the notebook stopped: the notebook did not "
+                                     "finish within 5 s at cell 7 (“while True:”), under “**(b)** φ2 at t = 0.01 "
+                                     "(radians), in `angle`.”")
+    assert batch["results"]["loop"].message == loop["angle"].message.split(": ", 1)[1]
+    memory = parts(batch, "memory")
+    assert memory["angle"].status == "memory" and "cell 7 (“hog = []”)" in memory["angle"].message
+    dead = batch["results"]["os_exit"]
+    assert dead.message.startswith("the kernel died (exit code 0) at cell 7 (“import os”)")
+
+
+def test_an_exception_is_named_with_its_cell_and_text(batch):
+    p = parts(batch, "exception")
+    assert p["revolute"].score == 4
+    assert p["angle"].message.startswith("`angle` is not assigned: cell 7 (“e0 = np.ones(1)”), under “**(b)** φ2 at "
+                                         "t = 0.01 (radians), in `angle`.” raised ValueError: all the input array")
+
+
+def test_an_output_flood_is_capped_and_graded_the_same_way_every_time(batch, tmp_path):
+    from kinbook.classroom import grade_submission
+
+    again = grade_submission(SOURCE, submission("flood"), timeout=5, memory=400, isolation=BWRAP)
+    first = batch["results"]["flood"]
+    assert (again.status, again.score) == (first.status, first.score) == ("ok", FULL)
+
+
+def test_a_locked_text_cell_edited_is_restored_and_a_classmates_notebook_is_named(batch):
+    r = batch["results"]["edited_title"]
+    assert r.score == FULL and "1 locked text cell(s) edited in the notebook were restored from the release" in r.message
+    r = batch["results"]["classmate"]
+    assert r.message == "this notebook was released for chen.wei, not for classmate"
+    assert "copying signal: classmate submitted a notebook that was not released for them" in " ".join(
+        s for s in batch["progress"] if isinstance(s, str))
+
+
+def test_links_and_copies_of_the_source_are_refused(batch):
+    results = batch["results"]
+    assert results["hardlink"].message == "a hard link (this file has 2 names): not read — submit a copy"
+    assert results["hardlink_classmate"].status == "refused"
+    assert "the exercise's source notebook itself" in results["source_copy"].message
+
+
+def test_text_a_student_controls_is_inert_everywhere(batch):
+    """Escapes that would set the terminal's title or overwrite a line, a carriage return that starts a formula
+    row in a spreadsheet, bidirectional controls: stored, exported and printed as visible escapes."""
+    import sqlite3
+
+    r = batch["results"]["ansi"]
+    message = parts(batch, "ansi")["angle"].message
+    assert "\\x1b]0;pwned\\x07\\x1b[2K\\rok 6/6\\r\\n=cmd|' /C calc'!A0 \\u202egnp.exe\\u2028next" in message
+    bad = set("\x1b\r\x07\u202e\u2028")
+    db = sqlite3.connect(batch["out"] / "gradebook.sqlite")
+    stored = " ".join(m for (m,) in db.execute("SELECT message FROM parts")) + r.message
+    assert not bad & set(stored)
+    raw = (batch["out"] / "grades.csv").read_bytes()
+    assert b"\r" not in raw and b"\x1b" not in raw
+    for line in raw.decode().splitlines():
+        assert line.startswith('"') and line.endswith('"'), line   # every field quoted
+    with open(batch["out"] / "grades.csv", newline="", encoding="utf-8") as f:
+        for row in csv.reader(f):
+            assert not any(field[:1] in "=+-@" for field in row if field), row
 
 
 def test_grades_and_totals_csv(batch):
@@ -167,12 +250,13 @@ def test_grades_and_totals_csv(batch):
     good = {r["part"]: r for r in rows if r["student"] == "good"}
     assert good["revolute"]["score"] == "4" and good["angle"]["max_score"] == "2"
     assert {r["status"] for r in rows} >= {"ok", "timeout", "memory", "error", "tampered", "missing-answer",
-                                             "corrupt-notebook", "too-large", "refused", "duplicate-id", "bad-id"}
+                                             "corrupt-notebook", "too-large", "refused", "duplicate-id", "bad-id",
+                                             "wrong-release"}
     with open(batch["out"] / "totals.csv", newline="", encoding="utf-8") as f:
         totals = list(csv.DictReader(f))
     assert list(totals[0]) == TOTALS and len(totals) == len(batch["results"])
     ran = {t["student"]: t["isolation"] for t in totals}
-    assert ran["good"] == ("bubblewrap" if BWRAP else "none") and ran["link_source"] == ""
+    assert ran["good"].startswith("bubblewrap; " if BWRAP else "none; ") and ran["link_source"] == ""
     assert not [p for p in os.listdir(batch["out"]) if p.endswith(".tmp")]
 
 

@@ -32,11 +32,15 @@ def cells_of(name):
     return [c["source"] for c in parse_submission(data) if c["cell_type"] == "code"], data
 
 
+ORDER = ("unhook", "unaudited", "recon", "writes", "daemon", "second_kernel", "stamps", "recon", "leftovers", "hijack",
+         "recon")
+
+
 @pytest.fixture(scope="module")
 def probes():
-    """Each escape fixture's `probe`, run in one sandbox (hook off, except for `unhook`), in this order: the
-    daemon's, the leftovers' and the hijacker's runs come before a second reconnaissance, which must find
-    nothing of them."""
+    """Each escape fixture's `probe`, run in one sandbox (hook off, except for `unhook`), in the order of
+    :data:`ORDER`: the daemon's and the stamps' runs come before a second reconnaissance (``recon_2``), the
+    leftovers' and the hijacker's before a third (``recon_3``), which must find nothing of them."""
     if not BWRAP:
         pytest.skip("no operating-system sandbox here")
     os.environ[GRADER_SECRET] = "the grader's environment"
@@ -46,13 +50,14 @@ def probes():
     out = {}
     try:
         with Sandbox(isolation=True) as sb:
-            for name in ("unhook", "unaudited", "recon", "writes", "daemon", "leftovers", "hijack", "recon"):
+            for name in ORDER:
                 cells, data = cells_of(name)
                 ex = sb.run(cells, ["probe"], timeout=ENOUGH, memory_mb=400, files={"submission.ipynb": data},
                             audit_hook=name == "unhook")
                 assert ex.status == "ok", (name, ex)
-                out[name if name not in out else "recon_after"] = json.loads(ex.answers["probe"]["data"][0][1])
-                out[f"starts_after_{name}"] = sb.starts
+                key = name if name not in out else f"{name}_{sum(k.startswith(name) for k in out if 'after' not in k) + 1}"
+                out[key] = json.loads(ex.answers["probe"]["data"][0][1])
+                out[f"starts_after_{key}"] = sb.starts
                 if name == "hijack":  # the pipes between this process and the sandbox
                     out["host_pipes"] = {f"pipe:[{os.fstat(fd).st_ino}]" for fd in (sb.cmd_w, sb.evt_r, sb.job_w,
                                                                                      sb.result_r)}
@@ -96,7 +101,7 @@ def test_unaudited_processes_and_interpreters_stay_inside(probes):
 
 @needs_bwrap
 def test_reconnaissance_finds_nothing_of_the_grader(probes):
-    for key in ("recon", "recon_after"):
+    for key in ("recon", "recon_2", "recon_3"):
         p = probes[key]
         mine = "/home/student/submission.ipynb"  # the student's own copy (its code names what it looks for)
         assert [f for f in p["notebooks"] if f != mine] == []       # no source, collected/, graded/, canary
@@ -123,7 +128,7 @@ def test_writes_outside_reach_nothing(probes):
 def test_a_daemon_dies_with_the_run(probes):
     daemon = probes["daemon"]["daemon"]
     assert daemon.isdigit()                                          # it did start, in its own session
-    later = probes["recon_after"]
+    later = probes["recon_2"]
     assert daemon not in later["processes"]                          # gone at the next submission
     assert probes["starts_after_daemon"] == 1                        # without restarting the sandbox
     assert probes["left"] == []                                      # and nothing is left on the host
@@ -140,7 +145,7 @@ def test_the_graders_pipes_are_out_of_reach_and_no_run_answers_for_the_zygote(pr
     if bwrap.seccomp_program() is not None:
         assert p["descriptors"]["taken"] == {}                        # pidfd_getfd: refused by the filter
     assert refused(p["hijack"]), p["hijack"]
-    later = probes["recon_after"]
+    later = probes["recon_3"]
     assert "kinbook-stolen" not in later["leftovers"]               # the next run's notebook was not read
 
 
@@ -149,10 +154,48 @@ def test_nothing_a_run_leaves_reaches_the_next(probes):
     left = probes["leftovers"]
     assert left["left"] == ["/tmp/kinbook-note", "/home/student/kinbook-note",
                             "/run/kinbook/kinbook-note"]          # written (the sandbox's own directories)
-    assert left["socket"] == "removed"                           # and the zygote's socket removed
-    assert probes["starts"] == 2                                 # so the sandbox was replaced, not reused
-    later = probes["recon_after"]["leftovers"]
-    assert "kinbook-note" not in later and later.count("work") == 1 and "zygote" in later
+    assert probes["starts_after_hijack"] == 2                    # a file beside the control directory: replaced
+    later = probes["recon_3"]["leftovers"]
+    assert "kinbook-note" not in later and later.count("work") == 1
+
+
+@needs_bwrap
+def test_no_time_mode_or_extended_attribute_reaches_the_next_run(probes):
+    """A directory kept between two runs carried 64 bits in its access time (and 4 KB in an extended attribute
+    once the hook was off): the reset clears them, without replacing the sandbox."""
+    stamp = 0x7E57_C0DE_1234_5678
+    planted = probes["stamps"]["stamp"]
+    assert planted["/tmp times"] == stamp                          # planted
+    assert probes["starts_after_recon_2"] == 1                     # reset, not replaced
+    for d, state in probes["recon_2"]["dirstate"].items():
+        assert stamp not in (state["atime"], state["mtime"]), (d, state)
+        assert state["xattrs"] == [] or state["xattrs"].startswith("refused"), (d, state)
+        assert state["mode"] in ("0o700", "0o1700"), (d, state)  # (jupyter makes its runtime directory sticky)
+
+
+@needs_bwrap
+def test_the_sandboxs_pid_1_is_the_zygote_and_out_of_reach(probes):
+    """bubblewrap runs with --as-pid-1: pid 1 is the zygote, not bubblewrap's own init (which held the grader's
+    descriptors, its log on fd 2, and could not be killed by a reset); neither its descriptors nor its
+    environment can be reached, and it ignores signals sent from inside."""
+    for key in ("recon", "recon_2", "recon_3"):
+        p = probes[key]["pid1"]
+        assert p["comm"] == "python" or p["comm"].startswith("python"), p
+        assert all(refused(p[f"fd{fd}"]) for fd in range(4)), p
+        assert refused(p["environ"]), p
+    assert probes["starts"] == 2 and probes["recon_3"]["pid1"]["kill"] in ("sent", "refused: Operation not permitted")
+
+
+@needs_bwrap
+def test_no_second_kernel_can_be_asked_for(probes):
+    """With the hook off, a cell asked the zygote's socket for a second kernel whose start-up ran before any limit
+    (1.5 GB taken under --memory 400): there is no socket now, the launch channel is the launcher's alone, and
+    the zygote starts one kernel per run."""
+    p = probes["second_kernel"]
+    assert p["socket_paths"] == "no socket" or all(refused(v) for v in p["socket_paths"].values()), p
+    assert all(refused(v) for v in p["channel_fds"].values()), p["channel_fds"]
+    assert p["own_fds"] == {}, p["own_fds"]
+    assert set(p["launcher"].values()) == {1}, p["launcher"]
 
 
 def _run(code, **kw):
@@ -263,12 +306,12 @@ def test_no_isolation_warns_and_is_recorded(tmp_path):
     with pytest.warns(RuntimeWarning, match="WITHOUT isolation"):
         results = grade(SOURCE, [submission("good")], tmp_path, timeout=ENOUGH, memory=400, isolation=False,
                         progress=seen.append)
-    assert results[0].score == 6.0 and results[0].isolation == "none"
+    assert results[0].score == 6.0 and results[0].isolation.startswith("none; ")
     assert any(isinstance(s, str) and s.startswith("warning: grading WITHOUT isolation") for s in seen)
     db = sqlite3.connect(tmp_path / "gradebook.sqlite")
     assert db.execute("SELECT isolation FROM runs").fetchall() == [("none",)]
-    assert db.execute("SELECT isolation FROM submissions").fetchall() == [("none",)]
-    assert [r["isolation"] for r in csv.DictReader(open(tmp_path / "totals.csv"))] == ["none"]
+    assert db.execute("SELECT substr(isolation, 1, 6) FROM submissions").fetchall() == [("none; ",)]
+    assert [r["isolation"][:6] for r in csv.DictReader(open(tmp_path / "totals.csv"))] == ["none; "]
 
 
 # ======================================================================================== killing the grader
@@ -368,7 +411,7 @@ def test_an_environment_under_tmp_is_bound_after_the_private_tmp(monkeypatch):
 
     venv, pkg = "/tmp/clone/.venv", "/tmp/clone/kinbook"
     monkeypatch.setattr(bwrap, "readonly_dirs", lambda: ["/opt/python", "/usr", pkg, venv])
-    monkeypatch.setattr(bwrap.shutil, "which", lambda name: f"/usr/bin/{name}")
+    monkeypatch.setattr(bwrap, "_which", lambda name: f"/usr/bin/{name}")
     monkeypatch.setattr(bwrap.os, "geteuid", lambda: 1000)   # (as root, the same command follows setpriv)
     inner = bwrap.command(["/tmp/clone/.venv/bin/python"])
     tmpfs = inner.index("/tmp", inner.index("--tmpfs") - 1)
@@ -376,3 +419,75 @@ def test_an_environment_under_tmp_is_bound_after_the_private_tmp(monkeypatch):
     for d in (venv, pkg):
         assert inner.index(d) > tmpfs and inner[inner.index(d) - 1] == "--ro-bind"
     assert inner.index("/opt/python") < tmpfs     # the rest keeps its place
+
+
+# ================================================================================ limits without the audit hook
+def _cgroup_or_skip():
+    from kinbook.classroom.sandbox import cgroup
+
+    why = cgroup.unavailable()
+    if why:
+        pytest.skip(f"no control group for a sandbox here: {why}")
+
+
+@needs_bwrap
+def test_a_fork_hog_is_stopped_by_the_control_group_with_the_hook_off():
+    """Five children of 300 MB each (1.5 GB) under a 400 MB budget, the hook off: the sandbox's control group
+    counts them together, and the out-of-memory killer stops them; the answers assigned before are graded."""
+    _cgroup_or_skip()
+    cells, data = cells_of("fork_hog")
+    with Sandbox() as sb:
+        ex = sb.run(cells, ["Phi_OA", "angle", "held"], timeout=60, memory_mb=400, audit_hook=False)
+    assert ex.status == "memory", ex
+    assert ex.answers["Phi_OA"] is not None and ex.answers["angle"] is not None
+    held = ex.answers["held"]
+    assert held is None or held["data"][0] < 5, held   # never all five
+    assert ex.limits in ("cgroup v1 (memory, pids, cpu)", "cgroup v2 (memory, pids, cpu)")
+
+
+@needs_bwrap
+def test_without_a_control_group_the_kernel_cannot_fork():
+    """The fallback where the host offers no control group (an unprivileged grader): per-process limits set by
+    the zygote, and a seccomp filter that keeps the kernel from multiplying them by forking."""
+    from kinbook.classroom.sandbox import seccomp
+
+    if not seccomp.NoFork().available:
+        pytest.skip("libseccomp is not available here")
+    cells, data = cells_of("fork_hog")
+    with Sandbox(cgroup=False) as sb:
+        ex = sb.run(cells, ["Phi_OA", "angle", "held"], timeout=60, memory_mb=400, audit_hook=False)
+    assert ex.limits == "rlimits, no fork"
+    assert ex.status == "ok" and ex.answers["held"] is None and ex.answers["angle"] is not None
+    assert [(e["ename"], e["evalue"]) for e in ex.errors] == [("PermissionError", "[Errno 1] Operation not permitted")]
+
+
+@pytest.mark.parametrize("memory", [4000])
+def test_a_large_memory_budget_grades(memory, tmp_path):
+    """--memory above about 2.1 GB gave the whole class 0 (the worker's own cap reached the kernel through its
+    launch request); the kernel's limits are now the zygote's and the grading process's only."""
+    r = grade_submission(SOURCE, submission("good"), timeout=30, memory=memory, isolation=BWRAP)
+    assert (r.status, r.score) == ("ok", 6.0), r
+
+
+def test_a_memory_budget_beyond_the_machine_is_refused(tmp_path):
+    from kinbook.classroom.sandbox.cgroup import machine_memory_mb
+    from kinbook.cli import main
+    from kinbook.errors import GradingError
+
+    too_much = machine_memory_mb() + 1
+    with pytest.raises(GradingError, match=rf"--memory {too_much} MB is more than this machine has"):
+        grade(SOURCE, [submission("good")], tmp_path / "g", memory=too_much, isolation=BWRAP)
+    assert not (tmp_path / "g").exists()
+    assert main(["grade", SOURCE, submission("good"), "-o", str(tmp_path / "g"), "--memory", str(too_much)]) == 2
+
+
+def test_bubblewrap_and_setpriv_come_from_a_fixed_path(monkeypatch, tmp_path):
+    """A `bwrap` early in the grader's PATH is never the one run, and the sandbox gets a fixed PATH."""
+    fake = tmp_path / "bwrap"
+    fake.write_text("#!/bin/sh\ntouch /tmp/kinbook-fake-bwrap\n")
+    fake.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{tmp_path}:{os.environ['PATH']}")
+    assert bwrap._which("bwrap") in (None, "/usr/bin/bwrap", "/bin/bwrap", "/usr/sbin/bwrap", "/sbin/bwrap")
+    if BWRAP:
+        cmd = bwrap.command(["/bin/true"])
+        assert str(tmp_path) not in " ".join(cmd) and "--as-pid-1" in cmd

@@ -55,6 +55,9 @@ ENV = {
     "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "MPLBACKEND": "Agg",
     "MPLCONFIGDIR": ISOLATED.tmp + "/.matplotlib", "PYDEVD_DISABLE_FILE_VALIDATION": "1",
 }
+#: Where the grader looks for ``bwrap`` and ``setpriv``, and the only ``PATH`` it gives them: never the PATH it
+#: was started with (a directory early in it could hold a program of that name).
+SYSTEM_PATH = "/usr/sbin:/usr/bin:/sbin:/bin"
 _TOP_LINKS = ("/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32")
 DENIED_SYSCALLS = (
     "keyctl", "add_key", "request_key", "ptrace", "process_vm_readv", "process_vm_writev", "kcmp",
@@ -73,43 +76,12 @@ DENIED_SYSCALLS = (
 )
 
 
-@functools.lru_cache(maxsize=None)
 def seccomp_program():
     """The seccomp filter of the sandbox, as BPF bytes for ``bwrap --seccomp``: every call of
     :data:`DENIED_SYSCALLS` fails with ``EPERM``, the rest is allowed. None without libseccomp."""
-    import ctypes
-    import ctypes.util
-    import errno
+    from .seccomp import sandbox_program
 
-    try:
-        lib = ctypes.CDLL(ctypes.util.find_library("seccomp") or "libseccomp.so.2")
-    except OSError:
-        return None
-    lib.seccomp_init.restype = ctypes.c_void_p
-    lib.seccomp_init.argtypes = [ctypes.c_uint32]
-    lib.seccomp_rule_add.argtypes = [ctypes.c_void_p, ctypes.c_uint32, ctypes.c_int, ctypes.c_uint]
-    lib.seccomp_syscall_resolve_name.argtypes = [ctypes.c_char_p]
-    lib.seccomp_export_bpf.argtypes = [ctypes.c_void_p, ctypes.c_int]
-    lib.seccomp_release.argtypes = [ctypes.c_void_p]
-    allow, refuse = 0x7FFF0000, 0x00050000 | errno.EPERM  # SCMP_ACT_ALLOW, SCMP_ACT_ERRNO(EPERM)
-    ctx = lib.seccomp_init(allow)
-    if not ctx:
-        return None
-    try:
-        for name in DENIED_SYSCALLS:
-            nr = lib.seccomp_syscall_resolve_name(name.encode())
-            if nr >= 0 and lib.seccomp_rule_add(ctx, refuse, nr, 0) != 0:
-                return None
-        fd = os.memfd_create("kinbook-seccomp")
-        try:
-            if lib.seccomp_export_bpf(ctx, fd) != 0:
-                return None
-            os.lseek(fd, 0, os.SEEK_SET)
-            return os.read(fd, 1 << 20)
-        finally:
-            os.close(fd)
-    finally:
-        lib.seccomp_release(ctx)
+    return sandbox_program(DENIED_SYSCALLS)
 
 
 def seccomp_fd():
@@ -145,6 +117,10 @@ def readonly_dirs():
         if not any(p == q or p.startswith(q.rstrip("/") + "/") for q in out):
             out.append(p)
     return sorted(out)
+
+
+def _which(name):
+    return shutil.which(name, path=SYSTEM_PATH)
 
 
 def _traversable(st, uid):
@@ -183,7 +159,7 @@ def _outer(blocked):
             args += ["--ro-bind", d, d]
     # its own pid namespace: when it dies, the kernel kills everything below it (setpriv's change of user
     # clears the parent-death signal of what it runs, so --die-with-parent alone would not reach that far)
-    return [shutil.which("bwrap")] + args + ["--unshare-pid", "--die-with-parent", "--"]
+    return [_which("bwrap")] + args + ["--unshare-pid", "--die-with-parent", "--"]
 
 
 def command(argv, env=None, seccomp=None):
@@ -203,10 +179,10 @@ def command(argv, env=None, seccomp=None):
         To be started with a minimal environment, ``cwd="/"``, in a new session (see
         :class:`kinbook.classroom.sandbox.host.Sandbox`).
     """
-    bwrap = shutil.which("bwrap")
+    bwrap = _which("bwrap")
     ro = readonly_dirs()
     inner = [bwrap, "--unshare-all", "--unshare-user", "--disable-userns", "--uid", str(SANDBOX_UID),
-             "--gid", str(SANDBOX_UID), "--hostname", "sandbox", "--die-with-parent", "--new-session", "--clearenv"]
+             "--gid", str(SANDBOX_UID), "--hostname", "sandbox", "--die-with-parent", "--new-session", "--as-pid-1", "--clearenv"]
     for k, v in {**ENV, **(env or {})}.items():
         inner += ["--setenv", k, v]
     for top in _TOP_LINKS:
@@ -234,7 +210,7 @@ def command(argv, env=None, seccomp=None):
     inner += ["--"] + list(argv)
     if os.geteuid() != 0:
         return inner  # bubblewrap runs as this (unprivileged) user; 65534 inside maps to it
-    drop = [shutil.which("setpriv") or "setpriv", f"--reuid={SANDBOX_UID}", f"--regid={SANDBOX_UID}",
+    drop = [_which("setpriv") or "setpriv", f"--reuid={SANDBOX_UID}", f"--regid={SANDBOX_UID}",
             "--clear-groups", "--inh-caps=-all", "--bounding-set=-all", "--"]
     blocked = _blocked(ro, SANDBOX_UID)
     return (_outer(blocked) if blocked else []) + drop + inner
@@ -253,19 +229,19 @@ def _probe():
     """None when a sandbox can be started here, else why not (a sentence)."""
     if not sys.platform.startswith("linux"):
         return f"{sys.platform} has no Linux namespaces"
-    bwrap = shutil.which("bwrap")
+    bwrap = _which("bwrap")
     if bwrap is None:
         return "bubblewrap (`bwrap`) is not installed"
     version = _version(bwrap)
     if version is None or version < MIN_VERSION:
         found = ".".join(map(str, version)) if version else "an unreadable version"
         return f"bubblewrap {'.'.join(map(str, MIN_VERSION))} or newer is needed (found {found})"
-    if os.geteuid() == 0 and shutil.which("setpriv") is None:
+    if os.geteuid() == 0 and _which("setpriv") is None:
         return "`setpriv` (Debian package util-linux) is needed to run bubblewrap as an unprivileged user"
     probe = "import sys, os; sys.stdout.write(str(os.getuid()))"
     try:
         res = subprocess.run(command([sys.executable, "-I", "-S", "-c", probe]), capture_output=True, text=True,
-                             timeout=60, cwd="/", env={"PATH": os.environ.get("PATH", "/usr/bin:/bin")},
+                             timeout=60, cwd="/", env={"PATH": SYSTEM_PATH},
                              stdin=subprocess.DEVNULL)
     except (OSError, subprocess.TimeoutExpired) as exc:
         return f"bubblewrap could not be run: {exc}"

@@ -3,8 +3,10 @@
 One :class:`Sandbox` serves one grading process: it starts the zygote (:mod:`.zygote`) — inside bubblewrap
 (:mod:`.bwrap`), or, with ``isolation=False``, as a plain child process — once, then for every submission:
 
-1. sends ``run``; the zygote forks a worker and says its pid;
-2. writes the job frame (the code cells, the answer names, the limits, the submission's copy) on the job pipe;
+1. sets the run's memory limit on the sandbox's control group, when it has one (:mod:`.cgroup`), and sends
+   ``run`` with the kernel's limits; the zygote forks a worker and says its pid;
+2. writes the job frame (the code cells, the answer names, the timeout, the submission's copy) on the job
+   pipe;
 3. waits, at most ``timeout`` + start-up allowance, for the worker's result frame on the result pipe and for
    the worker's end; reads at most :data:`~.protocol.MAX_RESULT_BYTES` and validates every field
    (:func:`_validated`): the result is data written by a process in the student's reach;
@@ -13,14 +15,21 @@ One :class:`Sandbox` serves one grading process: it starts the zygote (:mod:`.zy
    answer ``clean`` in time, the whole sandbox is killed and the next run starts a new one.
 
 Killing the sandbox: the zygote's process group (the outermost ``bwrap`` with ``--die-with-parent`` at every
-level; without bubblewrap the zygote itself, whose children die with it). If the grading process itself dies
-(SIGKILL, the OOM killer), the kernel delivers the same deaths (``PR_SET_PDEATHSIG``): nothing outlives it.
+level; without bubblewrap the zygote itself, whose children die with it), and every process left in its
+control group. If the grading process itself dies (SIGKILL, the OOM killer), the kernel delivers the same
+deaths (``PR_SET_PDEATHSIG``): nothing outlives it.
+
+Limits: a control group per sandbox where the host offers one (memory for all its processes together, tasks,
+one CPU), else per-process resource limits set by the zygote on each kernel, with a seccomp filter that keeps
+the kernel from forking (:mod:`.seccomp`); :attr:`Sandbox.limits` says which, and every result records it.
+What the sandbox writes on its standard error (bubblewrap's messages, tracebacks) comes through a pipe this
+process drains, keeping the last few kilobytes for its error messages.
 """
 
 from __future__ import annotations
 
+import json
 import os
-import secrets
 import shutil
 import signal
 import subprocess
@@ -32,6 +41,7 @@ from dataclasses import dataclass, field
 
 from ...errors import GradingError
 from . import bwrap
+from . import cgroup as cgroups
 from .protocol import ISOLATED, MAX_RESULT_BYTES, FrameError, FrameReader, Layout, write_frame
 
 __all__ = ["Execution", "Sandbox", "SandboxError", "STARTUP_SECONDS", "STATUSES"]
@@ -42,6 +52,12 @@ STARTUP_SECONDS = 60.0
 STATUSES = ("ok", "timeout", "memory", "error")
 _MAX_ANSWERS = 100
 _MAX_ERRORS = 200
+#: Memory of the sandbox beyond its zygote's and the notebook's budget: the worker, the launcher and the
+#: kernel's own start-up (its private pages), output in transit.
+OVERHEAD_MB = 256
+#: Memory the sandbox may use while its zygote imports the libraries (before the first run sets the limit).
+STARTUP_MB = 1024
+_ERR_TAIL = 4096
 
 
 class SandboxError(GradingError):
@@ -58,10 +74,16 @@ class Execution:
         "ok": every cell was run (some may have raised) and the answers were read.
     message : str
     answers : dict or None
-        {name: record or None} as written by :func:`kinbook.classroom.serialize.dumps` (not yet decoded).
+        {name: record or None} as written by :func:`kinbook.classroom.serialize.dumps` (not yet decoded): after
+        the last cell, or — when a cell timed out, ran out of memory or ended the kernel — after the last cell
+        before it; None when none was read.
     errors : list of dict
-        One per cell that raised: cell number, exception name and value.
+        One per cell that raised: cell number (among the code cells run, from 1), exception name and value.
     seconds : float
+    cell : int or None
+        The code cell (from 1) at which the run stopped (timeout, memory, a dead kernel), if it did.
+    limits : str
+        The limits in force (:attr:`Sandbox.limits`).
     """
 
     status: str
@@ -69,6 +91,8 @@ class Execution:
     answers: dict | None = None
     errors: list = field(default_factory=list)
     seconds: float = 0.0
+    cell: int | None = None
+    limits: str = ""
 
 
 def _text(value, limit):
@@ -92,7 +116,9 @@ def _validated(header):
             errors.append({"cell": e["cell"], "ename": _text(e.get("ename"), 100), "evalue": _text(e.get("evalue"), 300)})
     if status == "ok" and answers is None:
         return Execution("error", "the sandbox returned no answers")
-    return Execution(status, _text(header.get("message"), 500), answers if status == "ok" else None, errors)
+    cell = header.get("cell")
+    cell = cell if isinstance(cell, int) and not isinstance(cell, bool) and 0 < cell <= 1_000_000 else None
+    return Execution(status, _text(header.get("message"), 500), answers, errors, cell=cell)
 
 
 def _clean_env(extra=None):
@@ -104,9 +130,6 @@ def _clean_env(extra=None):
     return env
 
 
-_live = weakref.WeakSet()
-
-
 class Sandbox:
     """The sandbox of one grading process (see the module docstring).
 
@@ -115,6 +138,10 @@ class Sandbox:
     isolation : bool
         Run the zygote (and so every worker and kernel) inside bubblewrap. Without it the audit hook and the
         resource limits are the only fence.
+    cgroup : bool or None
+        Hold the sandbox's processes in a control group of their own: None (default) where the host offers
+        one, False never (the per-process limits then; for tests of that fallback), True or fail
+        (:class:`SandboxError`).
 
     Raises
     ------
@@ -129,12 +156,18 @@ class Sandbox:
     ('ok', [2.0])
     """
 
-    def __init__(self, isolation=True):
+    def __init__(self, isolation=True, cgroup=None):
         self.isolation = bool(isolation)
+        self.want_cgroup = cgroup
+        self.cgroup = None
+        self.cgroup_problem = ""
+        self.seccomp = True  # the zygote's no-fork filter (it says at start-up when it has none)
         self.proc = None
         self.owner = os.getpid()
         self.private = None
         self.starts = 0
+        self.err_r = None
+        self.err_tail = b""
         _live.add(self)
 
     # ------------------------------------------------------------------------------------------ lifetime
@@ -148,6 +181,14 @@ class Sandbox:
     def pid(self):
         """The process id of the sandbox's outermost process (bwrap, or the zygote without isolation)."""
         return None if self.proc is None else self.proc.pid
+
+    @property
+    def limits(self):
+        """The limits in force, in words (recorded with every result): the control group, or the per-process
+        resource limits and whether kernels may fork."""
+        if self.cgroup is not None:
+            return self.cgroup.describe
+        return "rlimits, no fork" if self.seccomp else "rlimits (forks not limited: no libseccomp)"
 
     def alive(self):
         return self.proc is not None and self.owner == os.getpid() and self.proc.poll() is None
@@ -165,18 +206,22 @@ class Sandbox:
             self.private = os.path.realpath(tempfile.mkdtemp(prefix="kinbook-grader-"))
             os.chmod(self.private, 0o700)
             layout = Layout(home=os.path.join(self.private, "home"), tmp=os.path.join(self.private, "tmp"),
-                            work=os.path.join(self.private, "work"), zygote=os.path.join(self.private, "zygote"),
-                            isolated=False)
+                            work=os.path.join(self.private, "work"), isolated=False)
         self.layout = layout
+        if self.want_cgroup is not False:
+            self.cgroup, self.cgroup_problem = cgroups.create()
+            if self.cgroup is None and self.want_cgroup:
+                raise SandboxError(f"no control group for the sandbox: {self.cgroup_problem}")
         job_r, self.job_w = os.pipe()
         self.result_r, result_w = os.pipe()
         self.job_r = job_r  # kept: the job pipe is drained here at every reset
-        # the zygote's commands and events travel on pipes of their own, never on bubblewrap's stdin and stdout:
-        # bubblewrap's init (pid 1 of the sandbox) keeps its standard descriptors, and what it holds, a student's
-        # process can reopen (/proc/1/fd) or copy (pidfd_getfd) — with the commands in hand it could answer
-        # "clean" to a reset in the zygote's place and live on into the next student's run
+        # the zygote's commands and events travel on pipes of their own, never on bubblewrap's stdin and stdout
         cmd_r, self.cmd_w = os.pipe()
         self.evt_r, evt_w = os.pipe()
+        # the sandbox's own messages (bubblewrap's, tracebacks): a pipe drained here, never a file of ours that a
+        # process inside could reopen through /proc
+        self.err_r, err_w = os.pipe()
+        self.err_tail = b""
         argv = [sys.executable, "-s", "-m", "kinbook.classroom.sandbox.zygote", layout.to_json(), str(job_r),
                 str(result_w), str(cmd_r), str(evt_w)]
         keep = [job_r, result_w, cmd_r, evt_w]
@@ -184,30 +229,37 @@ class Sandbox:
             seccomp = bwrap.seccomp_fd()
             if seccomp is not None:
                 keep.append(seccomp)
-            cmd, env, cwd = bwrap.command(argv, seccomp=seccomp), {"PATH": os.environ.get("PATH", "/usr/bin:/bin")}, "/"
+            cmd, env, cwd = bwrap.command(argv, seccomp=seccomp), {"PATH": bwrap.SYSTEM_PATH}, "/"
         else:
             seccomp = None
             cmd, cwd = argv, self.private
             env = _clean_env({"HOME": layout.home, "TMPDIR": layout.tmp,
                               "MPLCONFIGDIR": os.path.join(layout.tmp, ".matplotlib")})
-        # the sandbox's own messages (bubblewrap's, tracebacks): an unlinked file, gone with this process
-        self.log = tempfile.TemporaryFile(prefix="kinbook-sandbox-log-")
-        # no permission left on it: bubblewrap's init holds it (as stderr), and a sandbox that runs as this user
-        # (a grader that is not root) could otherwise reopen it through /proc/1/fd/2
-        os.fchmod(self.log.fileno(), 0)
+        join = None
+        if self.cgroup is not None:
+            if not self._set_memory(STARTUP_MB):
+                self.close()
+                raise SandboxError("the sandbox's control group refused its memory limit")
+            self.cgroup.prepare_join()
+            join = self.cgroup.join_in_child
+        _spawning[0] = True  # (a preexec_fn runs the at-fork handlers: _forget_in_child must leave them alone)
         try:
-            self.proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=self.log,
-                                         env=env, cwd=cwd, pass_fds=keep, start_new_session=True)
-        except OSError as exc:
+            self.proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=err_w,
+                                         env=env, cwd=cwd, pass_fds=keep, start_new_session=True,
+                                         preexec_fn=join)
+        except (OSError, subprocess.SubprocessError) as exc:
             self.close()
             raise SandboxError(f"the sandbox could not be started: {exc}") from None
         finally:
-            for fd in (result_w, cmd_r, evt_w):
+            _spawning[0] = False
+            for fd in (result_w, cmd_r, evt_w, err_w):
                 os.close(fd)
             if seccomp is not None:
                 os.close(seccomp)
+            if self.cgroup is not None:
+                self.cgroup.close_join()
         self.starts += 1
-        for fd in (self.job_w, self.result_r, self.job_r, self.evt_r, self.cmd_w):
+        for fd in (self.job_w, self.result_r, self.job_r, self.evt_r, self.cmd_w, self.err_r):
             os.set_blocking(fd, False)
         self.events = b""
         try:
@@ -215,13 +267,14 @@ class Sandbox:
         except BaseException:  # (also when this process is being terminated)
             self.close()
             raise
-        if line != "ready":
+        if line not in ("ready", "ready no-seccomp"):
             why = self._log_tail()
             self.close()
             raise SandboxError(f"the sandbox did not start: {why or 'no answer'}")
+        self.seccomp = line == "ready"
 
     def close(self, wait=False):
-        """Stop the sandbox (everything in it is killed) and remove its private directory.
+        """Stop the sandbox (everything in it is killed) and remove its private directory and control group.
 
         ``wait``: let the zygote stop by itself first (at most 2 s), so that every process is reaped by its
         parent — at the end of a batch; by default (and when interrupted) it is killed at once: nothing in the
@@ -236,12 +289,12 @@ class Sandbox:
                 self._kill()
             self._close_pipes()
             self.proc = None
+        if self.cgroup is not None and self.owner == os.getpid():
+            self.cgroup.remove()  # what is left in it is killed first
+        self.cgroup = None
         if self.private and self.owner == os.getpid():
             shutil.rmtree(self.private, ignore_errors=True)
         self.private = None
-        if getattr(self, "log", None) is not None:
-            self.log.close()
-            self.log = None
 
     def _kill(self):
         try:
@@ -252,10 +305,12 @@ class Sandbox:
             self.proc.kill()
         except OSError:
             pass
+        if self.cgroup is not None:
+            self.cgroup.kill_all()
         self.proc.wait()
 
     def _close_pipes(self):
-        for name in ("job_w", "job_r", "result_r", "cmd_w", "evt_r"):
+        for name in ("job_w", "job_r", "result_r", "cmd_w", "evt_r", "err_r"):
             fd = getattr(self, name, None)
             if fd is not None:
                 try:
@@ -270,15 +325,35 @@ class Sandbox:
         if self.proc is not None:
             self.proc.returncode = 0  # not ours to wait for
             self.proc = None
+        if self.cgroup is not None:
+            self.cgroup.close_join()
+        self.cgroup = None
         self.private = None
 
-    def _log_tail(self):
+    def _drain(self):
+        """Read what the sandbox wrote on its standard error (it must never block on a full pipe); keep the end."""
+        if self.err_r is None:
+            return
         try:
-            self.log.seek(0, 2)
-            self.log.seek(max(0, self.log.tell() - 600))
-            return self.log.read().decode(errors="replace").strip()[-400:]
-        except (OSError, ValueError, AttributeError):
-            return ""
+            while True:
+                chunk = os.read(self.err_r, 1 << 16)
+                if not chunk:
+                    break
+                self.err_tail = (self.err_tail + chunk)[-_ERR_TAIL:]
+        except (BlockingIOError, OSError):
+            pass
+
+    def _log_tail(self):
+        self._drain()
+        return bwrap_text(self.err_tail)[-400:]
+
+    def _set_memory(self, megabytes):
+        """The control group's memory limit: what it uses now plus ``megabytes``; False when refused."""
+        try:
+            self.cgroup.set_memory(self.cgroup.memory_usage() + int(megabytes * (1 << 20)))
+            return True
+        except OSError:
+            return False
 
     # -------------------------------------------------------------------------------------------- events
     def _event(self, deadline):
@@ -290,8 +365,10 @@ class Sandbox:
             left = deadline - time.monotonic()
             if left <= 0:
                 return ""
-            ready, _, _ = select.select([fd], [], [], left)
-            if ready:
+            ready, _, _ = select.select([fd, self.err_r], [], [], left)
+            if self.err_r in ready:
+                self._drain()
+            if fd in ready:
                 try:
                     chunk = os.read(fd, 4096)
                 except BlockingIOError:
@@ -304,9 +381,10 @@ class Sandbox:
         line, self.events = self.events.split(b"\n", 1)
         return line.decode(errors="replace").strip()
 
-    def _send(self, word):
+    def _send(self, line):
         try:  # a command is a few bytes: a pipe too full to take it means a zygote that no longer reads
-            return os.write(self.cmd_w, word.encode() + b"\n") == len(word) + 1
+            data = line.encode() + b"\n"
+            return os.write(self.cmd_w, data) == len(data)
         except (OSError, TypeError):
             return False
 
@@ -319,11 +397,13 @@ class Sandbox:
         cells : list of str
             The code cells' sources, in order.
         names : list of str
-            Answer variables to read after the last cell.
+            Answer variables to read after each cell (the last reading is the result).
         timeout : float
             Wall-clock seconds for the cells (kernel start-up not included).
         memory_mb : float
-            Memory the code may allocate beyond the kernel's own footprint (address-space limit).
+            Memory the code may allocate beyond the kernel's own footprint: the kernel's address-space
+            limit, and — with a control group — the sandbox's memory beyond what it uses before the run
+            (plus :data:`OVERHEAD_MB` for the worker and the kernel's start-up), whatever the processes.
         files : dict, optional
             {name: bytes} put in the submission's directory (a copy of the submission, for example).
         audit_hook : bool
@@ -341,21 +421,29 @@ class Sandbox:
         nb = nbformat.v4.new_notebook()
         nb.cells = [nbformat.v4.new_code_cell(c) for c in cells]
         files = dict(files or {})
-        header = {"timeout": float(timeout), "memory_mb": float(memory_mb), "nonce": secrets.token_hex(16),
-                  "names": list(names), "notebook": nbformat.writes(nb), "audit_hook": bool(audit_hook),
+        header = {"timeout": float(timeout), "names": list(names), "notebook": nbformat.writes(nb),
                   "files": [[os.path.basename(k), len(v)] for k, v in files.items()]}
         payload = b"".join(files.values())
+        limits = {"memory_mb": float(memory_mb), "cpu_s": int(float(timeout) * 2 + 30), "audit": bool(audit_hook),
+                  "fork": self.cgroup is not None or not self.seccomp}
+        in_force = self.limits
         try:
-            ex = self._run(header, payload, float(timeout))
+            ex = self._run(header, payload, float(timeout), limits)
         finally:
             self._reset()
         ex.seconds = time.monotonic() - t0
+        ex.limits = in_force
         return ex
 
-    def _run(self, header, payload, timeout):
+    def _run(self, header, payload, timeout, limits):
         import select
 
-        if not self._send("run"):
+        kills = 0
+        if self.cgroup is not None:
+            kills = self.cgroup.oom_kills()
+            if not self._set_memory(limits["memory_mb"] + OVERHEAD_MB):
+                return Execution("error", "the sandbox's control group refused the memory limit")
+        if not self._send("run " + json.dumps(limits)):
             return Execution("error", "the sandbox stopped before the notebook could be run")
         word = self._event(time.monotonic() + 30)
         if not word.startswith("worker "):
@@ -376,7 +464,9 @@ class Sandbox:
                 left = deadline - time.monotonic()
                 if left <= 0:
                     return Execution("timeout", f"the notebook did not finish within {timeout:g} s")
-                ready, _, _ = select.select([self.result_r, events], [], [], min(left, 1.0))
+                ready, _, _ = select.select([self.result_r, events, self.err_r], [], [], min(left, 1.0))
+                if self.err_r in ready:
+                    self._drain()
                 if self.result_r in ready:
                     reader.feed(self.result_r)
                 if events in ready or b"\n" in self.events:
@@ -384,12 +474,27 @@ class Sandbox:
                     if word.startswith(("exit ", "signal ")):
                         ended = word
                     elif word == "" and self.proc.poll() is not None:
-                        return Execution("error", "the sandbox stopped while running the notebook")
+                        return self._out_of_memory(kills) or Execution(
+                            "error", "the sandbox stopped while running the notebook")
         except FrameError as exc:
             return Execution("error", f"the sandbox returned an unreadable result: {exc}")
         if reader.frame is None:
-            return Execution("error", f"the grading worker stopped without a result ({ended})")
-        return _validated(reader.frame[0])
+            return self._out_of_memory(kills) or Execution(
+                "error", f"the grading worker stopped without a result ({ended})")
+        ex = _validated(reader.frame[0])
+        oom = self._out_of_memory(kills)
+        if oom is not None and ex.status in ("ok", "error"):
+            # a process of the notebook was killed at the memory limit: the kernel itself (the answers read
+            # before it are kept), or a child it forked (the run went on, without what the child held)
+            ex.status, ex.message = "memory", oom.message + (" (it was stopped at that cell)" if ex.cell else "")
+        return ex
+
+    def _out_of_memory(self, before):
+        """An Execution "memory" when the control group's out-of-memory killer struck since ``before``."""
+        if self.cgroup is not None and self.cgroup.oom_kills() > before:
+            return Execution("memory", "the notebook went over its memory limit (a process was stopped by the "
+                                       "sandbox's control group)")
+        return None
 
     def _reset(self):
         """End the run (see the module docstring); a sandbox that does not come back clean is thrown away."""
@@ -409,11 +514,25 @@ class Sandbox:
                     pass
             except (BlockingIOError, OSError):
                 pass
+        self._drain()
         if not ok:
             self.close()
 
 
+def bwrap_text(data):
+    """Bytes the sandbox wrote, as printable text (control characters escaped)."""
+    from ..sanitize import clean
+
+    return clean(data.decode("utf-8", "replace")).strip()
+
+
+_live = weakref.WeakSet()
+_spawning = [False]
+
+
 def _forget_in_child():
+    if _spawning[0]:  # the child of subprocess.Popen, about to exec the sandbox: it needs these descriptors
+        return
     # a process forked from this one (a grading pool's process) must neither use nor stop these sandboxes
     for sb in list(_live):
         if sb.owner != os.getpid():

@@ -1,24 +1,27 @@
 """The student's kernel, forked from the zygote (:mod:`.zygote`) for each submission.
 
 The zygote did the imports once (:func:`preload`: the scientific stack and kinbook, so that imports do not
-count against the limits below and read no file once the audit hook is on). Then, in each forked kernel,
-:func:`main`:
+count against the limits below and read no file once the audit hook is on). In each forked kernel, the zygote
+first sets its environment (its own, fixed), directory, CPU time (``RLIMIT_CPU``, a backstop to the wall-clock
+timeout), file size, open files and processes, and — where no control group holds the sandbox together — a
+seccomp filter that lets it start threads but no process. Then :func:`main`:
 
 1. initializes ipykernel (reads the connection file, binds its ZeroMQ sockets);
-2. caps the address space at *current size + memory budget* (``RLIMIT_AS``), file size (``RLIMIT_FSIZE``),
-   CPU time (``RLIMIT_CPU``, a backstop to the wall-clock timeout), open files (``RLIMIT_NOFILE``) and
-   processes (``RLIMIT_NPROC``, inside bubblewrap);
+2. caps the address space at *current size + memory budget* (``RLIMIT_AS``: a ``MemoryError`` the notebook
+   sees, before the sandbox's control group, if any, would kill the process) and the output it sends
+   (:func:`cap_output`);
 3. installs :func:`install_audit_hook` — a ``sys.addaudithook`` hook cannot be removed — and only then
    starts serving cells, so that no student code runs before the hook.
 
-The hook is the *second* fence: the first is the operating-system sandbox around the zygote and everything it
-forks (:mod:`.bwrap`). Without bubblewrap (``--no-isolation``) it is the only one.
+The hook is *advisory*: a fence that makes ordinary mistakes and casual attempts fail with a clear
+``PermissionError``, not a boundary — code that reaches ``ctypes`` (or any native code) can switch it off. The
+boundary is the operating-system sandbox around the zygote and everything it forks (:mod:`.bwrap`, and the
+control group of :mod:`.cgroup`), which the tests check with the hook off. Without bubblewrap
+(``--no-isolation``) the hook and the limits are all there is.
 
-Environment (set by the worker): ``KINBOOK_SANDBOX_ROOT`` (the submission's copy: working directory, writable),
-``KINBOOK_SANDBOX_TMP`` (the private temporary directory, writable), ``KINBOOK_SANDBOX_MEMORY_MB``,
-``KINBOOK_SANDBOX_CPU_S``, and ``KINBOOK_SANDBOX_AUDIT`` (``0`` only when the grading process asked for a
-kernel without the hook: the tests that show what bubblewrap alone holds; a student cannot set a kernel's
-environment, which is fixed before any of their code runs).
+Environment (set by the zygote): ``KINBOOK_SANDBOX_ROOT`` (the submission's copy: working directory,
+writable) and ``KINBOOK_SANDBOX_TMP`` (the private temporary directory, writable). The limits and whether the
+hook is installed come from the grading process, never from the environment.
 """
 
 from __future__ import annotations
@@ -69,10 +72,8 @@ WRITE_EVENTS = frozenset({
 })
 #: Events whose first argument is a path that may be read (listed) inside the read-only roots too.
 READ_EVENTS = frozenset({"os.listdir", "os.scandir", "glob.glob", "glob.glob/2", "os.listxattr", "os.getxattr"})
-#: Processes the sandbox's user may have (inside bubblewrap only: elsewhere the count is the grader's user's).
-NPROC = 128
-#: Open files a kernel may have (its own sockets and files take about 60).
-NOFILE = 1024
+#: Characters written to descriptors 1 and 2 that a run may send out of the kernel (:func:`cap_output`).
+MAX_OUTPUT_CHARS = 100_000
 _WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_TRUNC | os.O_APPEND
 
 
@@ -256,7 +257,31 @@ def preload():
     warnings.resetwarnings()
 
 
-def main(argv, layout):
+def cap_output(limit=MAX_OUTPUT_CHARS):
+    """Send the notebook's printed output nowhere: the grader reads answers, not output (the worker keeps only
+    each cell's exception). ``sys.stdout`` and ``sys.stderr`` become the null device (a ``print`` is one C-level
+    write: a 300,000-line flood costs a fraction of a second and no memory, and is graded like any other
+    notebook); what reaches descriptors 1 and 2 directly (C code, ``os.write``) still goes through ipykernel's
+    streams, of which at most ``limit`` characters leave the kernel."""
+    written = [0]
+    for stream in (sys.stdout, sys.stderr):
+        write = getattr(stream, "write", None)
+        if write is None:
+            continue
+
+        def capped(text, write=write):
+            n = len(text) if isinstance(text, str) else 0
+            if written[0] >= limit:
+                return n
+            written[0] += n
+            return write(text[:limit - written[0] + n])
+
+        stream.write = capped
+    null = open(os.devnull, "w")
+    sys.stdout = sys.stderr = null
+
+
+def main(argv, layout, memory_mb, audit=True):
     """Start the kernel (steps 1–3 of the module docstring) and serve cells until shut down.
 
     Parameters
@@ -265,11 +290,16 @@ def main(argv, layout):
         ipykernel's arguments (``-f CONNECTION_FILE``).
     layout : kinbook.classroom.sandbox.protocol.Layout
         Where the submission's copy and the temporary directory are.
+    memory_mb : float
+        What the notebook may allocate beyond the kernel's own footprint (its address-space cap).
+    audit : bool
+        Install the audit hook (False only when the grading process asks for it: the tests of what the
+        operating-system sandbox holds on its own).
+
+    The other limits (CPU time, file size, open files, processes) are set by the zygote before this runs.
     """
     root = os.path.realpath(os.environ["KINBOOK_SANDBOX_ROOT"])
     tmp = os.path.realpath(os.environ.get("KINBOOK_SANDBOX_TMP", root))
-    memory_mb = float(os.environ.get("KINBOOK_SANDBOX_MEMORY_MB", "0"))
-    cpu_s = int(float(os.environ.get("KINBOOK_SANDBOX_CPU_S", "0")))
     os.chdir(root)
     # ipykernel read JPY_PARENT_PID when the zygote imported it: say which parent to watch (the zygote)
     options = ["--HistoryManager.enabled=False", "--IPKernelApp.quiet=False",
@@ -282,20 +312,17 @@ def main(argv, layout):
         app.shell.InteractiveTB.set_mode("Plain")  # cheap tracebacks: the grader reads only exception names
     except Exception:
         pass
+    try:  # IPython 9 copies every write to stdout/stderr into the history's memory ("tee"): not here
+        import contextlib
+
+        app.shell._tee = lambda channel: contextlib.nullcontext()
+    except Exception:
+        pass
+    cap_output()
     read_roots = _read_roots()
     if memory_mb > 0:
         limit = _vm_bytes() + int(memory_mb * 1024 * 1024)
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
-    if cpu_s > 0:
-        resource.setrlimit(resource.RLIMIT_CPU, (cpu_s, cpu_s + 5))
-    resource.setrlimit(resource.RLIMIT_FSIZE, (64 * 1024 * 1024, 64 * 1024 * 1024))
-    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-    # each descriptor can pin kernel memory outside RLIMIT_AS (a socket's queued data): not the grader's 20,000
-    hard = resource.getrlimit(resource.RLIMIT_NOFILE)[1]
-    nofile = NOFILE if hard == resource.RLIM_INFINITY or hard > NOFILE else hard
-    resource.setrlimit(resource.RLIMIT_NOFILE, (nofile, nofile))
-    if layout.isolated:  # the whole sandbox is this submission's: a fork bomb stops here
-        resource.setrlimit(resource.RLIMIT_NPROC, (NPROC, NPROC))
-    if os.environ.get("KINBOOK_SANDBOX_AUDIT", "1") != "0":  # "0": tests of the operating-system boundary alone
+    if audit:
         install_audit_hook((root, tmp), read_roots)
     app.start()

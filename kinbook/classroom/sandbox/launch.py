@@ -1,21 +1,21 @@
-"""The kernelspec's command: ``python -I -S launch.py SOCKET PIDFILE -f CONNECTION_FILE``.
+"""The kernelspec's command: ``python -I -S launch.py CHANNEL_FD PIDFILE``.
 
 Run by path by the worker's jupyter_client (it imports only the standard library, so it starts in a few
-milliseconds). It stands in for the kernel process that jupyter_client would have started, and behaves
-like it:
+milliseconds), with ``CHANNEL_FD`` — the worker's end of the run's launch channel, a socket pair the zygote
+made for this run (:mod:`.zygote`) — passed down to it. It stands in for the kernel process that
+jupyter_client would have started, and behaves like it:
 
-1. sends the zygote (:mod:`.zygote`, its socket ``SOCKET``) a launch request: the kernel's arguments
-   (``-f CONNECTION_FILE``), its environment, working directory, umask and resource limits; the zygote forks
-   a kernel that takes all of them;
+1. writes ``launch`` on the channel; the zygote forks the run's one kernel, with arguments, environment,
+   directory and limits of its own (nothing of this process's), and answers ``pid N``;
 2. writes the kernel's process id to ``PIDFILE``;
 3. forwards ``SIGINT`` (an interrupt request) to the kernel;
 4. waits for the kernel's end and ends the same way: with its exit code, or killed by the same signal (so
    that the worker sees ``SIGXCPU`` as a timeout, ``SIGKILL`` after a ``MemoryError`` as out of memory).
 
-When this launcher dies (killed by the worker, or at the end of the run), its connection closes and the
-zygote kills the kernel's process group at once. When its parent (the worker) goes away, it exits too, as
-ipykernel's parent poller makes a kernel do. When the zygote cannot be reached, it exits with status 1 (the
-worker then reports a kernel that did not start).
+When this launcher dies (killed by the worker, or at the end of the run), the channel closes and the zygote
+kills the kernel's process group at once. When its parent (the worker) goes away, it exits too, as ipykernel's
+parent poller makes a kernel do. When the zygote does not answer, it exits with status 1 (the worker then
+reports a kernel that did not start).
 """
 
 import os
@@ -23,36 +23,7 @@ import signal
 import socket
 import sys
 
-__all__ = ["main", "request", "returncode", "unix_address"]
-
-_LIMITS = ("RLIMIT_AS", "RLIMIT_CPU", "RLIMIT_FSIZE", "RLIMIT_DATA", "RLIMIT_STACK", "RLIMIT_CORE",
-           "RLIMIT_NOFILE", "RLIMIT_NPROC", "RLIMIT_MEMLOCK", "RLIMIT_RSS")
-
-
-def unix_address(path, call):
-    """``call(address)`` with ``path`` as an ``AF_UNIX`` address — through ``/proc/self/fd`` when the path is
-    longer than such addresses may be (a deep ``TMPDIR``)."""
-    if len(os.fsencode(path)) < 100:
-        return call(path)
-    fd = os.open(os.path.dirname(path) or ".", os.O_PATH | os.O_DIRECTORY)
-    try:
-        return call(f"/proc/self/fd/{fd}/{os.path.basename(path)}")
-    finally:
-        os.close(fd)
-
-
-def request(argv):
-    """A kernel launch request for the zygote (JSON bytes): its arguments, and this process's environment,
-    working directory, umask and resource limits."""
-    import json
-    import resource
-
-    umask = os.umask(0)
-    os.umask(umask)
-    limits = {name: list(resource.getrlimit(getattr(resource, name))) for name in _LIMITS
-              if hasattr(resource, name)}
-    return json.dumps({"role": "kernel", "argv": list(argv), "env": dict(os.environ), "cwd": os.getcwd(),
-                       "umask": umask, "rlimits": limits}).encode()
+__all__ = ["main", "returncode"]
 
 
 def returncode(status):
@@ -80,17 +51,16 @@ def _end_like(status):
 
 
 def main(argv):
-    """Launch one kernel through the zygote at ``argv[0]``; ``argv[1]`` is the pid file, the rest the kernel's
-    arguments."""
-    path, pidfile, kernel_argv = argv[0], argv[1], argv[2:]
-    sock = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+    """Launch the run's kernel through the channel at descriptor ``argv[0]``; ``argv[1]`` is the pid file."""
+    fd, pidfile = int(argv[0]), argv[1]
     try:
-        unix_address(path, sock.connect)
-        sock.sendall(request(kernel_argv))
+        sock = socket.socket(fileno=fd)
+        sock.sendall(b"launch")
+        sock.settimeout(60.0)
         reply = sock.recv(64)
     except OSError:
         reply = b""
-    if not reply.startswith(b"pid "):
+    if not reply.startswith(b"pid ") or not reply[4:].isdigit():
         os._exit(1)
     pid = int(reply[4:])
     tmp = pidfile + ".tmp"

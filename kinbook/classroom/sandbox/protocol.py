@@ -42,7 +42,6 @@ MAX_JOB_BYTES = 40 * 1024 * 1024
 #: The answers (at most 2 MB each, 100 of them in principle; far less in practice) and cell errors.
 MAX_RESULT_BYTES = 16 * 1024 * 1024
 _MAGIC = b"KBF1"
-SOCKET_NAME = "fork.sock"
 
 
 @dataclass(frozen=True)
@@ -56,9 +55,7 @@ class Layout:
     tmp : str
         A private temporary directory (the sandbox's ``/tmp``), writable.
     work : str
-        The worker's control directory (the notebook to run, the kernel's connection file and kernelspec).
-    zygote : str
-        The directory of the zygote's socket (kernels are forked on request of the launcher).
+        The worker's control directory (the kernel's connection file and kernelspec).
     isolated : bool
         True inside bubblewrap (own pid namespace, an unprivileged uid, nothing of the host writable).
     """
@@ -66,12 +63,12 @@ class Layout:
     home: str
     tmp: str
     work: str
-    zygote: str
     isolated: bool
 
     @property
-    def socket(self):
-        return os.path.join(self.zygote, SOCKET_NAME)
+    def connection_file(self):
+        """The kernel's connection file (written by the worker's jupyter_client, read by the kernel)."""
+        return os.path.join(self.work, "connection.json")
 
     def to_json(self):
         return json.dumps(asdict(self))
@@ -82,8 +79,7 @@ class Layout:
 
 
 #: The layout inside bubblewrap (every directory a size-capped tmpfs of the sandbox).
-ISOLATED = Layout(home="/home/student", tmp="/tmp", work="/run/kinbook/work", zygote="/run/kinbook/zygote",
-                  isolated=True)
+ISOLATED = Layout(home="/home/student", tmp="/tmp", work="/run/kinbook/work", isolated=True)
 
 
 class FrameError(ValueError):

@@ -4,25 +4,33 @@
 Running one submission takes two Python processes: the worker (:mod:`.worker`, nbclient) and the kernel
 (:mod:`.kernel`: numpy, sympy, IPython, kinbook). Their imports cost more than a submission's cells, so the
 *zygote* does them once and forks both processes for every submission. It is started by the grading process
-(:class:`kinbook.classroom.sandbox.host.Sandbox`) inside bubblewrap — or, with ``--no-isolation``, as a
-plain child process — and serves one submission after another:
+(:class:`kinbook.classroom.sandbox.host.Sandbox`) inside bubblewrap — as the sandbox's pid 1 (``--as-pid-1``:
+no other process of the sandbox is beyond its reach) — or, with ``--no-isolation``, as a plain child process,
+and serves one submission after another:
 
-``run`` (a line on ``CMD_FD``, which the zygote makes its stdin; events go to ``EVENT_FD``, its stdout)
-    fork a new worker, answer ``worker PID``. The worker reads its job from ``JOB_FD``, runs the notebook and
-    writes its result to ``RESULT_FD``; when it ends the zygote says ``exit N`` or ``signal N``. The zygote
-    itself never reads a job or a result: no submission ever enters its memory, which later kernels inherit.
-kernel launch requests (its socket)
-    the launcher (:mod:`.launch`, the kernelspec's command, started by the worker) asks for a kernel: the
-    zygote forks one that takes the request's environment, directory and limits and runs
-    :func:`kinbook.classroom.sandbox.kernel.main` (which caps its memory and installs the audit hook before
-    any cell). At most :data:`MAX_KERNELS` per run. When the launcher's connection closes, the kernel is
-    killed.
+``run LIMITS`` (a line on ``CMD_FD``, which the zygote makes its stdin; events go to ``EVENT_FD``, its stdout)
+    ``LIMITS`` is JSON from the grading process: the kernel's memory budget, CPU seconds, whether the audit
+    hook is installed and whether the kernel may fork (only where a control group holds the sandbox's
+    processes together, :mod:`.cgroup`). The zygote makes a *launch channel* (a socket pair), forks a new
+    worker that holds one end, and answers ``worker PID``. The worker reads its job from ``JOB_FD``, runs the
+    notebook and writes its result to ``RESULT_FD``; when it ends the zygote says ``exit N`` or ``signal N``.
+    The zygote itself never reads a job or a result: no submission ever enters its memory, which later
+    kernels inherit.
+the launch channel
+    the only way to a kernel, and good for one: the launcher (:mod:`.launch`, the kernelspec's command, started
+    by the worker with the channel's end) writes ``launch``; the zygote forks a kernel that takes nothing from
+    the request — its arguments, environment (:func:`kernel_environment`), directory, umask and limits are the
+    zygote's own and the grading process's — applies the limits, and runs
+    :func:`kinbook.classroom.sandbox.kernel.main` (which caps its address space and installs the audit hook
+    before any cell). A second request on the channel is ignored; there is no socket anyone else could reach.
+    When the launcher's end closes, the kernel is killed.
 ``reset``
-    end the run: kill every process but itself (in bubblewrap ``kill(-1)``: all of the sandbox's pid
-    namespace, whatever session or process group a student's daemon put itself in; without bubblewrap, every
-    process group it started and every orphan it adopted), reap them, empty the writable directories, and
-    answer ``clean`` — or ``dirty REASON`` (a process that survived, too many files, a System V IPC object),
-    on which the grading process throws the whole sandbox away and starts a new one.
+    end the run: kill every process but itself (in bubblewrap ``kill(-1)`` from pid 1: all of the sandbox's
+    pid namespace, whatever session or process group a student's daemon put itself in; without bubblewrap,
+    every process group it started and every orphan it adopted), reap them, empty the writable directories and
+    reset what else of them a run could set (their mode, times and extended attributes), and answer ``clean``
+    — or ``dirty REASON`` (a process that survived, too many files, a System V IPC object), on which the
+    grading process throws the whole sandbox away and starts a new one.
 ``stop`` or end of file on stdin
     kill everything and exit.
 
@@ -43,63 +51,97 @@ import sys
 import time
 import traceback
 
-from .protocol import SOCKET_NAME, Layout, die_with_parent, set_child_subreaper, set_dumpable
+from .protocol import Layout, die_with_parent, set_child_subreaper, set_dumpable
 
-__all__ = ["serve", "MAX_KERNELS", "MAX_REQUEST", "MAX_ENTRIES"]
+__all__ = ["serve", "kernel_environment", "MAX_ENTRIES", "NPROC", "NOFILE"]
 
-#: Kernels one run may start (the worker starts one; a second would be a restart after a crash).
-MAX_KERNELS = 2
-#: Most bytes of one kernel launch request.
-MAX_REQUEST = 1 << 20
 #: Most files a run may leave in its writable directories; more, and the sandbox is replaced, not emptied.
 MAX_ENTRIES = 20_000
 FILE_SIZE_LIMIT = 64 * 1024 * 1024
-_LIMITS = ("RLIMIT_AS", "RLIMIT_CPU", "RLIMIT_FSIZE", "RLIMIT_DATA", "RLIMIT_STACK", "RLIMIT_CORE",
-           "RLIMIT_NOFILE", "RLIMIT_NPROC", "RLIMIT_MEMLOCK", "RLIMIT_RSS")
+#: Processes the sandbox's user may have (inside bubblewrap only: elsewhere the count is the grader's user's).
+NPROC = 128
+#: Open files a kernel may have (its own sockets and files take about 60): each descriptor can pin kernel
+#: memory outside every address-space limit (a socket's queued data).
+NOFILE = 1024
+#: The kernel is the first process the out-of-memory killer picks in a full control group, the worker next.
+OOM_SCORE = {"kernel": 1000, "worker": 500}
+_BASE_ENV = {}
 
 
 def _say(line):
     os.write(1, (line + "\n").encode())
 
 
-def _apply_limits(limits):
-    """Take a launch request's resource limits, never looser than the zygote's own."""
+def kernel_environment(layout):
+    """The kernel's environment: the zygote's own (the sandbox's fixed one, never a request's) and its
+    directories."""
+    env = dict(_BASE_ENV or os.environ)
+    env.update({"HOME": layout.home, "TMPDIR": layout.tmp, "IPYTHONDIR": os.path.join(layout.tmp, ".ipython"),
+                "MPLCONFIGDIR": os.path.join(layout.tmp, ".matplotlib"), "JUPYTER_RUNTIME_DIR": layout.work,
+                "KINBOOK_SANDBOX_ROOT": layout.home, "KINBOOK_SANDBOX_TMP": layout.tmp})
+    return env
+
+
+def _limits(text):
+    """The run's limits from the grading process's ``run`` command (validated: it is trusted, but a malformed
+    line must not fork a kernel without limits)."""
+    try:
+        raw = json.loads(text)
+        limits = {"memory_mb": float(raw["memory_mb"]), "cpu_s": int(raw["cpu_s"]), "audit": bool(raw["audit"]),
+                  "fork": bool(raw["fork"])}
+    except (ValueError, KeyError, TypeError):
+        return None
+    if not (0 < limits["memory_mb"] < 1 << 24 and 0 < limits["cpu_s"] < 1 << 24):
+        return None
+    return limits
+
+
+def _set_limits(limits, isolated):
+    """The kernel's resource limits, set by the zygote in the forked kernel before anything else runs (the
+    address-space cap follows once the kernel has started: :func:`kinbook.classroom.sandbox.kernel.main`)."""
     import resource
 
-    inf = resource.RLIM_INFINITY
+    cpu = limits["cpu_s"]
+    resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 5))
+    resource.setrlimit(resource.RLIMIT_FSIZE, (FILE_SIZE_LIMIT, FILE_SIZE_LIMIT))
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    hard = resource.getrlimit(resource.RLIMIT_NOFILE)[1]
+    nofile = NOFILE if hard == resource.RLIM_INFINITY or hard > NOFILE else hard
+    resource.setrlimit(resource.RLIMIT_NOFILE, (nofile, nofile))
+    if isolated:  # the whole sandbox is this submission's: a fork bomb stops here
+        resource.setrlimit(resource.RLIMIT_NPROC, (NPROC, NPROC))
 
-    def tighter(a, b):
-        return b if a == inf else a if b == inf else min(a, b)
 
-    for name, pair in limits.items():
-        which = getattr(resource, name, None) if name in _LIMITS else None
-        if which is None or not isinstance(pair, list) or len(pair) != 2 or not all(isinstance(v, int) for v in pair):
-            continue
-        cur_soft, cur_hard = resource.getrlimit(which)
-        hard = tighter(pair[1], cur_hard)
-        soft = tighter(pair[0], hard)
-        resource.setrlimit(which, (soft, hard))
+def _oom_score(role):
+    try:
+        with open("/proc/self/oom_score_adj", "w") as f:
+            f.write(str(OOM_SCORE[role]))
+    except OSError:
+        pass
 
 
 class _Server:
-    def __init__(self, layout, job_fd, result_fd, listener):
+    def __init__(self, layout, job_fd, result_fd, no_fork):
         self.layout = layout
         self.job_fd, self.result_fd = job_fd, result_fd
-        self.listener = listener
+        self.no_fork = no_fork
         self.pid = os.getpid()
         self.worker = None
-        self.kernels = {}    # kernel pid → launcher connection
-        self.conns = {}      # connection fd → (socket, kernel pid)
-        self.started = 0     # kernels started in this run
-        st = os.lstat(layout.socket)
-        self.socket_id = (st.st_dev, st.st_ino)  # checked at every reset
+        self.limits = None
+        self.channel = None  # the zygote's end of this run's launch channel
+        self.kernel = None   # the run's kernel, once launched
         r, w = os.pipe2(os.O_NONBLOCK | os.O_CLOEXEC)
         self.wake = r
         signal.signal(signal.SIGCHLD, lambda signum, frame: None)
         signal.set_wakeup_fd(w, warn_on_full_buffer=False)
+        self._poll()
+
+    def _poll(self):
         self.poll = select.poll()
-        for fd in (0, listener.fileno(), r):
+        for fd in (0, self.wake):
             self.poll.register(fd, select.POLLIN)
+        if self.channel is not None:
+            self.poll.register(self.channel.fileno(), select.POLLIN)
 
     # ------------------------------------------------------------------------------------------- main loop
     def run(self):
@@ -119,8 +161,6 @@ class _Server:
                         line, commands = commands.split(b"\n", 1)
                         if not self._command(line.decode(errors="replace").strip()):
                             return
-                elif fd == self.listener.fileno():
-                    self._accept()
                 elif fd == self.wake:
                     try:
                         while os.read(self.wake, 512):
@@ -128,13 +168,25 @@ class _Server:
                     except BlockingIOError:
                         pass
                     self._reap()
-                elif fd in self.conns:
-                    self._launcher_gone(fd)
+                elif self.channel is not None and fd == self.channel.fileno():
+                    self._from_channel()
 
-    def _command(self, word):
+    def _command(self, line):
+        word, _, rest = line.partition(" ")
         if word == "run":
-            self.started = 0
-            self.worker = self._fork("worker", None)
+            self._close_channel()
+            self.limits = _limits(rest)
+            if self.limits is None:
+                _say("refused")
+                return True
+            mine, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+            self.kernel = None
+            try:
+                self.worker = self._fork("worker", theirs)
+            finally:
+                theirs.close()
+            self.channel = mine
+            self._poll()
             _say(f"worker {self.worker}")
         elif word == "reset":
             why = self._reset()
@@ -144,20 +196,20 @@ class _Server:
         return True
 
     # ---------------------------------------------------------------------------------------------- children
-    def _fork(self, role, request):
+    def _fork(self, role, channel=None):
         pid = os.fork()
         if pid == 0:
-            self._child(role, request)  # never returns
+            self._child(role, channel)  # never returns
         return pid
 
-    def _child(self, role, request):
+    def _child(self, role, channel):
         code = 1
         try:
             die_with_parent(self.pid)
             os.setsid()
             signal.set_wakeup_fd(-1)
             signal.signal(signal.SIGCHLD, signal.SIG_DFL)
-            keep = {2, self.job_fd, self.result_fd} if role == "worker" else set()
+            keep = {2, self.job_fd, self.result_fd, channel.fileno()} if role == "worker" else set()
             null = os.open(os.devnull, os.O_RDWR)
             for target in (0, 1, 2):
                 if target not in keep:
@@ -169,27 +221,32 @@ class _Server:
                         os.close(fd)
                     except OSError:
                         pass
+            _oom_score(role)
             if role == "worker":
                 from . import worker
 
-                worker.main(self.layout, self.job_fd, self.result_fd)
+                worker.main(self.layout, self.job_fd, self.result_fd, channel.detach(), self.limits)
                 code = 0
             else:
+                limits = self.limits
                 os.environ.clear()
-                os.environ.update({str(k): str(v) for k, v in request["env"].items()})
-                os.chdir(request["cwd"])
-                os.umask(int(request["umask"]) & 0o777)
-                _apply_limits(request.get("rlimits", {}))
+                os.environ.update(kernel_environment(self.layout))
+                os.chdir(self.layout.home)
+                os.umask(0o077)
+                _set_limits(limits, self.layout.isolated)
+                if not limits["fork"] and self.no_fork.available:  # no control group: per-process limits
+                    self.no_fork.load()                                # must not be multiplied by forking
                 import tempfile
 
                 tempfile.tempdir = None
                 from . import kernel
 
-                sys.argv = [kernel.__file__] + list(request["argv"])
+                argv = ["-f", self.layout.connection_file]
+                sys.argv = [kernel.__file__] + argv
                 sys.path[0] = os.getcwd()  # as ``python -m`` run in the kernel's working directory
                 if "numpy.random" in sys.modules:  # each kernel its own random state, as in a fresh process
                     sys.modules["numpy.random"].seed()
-                kernel.main(list(request["argv"]), self.layout)
+                kernel.main(argv, self.layout, memory_mb=limits["memory_mb"], audit=limits["audit"])
                 code = 0
         except SystemExit as exc:
             code = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
@@ -203,45 +260,34 @@ class _Server:
                     pass
             os._exit(code & 0xFF)
 
-    def _accept(self):
+    def _from_channel(self):
+        """The launcher's request (once per run), or its end (its connection closed): the kernel goes too."""
         try:
-            conn, _ = self.listener.accept()
+            msg = self.channel.recv(64)
         except OSError:
+            msg = b""
+        if not msg:
+            self._close_channel()
+            return
+        if msg != b"launch" or self.kernel is not None or self.limits is None:
+            return  # exactly one launch per run
+        try:
+            self.kernel = self._fork("kernel")
+        except OSError:
+            self._close_channel()
             return
         try:
-            conn.settimeout(2.0)
-            msg = conn.recv(MAX_REQUEST)
-            request = json.loads(msg)
-            if (not isinstance(request, dict) or request.get("role") != "kernel"
-                    or not isinstance(request.get("argv"), list) or not isinstance(request.get("env"), dict)
-                    or not isinstance(request.get("cwd"), str) or not isinstance(request.get("umask"), int)):
-                raise ValueError("not a kernel request")
-            if self.started >= MAX_KERNELS:
-                raise ValueError("too many kernels in this run")
-            conn.settimeout(None)
-        except (OSError, ValueError, TypeError):
-            conn.close()
-            return
-        self.started += 1
-        try:
-            pid = self._fork("kernel", request)
+            self.channel.sendall(b"pid %d" % self.kernel)
         except OSError:
-            conn.close()
-            return
-        self.kernels[pid] = conn
-        self.conns[conn.fileno()] = (conn, pid)
-        self.poll.register(conn.fileno(), select.POLLIN)
-        try:
-            conn.sendall(b"pid %d" % pid)
-        except OSError:
-            self._launcher_gone(conn.fileno())
+            self._close_channel()
 
-    def _launcher_gone(self, fd):
-        conn, pid = self.conns.pop(fd)
-        self.poll.unregister(fd)
-        self.kernels.pop(pid, None)
-        conn.close()
-        _kill_group(pid)  # reaped when SIGCHLD says so
+    def _close_channel(self):
+        if self.channel is not None:
+            self.channel.close()
+            self.channel = None
+            self._poll()
+        if self.kernel is not None:
+            _kill_group(self.kernel)  # reaped when SIGCHLD says so
 
     def _reap(self):
         while True:
@@ -256,37 +302,28 @@ class _Server:
             if pid == self.worker:
                 self.worker = None
                 _say(word.decode())
-            conn = self.kernels.pop(pid, None)
-            if conn is not None:
-                self.conns.pop(conn.fileno(), None)
-                try:
-                    self.poll.unregister(conn.fileno())
-                    conn.sendall(word)
-                except (OSError, KeyError):
-                    pass
-                conn.close()
+            if pid == self.kernel:
+                self.kernel = None
+                if self.channel is not None:
+                    try:
+                        self.channel.sendall(word)
+                    except OSError:
+                        pass
 
     # ----------------------------------------------------------------------------------------------- reset
     def _can_kill_all(self):
-        """``kill(-1)`` is for bubblewrap's pid namespace only: pid 2 under bwrap's pid 1, not root."""
-        if not self.layout.isolated or self.pid != 2 or os.getppid() != 1 or os.getuid() == 0:
-            return False
-        try:
-            with open("/proc/1/comm") as f:
-                return f.read().strip() == "bwrap"
-        except OSError:
-            return False
+        """``kill(-1)`` is for the sandbox's own pid namespace only: the zygote as its pid 1, not root."""
+        return self.layout.isolated and self.pid == 1 and os.getuid() != 0
 
     def _others(self):
-        """Processes other than this one and bubblewrap's init, as seen in /proc (isolated), or this one's
-        children (not isolated)."""
+        """Processes other than this one, as seen in /proc (isolated: the sandbox's pid namespace), or this
+        one's children (not isolated)."""
         out = []
         for name in os.listdir("/proc"):
             if not name.isdigit() or int(name) == self.pid:
                 continue
             if self.layout.isolated:
-                if int(name) != 1:
-                    out.append(int(name))
+                out.append(int(name))
                 continue
             try:
                 with open(f"/proc/{name}/stat") as f:
@@ -298,13 +335,8 @@ class _Server:
         return out
 
     def _reset(self):
-        for conn, _ in list(self.conns.values()):
-            conn.close()
-        self.conns.clear()
-        self.kernels.clear()
-        self.poll = select.poll()
-        for fd in (0, self.listener.fileno(), self.wake):
-            self.poll.register(fd, select.POLLIN)
+        self._close_channel()
+        self.kernel = self.limits = None
         deadline = time.monotonic() + 3.0
         left = []
         while time.monotonic() < deadline:
@@ -328,19 +360,18 @@ class _Server:
         for d in (self.layout.home, self.layout.tmp, self.layout.work):
             if not _empty(d, budget):
                 return f"more than {MAX_ENTRIES} files were left in the writable directories"
-        # the control directories are writable by the sandbox's user too: anything left beside them would reach
-        # the next submission, and a removed or replaced socket would leave it without a kernel
+        # the control directory's parent is writable by the sandbox's user too: anything left beside it would
+        # reach the next submission
         parent = os.path.dirname(self.layout.work)
-        if self.layout.isolated and os.path.dirname(self.layout.zygote) == parent:
-            keep = {os.path.basename(self.layout.work), os.path.basename(self.layout.zygote)}
-            if sorted(set(os.listdir(parent)) - keep):
+        if self.layout.isolated:
+            if sorted(set(os.listdir(parent)) - {os.path.basename(self.layout.work)}):
                 return f"files were left in {parent}"
-        try:
-            st = os.lstat(self.layout.socket)
-            if (st.st_dev, st.st_ino) != self.socket_id or os.listdir(self.layout.zygote) != [SOCKET_NAME]:
-                return "the zygote's socket was replaced"
-        except OSError:
-            return "the zygote's socket was removed"
+        # what else of the directories a run could set, and the next run read: their mode, extended attributes
+        # and times (a directory's access time alone carries 64 bits)
+        for d in (self.layout.home, self.layout.tmp, self.layout.work) + ((parent,) if self.layout.isolated else ()):
+            why = _scrub(d)
+            if why:
+                return why
         if self.layout.isolated:
             for kind in ("shm", "msg", "sem"):
                 try:
@@ -353,6 +384,19 @@ class _Server:
 
     def shutdown(self):
         self._reset()
+
+
+def _scrub(directory):
+    """Reset a kept directory's mode (0700), extended attributes and access and modification times; the reason
+    when it cannot be done."""
+    try:
+        os.chmod(directory, 0o700)
+        for name in os.listxattr(directory, follow_symlinks=False):
+            os.removexattr(directory, name, follow_symlinks=False)
+        os.utime(directory, ns=(0, 0), follow_symlinks=False)
+    except OSError as exc:
+        return f"{directory} could not be reset: {exc.strerror}"
+    return None
 
 
 def _zombie(pid):
@@ -465,29 +509,25 @@ def serve(layout, job_fd, result_fd):
     soft, hard = resource.getrlimit(resource.RLIMIT_FSIZE)
     if hard == resource.RLIM_INFINITY or hard > FILE_SIZE_LIMIT:
         resource.setrlimit(resource.RLIMIT_FSIZE, (FILE_SIZE_LIMIT, FILE_SIZE_LIMIT))
-    for d in (layout.home, layout.tmp, layout.work, layout.zygote):
+    for d in (layout.home, layout.tmp, layout.work):
         os.makedirs(d, mode=0o700, exist_ok=True)
+    from .seccomp import NoFork
+
+    no_fork = NoFork()  # built before any kernel is forked (libseccomp is not loaded into kernels otherwise)
     _preload()
     if _LIFELINE[0] is not None:
         _LIFELINE[0].end()
     if not _single_threaded():
         raise RuntimeError("the imports started a thread: forking would not be safe")
     gc.freeze()  # the imported objects stay shared with the forked processes (no copy-on-write by the collector)
-    listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
-    from .launch import unix_address
-
-    unix_address(layout.socket, listener.bind)
-    os.chmod(layout.socket, 0o600)
-    listener.listen(16)
-    server = _Server(layout, job_fd, result_fd, listener)
+    server = _Server(layout, job_fd, result_fd, no_fork)
     try:
-        _say("ready")
+        _say("ready" if no_fork.available else "ready no-seccomp")
         server.run()
     except BrokenPipeError:
         pass
     finally:
         server.shutdown()
-        listener.close()
 
 
 class _Lifeline:
@@ -519,10 +559,10 @@ class _Lifeline:
 
 
 def main(argv):
+    _BASE_ENV.update(os.environ)  # the sandbox's fixed environment, before any import adds to it
     layout = Layout.from_json(argv[0])
     job_fd, result_fd = int(argv[1]), int(argv[2])
-    # commands in, events out: pipes passed as descriptors of their own (bubblewrap's init keeps its stdin and
-    # stdout, where a student's process could take them), made this process's 0 and 1
+    # commands in, events out: pipes passed as descriptors of their own, made this process's 0 and 1
     for fd, target in ((int(argv[3]), 0), (int(argv[4]), 1)):
         os.dup2(fd, target)
         os.close(fd)
