@@ -91,3 +91,32 @@ def test_variant_solutions_are_graded_in_the_sandbox_and_a_classmates_variant_is
     # alice's notebook in carol's folder: a copying signal, said as such (not "tampered")
     assert results["carol"].status == "wrong-release"
     assert results["carol"].message == "this notebook was released for alice, not for carol"
+
+
+def test_a_generic_release_graded_per_student_stops_before_grading(tmp_path):
+    """Every student got `kinbook release`'s generic notebook but the run grades per-student variants: each
+    would be refused, for the instructor's mistake. The run stops before grading anything and says what to do;
+    one student's generic notebook among variants is that student's (`wrong-release`)."""
+    import sqlite3
+
+    from kinbook.errors import GradingError
+
+    src = _exercise("ex11")
+    source = load_source(src)
+    subs = tmp_path / "subs"
+    for student in ("alice", "bob", "carol"):
+        write_notebook(student_notebook(source, keep_solutions=True), subs / student / f"{source.exercise}.ipynb")
+    with pytest.raises(GradingError, match=r"3 of 3 submissions of .* are its generic release .* grade them with "
+                                           r"--generic\. Nothing was graded\."):
+        grade(src, [subs], tmp_path / "graded", timeout=30, memory=600)
+    db = sqlite3.connect(tmp_path / "graded" / "gradebook.sqlite")
+    assert db.execute("SELECT COUNT(*) FROM submissions").fetchone() == (0,)
+    db.close()
+    for student in ("alice", "bob"):  # now most are variants: carol's generic notebook is carol's to fix
+        values = student_parameters(source, student)
+        write_notebook(student_notebook(source, values, student, keep_solutions=True),
+                       subs / student / f"{source.exercise}.ipynb")
+    results = {r.student: r for r in grade(src, [subs], tmp_path / "graded", timeout=30, memory=600, jobs=2)}
+    assert results["alice"].score == results["bob"].score == 10
+    assert results["carol"].status == "wrong-release"
+    assert results["carol"].message == "this is the exercise's generic release, not the notebook released for carol"

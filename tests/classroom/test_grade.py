@@ -129,7 +129,11 @@ def test_answers_taken_from_the_reference_are_reported_not_penalized(batch):
 def test_wrong_answers_get_the_checkers_messages(batch):
     p = parts(batch, "wrong")
     assert p["revolute"].score == 0 and "Φ_4" in p["revolute"].message
-    assert p["angle"].message.startswith("hidden check: not correct")
+    from kinbook.grading.catalogue import explain
+
+    title, hint = explain("wrong_value")  # a hidden check names the mistake with the catalogue's hint, as a
+    assert p["angle"].message == f"hidden check: not correct — wrong_value: {title} — {hint}"  # visible one does
+    assert hint in p["revolute"].message
     assert "3.356" not in p["angle"].message  # a hidden check does not give its expected value away
 
 
