@@ -47,8 +47,8 @@ from pathlib import Path
 
 from .files import atomic_write
 from .results import PartGrade, SubmissionResult
-from .scores import Final, Rule, final
 from .sanitize import csv_field
+from .scores import Final, Rule, final
 
 __all__ = ["Gradebook", "COLUMNS", "TOTALS", "DATABASE", "FILES"]
 
