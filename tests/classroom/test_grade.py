@@ -204,7 +204,7 @@ def test_an_exception_is_named_with_its_cell_and_text(batch):
 def test_an_output_flood_is_capped_and_graded_the_same_way_every_time(batch, tmp_path):
     from kinbook.classroom import grade_submission
 
-    again = grade_submission(SOURCE, submission("flood"), timeout=5, memory=400, isolation=BWRAP)
+    again = grade_submission(SOURCE, submission("flood"), timeout=ENOUGH, memory=400, isolation=BWRAP)
     first = batch["results"]["flood"]
     assert (again.status, again.score) == (first.status, first.score) == ("ok", FULL)
 
