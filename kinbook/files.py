@@ -201,36 +201,11 @@ def _build(data, source):
             mech.add(cls(**spec))
         except KinbookError as exc:
             raise MechanismFileError(f"{source}: {where}: {exc}") from None
-    _check_links(mech, source)
+    try:
+        mech.validate()
+    except KinbookError as exc:
+        raise MechanismFileError(f"{source}: {exc}") from None
     return mech
-
-
-def _check_links(mech, source):
-    """Refuse a planar body joined to two or more bodies only by revolute joints, all at one point: a link of
-    zero length (a zero-length crank), which transmits no motion and makes Φ_q singular."""
-    if mech.kind != "planar":
-        return
-    from .planar.constraints import Revolute
-
-    joints = {}
-    for c in mech.constraints:
-        for role, body in enumerate(c.bodies or ()):
-            joints.setdefault(body.name, []).append((c, role))
-    for body in mech.bodies:
-        held = joints.get(body.name, [])
-        pins = [(c, role) for c, role in held if isinstance(c, Revolute)]
-        others = [c for c, _ in held if not isinstance(c, Revolute) and c.kind != "driver"]
-        if len(pins) < 2 or others:
-            continue
-        points = {tuple(c.s_i if role == 0 else c.s_j) for c, role in pins}
-        partners = {c.bodies[1 - role].name for c, role in pins}
-        if len(points) == 1 and len(partners) > 1:
-            where = ", ".join(f"'{c.name}'" for c, _ in pins)
-            (xi, eta), = points
-            raise MechanismFileError(
-                f"{source}: body '{body.name}' is a link of zero length: its revolute joints {where} (to bodies "
-                f"{', '.join(sorted(repr(p) for p in partners))}) are all at its point ({xi}, {eta}); a link "
-                "transmits motion only between joints set apart — give the points their distinct coordinates")
 
 
 @functools.lru_cache(maxsize=None)

@@ -30,8 +30,7 @@ import numbers
 
 import numpy as np
 
-__all__ = ["TOL", "setup", "clean", "show", "agrees", "small", "fmt", "tolerance_text", "sweep_both_ways", "time_axes",
-           "newton_table"]
+__all__ = ["TOL", "setup", "clean", "show", "agrees", "small", "fmt", "tolerance_text", "sweep_both_ways", "time_axes"]
 
 TOL = 1e-12
 """Below this magnitude a computed value is shown as 0 (round-off of an exact zero)."""
@@ -154,24 +153,6 @@ def agrees(error, tol=TOL):
     if error < tol:
         return f"agrees to within {tolerance_text(tol)}"
     return f"differs by {small(error, tol, 2 if error < 1 else 4)}"
-
-
-def newton_table(history, tol=TOL):
-    """The iterations of ``solve_position(..., history=True)`` as a table that prints no round-off.
-
-    One row per iterate k: max |Φ(q_k)| and max |Δq_k| as :func:`small` writes them (below ``tol``: "< 1e-12"),
-    and cond(Φ_q(q_k)) to three significant digits, so the stored output is the same on every CPU.
-
-    Returns
-    -------
-    kinbook.book.verify.Table
-    """
-    from .verify import Table
-
-    rows = [[str(k), small(r, tol), small(s, tol), f"{c:.3g}"]
-            for k, (r, s, c) in enumerate(zip(history.residual, history.step, history.cond))]
-    return Table(["k", "max |Φ|", "max |Δq|", "cond(Φ_q)"], rows,
-                 f"Newton–Raphson at t = {history.t:g}: {len(history)} iterates, Φ_q Δq = −Φ at each.")
 
 
 # ----------------------------------------------------------------------------------------------- setup

@@ -17,10 +17,11 @@ from typing import Callable
 import numpy as np
 import sympy as sp
 
+from ..grading.misprints import book_A_of_p, book_n1_acceleration
 from .display import agrees, small, tolerance_text
 from .notation import html_math
 
-__all__ = ["Erratum", "Evidence", "ERRATA", "table", "show", "get", "book_n1_acceleration"]
+__all__ = ["Erratum", "Evidence", "ERRATA", "table", "show", "get"]
 
 
 @dataclass(frozen=True)
@@ -312,22 +313,13 @@ def _ev_a21_row3():
                     e_p, e_c)
 
 
-def _printed_A_of_p(p):
-    e0, e1, e2, e3 = p
-    return np.array([
-        [e0**2 + e1**2 - 0.5, e1 * e2 - e0 * e3, e1 * e3 - e0 * e2],
-        [e1 * e2 - e0 * e3, e0**2 + e2**2 - 0.5, e2 * e3 - e0 * e1],
-        [e1 * e3 - e0 * e2, e2 * e3 - e0 * e1, e0**2 + e3**2 - 0.5],
-    ])
-
-
 def _ev_A_of_p():
     from ..spatial import A_from_p
 
     rows = []
     for p in _unit_ps():
         e0, e1, e2, e3 = p
-        printed = _printed_A_of_p(p)
+        printed = book_A_of_p(p)
         corrected = 2 * printed
         corrected[0, 2] += 4 * e0 * e2
         corrected[1, 0] += 4 * e0 * e3
@@ -737,44 +729,6 @@ def _ev_14_5_normalization():
                     f"four-bar would have {dof} degrees of freedom instead of 1. pᵀp − 1 equals kinbook's "
                     f"normalization row ({agrees(corrected)}) at 20 random p (on and off the unit sphere).",
                     printed, corrected)
-
-
-def book_n1_acceleration(a_i, p_i, pd_i, a_j, p_j, pd_j):
-    """§14.5's printed acceleration equation of Φ^(n1,1), as far as it can be read, for local vectors a_i, a_j
-    on bodies with Euler parameters p and rates ṗ (any leading batch axes) — the thing the 14.5-gamma-n1
-    errata test, written once here for them and for notebook 14-5.
-
-    The book writes [2 s_jᵀE_i s̄'_i, 2 s_iᵀE_j s̄'_j] [ṗ_i; ṗ_j] = 2(s_jᵀĖ_iĠ_i s'_i + s_iᵀĖ_jĠ_j s'_j + ṡ_iᵀṡ_j);
-    Ġ s' is undefined and is read as Ġᵀ s'.
-
-    Returns
-    -------
-    L_i, L_j : ndarray, shape (..., 4)
-        The row blocks 2 s_jᵀE_i s̄'_i and 2 s_iᵀE_j s̄'_j.
-    rhs : ndarray, shape (...)
-        The printed right-hand side.
-    extra : ndarray, shape (...)
-        2(s_jᵀs'_i)ṗ_iᵀṗ_i + 2(s_iᵀs'_j)ṗ_jᵀṗ_j: what the corrected equation lacks to be γ of Table 14.1's Φ_p.
-    """
-    from ..spatial import A_from_p, E, G, a_bar, dAa_dp
-
-    def mv(M, v):
-        return np.einsum("...ij,...j->...i", M, v)
-
-    def dot(u, v):
-        return np.einsum("...i,...i->...", u, v)
-
-    def EGt(pd):  # Ė Ġᵀ
-        return E(pd, check=False) @ np.swapaxes(G(pd, check=False), -1, -2)
-
-    a_i, a_j = np.asarray(a_i, dtype=float), np.asarray(a_j, dtype=float)
-    s_i, s_j = mv(A_from_p(p_i), a_i), mv(A_from_p(p_j), a_j)
-    sd_i, sd_j = mv(dAa_dp(p_i, a_i), pd_i), mv(dAa_dp(p_j, a_j), pd_j)
-    L_i = 2 * np.einsum("...i,...ij->...j", s_j, E(p_i) @ a_bar(a_i))
-    L_j = 2 * np.einsum("...i,...ij->...j", s_i, E(p_j) @ a_bar(a_j))
-    rhs = 2 * (dot(s_j, mv(EGt(pd_i), a_i)) + dot(s_i, mv(EGt(pd_j), a_j)) + dot(sd_i, sd_j))
-    extra = 2 * dot(s_j, a_i) * dot(pd_i, pd_i) + 2 * dot(s_i, a_j) * dot(pd_j, pd_j)
-    return L_i, L_j, rhs, extra
 
 
 def _ev_14_5_n1_states(seed, tangent):

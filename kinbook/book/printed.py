@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from ..grading.misprints import EX4_PHI8
 from .notation import S
 
 __all__ = ["EQ", "EX1", "EX2", "EX3", "EX4", "EX5", "EX6", "q_book", "TABLES", "TABLE_13_1_TEXT",
@@ -51,8 +52,7 @@ EX3 = {"q": q_book([0, 0, 0, 0.7071, 0.7071, 135, 3.7849, 1.2783, 238.45])}
 
 EX4 = {
     "q": q_book([0, 0, 0, 0.7071, 0.7071, 45, 4.3297, 0.7071, 346.37]),
-    "Phi8": ((_x3 + 3 * sp.cos(_phi3) - _x1 * sp.cos(_phi1)) * sp.sin(_phi1)
-             + (_y3 + 3 * sp.sin(_phi3) - _y1 - sp.sin(_phi1)) * sp.cos(_phi1)),
+    "Phi8": EX4_PHI8,  # typed once, where the checkers recognise it
 }
 """Example 4 (slider-crank with a revolute–translational joint): the solution and the simplified Φ_8 as printed,
 in kinbook's symbols of that mechanism."""

@@ -17,13 +17,16 @@ import html
 import numpy as np
 import sympy as sp
 
-from .display import agrees, tolerance_text
+from ..core.assembly import stack_params
+from ..spatial import Mechanism as Spatial
+from . import table14
+from .display import TOL, agrees, clean, fmt, small, tolerance_text
 from .notation import S, as_sympy, from_book, html_math, latex
 
 __all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table",
            "zero_on_sphere", "rate", "relative_dof", "motion_table", "columns", "Table", "jacobian_table",
            "gamma_table", "fd_jacobian", "sweep_checks", "joint_summary",
-           "joint_table"]
+           "joint_table", "newton_table"]
 
 
 def _free(mech, *exprs):
@@ -225,8 +228,6 @@ class SolutionTable:
         self.residual = mech.Phi(self.q_printed, t)
 
     def _rows(self):
-        from .display import fmt
-
         for name, a, b in zip(self.mech.coordinate_names(), self.q, self.q_printed):
             if name.startswith("phi"):
                 a, b = (np.round(np.degrees(v), 2) % 360 for v in (a, b))
@@ -235,8 +236,6 @@ class SolutionTable:
                 yield name, fmt(a, self.digits), fmt(b, self.digits), abs(a - b) > 1.1 * 10**-self.digits
 
     def verdict(self):
-        from .display import small
-
         worst = int(np.argmax(np.abs(self.residual)))
         size = float(np.abs(self.residual[worst]))
         if size < 2e-4:  # the printed values carry four decimals
@@ -329,8 +328,6 @@ def motion_table(mech, q, constraint, motions, body="j"):
 
 class _Motion(Check):
     def __init__(self, what, values):
-        from .display import clean
-
         self.values = clean(np.round(np.asarray(values, dtype=float), 4))
         super().__init__(what, float(np.abs(values).max()), 1e-9)
 
@@ -344,8 +341,6 @@ class JointSummary:
     number of equations and the relative degrees of freedom it leaves (:func:`joint_summary`)."""
 
     def __init__(self, mech, q, constraint):
-        from .notation import latex
-
         c = mech.constraint(constraint) if isinstance(constraint, str) else constraint
         self.constraint, self.q = c, np.asarray(q, dtype=float)
         self.value = mech.Phi(self.q)[c.rows]
@@ -357,8 +352,6 @@ class JointSummary:
         self.tex = head + " = " + latex(Phi[0] if c.n_eq == 1 else Phi, mech)
 
     def text(self):
-        from .display import clean
-
         c, rows = self.constraint, " ".join(f"{v:g}" for v in clean(np.round(self.value, 4)))
         return (f"at this configuration Φ = [{rows}];  {c.label}: {c.n_eq} equation{'s' if c.n_eq > 1 else ''}, "
                 f"{self.dof} relative DOF left")
@@ -395,8 +388,6 @@ def columns(mech, constraint):
 def _numeric(c, qc, qdc=None, compiled=False):
     """(Φ_q, γ) of one constraint from its kernel — its own or the one compiled from its symbolic Φ —, at the
     coordinates ``qc`` (and velocities ``qdc``) of its bodies. Drivers: the geometric part g(q) only."""
-    from ..core.assembly import stack_params
-
     nb, nc = len(c.bodies), len(c.COORDS)
     kernel, params = c.numeric(compiled=compiled)
     Qd = None if qdc is None else np.asarray(qdc, dtype=float).reshape(1, 1, nb, nc)
@@ -442,8 +433,6 @@ class Table:
 
 
 def _small(x):
-    from .display import small
-
     return small(x, 1e-12)
 
 
@@ -451,8 +440,6 @@ def _closed_form(c):
     """kinbook.book.table14 for spatial constraints with an entry; None otherwise."""
     if getattr(c, "chapter", None) != "spatial":
         return None
-    from . import table14
-
     return table14 if table14.has_entry(c) else None
 
 
@@ -569,8 +556,6 @@ def sweep_checks(result, tol=1e-3):
     rel = lambda a, b: float(np.abs(a - b).max() / max(np.abs(b).max(), 1e-300))  # noqa: E731
     out = [("all of q̇ against dq/dt (relative)", rel(grad(q), qd), tol),
            ("all of q̈ against dq̇/dt (relative)", rel(grad(qd), qdd), tol)]
-    from ..spatial import Mechanism as Spatial
-
     mech = result.mechanism
     if isinstance(mech, Spatial):
         p, pd, pdd = ([mech.p(x, b.name) for b in mech.bodies] for x in (q, qd, qdd))
@@ -580,3 +565,19 @@ def sweep_checks(result, tol=1e-3):
                 ("p_iᵀṗ_i = 0", worst(lambda a, b, c: dot(a, b)), 1e-12),
                 ("p_iᵀp̈_i + ṗ_iᵀṗ_i = 0", worst(lambda a, b, c: dot(a, c) + dot(b, b)), 1e-12)]
     return out
+
+
+def newton_table(history, tol=TOL):
+    """The iterations of ``solve_position(..., history=True)`` as a table that prints no round-off.
+
+    One row per iterate k: max |Φ(q_k)| and max |Δq_k| as :func:`small` writes them (below ``tol``: "< 1e-12"),
+    and cond(Φ_q(q_k)) to three significant digits, so the stored output is the same on every CPU.
+
+    Returns
+    -------
+    Table
+    """
+    rows = [[str(k), small(r, tol), small(s, tol), f"{c:.3g}"]
+            for k, (r, s, c) in enumerate(zip(history.residual, history.step, history.cond))]
+    return Table(["k", "max |Φ|", "max |Δq|", "cond(Φ_q)"], rows,
+                 f"Newton–Raphson at t = {history.t:g}: {len(history)} iterates, Φ_q Δq = −Φ at each.")

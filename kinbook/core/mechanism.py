@@ -115,6 +115,10 @@ class MechanismBase:
     def _check_removable(self, constraint):
         """Hook: raise ModelError for constraints that belong to a body."""
 
+    def validate(self):
+        """Hook: the chapter's checks of the whole mechanism once it is built (the file loader calls it);
+        raises :class:`~kinbook.errors.ModelError`. The default checks nothing."""
+
     def _default_name(self, c):
         index = self._constraint_index
         if c.kind == "joint":

@@ -24,6 +24,7 @@ import numpy as np
 
 from ..i18n import N_
 from ._i18n import Msg, add_texts
+from .misprints import book_A_of_p
 
 __all__ = ["Expected", "stack", "A", "point_position", "point_velocity", "point_acceleration", "A_from_axes",
            "local_components", "global_components", "spatial_point_position", "A_from_euler", "euler_from_A",
@@ -341,7 +342,7 @@ def spatial_point_position(r, p, s_local):
         ("A_transposed", r + A_.T @ s, None, None),
         ("local_vector", r + s, None, None),
         ("wrong_frame", A_ @ (r + s), Msg("x.frame_r"), None),
-        ("book_misprint", r + _book_A_of_p(p) @ s, None, "14.3-A-of-p"),
+        ("book_misprint", r + book_A_of_p(p) @ s, None, "14.3-A-of-p"),
         ("factor_2_missing", r + 0.5 * A_ @ s, None, None),
         ("sign_flip", r - A_ @ s, Msg("d.sign_of", what="A s'"), None),
     ], kind="vector", context=("position",))
@@ -394,16 +395,6 @@ def omega_from_euler_rates(angles, rates, frame="global"):
     ], kind="vector", context=("omega", "vector"))
 
 
-def _book_A_of_p(p):
-    """The matrix §14.3 prints for A(p) (erratum 14.3-A-of-p): symmetric, without the factor 2."""
-    e0, e1, e2, e3 = _v(p)
-    return np.array([
-        [e0**2 + e1**2 - 0.5, e1 * e2 - e0 * e3, e1 * e3 - e0 * e2],
-        [e1 * e2 - e0 * e3, e0**2 + e2**2 - 0.5, e2 * e3 - e0 * e1],
-        [e1 * e3 - e0 * e2, e2 * e3 - e0 * e1, e0**2 + e3**2 - 0.5],
-    ])
-
-
 def A_from_p(p):
     """A(p) = 2[(e0² − ½)I + eeᵀ + e0ẽ] (§14.3): wrong forms ½·A's bracket (the factor 2 missing), the book's
     printed matrix, Aᵀ."""
@@ -412,7 +403,7 @@ def A_from_p(p):
     A_ = _v(R.A_from_p(p))
     return Expected(A_, variants=[
         ("factor_2_missing", 0.5 * A_, None, "14.3-A-of-p"),
-        ("book_misprint", _book_A_of_p(p), None, "14.3-A-of-p"),
+        ("book_misprint", book_A_of_p(p), None, "14.3-A-of-p"),
         ("transposed", A_.T, None, None),
     ], kind="rotation")
 

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._i18n import Msg
+from .misprints import EX4_PHI8, book_n1_acceleration
 
 __all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "alternative_variants", "contexts_of", "register",
            "length_factors", "book_form", "book_rows"]
@@ -497,10 +498,8 @@ def _book_ex4_phi8(target, c, Q):
     the printed row, for that example's joint."""
     if target.mech.name != "ch13_example4" or c.name != "3":
         return
-    from ..book.printed import EX4
-
     symbols = target.symbols()
-    printed = EX4["Phi8"]
+    printed = EX4_PHI8
     yield ("book_misprint", [printed.xreplace({x: symbols[x.name] for x in printed.free_symbols})], None,
            "13.5-ex4-phi8")
 
@@ -613,8 +612,6 @@ def _book_gamma_n1(target, c, s, ref, quantity):
     corrected: 14.5-gamma-n1-table), and as printed (14.5-gamma-n1)."""
     if quantity != "gamma":
         return []
-    from ..book.errata import book_n1_acceleration
-
     ci, cj = _cols(target, c)
     row = c.n_eq - 1  # the n1 row: a normal-1 constraint's only row, a universal joint's last
     _, _, rhs, extra = book_n1_acceleration(np.asarray(c.a_i, float), s.Q[:, ci[3:]], s.QD[:, ci[3:]],

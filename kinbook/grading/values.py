@@ -25,6 +25,7 @@ from ..errors import InputError
 from ..i18n import N_
 from ._i18n import Msg, add_texts
 from .expected import DEG, Expected
+from .misprints import book_A_of_p
 from .read import Refused, _as_numbers
 from .report import fmt, hints
 from .result import CheckResult, RowResult
@@ -612,13 +613,12 @@ def _from_matrix(A_):
 
     try:
         from ..spatial.rotations import p_from_A
-        from .expected import _book_A_of_p
 
         p = np.asarray(p_from_A(np.asarray(A_, float)), float)
     except (KinbookError, ValueError, np.linalg.LinAlgError):  # not a rotation matrix: no p
         return []
     return [("factor_2_missing", 0.5 * np.asarray(A_), None, "14.3-A-of-p"),
-            ("book_misprint", _book_A_of_p(p), None, "14.3-A-of-p")]
+            ("book_misprint", book_A_of_p(p), None, "14.3-A-of-p")]
 
 
 def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None, angle=None, name="p",

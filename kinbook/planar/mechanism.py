@@ -13,7 +13,7 @@ from ..core.mechanism import ConstraintTable, MechanismBase
 from ..core.reader import read_constant
 from ..errors import ModelError
 from . import transforms
-from .constraints import Constraint
+from .constraints import Constraint, Revolute
 
 __all__ = ["Body", "Mechanism", "ConstraintTable"]
 
@@ -91,6 +91,30 @@ class Mechanism(MechanismBase):
         except TypeError:
             raise ModelError(f"body '{name}': q0 must be a list (x, y, phi), got {q0!r}") from None
         self._new_body(Body(name, points if points is not None else {}, q0, number=len(self.bodies) + 1))
+
+    def validate(self):
+        """Refuse a body joined to two or more bodies only by revolute joints, all at one point: a link of zero
+        length (a zero-length crank), which transmits no motion and makes Φ_q singular. Raises
+        :class:`~kinbook.errors.ModelError`."""
+        joints = {}
+        for c in self.constraints:
+            for role, body in enumerate(c.bodies or ()):
+                joints.setdefault(body.name, []).append((c, role))
+        for body in self.bodies:
+            held = joints.get(body.name, [])
+            pins = [(c, role) for c, role in held if isinstance(c, Revolute)]
+            others = [c for c, _ in held if not isinstance(c, Revolute) and c.kind != "driver"]
+            if len(pins) < 2 or others:
+                continue
+            points = {tuple(c.s_i if role == 0 else c.s_j) for c, role in pins}
+            partners = {c.bodies[1 - role].name for c, role in pins}
+            if len(points) == 1 and len(partners) > 1:
+                where = ", ".join(f"'{c.name}'" for c, _ in pins)
+                (xi, eta), = points
+                raise ModelError(
+                    f"body '{body.name}' is a link of zero length: its revolute joints {where} (to bodies "
+                    f"{', '.join(sorted(repr(p) for p in partners))}) are all at its point ({xi}, {eta}); a link "
+                    "transmits motion only between joints set apart — give the points their distinct coordinates")
 
     # ------------------------------------------------------------------------------------------- points
     def point_position(self, q, body, point):

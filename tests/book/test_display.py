@@ -33,7 +33,7 @@ def test_clean_leaves_other_objects_alone():
 
 def test_newton_table_shows_the_solver_iterations_without_round_off():
     import kinbook
-    from kinbook.book.display import newton_table
+    from kinbook.book.verify import newton_table
 
     m = kinbook.examples.load("ch13_example1")
     q, hist = m.solve_position(0.0, history=True)

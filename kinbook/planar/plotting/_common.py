@@ -103,18 +103,6 @@ def _all_points(mech, q):
     return np.concatenate([np.asarray(o, dtype=float) for o in out])
 
 
-def _size(mech, qs):
-    """A length scale of the drawing: the largest side of the bounding box of the points over ``qs``, or of
-    what a joint drawing adds around its bodies (a pitch circle)."""
-    from .joints import drawing_class
-
-    pts = np.concatenate([_all_points(mech, q) for q in qs])
-    span = float(np.max(np.ptp(pts, axis=0))) if len(pts) > 1 else 0.0
-    for c in mech.constraints:
-        span = max(span, drawing_class(c).span(c))
-    return span if span > 1e-9 else 1.0
-
-
 def _coordinate_label(mech, name, derivative=0):
     """'phi3' → φ₃ in mathtext, with dots for derivatives."""
     if isinstance(name, tuple):

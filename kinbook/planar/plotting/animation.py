@@ -9,8 +9,8 @@ import numpy as np
 
 from ...core._animation import Animation
 from ...errors import InputError
-from ._common import _TRACES, _plt, _size, _style_axes
-from .joints import driver_symbol
+from ._common import _TRACES, _plt, _style_axes
+from .joints import drawing_size, driver_symbol
 from .scene import _Scene
 
 __all__ = ["animate", "animation_png", "MAX_FRAMES"]
@@ -60,7 +60,7 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
     idx = np.arange(0, N, every)
     fig, ax = _plt().subplots(figsize=figsize, dpi=dpi)
     qs = result.q[idx]
-    scene = _Scene(ax, mech, qs[0], frames=frames, labels=labels, size=_size(mech, qs))
+    scene = _Scene(ax, mech, qs[0], frames=frames, labels=labels, size=drawing_size(mech, qs))
     traces = []
     for k, (body, point) in enumerate(trace or []):
         xy = result.position(body, point)[idx]

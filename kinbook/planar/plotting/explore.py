@@ -15,8 +15,8 @@ import numpy as np
 
 from ...core.sweep import follow, follow_times
 from ...errors import InputError
-from ._common import _plt, _size, _style_axes
-from .joints import driver_symbol
+from ._common import _plt, _style_axes
+from .joints import drawing_size, driver_symbol
 from .scene import _Scene
 
 __all__ = ["explorer"]
@@ -53,9 +53,9 @@ class _DriverAxis:
             self.unicode = driver_symbol(mech, driver, unicode=True)
             self.angle = (driver.measures or (None,))[-1] == "angle"
             self.v0 = self.a
-            self.step = 0.05 if self.angle else 0.01 * _size(mech, [mech.q0])
+            self.step = 0.05 if self.angle else 0.01 * drawing_size(mech, [mech.q0])
             self.default = (self.a + np.pi * np.arange(-3, 5) / 4 if self.angle
-                            else self.a + _size(mech, [mech.q0]) * np.linspace(-0.4, 0.4, 8))
+                            else self.a + drawing_size(mech, [mech.q0]) * np.linspace(-0.4, 0.4, 8))
         else:
             self.a, self.b = 0.0, 1.0
             self.symbol, self.unicode, self.v0, self.step = "$t$", "t", 0.0, 0.01
@@ -170,7 +170,7 @@ def _explorer_static(mech, axis, values, frames, ncols):
     ncols = max(1, min(int(ncols), k))
     nrows = math.ceil(k / ncols)
     fig, axes = _plt().subplots(nrows, ncols, figsize=(3.6 * ncols, 3.3 * nrows), squeeze=False)
-    L = _size(mech, good) if good else _size(mech, [mech.q0])
+    L = drawing_size(mech, good) if good else drawing_size(mech, [mech.q0])
     box = None
     scenes = []
     for v, at, ax in zip(values, found, axes.flat):
@@ -222,7 +222,7 @@ def _explorer_widget(mech, axis, values, frames):
     FigureCanvasAgg(fig)
     ax = fig.add_subplot()
     qs = sweep + [q0]
-    scene = _Scene(ax, mech, q0, frames=frames, labels=True, size=_size(mech, qs))
+    scene = _Scene(ax, mech, q0, frames=frames, labels=True, size=drawing_size(mech, qs))
     scene.set_limits(scene.observe(qs))
     _style_axes(ax, getattr(mech, "title", mech.name))
     state = {"t": t0, "q": q0}

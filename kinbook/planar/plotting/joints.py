@@ -21,9 +21,9 @@ import numpy as np
 
 from .. import constraints as planar
 from ._artists import _Glyph, _PinGlyph
-from ._common import _GROUND, _RHO, _SUBSCRIPTS, _body_q, _pt, _rotate, _unit
+from ._common import _GROUND, _RHO, _SUBSCRIPTS, _all_points, _body_q, _pt, _rotate, _unit
 
-__all__ = ["Drawing", "drawing_for", "drawing_class", "driver_symbol", "symbol_for"]
+__all__ = ["Drawing", "drawing_for", "drawing_class", "drawing_size", "driver_symbol", "symbol_for"]
 
 _DRAWINGS = {}
 _SYMBOLS = {}
@@ -378,3 +378,13 @@ def driver_symbol(mech, driver, unicode=False):
         u = ("θ" if angle else "d") + _sub(nums)
         tex = (r"$\theta" if angle else "$d") + f"_{{{nums}}}$"
     return u if unicode else tex
+
+
+def drawing_size(mech, qs):
+    """A length scale of the drawing: the largest side of the bounding box of the points over ``qs``, or of
+    what a joint drawing adds around its bodies (a pitch circle)."""
+    pts = np.concatenate([_all_points(mech, q) for q in qs])
+    span = float(np.max(np.ptp(pts, axis=0))) if len(pts) > 1 else 0.0
+    for c in mech.constraints:
+        span = max(span, drawing_class(c).span(c))
+    return span if span > 1e-9 else 1.0

@@ -8,8 +8,8 @@ import numpy as np
 
 from ...errors import InputError
 from ._artists import _BodyFrame, _BodyGlyph, _FrameGlyph, _GlobalFrame, _GroundGlyph, _PointLabels, _VectorGlyph
-from ._common import _COLOURS, _GROUND, _fit_figure, _new_axes, _set_limits, _size, _style_axes
-from .joints import drawing_class
+from ._common import _COLOURS, _GROUND, _fit_figure, _new_axes, _set_limits, _style_axes
+from .joints import drawing_class, drawing_size
 
 __all__ = ["draw", "draw_frame", "draw_point_vectors"]
 
@@ -23,7 +23,7 @@ class _Scene:
         q = np.asarray(mech.check_q(q), dtype=float)
         if q.ndim != 1:
             raise InputError(f"`q` must have shape ({mech.n},) for one configuration, got {q.shape}")
-        L = float(size) if size else _size(mech, [q])
+        L = float(size) if size else drawing_size(mech, [q])
         self.L = L
         fixed = set(mech.fixed_bodies())
         self.fixed = fixed
@@ -195,7 +195,7 @@ def draw_point_vectors(ax, mech, q, body, point, *, projections=False, origin=(0
     Textbook §13.5, Fig. 13.18 and eq. 5: r_i^P = r_i + A_i s'_i^P.
     """
     q = np.asarray(mech.check_q(q), dtype=float)
-    L = _size(mech, [q])
+    L = drawing_size(mech, [q])
     g = _VectorGlyph(ax, mech, body, point, L, origin=origin, projections=projections)
     g.update(q)
     ax.update_datalim(g.observe(q))
