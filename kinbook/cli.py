@@ -82,15 +82,20 @@ def student_id(text):
     return text
 
 
-def id_pattern(text):
-    """A ready pattern's name or a regular expression with a student or lms group (argparse type)."""
-    from .classroom.naming import NamingError, compile_pattern
-
+def _checked(text, check):
+    """``text`` when ``check(text)`` accepts it; its ValueError or KinbookError as argparse's error."""
     try:
-        compile_pattern(text)
-    except NamingError as exc:
+        check(text)
+    except (ValueError, KinbookError) as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
     return text
+
+
+def id_pattern(text):
+    """A ready pattern's name or a regular expression with a student or lms group (argparse type)."""
+    from .classroom.naming import compile_pattern
+
+    return _checked(text, compile_pattern)
 
 
 def existing_file(text):
@@ -175,7 +180,178 @@ def _cmd_release(args):
 def _cmd_variant(args):
     from .classroom import write_variant
 
-    print(write_variant(args.source, args.student, args.output))
+    if args.student:
+        print(write_variant(args.source, args.student, args.output))
+        return
+    import time
+
+    from .classroom.release import write_variants
+    from .classroom.roster import read_roster
+
+    roster = read_roster(args.roster, args.roster_id)
+    t0 = time.perf_counter()
+    written = write_variants(args.source, [s.student for s in roster], args.output)
+    print(f"wrote {len(written)} variant(s) into {args.output}/ in {time.perf_counter() - t0:.1f} s")
+
+
+# ---------------------------------------------------------------------------------------------- the course
+def _cmd_validate(args):
+    from .classroom.roster import read_roster
+    from .classroom.validate import validate
+
+    students = [s.student for s in read_roster(args.roster, args.roster_id)] if args.roster else None
+    checks = validate(args.source, students=students, timeout=args.timeout, memory=args.memory,
+                      isolation=not args.no_isolation, progress=print)
+    print(f"valid: {len(checks)} notebook(s) graded as expected")
+
+
+def _cmd_override(args):
+    from .classroom.course import override
+
+    print(override(args.gradebook, args.student, args.exercise, args.part, args.score, args.why, remove=args.remove))
+
+
+def _cmd_due(args):
+    from .classroom.course import due
+
+    print(due(args.gradebook, args.exercise, args.when, penalty=args.penalty, cap=args.cap, policy=args.policy))
+
+
+def _cmd_extend(args):
+    from .classroom.course import extend
+
+    print(extend(args.gradebook, args.student, args.exercise, args.when, args.why))
+
+
+def _cmd_export(args):
+    from .classroom.export import export
+    from .classroom.roster import read_roster
+
+    roster = read_roster(args.roster, args.roster_id) if args.roster else None
+    headers = dict(h.split("=", 1) for h in args.header)
+    path, left = export(args.gradebook, args.output, args.format, exercises=args.exercise or None,
+                        decimals=args.decimals, missing=args.missing, headers=headers, roster=roster)
+    print(f"wrote {path}")
+    if left:
+        print(f"not in the file: {len(left)} student(s) graded but not on the roster: {', '.join(left[:20])}"
+              + (" …" if len(left) > 20 else ""))
+
+
+def _cmd_report(args):
+    from .classroom.report import report
+    from .classroom.roster import read_roster
+
+    roster = read_roster(args.roster, args.roster_id) if args.roster else None
+    written = report(args.gradebook, args.output, args.format, roster=roster)
+    print(f"wrote {len(written)} file(s) into {os.path.dirname(str(written[-1])) if written else args.output}/")
+
+
+def _cmd_feedback(args):
+    from .classroom.feedback import feedback
+
+    written = feedback(args.gradebook, args.out)
+    print(f"wrote {len(written)} page(s) into {args.out}/ (one folder per student)")
+
+
+def header_arg(text):
+    """EXERCISE=COLUMN HEADER (argparse type)."""
+    if "=" not in text or not text.split("=", 1)[0] or not text.split("=", 1)[1]:
+        raise argparse.ArgumentTypeError(f"expected EXERCISE=HEADER, got {text!r}")
+    return text
+
+
+def score_arg(text):
+    """A score: a finite number ≥ 0 (argparse type)."""
+    value = _number(text, "a number ≥ 0")
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected a number ≥ 0, got {text!r}")
+    return value
+
+
+def percent(text):
+    """A percentage from 0 to 100 (argparse type)."""
+    value = _number(text, "a percentage from 0 to 100")
+    if not 0 <= value <= 100:
+        raise argparse.ArgumentTypeError(f"expected a percentage from 0 to 100, got {text!r}")
+    return value
+
+
+def when_arg(text):
+    """A date and time with its zone (argparse type)."""
+    from .classroom.scores import parse_due
+
+    return _checked(text, parse_due)
+
+
+def _course_parsers(sub):
+    """The course's commands: validate, override, due, extend, export, report, feedback."""
+    from .classroom.export import FORMATS as EXPORTS
+    from .classroom.report import FORMATS as REPORTS
+    from .classroom.validate import validate
+
+    def gradebook(p):
+        p.add_argument("-g", "--gradebook", type=output_dir, default="graded",
+                       help="the grading output directory, holding gradebook.sqlite (default: %(default)s)")
+
+    def roster(p):
+        p.add_argument("--roster", type=existing_file, help="the roster (default: the one stored by kinbook grade)")
+        p.add_argument("--roster-id", metavar="COLUMN", help="the roster's column holding the kinbook id")
+
+    p = sub.add_parser("validate", help="grade a source's own solution (and variants) and its blank release")
+    p.add_argument("source", type=existing_file, help="instructor source notebook")
+    roster(p)
+    p.add_argument("--timeout", type=positive, default=_default(validate, "timeout"),
+                   help="wall-clock seconds per notebook (default: %(default)s)")
+    p.add_argument("--memory", type=positive, default=_default(validate, "memory"),
+                   help="megabytes a notebook may allocate (default: %(default)s)")
+    p.add_argument("--no-isolation", action="store_true", help="run without the bubblewrap sandbox (audit hook only)")
+    p.set_defaults(func=_cmd_validate)
+    p = sub.add_parser("override", help="set a part's score by hand, with the reason (kept across regrades)")
+    p.add_argument("student", type=student_id)
+    p.add_argument("exercise", type=student_id, help="the exercise (the source notebook's name without .ipynb)")
+    p.add_argument("part")
+    p.add_argument("score", type=score_arg, nargs="?", help="the part's score (omit with --remove)")
+    p.add_argument("--why", default="", help="the reason, shown to the student on their feedback page (required)")
+    p.add_argument("--remove", action="store_true", help="remove the override: the graded score counts again")
+    gradebook(p)
+    p.set_defaults(func=_cmd_override)
+    p = sub.add_parser("due", help="set an exercise's due date, late penalty and attempt policy")
+    p.add_argument("exercise", type=student_id)
+    p.add_argument("when", type=when_arg, help="due date and time with its zone: 2026-03-01T23:59+01:00")
+    p.add_argument("--penalty", type=percent, help="percent of the points taken per started day late")
+    p.add_argument("--cap", type=percent, help="at most this percent is taken (default 100)")
+    p.add_argument("--policy", choices=("latest", "best"), help="which attempt counts")
+    gradebook(p)
+    p.set_defaults(func=_cmd_due)
+    p = sub.add_parser("extend", help="give one student their own due date for an exercise")
+    p.add_argument("student", type=student_id)
+    p.add_argument("exercise", type=student_id)
+    p.add_argument("when", type=when_arg, help="their due date, with its zone ('none' is refused: use --remove)")
+    p.add_argument("--why", default="", help="the reason, for the record")
+    gradebook(p)
+    p.set_defaults(func=_cmd_extend)
+    p = sub.add_parser("export", help="write the scores as a file Canvas or Moodle imports, or as CSV")
+    p.add_argument("--format", choices=EXPORTS, default="csv", help="canvas, moodle or csv (default: %(default)s)")
+    p.add_argument("-o", "--output", required=True, help="the file to write")
+    gradebook(p)
+    roster(p)
+    p.add_argument("--exercise", action="append", type=student_id, help="an exercise to export (repeat; default all)")
+    p.add_argument("--header", action="append", default=[], type=header_arg,
+                   help="EXERCISE=COLUMN: the LMS's column for an exercise, Canvas 'Exercise 1 (4242)' (repeat)")
+    p.add_argument("--decimals", type=int, choices=range(7), default=2, help="decimals of the scores (default 2)")
+    p.add_argument("--missing", choices=("zero", "blank"), default="zero",
+                   help="a roster student with no submission gets 0 (default) or an empty cell")
+    p.set_defaults(func=_cmd_export)
+    p = sub.add_parser("report", help="the class report: scores, parts, most common mistakes, copying signals")
+    gradebook(p)
+    roster(p)
+    p.add_argument("-o", "--output", type=output_dir, help="directory (default: GRADEBOOK/report)")
+    p.add_argument("--format", choices=REPORTS, default="html", help="html pages or csv tables (default: %(default)s)")
+    p.set_defaults(func=_cmd_report)
+    p = sub.add_parser("feedback", help="write every student's feedback pages, one folder per student")
+    gradebook(p)
+    p.add_argument("--out", type=output_dir, required=True, help="directory: OUT/<student>/<exercise>.html")
+    p.set_defaults(func=_cmd_feedback)
 
 
 def _cmd_grade(args):
@@ -201,7 +377,8 @@ def _course_options(args):
     from .classroom.roster import read_roster
 
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
-    return dict(regrade=args.regrade, policy=args.policy, id_pattern=args.id_pattern, roster=roster)
+    return dict(regrade=args.regrade, policy=args.policy, id_pattern=args.id_pattern, roster=roster,
+                file_times=args.file_times)
 
 
 def _course_arguments(p):
@@ -215,6 +392,8 @@ def _course_arguments(p):
                    + ", ".join(PATTERNS))
     p.add_argument("--policy", choices=("latest", "best"), help="which of a student's attempts counts (default: the "
                    "exercise's stored policy, else latest; with latest only the latest file is graded)")
+    p.add_argument("--file-times", action="store_true", help="a submission's time (for the late rule) from its "
+                   "file's modification time when its name has none — only where the download kept the times")
     p.add_argument("--regrade", action="store_true", help="the source changed since the gradebook's results were "
                    "graded: grade every submission again with it (without this, such a run stops)")
 
@@ -279,10 +458,13 @@ def build_parser():
     p.add_argument("-o", "--output", type=output_dir, default=_default(release, "outdir"),
                    help="output directory (default: %(default)s)")
     p.set_defaults(func=_cmd_release)
-    p = sub.add_parser("variant", help="write one student's version, with their own parameters")
+    p = sub.add_parser("variant", help="write students' own versions, with their own parameters")
     p.add_argument("source", type=existing_file, help="instructor source notebook")
-    p.add_argument("--student", required=True, type=student_id,
-                   help="student identifier (as in the collected submissions): letters, digits, . _ @ + -")
+    who = p.add_mutually_exclusive_group(required=True)
+    who.add_argument("--student", type=student_id,
+                     help="student identifier (as in the collected submissions): letters, digits, . _ @ + -")
+    who.add_argument("--roster", type=existing_file, help="every student of a roster, in one run")
+    p.add_argument("--roster-id", metavar="COLUMN", help="the roster's column holding the kinbook id")
     p.add_argument("-o", "--output", type=output_dir, default=_default(write_variant, "outdir"),
                    help="output directory (default: %(default)s)")
     p.set_defaults(func=_cmd_variant)
@@ -307,6 +489,7 @@ def build_parser():
     _course_arguments(p)
     p.set_defaults(func=_cmd_grade)
     _add_exercises(sub)
+    _course_parsers(sub)
     return parser
 
 

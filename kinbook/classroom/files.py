@@ -162,7 +162,7 @@ def _kind(mode):
 POLICIES = ("latest", "best")
 
 
-def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="latest"):
+def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="latest", file_times=False):
     """Every entry below ``paths`` (files, or directories searched through), each with its student or the reason it is
     not graded.
 
@@ -174,6 +174,8 @@ def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="la
     (:func:`kinbook.classroom.naming.read_name`, ``pattern`` an ``--id-pattern``) and, with a ``roster``
     (:class:`kinbook.classroom.roster.Roster`), are mapped to the roster's kinbook id. Several attempts of one student:
     with ``policy`` "latest" the latest is graded and the others are ``superseded``; with "best" all are graded.
+    A submission's time comes from its name, or with ``file_times`` from the file's modification time (only where
+    the download kept it: ``unzip`` does, Python's ``zipfile`` does not).
 
     Returns
     -------
@@ -215,7 +217,7 @@ def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="la
         e._named, e.attempt, e.late = name.exercise_named, name.attempt, name.late
         if name.time is not None:
             e.submitted, e.submitted_from = name.time.isoformat(), "name"
-        elif st is not None:
+        elif st is not None and file_times:
             e.submitted = _dt.datetime.fromtimestamp(int(st.st_mtime), _dt.timezone.utc).isoformat()
             e.submitted_from = "file"
         e._order = (name.attempt, (name.time or _dt.datetime.min).isoformat(), e.mtime, e.path)

@@ -453,7 +453,7 @@ def _grade_task(args):
 
 def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jobs=1, force=False,
           generic=False, reveal_hidden=False, isolation=True, progress=None, regrade=False, policy=None,
-          id_pattern=None, roster=None):
+          id_pattern=None, roster=None, file_times=False):
     """Grade a batch of submissions of one exercise and record them in the gradebook.
 
     Parameters
@@ -483,6 +483,9 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     roster : Roster or None
         The course's students (:func:`kinbook.classroom.roster.read_roster`): maps LMS ids to kinbook ids, and is
         stored in the gradebook for the exports and the report.
+    file_times : bool
+        Take a submission's time from its file's modification time when its name gives none (for the late rule);
+        only where the download kept the times.
     generic, reveal_hidden : bool
         See :func:`grade_submission`.
     isolation : bool
@@ -519,7 +522,7 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden))
     results, touched = [], set()
     plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
-                  roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress)
+                  roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times)
 
     def record(res):
         res = clean_result(res)  # everything a student controls, made inert before it is stored or printed

@@ -60,7 +60,7 @@ def check_pin(book, src, regrade):
 
 
 def intake(book, run, src, submissions, *, force=False, regrade=False, policy=None, pattern=None, roster=None,
-           max_bytes, progress=None):
+           max_bytes, progress=None, file_times=False):
     """Plan a run (see the module docstring) and record every entry that is not graded by it.
 
     Parameters
@@ -91,7 +91,8 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
     book.set_pin(src)
     plan = Intake()
     say = progress or (lambda item: None)
-    entries = collect(submissions, src.exercise, max_bytes=max_bytes, pattern=pattern, roster=roster, policy=policy)
+    entries = collect(submissions, src.exercise, max_bytes=max_bytes, pattern=pattern, roster=roster, policy=policy,
+                      file_times=file_times)
     for e in entries:
         if e.status in (None, "superseded"):
             try:

@@ -11,7 +11,7 @@ from .files import atomic_write
 from .notebook import load_source, locked_checksums, student_notebook
 from .variant import references, student_parameters
 
-__all__ = ["release", "write_variant", "write_notebook"]
+__all__ = ["release", "write_variant", "write_variants", "write_notebook"]
 
 
 def write_notebook(nb, path):
@@ -62,3 +62,10 @@ def write_variant(source, student, outdir="."):
     source = load_source(source)
     values = student_parameters(source, student)
     return write_notebook(student_notebook(source, values, student), Path(outdir) / f"{source.exercise}-{student}.ipynb")
+
+
+def write_variants(source, students, outdir="."):
+    """Write every student's own version of ``source`` into ``outdir`` (``<exercise>-<student>.ipynb``), in one
+    process: the source is read and compiled once (``kinbook variant --roster``; benchmarks/variants.py)."""
+    source = load_source(source)
+    return [write_variant(source, s, outdir) for s in students]

@@ -5,8 +5,9 @@ pages all call :func:`final`, so a score is computed one way everywhere.
 
 The late rule of an exercise (``kinbook due``): a due date (ISO 8601 with its zone), a penalty in percent of the
 exercise's points per started day late, and a cap in percent (default 100: the score never goes below 0). A
-student's extension replaces the due date for them. A submission the LMS marked late in its name, whose time is not
-after the due date (a file's time is not always the LMS's), counts as one day late.
+student's extension replaces the due date for them. A submission the LMS marked late in its name (Canvas) and whose
+time is not known to be later counts as one day late — unless the student has an extension (the LMS's mark is for
+the LMS's due date).
 """
 
 from __future__ import annotations
@@ -150,7 +151,7 @@ def final(student, exercise, result, rule=None, extension="", overrides=None, po
     parts = [(p.part, p.score, p.max_score, overrides.get(p.part)) for p in result.parts]
     raw = round(sum(o[0] if o else s for _, s, _, o in parts), 4)
     mx = sum(m for _, _, m, _ in parts)
-    days = late_days(result.submitted, due, result.late)
+    days = late_days(result.submitted, due, result.late and not extension)  # the LMS's mark is for its date
     penalty = round(min(rule.cap, days * rule.penalty) / 100.0 * mx, 4) if days else 0.0
     return Final(student, exercise, result.status, parts, mx, raw, days, penalty, round(max(0.0, raw - penalty), 4),
                  result.submitted, due, getattr(result, "attempt", None))

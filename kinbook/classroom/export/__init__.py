@@ -1,0 +1,152 @@
+"""``kinbook export``: the gradebook as a file an LMS imports as it is.
+
+One row per student, one column per exercise, the score that counts (the counting attempt, the instructor's overrides,
+the late penalty: :func:`kinbook.classroom.scores.final`), rounded to ``decimals``:
+
+``canvas``
+    Canvas's gradebook CSV (Grades → Import): ``Student, ID, SIS User ID, SIS Login ID, Section``, then one column
+    per exercise headed ``<assignment> (<assignment id>)`` — Canvas fills the assignment whose id is in the
+    parentheses, and creates a new one for a header without one — and, under the header, the ``Points Possible`` row.
+    Rows come from the roster (Canvas matches them by ``ID``, its user id).
+``moodle``
+    Moodle's grade import CSV (Grades → Import → CSV file): the identifier columns of Moodle's own export (``First
+    name, Last name, ID number, Institution, Department, Email address``), then one column per exercise headed
+    ``Assignment: <name> (Real)``. On import, map ``Email address`` (or ``ID number``) to the user and each column
+    to its grade item.
+``csv``
+    kinbook's own: ``student, name, section, sis_id, lms_id, email``, then per exercise its score, status, days late
+    and penalty, and the total.
+
+A student on the roster who handed nothing in is ``missing``: 0, or an empty cell with ``missing="blank"``.
+Students graded but not on the roster cannot be imported (the LMS does not know them): they are returned, for the
+instructor to see, and left out of Canvas and Moodle files.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from ...errors import GradingError
+from ..gradebook import Gradebook, write_csv
+
+__all__ = ["export", "FORMATS", "CANVAS_IDS", "MOODLE_IDS"]
+
+FORMATS = ("canvas", "moodle", "csv")
+#: Canvas's identifying columns, in its order.
+CANVAS_IDS = ["Student", "ID", "SIS User ID", "SIS Login ID", "Section"]
+#: The identifying columns of Moodle's grade export (and import).
+MOODLE_IDS = ["First name", "Last name", "ID number", "Institution", "Department", "Email address"]
+_CANVAS_HEADER = re.compile(r"^.+ \(\d+\)$")
+
+
+def _number(value, decimals):
+    text = f"{round(float(value), decimals):.{decimals}f}"
+    return text.rstrip("0").rstrip(".") if "." in text else text
+
+
+def export(gradebook, out, fmt="csv", *, exercises=None, decimals=2, missing="zero", headers=None, roster=None):
+    """Write the gradebook's scores as ``fmt`` into ``out``.
+
+    Parameters
+    ----------
+    gradebook : path
+        The grading output directory (``graded/``).
+    out : path
+        The file to write.
+    fmt : {"canvas", "moodle", "csv"}
+    exercises : list of str, optional
+        Default: every exercise of the gradebook, in order.
+    decimals : int
+        Scores are rounded to this many decimals (0 to 6).
+    missing : {"zero", "blank"}
+    headers : dict, optional
+        ``{exercise: column header}``: Canvas ``"Exercise 11 (4242)"`` (the LMS's assignment name and id), Moodle
+        ``"Assignment: Exercise 11 (Real)"``.
+    roster : Roster, optional
+        Default: the one stored by ``kinbook grade --roster``.
+
+    Returns
+    -------
+    (Path, list of str)
+        The file written, and the students left out (graded but not on the roster).
+    """
+    if fmt not in FORMATS:
+        raise GradingError(f"export format must be one of {', '.join(FORMATS)}, got {fmt!r}")
+    if not 0 <= int(decimals) <= 6:
+        raise GradingError(f"decimals must be 0 to 6, got {decimals!r}")
+    if missing not in ("zero", "blank"):
+        raise GradingError(f"missing must be 'zero' or 'blank', got {missing!r}")
+    headers = dict(headers or {})
+    with Gradebook(gradebook) as book:
+        known = book.exercises()
+        exercises = list(exercises) if exercises else known
+        unknown = [e for e in exercises if e not in known]
+        if unknown:
+            raise GradingError(f"no exercise {', '.join(map(repr, unknown))} in {str(gradebook)!r} (it has: "
+                               f"{', '.join(known) or 'none'})")
+        bad = [e for e in headers if e not in exercises]
+        if bad:
+            raise GradingError(f"a header is given for {', '.join(map(repr, bad))}, which is not exported")
+        roster = roster if roster is not None else book.roster()
+        finals = {e: {f.student: f for f in book.finals(e, roster)} for e in exercises}
+    students = list(roster) if roster is not None else []
+    on_roster = {s.student for s in students}
+    graded = sorted({s for e in exercises for s in finals[e]} - on_roster)
+    if fmt == "csv":
+        from ..roster import Student
+
+        rows = students + [Student(s) for s in graded]
+        return _kinbook_csv(out, exercises, finals, rows, decimals, missing), []
+    if roster is None:
+        raise GradingError(f"a {fmt} file needs the roster (its LMS ids): give --roster (Canvas's gradebook export "
+                           "or Moodle's, as downloaded), or grade with --roster first")
+
+    def cell(f):
+        if f is None or (f.status == "missing" and missing == "blank"):
+            return ""
+        return _number(f.score, decimals)
+
+    if fmt == "canvas":
+        cols = []
+        for e in exercises:
+            h = headers.get(e, e)
+            if not _CANVAS_HEADER.match(h):
+                raise GradingError(f"Canvas header {h!r} of {e!r} has no assignment id: write it as it appears in "
+                                   "Canvas's gradebook export, 'Exercise 11 (4242)' (--header EXERCISE='NAME (ID)')")
+            cols.append(h)
+        points = [_number(max((f.max_score for f in finals[e].values()), default=0), decimals) for e in exercises]
+        rows = [["    Points Possible", "", "", "", ""] + points]
+        for s in students:
+            rows.append([s.name or s.display, s.lms_id, s.sis_id, s.login, s.section]
+                        + [cell(finals[e].get(s.student)) for e in exercises])
+        return write_csv(Path(out), CANVAS_IDS + cols, rows), graded
+    cols = [headers.get(e, f"Assignment: {e} (Real)") for e in exercises]
+    rows = []
+    for s in students:
+        first, last = s.names()
+        rows.append([first, last, s.sis_id, "", "", s.email] + [cell(finals[e].get(s.student)) for e in exercises])
+    return write_csv(Path(out), MOODLE_IDS + cols, rows), graded
+
+
+def _kinbook_csv(out, exercises, finals, students, decimals, missing):
+    header = ["student", "name", "section", "sis_id", "lms_id", "email"]
+    for e in exercises:
+        header += [e, f"{e} max", f"{e} status", f"{e} days late", f"{e} penalty", f"{e} overridden"]
+    header += ["total", "total max"]
+    rows = []
+    for s in students:
+        row = [s.student, s.display, s.section, s.sis_id, s.lms_id, s.email]
+        total = mx = 0.0
+        for e in exercises:
+            f = finals[e].get(s.student)
+            if f is None:
+                row += ["", "", "", "", "", ""]
+                continue
+            blank = f.status == "missing" and missing == "blank"
+            row += ["" if blank else _number(f.score, decimals), _number(f.max_score, decimals), f.status,
+                    f.late_days, _number(f.penalty, decimals), ";".join(p for p, _, _, o in f.parts if o)]
+            total += f.score
+            mx += f.max_score
+        rows.append(row + [_number(total, decimals), _number(mx, decimals)])
+    return write_csv(Path(out), header, rows)
