@@ -27,6 +27,7 @@ STATUS_WORDS = {
     "timeout": "the notebook did not finish within the time limit",
     "memory": "the notebook used more memory than allowed",
     "tampered": "a cell you were not meant to edit was changed, moved or deleted",
+    "wrong-release": "this is not the notebook released for you: start from your own",
     "corrupt-notebook": "the file is not a notebook that can be read",
     "too-large": "the file is too large to be graded",
     "refused": "the file was not read (a link, a special file, or not your own notebook)",

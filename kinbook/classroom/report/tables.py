@@ -6,9 +6,13 @@ code, row): :func:`mistakes` counts, per part, the students whose counting attem
 
 from __future__ import annotations
 
+import math
 import statistics
 
-__all__ = ["scores", "parts", "mistakes", "reference", "copying", "summary", "missing", "off_roster"]
+__all__ = ["scores", "parts", "mistakes", "reference", "copying", "summary", "missing", "off_roster", "RARE"]
+
+#: An identical answer set shared by more than this share of the class is its common answer, not a copying signal.
+RARE = 0.05
 
 
 def scores(book, exercise, roster=None):
@@ -71,10 +75,14 @@ def reference(book, exercise):
 
 def copying(book, exercise):
     """Copying signals, saying what is identical and never more: notebooks released for another student (recorded
-    by the grader), and groups of students whose answers to every part are identical — listed when at least one of
-    those answers is wrong, or when the exercise's correct answers differ from student to student (per-student
-    variants), so that the same correct answer from a class on one version is not a signal."""
-    out = [{"kind": "released for another student", "students": s, "what": f"the notebook was released for {d}"}
+    by the grader), and a few students (2, up to :data:`RARE` of the class) whose answers to every part are
+    identical — listed when at least one of those answers is wrong, or when the exercise's correct answers differ
+    from student to student (per-student variants), so that the same correct answer from a class on one version, or
+    the same common mistake made by many, is not a signal."""
+    out = [{"kind": "released for another student", "students": s, "what": m}
+           for s, m in book.db.execute("SELECT student, message FROM submissions WHERE exercise = ? AND status = "
+                                       "'wrong-release' ORDER BY student", (exercise,))]
+    out += [{"kind": "released for another student", "students": s, "what": f"the notebook was released for {d}"}
            for s, d in book.db.execute(
                "SELECT g.student, g.detail FROM signals g JOIN submissions s ON s.attempt = g.attempt WHERE "
                "s.exercise = ? AND g.kind = 'released-for' ORDER BY g.student", (exercise,))]
@@ -90,9 +98,10 @@ def copying(book, exercise):
     correct = [k for k, v in answers.items() if all(s >= m for _, _, s, m in v)]
     distinct_correct = len({tuple(a for _, a, _, _ in answers[s]) for s in correct})
     variants = len(correct) >= 2 and distinct_correct > len(correct) / 2
+    few = max(2, math.ceil(RARE * len(answers)))
     for students in sorted(groups.values()):
-        if len(students) < 2:
-            continue
+        if not 2 <= len(students) <= few:
+            continue  # one student, or a set so many share that it is the class's common answer, not a signal
         items = answers[students[0]]
         wrong = [p for p, _, s, m in items if s < m]
         if not wrong and not variants:
