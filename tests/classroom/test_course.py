@@ -18,7 +18,7 @@ from kinbook.classroom.scores import late_days
 from kinbook.cli import main
 from kinbook.errors import GradingError
 
-from .conftest import SOURCE
+from .conftest import ENOUGH, SOURCE
 
 EX = "ex01"
 ROSTER = """student,name,lms_id,sis_id,login,email,section
@@ -222,7 +222,7 @@ def test_variants_for_a_roster_in_one_run(tmp_path, capsys):
 
 
 def test_validate_grades_the_solution_and_the_blank_release(tmp_path, capsys):
-    assert main(["validate", SOURCE, "--no-isolation", "--timeout", "30"]) == 0
+    assert main(["validate", SOURCE, "--no-isolation", "--timeout", str(ENOUGH)]) == 0
     out = capsys.readouterr().out
     assert "ok   the solution (generic release): 6/6" in out and "ok   the released notebook, blank: 0/6" in out
     broken = tmp_path / "tiny.ipynb"
@@ -231,7 +231,7 @@ def test_validate_grades_the_solution_and_the_blank_release(tmp_path, capsys):
         if "angle = float" in "".join(cell["source"]):
             cell["source"] = "### BEGIN SOLUTION\nangle = float('nan') + undefined_name\n### END SOLUTION"
     broken.write_text(json.dumps(nb))
-    assert main(["validate", str(broken), "--no-isolation", "--timeout", "30"]) == 2
+    assert main(["validate", str(broken), "--no-isolation", "--timeout", str(ENOUGH)]) == 2
     captured = capsys.readouterr()
     assert "FAIL the solution (generic release): 4/6" in captured.out and "part angle: 0/2" in captured.out
     assert "tiny is not valid" in captured.err

@@ -6,7 +6,8 @@ submissions, handed in through Canvas's bulk download (its file names, `late` ma
 `__MACOSX` entries and a `.DS_Store`), plus a file from a student who is not on the roster. Every command of the
 walkthrough's ```sh blocks is run as written, in a course directory, in order — `kinbook` through the console
 script's `main` (with `--no-isolation` added to `grade` and `validate`, so that the test also runs where bubblewrap
-cannot), `python3 -m zipfile` as a process — and a command of any other kind fails the test.
+cannot, and a timeout no finishing notebook reaches on a loaded machine), `python3 -m zipfile` as a process — and a
+command of any other kind fails the test.
 
 Then: every student who handed something in is graded and every file is listed in collection.csv; the Canvas and
 Moodle files are checked cell by cell against scores computed here, independently of the course layer (each
@@ -33,6 +34,8 @@ from kinbook.classroom.notebook import load_source, student_notebook
 from kinbook.classroom.serialize import decode, dumps
 from kinbook.classroom.variant import references, student_parameters
 from kinbook.cli import main
+
+from .conftest import ENOUGH
 
 ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / "docs" / "instructors.md"
@@ -176,7 +179,8 @@ def run_walkthrough(course):
             argv = shlex.split(command)
             argv = [x for a in argv for x in (sorted(glob.glob(a)) if "*" in a else [a])]
             if argv[0] == "kinbook":
-                args = argv[1:] + (["--no-isolation"] if argv[1] in ("grade", "validate") else [])
+                args = argv[1:] + (["--no-isolation", "--timeout", str(ENOUGH)] if argv[1] in ("grade", "validate")
+                                   else [])
                 import contextlib
                 import io
 
