@@ -122,3 +122,34 @@ def test_a_source_that_changes_during_grading_stops_the_run(tmp_path):
         grade(src, [subs], tmp_path / "graded", isolation=BWRAP, progress=edit)
     db = sqlite3.connect(tmp_path / "graded" / "gradebook.sqlite")
     assert db.execute("SELECT student FROM submissions").fetchall() == [("anna",)]
+
+
+def test_a_gradebook_of_an_earlier_kinbook_is_migrated(tmp_path):
+    """The schema before attempts: one row per (exercise, student). Opened now, each result becomes its first attempt,
+    the source its run graded with becomes the pin, and nothing is lost."""
+    db = sqlite3.connect(tmp_path / "gradebook.sqlite")
+    db.executescript("""
+        CREATE TABLE runs (id INTEGER PRIMARY KEY, started TEXT NOT NULL, source TEXT NOT NULL,
+            source_sha256 TEXT NOT NULL, exercise TEXT NOT NULL, isolation TEXT NOT NULL, kinbook TEXT NOT NULL,
+            finished TEXT);
+        CREATE TABLE submissions (exercise TEXT NOT NULL, student TEXT NOT NULL, submission TEXT NOT NULL,
+            sha256 TEXT NOT NULL, status TEXT NOT NULL, message TEXT NOT NULL, score REAL NOT NULL,
+            max_score REAL NOT NULL, seconds REAL NOT NULL, isolation TEXT NOT NULL, run INTEGER, graded TEXT NOT NULL,
+            changed_sha256 TEXT, PRIMARY KEY (exercise, student));
+        CREATE TABLE parts (exercise TEXT NOT NULL, student TEXT NOT NULL, position INTEGER NOT NULL, part TEXT NOT NULL,
+            score REAL NOT NULL, max_score REAL NOT NULL, status TEXT NOT NULL, message TEXT NOT NULL,
+            html TEXT NOT NULL, reference TEXT NOT NULL, PRIMARY KEY (exercise, student, position));
+        INSERT INTO runs VALUES (1, '2026-01-01', 'ex01.ipynb', 'aaaa', 'ex01', 'bubblewrap', '0.1.0', '2026-01-01');
+        INSERT INTO submissions VALUES ('ex01', 'ana', 'collected/ana.ipynb', 'cafe', 'ok', '', 2.5, 3, 1.0,
+            'bubblewrap', 1, '2026-01-01', NULL);
+        INSERT INTO parts VALUES ('ex01', 'ana', 0, 'a', 2.5, 3, 'ok', 'fine', '', '');
+    """)
+    db.commit()
+    db.close()
+    book = Gradebook(tmp_path)
+    (r,) = book.results()
+    assert (r.student, r.score, r.sha256, r.source_sha256, r.parts[0].message) == ("ana", 2.5, "cafe", "aaaa", "fine")
+    assert [(a[2], a[4], a[-1]) for a in book.attempts()] == [("ana", "cafe", 1)]
+    assert book.pin("ex01")[0] == "aaaa" and book.stale("ex01") == []
+    book.close()
+    assert len(Gradebook(tmp_path).attempts()) == 1  # migrated once
