@@ -102,31 +102,42 @@ def export(gradebook, out, fmt="csv", *, exercises=None, decimals=2, missing="ze
         raise GradingError(f"a {fmt} file needs the roster (its LMS ids): give --roster (Canvas's gradebook export "
                            "or Moodle's, as downloaded), or grade with --roster first")
 
-    def cell(f):
-        if f is None or (f.status == "missing" and missing == "blank"):
-            return ""
-        return _number(f.score, decimals)
-
     if fmt == "canvas":
-        cols = []
-        for e in exercises:
-            h = headers.get(e, e)
-            if not _CANVAS_HEADER.match(h):
-                raise GradingError(f"Canvas header {h!r} of {e!r} has no assignment id: write it as it appears in "
-                                   "Canvas's gradebook export, 'Exercise 11 (4242)' (--header EXERCISE='NAME (ID)')")
-            cols.append(h)
-        points = [_number(max((f.max_score for f in finals[e].values()), default=0), decimals) for e in exercises]
-        rows = [["    Points Possible", "", "", "", ""] + points]
-        for s in students:
-            rows.append([s.name or s.display, s.lms_id, s.sis_id, s.login, s.section]
-                        + [cell(finals[e].get(s.student)) for e in exercises])
-        return write_csv(Path(out), CANVAS_IDS + cols, rows), graded
+        return _canvas(out, exercises, finals, students, headers, decimals, missing), graded
+    return _moodle(out, exercises, finals, students, headers, decimals, missing), graded
+
+
+def _cell(f, decimals, missing):
+    """A score cell: the final score, or "" for no row (or a missing student with ``missing="blank"``)."""
+    if f is None or (f.status == "missing" and missing == "blank"):
+        return ""
+    return _number(f.score, decimals)
+
+
+def _canvas(out, exercises, finals, students, headers, decimals, missing):
+    cols = []
+    for e in exercises:
+        h = headers.get(e, e)
+        if not _CANVAS_HEADER.match(h):
+            raise GradingError(f"Canvas header {h!r} of {e!r} has no assignment id: write it as it appears in "
+                               "Canvas's gradebook export, 'Exercise 11 (4242)' (--header EXERCISE='NAME (ID)')")
+        cols.append(h)
+    points = [_number(max((f.max_score for f in finals[e].values()), default=0), decimals) for e in exercises]
+    rows = [["    Points Possible", "", "", "", ""] + points]
+    for s in students:
+        rows.append([s.name or s.display, s.lms_id, s.sis_id, s.login, s.section]
+                    + [_cell(finals[e].get(s.student), decimals, missing) for e in exercises])
+    return write_csv(Path(out), CANVAS_IDS + cols, rows)
+
+
+def _moodle(out, exercises, finals, students, headers, decimals, missing):
     cols = [headers.get(e, f"Assignment: {e} (Real)") for e in exercises]
     rows = []
     for s in students:
         first, last = s.names()
-        rows.append([first, last, s.sis_id, "", "", s.email] + [cell(finals[e].get(s.student)) for e in exercises])
-    return write_csv(Path(out), MOODLE_IDS + cols, rows), graded
+        rows.append([first, last, s.sis_id, "", "", s.email]
+                    + [_cell(finals[e].get(s.student), decimals, missing) for e in exercises])
+    return write_csv(Path(out), MOODLE_IDS + cols, rows)
 
 
 def _kinbook_csv(out, exercises, finals, students, decimals, missing):

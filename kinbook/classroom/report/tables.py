@@ -79,13 +79,14 @@ def copying(book, exercise):
     identical — listed when at least one of those answers is wrong, or when the exercise's correct answers differ
     from student to student (per-student variants), so that the same correct answer from a class on one version, or
     the same common mistake made by many, is not a signal."""
-    out = [{"kind": "released for another student", "students": s, "what": m}
-           for s, m in book.db.execute("SELECT student, message FROM submissions WHERE exercise = ? AND status = "
-                                       "'wrong-release' ORDER BY student", (exercise,))]
-    out += [{"kind": "released for another student", "students": s, "what": f"the notebook was released for {d}"}
+    out = [{"kind": "released for another student", "students": s, "what": f"the notebook was released for {d}"}
            for s, d in book.db.execute(
                "SELECT g.student, g.detail FROM signals g JOIN submissions s ON s.attempt = g.attempt WHERE "
                "s.exercise = ? AND g.kind = 'released-for' ORDER BY g.student", (exercise,))]
+    flagged = {r["students"] for r in out}
+    out += [{"kind": "released for another student", "students": s, "what": m}
+            for s, m in book.db.execute("SELECT student, message FROM submissions WHERE exercise = ? AND status = "
+                                        "'wrong-release' ORDER BY student", (exercise,)) if s not in flagged]
     answers = {}
     for student, part, answer, score, mx in book.db.execute(
             "SELECT student, part, answer, score, max_score FROM parts WHERE exercise = ? ORDER BY student, position",
