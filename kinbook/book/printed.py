@@ -18,7 +18,7 @@ from ..grading.misprints import EX4_PHI8
 from .notation import S
 
 __all__ = ["EQ", "EX1", "EX2", "EX3", "EX4", "EX5", "EX6", "q_book", "TABLES", "TABLE_13_1_TEXT",
-           "EX5_RR_ROW", "TABLE_13_5_JACOBIAN", "TABLE_13_5_GAMMA", "REVOLUTE_STEPS"]
+           "EX5_RR_ROW", "TABLE_13_5_JACOBIAN", "TABLE_13_5_GAMMA", "REVOLUTE_STEPS", "ex2_translational_general"]
 
 
 def q_book(values):
@@ -43,23 +43,43 @@ EX2 = {
 }
 """Example 2 (slider-crank, four bodies)."""
 
-_x1, _y1, _phi1, _x3, _y3, _phi3, _x4, _y4 = sp.symbols("x1 y1 phi1 x3 y3 phi3 x4 y4", real=True)
+_x1, _y1, _phi1, _x3, _y3, _phi3, _x4, _y4, _phi4 = sp.symbols("x1 y1 phi1 x3 y3 phi3 x4 y4 phi4", real=True)
 EX2["Phi6"] = (_x4 - _x1) * sp.sin(_phi1) - (_y4 - _y1) * sp.cos(_phi1)
 """Example 2's Φ_6 (the translational joint's collinearity row), in kinbook's symbols x1 … of that mechanism."""
+
+
+def ex2_translational_general(P_i, Q_i, P_j, Q_j):
+    """Example 2's joint 2: the general translational row as the example prints it, (x_i^P − x_i^Q)(y_j^P − y_j^Q)
+    − (y_i^P − y_i^Q)(x_j^P − x_j^Q), for global points given as (x, y) pairs — Q_j, a second point of body j,
+    where eq. 26 has P_i."""
+    return (P_i[0] - Q_i[0]) * (P_j[1] - Q_j[1]) - (P_i[1] - Q_i[1]) * (P_j[0] - Q_j[0])
 
 EX3 = {"q": q_book([0, 0, 0, 0.7071, 0.7071, 135, 3.7849, 1.2783, 238.45])}
 """Example 3 (four-bar with a revolute–revolute joint), printed with x_2 = +0.7071."""
 
+_x2, _y2, _phi2 = sp.symbols("x2 y2 phi2", real=True)
+EX3["Phi6_7_system"] = sp.Matrix([_x1 + 3 * sp.cos(_phi1) - _x4 - sp.Rational(3, 2) * sp.cos(_phi3),
+                                  _y1 + 3 * sp.sin(_phi1) - _y4 - sp.Rational(3, 2) * sp.sin(_phi3)])
+"""Example 3's Φ_6, Φ_7 as its assembled system prints them: x_4, y_4 of a body example 3 does not have (the joint
+section prints x_3, y_3)."""
+
 EX4 = {
     "q": q_book([0, 0, 0, 0.7071, 0.7071, 45, 4.3297, 0.7071, 346.37]),
     "Phi8": EX4_PHI8,  # typed once, where the checkers recognise it
+    "Phi8_substituted": ((_x3 + 3 * sp.cos(_phi3) - _x1 - sp.cos(_phi1)) * (_y1 - _y1 - sp.sin(_phi1))
+                         - (_y3 + 3 * sp.sin(_phi3) - _y1 * sp.sin(_phi1)) * (_x1 - _x1 - sp.cos(_phi1))),
+    "Phi8_system": ((_x3 + 3 * sp.cos(_phi3) - _x1 - sp.cos(_phi1)) * sp.sin(_phi1)
+                    + (_y3 + 3 * sp.sin(_phi3) - _y1 * sp.sin(_phi1)) * sp.cos(_phi1)),
 }
-"""Example 4 (slider-crank with a revolute–translational joint): the solution and the simplified Φ_8 as printed,
-in kinbook's symbols of that mechanism."""
+"""Example 4 (slider-crank with a revolute–translational joint): the solution and Φ_8 as printed three ways — the
+general row with the points substituted (``Phi8_substituted``), simplified (``Phi8``) and in the assembled system
+(``Phi8_system``) — in kinbook's symbols of that mechanism."""
 
 # ------------------------------------------------------------------------------------ §13.7, example 5
 EX5 = {
-    "q": q_book([0, 0, 0, -0.7071, 0.7071, 135, 3.7849, 1.2783, 238.45]),  # example 3's, as example 6 prints it
+    # example 5 lists example 3's configuration (x_2 = +0.7071, erratum 13.5-ex3-x2) but its Jacobian uses
+    # x_2 = −0.7071 (x^{O_A} − x_2 = 0 + 0.7071), as example 6 prints it: that is the configuration here
+    "q": q_book([0, 0, 0, -0.7071, 0.7071, 135, 3.7849, 1.2783, 238.45]),
     "J": np.array([[1, 0, 0, 0, 0, 0, 0, 0, 0],
                    [0, 1, 0, 0, 0, 0, 0, 0, 0],
                    [0, 0, 1, 0, 0, 0, 0, 0, 0],
@@ -74,6 +94,9 @@ EX5 = {
     "qd_ex6": np.array([0, 0, 0, -70.71, -70.71, 100, -95.391, 58.5719, 74.6233]),  # as example 6 reuses it
     "vA": np.array([-141.4207, -141.4207]),
     "vB": np.array([-190.7802, 117.1410]),
+    # joint 3's working: the four lever-arm values, printed under the labels x^A − x^B, y^A − y^B, x^B − x^3,
+    # y^B − y^3 (erratum 13.7-ex5-joint3-working)
+    "rr_arms": np.array([-0.7071, 0.7071, 0.7849, 1.2783]),
 }
 """Example 5: the global Jacobian at example 3's printed configuration, ν, the velocities and v_A, v_B."""
 

@@ -117,7 +117,7 @@ class Comparison:
 
 
 def compare(printed, derived, mech, *, count=20, seed=1, tol=1e-9, equal=(), title="", columns=None,
-            rows=None, book_form=None):
+            rows=None, book_form=None, up_to_sign=True):
     """Compare a printed matrix (in the book's symbols :data:`S`) with kinbook's (in the mechanism's symbols).
 
     Parameters
@@ -136,6 +136,9 @@ def compare(printed, derived, mech, *, count=20, seed=1, tol=1e-9, equal=(), tit
         How the table is labelled (LaTeX for columns and rows).
     book_form : sympy.Matrix, optional
         kinbook's derivation written in the book's notation, shown next to a printed entry that differs.
+    up_to_sign : bool
+        A printed row equal to kinbook's times −1 counts as the same row (a constraint Φ = 0 is −Φ = 0); False
+        where the sign is the point (γ, ν).
 
     Returns
     -------
@@ -147,7 +150,7 @@ def compare(printed, derived, mech, *, count=20, seed=1, tol=1e-9, equal=(), tit
     syms, values = random_states(mech, [as_kinbook, derived], count, seed, eq)
     p, d = _evaluate(as_kinbook, syms, values), _evaluate(derived, syms, values)
     signs = np.ones(printed.rows)
-    for r in range(printed.rows):
+    for r in range(printed.rows if up_to_sign else 0):
         plus = (np.abs(p[:, r] - d[:, r]).max(axis=0) < tol).sum()
         minus = (np.abs(p[:, r] + d[:, r]).max(axis=0) < tol).sum()
         signs[r] = -1.0 if minus > plus else 1.0

@@ -447,7 +447,7 @@ def _defaults():
                                            frame="planar", extra=(_book_ex4_phi8,),
                                            derived_book=(_book_table_13_4,)))
     register(P.Gear, Spec(radii=("radius_i", "radius_j"), angles=("phi0",), context=("gear",),
-                          book=(_book_gear_eq37,), extra=(_gear_fixed_carrier,)))
+                          book=(_gear_carrier_start,), extra=(_gear_fixed_carrier,)))
     register(P.RackPinion, Spec(radii=("radius",), swap_bodies=True, angles=("initial[phi_i]",), context=("rack",),
                                 extra=(_rack_sliding,)))
     register(P.Driver, Spec(driver_angle=True, context=("driver",)))
@@ -504,12 +504,13 @@ def _book_ex4_phi8(target, c, Q):
            "13.5-ex4-phi8")
 
 
-def _book_gear_eq37(c):
-    """Eq. 37: the carrier's initial angle left out of the initial angles."""
+def _gear_carrier_start(c):
+    """Eq. 37 read with φ′ = φ − φ_k and φ′⁰ = φ⁰: the carrier's initial angle φ_k⁰ left out. (The book is right:
+    it defines φ′ by its rate and starts it at φ′(0) = φ⁰, which eq. 38 undoes.)"""
     pi0, pj0, pk0 = c.phi0
     if _is_zero(pk0):
         return None
-    return {"phi0": (pi0, pj0, 0)}, "13.5-eq37", "book_misprint"
+    return {"phi0": (pi0, pj0, 0)}, None, "missing_term"
 
 
 def _gear_fixed_carrier(target, c, Q):

@@ -341,8 +341,9 @@ def planar_cases():
         ["((phi2 - 0.5) - (phi1 - 0.2))*1.4 + ((phi3 + 0.3) - (phi1 - 0.2))*0.6"], False, 0.0, ["swapped_bodies"])
     add("p-gear-phi-fixed-carrier", "phi", m, c, ["(phi2 - 0.5)*0.6 + (phi3 + 0.3)*1.4"], False, 0.0,
         ["missing_term"])
+    # eq. 37 read with φ′ = φ − φ_k: the carrier's initial angle left out (the book defines φ′ from φ′(0) = φ⁰)
     add("p-gear-phi-eq-37", "phi", m, c, ["((phi2 - phi1) - 0.5)*0.6 + ((phi3 - phi1) + 0.3)*1.4"], False, 0.0,
-        ["book_misprint"])
+        ["missing_term"])
     add("p-gear-jac", "jacobian", m, c, [["0", "0", "-2", "0", "0", "0.6", "0", "0", "1.4"]], True, 1.0)
     add("p-gear-jac-no-carrier", "jacobian", m, c, [["0", "0", "0", "0", "0", "0.6", "0", "0", "1.4"]], False,
         2 / 3, ["missing_term"])
