@@ -57,7 +57,6 @@ def ex2_translational_general(P_i, Q_i, P_j, Q_j):
 EX3 = {"q": q_book([0, 0, 0, 0.7071, 0.7071, 135, 3.7849, 1.2783, 238.45])}
 """Example 3 (four-bar with a revolute–revolute joint), printed with x_2 = +0.7071."""
 
-_x2, _y2, _phi2 = sp.symbols("x2 y2 phi2", real=True)
 EX3["Phi6_7_system"] = sp.Matrix([_x1 + 3 * sp.cos(_phi1) - _x4 - sp.Rational(3, 2) * sp.cos(_phi3),
                                   _y1 + 3 * sp.sin(_phi1) - _y4 - sp.Rational(3, 2) * sp.sin(_phi3)])
 """Example 3's Φ_6, Φ_7 as its assembled system prints them: x_4, y_4 of a body example 3 does not have (the joint

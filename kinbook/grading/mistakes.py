@@ -505,8 +505,7 @@ def _book_ex4_phi8(target, c, Q):
 
 
 def _gear_carrier_start(c):
-    """Eq. 37 read with φ′ = φ − φ_k and φ′⁰ = φ⁰: the carrier's initial angle φ_k⁰ left out. (The book is right:
-    it defines φ′ by its rate and starts it at φ′(0) = φ⁰, which eq. 38 undoes.)"""
+    """Eq. 37 misread with φ′ = φ − φ_k: φ_k⁰ left out (the book starts φ′ at φ⁰, so eq. 37 itself is right)."""
     pi0, pj0, pk0 = c.phi0
     if _is_zero(pk0):
         return None
