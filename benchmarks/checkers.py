@@ -36,9 +36,10 @@ case = CASES[{k}]
 mech, target, answer, check, options = case["build"]()
 mech.evaluate(mech.q0)  # a student has the mechanism (and kinbook's compiled model) before checking
 t0 = time.perf_counter()
+passed = options.pop("_passed", True)
 r = getattr(grading, check)(answer, target, **options)
 t_first = time.perf_counter() - t0
-assert r.passed, r
+assert r.passed is passed, r
 print(json.dumps({{"import": t_import, "first": t_first}}))
 """
 
@@ -94,6 +95,35 @@ def _spatial(constraint, quantity):
     return m, t, answer, check, {}
 
 
+def _wrong(build, k, change, passed=False):
+    """A case with answer row k changed by ``change`` (a wrong answer: its first check diagnoses it)."""
+
+    def make():
+        mech, target, answer, check, options = build()
+        rows = list(answer) if not hasattr(answer, "tolist") else [answer[i, :] if answer.shape[1] > 1 else
+                                                                   answer[i, 0] for i in range(answer.shape[0])]
+        rows[k] = change(rows[k])
+        return mech, target, rows, check, options | {"_passed": passed}
+
+    return make
+
+
+def _six_bar_masked():
+    from tests.grading.corpus3 import SIX_BAR, _exercise
+
+    m = _exercise("ex04")
+    return m, m, [*SIX_BAR[:16], "phi1 + phi6", SIX_BAR[17]], "check_phi", {"_passed": False}
+
+
+def _ex1_vanishing():
+    from tests.grading.corpus import EX1_PHI_SIMPLE
+
+    m, t = _ex("ch13_example1")
+    rows = list(EX1_PHI_SIMPLE)
+    rows[3] = f"cos(phi2)*({rows[3]})"
+    return m, t, rows, "check_phi", {"_passed": False}
+
+
 CASES = [
     {"name": "planar Φ, example 1 (12 rows)", "build": _ex1_phi},
     {"name": "planar Φ_q, example 1", "build": _ex1_jac},
@@ -104,6 +134,12 @@ CASES = [
     {"name": "spatial γ, universal joint B", "build": lambda: _spatial("B", "gamma")},
     {"name": "spatial Φ, whole four-bar (28 rows)", "build": lambda: _spatial(None, "Phi")},
     {"name": "spatial Φ_q, whole four-bar", "build": lambda: _spatial(None, "Phi_q")},
+    {"name": "wrong: spatial γ, whole four-bar, one sign", "build": _wrong(lambda: _spatial(None, "gamma"), 20,
+                                                                            lambda e: -e)},
+    {"name": "wrong: spatial Φ, whole four-bar, one sign", "build": _wrong(lambda: _spatial(None, "Phi"), 20,
+                                                                            lambda e: -2 * e + 1)},
+    {"name": "wrong: planar Φ, six-bar, a masked row", "build": _six_bar_masked},
+    {"name": "wrong: planar Φ, example 1, a vanishing factor", "build": _ex1_vanishing},
 ]
 
 
@@ -122,8 +158,9 @@ def later_checks(repeat=20):
     out = []
     for case in CASES:
         mech, target, answer, check, options = case["build"]()
+        passed = options.pop("_passed", True)
         fn = getattr(grading, check)
-        assert fn(answer, target, **options).passed
+        assert fn(answer, target, **options).passed is passed
         times = []
         for _ in range(repeat):
             t0 = time.perf_counter()

@@ -61,9 +61,14 @@ class Limits:
     length : int
         Characters of the text.
     nodes : int
-        Nodes of the syntax tree (or of a sympy tree, for :func:`check_expression`).
+        Nodes of the syntax tree (for :func:`check_expression`: *distinct* sub-expressions of a sympy object,
+        each counted once however often it is shared).
     depth : int
-        Nesting depth of the tree.
+        Nesting depth of the tree (the longest path, for a sympy object).
+    tree : int
+        For :func:`check_expression`: the size the sympy object would have written out as a tree (shared parts
+        counted each time they occur) — computed from the distinct ones, so an enormous tree of few distinct
+        parts is refused at once.
     digits : int
         Characters of one numeric literal.
     exponent : float
@@ -78,6 +83,7 @@ class Limits:
     length: int = 5000
     nodes: int = 2000
     depth: int = 100
+    tree: int = 200_000
     digits: int = 40
     exponent: float = 100
     magnitude: float = 1e300
@@ -739,9 +745,17 @@ def read_number(value, *, where, limits=None):
 # ------------------------------------------------------------------------------------------------ sympy trees
 def check_expression(expr, *, where, limits=None):
     """The bounds of :class:`Limits` on an already-built sympy object (an expression or a matrix), without
-    evaluating it: node count, depth, the magnitude of every number, numeric exponents.
+    evaluating it: distinct sub-expressions, the size written out as a tree, depth, the magnitude of every
+    number, numeric exponents.
 
-    For sympy objects handed over from Python (a student's expression, data decoded by the grader).
+    For sympy objects handed over from Python (a student's expression, data decoded by the grader). The object
+    is walked as the graph it is — each distinct sub-expression once —, so a long expression that sympy built
+    with shared parts (a γ of √(dᵀd) − l: 10⁵ tree nodes, a few hundred distinct) is read in time linear in
+    its distinct parts, and one whose tree would be astronomical is refused as soon as its size is known.
+
+    Returns
+    -------
+    (distinct, tree, depth) : tuple of int
 
     Raises
     ------
@@ -753,7 +767,7 @@ def check_expression(expr, *, where, limits=None):
         if not math.isfinite(expr) or abs(expr) > limits.magnitude:
             raise ExpressionError(f"{where}: expected a finite number of at most {limits.magnitude:.0e} in size, "
                                   f"got {expr!r}", where=where, text=None, reason="not finite")
-        return
+        return 1, 1, 1
     if isinstance(expr, sp.MatrixBase):
         roots = list(expr)
     elif isinstance(expr, sp.Basic):
@@ -762,29 +776,51 @@ def check_expression(expr, *, where, limits=None):
         raise ExpressionError(f"{where}: expected a sympy expression, got {type(expr).__name__}", where=where,
                               text=None, reason="not a sympy expression")
     big_bits = math.log2(limits.magnitude)
-    count = 0
-    stack = [(r, 1) for r in roots]
+    done = {}  # sub-expression -> (tree size, depth), once all its parts are done
+    entered = set()
+    stack = [(r, False) for r in roots]
+    tree = depth = 0
     while stack:
-        node, depth = stack.pop()
-        count += 1
-        if count > limits.nodes:
-            raise ExpressionError(f"{where}: the expression is too large (more than {limits.nodes} nodes)",
-                                  where=where, text=None, reason="too many nodes")
-        if depth > limits.depth:
-            raise ExpressionError(f"{where}: the expression is nested too deeply (more than {limits.depth} levels)",
-                                  where=where, text=None, reason="too deep")
+        node, ready = stack.pop()
+        if node in done:
+            continue
+        if ready:
+            parts = [done[a] for a in node.args]
+            size = 1 + sum(p[0] for p in parts)
+            level = 1 + max((p[1] for p in parts), default=0)
+            if size > limits.tree:
+                raise ExpressionError(f"{where}: the expression is too large (more than {limits.tree} nodes "
+                                      f"written out)", where=where, text=None, reason="too many nodes")
+            if level > limits.depth:
+                raise ExpressionError(f"{where}: the expression is nested too deeply (more than {limits.depth} "
+                                      f"levels)", where=where, text=None, reason="too deep")
+            done[node] = (size, level)
+            continue
+        if node in entered:
+            continue
         if not isinstance(node, sp.Basic):
             raise ExpressionError(f"{where}: a part of the expression is not a sympy object "
                                   f"({type(node).__name__})", where=where, text=None, reason="not sympy")
+        entered.add(node)
+        if len(entered) > limits.nodes:
+            raise ExpressionError(f"{where}: the expression is too large (more than {limits.nodes} distinct parts)",
+                                  where=where, text=None, reason="too many nodes")
         if isinstance(node, sp.Number) or node in _INFINITIES:
             _check_number(node, where, big_bits, limits)
-            continue
-        if isinstance(node, sp.Pow):
+        elif isinstance(node, sp.Pow):
             e = node.args[1]
             if isinstance(e, sp.Number) and e.is_finite and abs(e) > limits.exponent:
                 raise ExpressionError(f"{where}: the exponent {e} is too large (at most {limits.exponent:g} in size)",
                                       where=where, text=None, reason="exponent too large")
-        stack.extend((a, depth + 1) for a in node.args)
+        stack.append((node, True))
+        stack.extend((a, False) for a in node.args if a not in done)
+    for r in roots:
+        size, level = done[r]
+        tree, depth = tree + size, max(depth, level)
+    if tree > limits.tree:
+        raise ExpressionError(f"{where}: the expression is too large (more than {limits.tree} nodes written out)",
+                              where=where, text=None, reason="too many nodes")
+    return len(entered), tree, depth
 
 
 _INFINITIES = (sp.zoo, sp.oo, -sp.oo, sp.nan)

@@ -56,6 +56,21 @@ def phi(target, answer, data, matching, rtol):
             r.context = M.contexts_of(target.owner(r.ref))
 
 
+def symbols_of(expr):
+    """The symbols of a student's expression, walking each distinct sub-expression once (``free_symbols``
+    walks the tree: exponential for an expression that shares its parts)."""
+    seen, out, stack = set(), set(), [expr]
+    while stack:
+        e = stack.pop()
+        if e in seen:
+            continue
+        seen.add(e)
+        if e.is_Symbol:
+            out.add(e)
+        stack.extend(e.args)
+    return out
+
+
 def _book_name(name):
     return name.replace("phi", "φ")
 
@@ -82,8 +97,8 @@ def _vanishing_detail(target, answer, r):
     j, value = next(((j, v) for j, v in refs.items() if abs(v) > 0), next(iter(refs.items())))
     factor = None
     if answer.kind == "symbolic":
-        expr = answer.bound(target)[r.k, 0]
-        if sp.count_ops(expr) <= 300:
+        expr = answer.entry(target, r.k)
+        if expr is not None and sp.count_ops(expr) <= 300:
             try:
                 _, parts = sp.factor_list(sp.together(expr))
                 parts = [f for f, _ in parts if f.free_symbols]
@@ -231,13 +246,12 @@ def _term_detail(code, term):
 
 
 def _terms_phi(target, data, wrong, free, rtol):
-    Phi = target.symbolic_phi()
     G = target.samples("generic")
     for j in list(free):
         left = [r for r in wrong if r.code is None]
         if not left:
             return
-        cands = term_variants(Phi[j])
+        cands = term_variants(target.symbolic_row(j))
         if not cands:
             continue
         vals = target.tape([e for _, e, _ in cands])(G.Q, G.QD, G.T)["value"]
@@ -258,12 +272,11 @@ def _pair(target, answer, wrong, free):
     answers), else in order; rows left over are extra."""
     free = list(free)
     if answer.kind == "symbolic" and free:
-        Phi = target.symbolic_phi()
         cand = []
         for r in wrong:
-            sk = {x.name for x in answer.matrix[r.k, 0].free_symbols}
+            sk = {x.name for x in symbols_of(answer.matrix[r.k, 0])}
             for j in free:
-                sj = {x.name for x in Phi[j].free_symbols}
+                sj = {x.name for x in target.symbolic_row(j).free_symbols}
                 overlap = len(sk & sj) / max(1, len(sk | sj))
                 cand.append((-overlap, abs(r.k - j), j, r.k))
         out, used_j, used_k = {}, set(), set()
@@ -288,8 +301,10 @@ class _Expected:
         self._ref_rules = None
         self._hdiag = {}
 
-    def ref_tape(self):
-        return self.target.tape(list(self.target.symbolic_phi()), key="phi")
+    def ref_tape(self, c):
+        """The tape of constraint c's reference rows (one constraint's Φ only: building the whole mechanism's
+        symbolic Φ for one wrong row costs the first check most of its time)."""
+        return self.target.tape(self.target.symbolic_rows(c), key=("phi", c.name))
 
     def rule_values(self, tape_key, tape, rule, frozen=()):
         key = ("rule", tape_key, rule, tuple(frozen))
@@ -432,7 +447,8 @@ def _candidates(target, ex, r, own, expected):
         sources.append(("own", own["tape"], r.k, 1.0))
     if r.ref is not None:
         try:
-            sources.append(("phi", ex.ref_tape(), r.ref, f))
+            c = target.owner(r.ref)
+            sources.append((("phi", c.name), ex.ref_tape(c), target.block(c).index(r.ref), f))
         except Exception:  # pragma: no cover - a reference that cannot be taped
             pass
     if r.ref is not None and not isinstance(r.ref, tuple) and q in ("Phi_q", "gamma"):
@@ -487,7 +503,8 @@ def _hdiag(ex, key, tape):
         s = ex.s
         N, n = s.Q.shape
         H = np.zeros((N, len(tape.outputs), n))
-        for k in range(n):
+        used = {payload for kind, payload, _ in tape.ops if kind == "q"}  # the other columns' H_kk are 0
+        for k in sorted(used):
             e = np.zeros_like(s.Q)
             e[:, k] = 1.0
             H[:, :, k] = tape(s.Q, e, s.T, order=2, dt=0.0, velocities=s.QD)["d2"]
@@ -531,11 +548,10 @@ def _variant_spans(target, ex, c, rows, rtol):
     from .match import _in_span
 
     F = target.reference("assembled")["free_q"][:, :, ex.data.cols]
-    block = target.block(c)
     blocks = []
-    tape = ex.ref_tape()
+    tape = ex.ref_tape(c)
     for rule, code, frozen in (_rules(target)):
-        D = ex.rule_values("phi", tape, rule, frozen)["Phi_q"][:, block, :][:, :, ex.data.cols]
+        D = ex.rule_values(("phi", c.name), tape, rule, frozen)["Phi_q"][:, :, ex.data.cols]
         blocks.append((M.Variant(code, []), D))
     for v in list(M.structural(target, c)) + list(M.alternative_variants(target, c)):
         if not v.derived:
@@ -567,7 +583,7 @@ def _terms_derived(target, ex, r, own, S, expected, rtol):
         return None
     import sympy as sp
 
-    Phi = target.symbolic_phi()[r.ref]
+    Phi = target.symbolic_row(r.ref)
     if sp.count_ops(Phi) > 60:
         return None
     mech = target.mech

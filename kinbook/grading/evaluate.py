@@ -65,6 +65,7 @@ class PhiData:
     together: object = None  # callable: list of constraint indices -> the answer (N, ms) where only they hold
     search: object = None  # callable: (constraint index, answer rows) -> (Q, T, its reference rows) at their zeros
     book: object = None  # callable: constraint index -> the book's own rows of it at the generic samples, or None
+    gR_G: np.ndarray = None  # gradients of the reference rows at the generic samples
 
 
 @dataclass
@@ -160,7 +161,7 @@ def phi_data(target, answer):
         return book_form(target, target.constraints[i])
 
     return PhiData(S_G, S_M, RG["Phi"], RM["Phi"], RM["Phi_q"], RM["free_q"], grads, M.on_manifold, blocks, block,
-                   cols, together, search, book)
+                   cols, together, search, book, RG["Phi_q"])
 
 
 def _block(target, answer, i, refs, S_M, grads, RM):

@@ -208,6 +208,7 @@ def match_phi(data, rtol, order="any", wrap=None):
     blocks = data.blocks or [list(range(m))]
     owner_of = {j: b for b, refs in enumerate(blocks) for j in refs}
     C = scale_matrix(S_G, R_G, rtol, True, wrap)
+    _zero_rows(C, data, rtol)
     rows = [Row(k, None, "wrong") for k in range(ms)]
     taken = {}
     # 1. multiples of a reference row (at generic configurations: nothing else holds there): in book order the
@@ -279,6 +280,28 @@ def match_phi(data, rtol, order="any", wrap=None):
     return Matching(rows, sorted(missing))
 
 
+def _zero_rows(C, data, rtol):
+    """Reference rows that are zero at every generic sample (a body's normalization pᵀp − 1: the samples' Euler
+    parameters are unit): an answer row zero there too is a multiple of one when its gradient is that multiple
+    of the reference row's gradient (2pᵀ)."""
+    gR = getattr(data, "gR_G", None)
+    if gR is None:
+        return
+    S_G, R_G = data.S_G, data.R_G
+    zr = [j for j in range(R_G.shape[1]) if scale_of(R_G[:, j]) <= 1e-12 and scale_of(gR[:, j]) > 0]
+    if not zr:
+        return
+    zs = [k for k in range(S_G.shape[1]) if scale_of(S_G[:, k]) <= 1e-12 and np.all(np.isnan(C[k]))]
+    if not zs:
+        return
+    gS = data.grads("generic")
+    for k in zs:
+        for j in zr:
+            c = scale_match(gS[:, k, :], gR[:, j, :], rtol)
+            if c is not None:
+                C[k, j] = c
+
+
 def _equivalents(data, rest, blocks, owner_of, taken, rtol):
     """Rows that are no multiple of a reference row: right when, where one constraint alone holds (its own
     assembled samples), they vanish and their gradient lies in the span of that constraint's rows' gradients
@@ -293,12 +316,15 @@ def _equivalents(data, rest, blocks, owner_of, taken, rtol):
         magnitude = max(scale_of(S_G[:, k]), gscale)
         if magnitude == 0.0:
             continue  # identically zero: wrong
+        if len(blocks) > 1 and data.on_manifold and not _whole(data, k, magnitude, gscale, rtol):
+            continue  # not even true where the whole mechanism is assembled: wrong for every constraint
         support = np.max(np.abs(g_gen), axis=0) > 1e-9 * max(gscale, 1e-300)
         cols = data.block_cols or [np.ones_like(support)] * len(blocks)
-        # constraints with rows left first, then those whose bodies the row moves (a row may carry a factor of
-        # another body's coordinates that never vanishes: right, if odd)
-        cands = sorted(range(len(blocks)), key=lambda b: (all(j in taken for j in blocks[b]),
-                                                           bool(np.any(support & ~cols[b])), b))
+        # the constraints whose bodies hold every coordinate the row moves, those with rows left first; only when
+        # there is none, every constraint (a row may carry a factor of another body's coordinates that never
+        # vanishes: right, if odd)
+        cands = [b for b in range(len(blocks)) if not np.any(support & ~cols[b])] or list(range(len(blocks)))
+        cands.sort(key=lambda b: (all(j in taken for j in blocks[b]), b))
         for b in cands:
             B = data.block(b)
             verdict = _judge(B, k, magnitude, gscale, S_G, data.R_G, rtol)
@@ -314,6 +340,19 @@ def _equivalents(data, rest, blocks, owner_of, taken, rtol):
             break
         if r.status == "wrong" and data.on_manifold and len(blocks) > 1:
             _masked(data, r, blocks, owner_of, cands, magnitude, gscale, rtol)
+
+
+def _whole(data, k, magnitude, gscale, rtol):
+    """Answer row k vanishes where the whole mechanism is assembled, with its gradient (if not zero) in the span
+    of all the reference rows' there: the least a row of any one constraint must do (checked first: cheap)."""
+    if scale_of(data.S_M[:, k]) > 1e3 * rtol * magnitude:
+        return False
+    g = data.grads("assembled")[:, k, :]
+    gnorm = np.linalg.norm(g, axis=1)
+    if np.all(gnorm <= 1e3 * rtol * max(gscale, float(np.max(gnorm)))):
+        return True
+    basis = np.concatenate([data.gR_M, data.F_M], axis=1) if data.F_M is not None and data.F_M.size else data.gR_M
+    return _in_span(g, basis, rtol)[1]
 
 
 def _judge(B, k, magnitude, gscale, S_G, R_G, rtol):

@@ -242,28 +242,23 @@ def _structural(target, c):
         e = safe(lambda: _phi(target, c, **{a: getattr(c, b), b: getattr(c, a)}))
         if e is not None:
             yield from add("swapped_bodies", e)
-    # Aᵀ for A, A omitted
+    # Aᵀ for A, A omitted — on every body, then on one body only (the ground's A transposed …): made from the
+    # constraint's own rows by substitution in A (cheap), never by re-deriving them
     if spec.frame and (spec.points or spec.vectors):
-        if spec.frame == "planar":
-            QT = [sp.Matrix([q[0], q[1], -q[2]]) for q in Q]
-            QL = [sp.Matrix([q[0], q[1], 0]) for q in Q]
-        else:
-            QT = [sp.Matrix([*q[:4], -q[4], -q[5], -q[6]]) for q in Q]
-            QL = [sp.Matrix([*q[:3], 1, 0, 0, 0]) for q in Q]
-        e = safe(lambda: _phi_points_only(target, c, QT, spec))
-        if e is not None:
-            yield from add("A_transposed", e)
-        e = safe(lambda: _phi_points_only(target, c, QL, spec))
-        if e is not None:
-            yield from add("local_vector", e)
-        if len(Q) >= 2:  # on one body only (the ground's A transposed, the crank's s' left local …)
-            for role in range(len(Q)):
-                for code, Qmod, what in (("A_transposed", QT, "Aᵀ"), ("local_vector", QL, "s'")):
-                    Qr = [Qmod[k] if k == role else sp.Matrix(Q[k]) for k in range(len(Q))]
-                    e = safe(lambda Qr=Qr: _phi_points_only(target, c, Qr, spec))
-                    if e is not None:
-                        yield Variant(code, e, Msg("d.on_body", what=what, body=names[role]),
-                                      derived=code == "A_transposed")
+        base = safe(lambda: list(c.phi(Q, mech.t)))
+        if base is not None:
+            everyone = list(range(len(Q)))
+            for code in ("A_transposed", "local_vector"):
+                e = safe(lambda code=code: _frame_variant(base, Q, everyone, code, spec.frame))
+                if e is not None:
+                    yield from add(code, e)
+            if len(Q) >= 2:
+                for role in everyone:
+                    for code, what in (("A_transposed", "Aᵀ"), ("local_vector", "s'")):
+                        e = safe(lambda code=code, role=role: _frame_variant(base, Q, [role], code, spec.frame))
+                        if e is not None:
+                            yield Variant(code, e, Msg("d.on_body", what=what, body=names[role]),
+                                          derived=code == "A_transposed")
     # the sign of one local coordinate, of a whole A s', of a coordinate term
     for attr, role in spec.points + spec.vectors:
         v = getattr(c, attr, None)
@@ -329,26 +324,30 @@ def _structural(target, c):
             yield from add(*item)
 
 
-def _phi_points_only(target, c, Qmod, spec):
-    """Φ of ``c`` with A replaced in its points and vectors only: rows that read the bodies' angles directly
-    (a translational joint's φ_i − φ_j) keep them."""
-    mech = target.mech
-    Q = [mech.body_symbols(b.name) for b in c.bodies]
-    rows_mod = list(c.phi(Qmod, mech.t))
-    rows = list(c.phi(Q, mech.t))
-    if spec.frame != "planar":
-        return rows_mod
-    out = []
-    for r0, r1 in zip(rows, rows_mod):
-        # a row that only moved by φ → −φ in linear terms (no trig of φ) keeps its reference form
-        out.append(r0 if not r0.has(*_trig()) and r0 != r1 else r1)
-    return out
-
-
-def _trig():
+def _frame_variant(rows, Q, roles, code, frame):
+    """Rows with A(φ) / A(p) of the bodies ``roles`` transposed ("A_transposed": sin φ → −sin φ; e → −e) or
+    left out ("local_vector": φ → 0 in A; p → [1, 0, 0, 0]); a planar row that reads an angle directly (a
+    translational joint's φ_i − φ_j) keeps it — only A holds trigonometric functions of φ."""
     import sympy as sp
 
-    return (sp.sin, sp.cos)
+    if frame == "planar":
+        out = []
+        for r in rows:
+            for role in roles:
+                phi = Q[role][2]
+                if code == "A_transposed":
+                    r = r.replace(lambda e, phi=phi: isinstance(e, sp.sin) and e.has(phi),
+                                  lambda e, phi=phi: sp.sin(e.args[0].xreplace({phi: -phi})))
+                else:
+                    r = r.replace(lambda e, phi=phi: isinstance(e, (sp.sin, sp.cos)) and e.has(phi),
+                                  lambda e, phi=phi: e.func(e.args[0].xreplace({phi: 0})))
+            out.append(r)
+        return out
+    sub = {}
+    for role in roles:
+        e0, e1, e2, e3 = Q[role][3:7]
+        sub.update({e1: -e1, e2: -e2, e3: -e3} if code == "A_transposed" else {e0: 1, e1: 0, e2: 0, e3: 0})
+    return [r.xreplace(sub) for r in rows]
 
 
 def _angle_name(attr):

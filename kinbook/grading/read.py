@@ -44,9 +44,15 @@ def _reader():
 
 
 def _limits():
-    """The bounds on one entry of an answer: text up to 20 000 characters, trees up to 120 000 nodes, 400
-    deep (a Jacobian entry of a spatial joint that sympy derived is large, but bounded)."""
-    return _reader().Limits(length=20_000, nodes=120_000, depth=400)
+    """The bounds on one entry of an answer: text up to 20 000 characters; a sympy object up to 20 000 distinct
+    sub-expressions, 2 000 000 nodes written out as a tree, 400 deep (a γ entry of a spatial joint that sympy
+    derived has some 10⁵ tree nodes and a few hundred distinct ones: it is walked as the graph it is)."""
+    return _reader().Limits(length=20_000, nodes=20_000, tree=2_000_000, depth=400)
+
+
+SYMPY_WORK = 5_000
+"""Above this many tree nodes an answer entry is not handed to sympy functions that walk trees (factoring a
+row for a message, symbolic confirmation): they are skipped, never the verdict."""
 
 
 class Refused(Exception):
@@ -106,11 +112,14 @@ class Answer:
                 raise Refused("malformed", "unsupported", what=str(exc)) from None
         return self._tapes[key]
 
-    def bound(self, target):
-        """The answer's matrix in the mechanism's own symbols (for sympy work on it)."""
+    def entry(self, target, k, col=0):
+        """Entry (k, col) in the mechanism's own symbols, for sympy work on it — or None when it is too large for
+        functions that walk trees (more than :data:`SYMPY_WORK` nodes written out: such work is skipped)."""
+        e = self.matrix[k, col]
+        if tree_size(e) > SYMPY_WORK:
+            return None
         symbols = target.symbols()
-        repl = {s: symbols[s.name] for s in self.matrix.free_symbols if s.name in symbols}
-        return self.matrix.xreplace(repl)
+        return e.xreplace({s: symbols[s.name] for s in e.free_symbols if s.name in symbols})
 
     def values(self, target, s):
         """The answer at the instants of ``s``: (N, rows, columns)."""
@@ -177,6 +186,13 @@ class Answer:
                 raise Refused("malformed", "callable_failed", error=f"{type(exc).__name__}: {exc}",
                               signature=sig) from None
         return _as_numbers(out, "callable_result", signature=sig)
+
+
+def tree_size(expr):
+    """Nodes of a sympy object written out as a tree, computed over its distinct parts (never a tree walk)."""
+    ex = _reader()
+    huge = ex.Limits(length=10**9, nodes=10**9, depth=10**9, tree=10**30)
+    return ex.check_expression(expr, where="", limits=huge)[1]
 
 
 # ================================================================================================ reading
@@ -299,6 +315,11 @@ def _as_numbers(value, what, **fields):
 
 
 def _sympy_number(e):
+    ex = _reader()
+    try:  # bounded before sympy walks it (is_number, free_symbols and evaluation walk the tree)
+        ex.check_expression(e, where=Msg("callable_result"), limits=_limits())
+    except ex.ExpressionError as err:
+        raise Refused("malformed", "reader", message=str(err)) from None
     if getattr(e, "is_number", False) and not e.free_symbols:
         try:
             c = complex(e)
@@ -348,7 +369,8 @@ def _sympy_matrix(M):
     limits = _limits()
     try:
         ex.check_expression(M, where="the answer", limits=type(limits)(
-            length=limits.length, nodes=limits.nodes * max(1, min(len(M), 50)), depth=limits.depth))
+            length=limits.length, nodes=limits.nodes * max(1, min(len(M), 50)), depth=limits.depth,
+            tree=limits.tree * max(1, min(len(M), 50))))
     except ex.ExpressionError as err:
         code = "not_finite" if "not a finite number" in str(err) else "malformed"
         raise Refused(code, "reader", message=str(err)) from None

@@ -198,6 +198,22 @@ class Target:
         return ev["Phi"][:, rows], J
 
     # ------------------------------------------------------------------------------------------- symbolic Φ
+    def symbolic_rows(self, c):
+        """The symbolic Φ rows of one graded constraint ``c`` (a list), built once — cheaper than the whole
+        :meth:`symbolic_phi` when one constraint's rows are wanted."""
+        key = ("rows", c.name)
+        if key not in self.store:
+            if "phi" in self.store:
+                self.store[key] = [self.store["phi"][j] for j in self.block(c)]
+            else:
+                self.store[key] = list(self.mech.constraint_phi(c))
+        return self.store[key]
+
+    def symbolic_row(self, j):
+        """The symbolic Φ row of the j-th graded row (built with its constraint's rows only)."""
+        c = self.owner(j)
+        return self.symbolic_rows(c)[self.block(c).index(j)]
+
     def symbolic_phi(self):
         """The symbolic Φ of the graded rows (a sympy Matrix), built once; for the mistake catalogue."""
         if "phi" not in self.store:

@@ -265,7 +265,7 @@ def test_check_expression_accepts_ordinary_trees():
     (lambda: x**1000, "exponent 1000 is too large"),
     (lambda: sp.Integer(10) ** 400, "too large"),
     (lambda: sp.Rational(1, 10**400), "too large"),
-    (lambda: sp.Add(*[sp.Symbol(f"s{k}") for k in range(3000)]), "too large (more than 2000 nodes)"),
+    (lambda: sp.Add(*[sp.Symbol(f"s{k}") for k in range(3000)]), "too large (more than 2000 distinct parts)"),
     (lambda: sp.zoo * x, "not a finite number"),
     (lambda: sp.nan, "not a finite number"),
     (lambda: sp.Float("1.5", 2000), "too many digits"),
@@ -277,6 +277,22 @@ def test_check_expression_refuses(make, reason):
     with pytest.raises(ExpressionError) as info:
         check_expression(make(), where="answer row 2")
     assert str(info.value).startswith("answer row 2: ") and reason in str(info.value)
+
+
+def test_check_expression_counts_shared_parts_once():
+    """A sympy object is a graph: its distinct parts are bounded (and walked once), its size written out as a
+    tree is computed from them — so a long expression with shared parts passes, and one whose tree would be
+    astronomical is refused as soon as its size is known, in time linear in its distinct parts."""
+    shared = x
+    for _ in range(40):  # 2⁴⁰ nodes written out, 80 distinct parts
+        shared = sp.sin(shared) + sp.cos(shared)
+    with pytest.raises(ExpressionError, match=r"too large \(more than 200000 nodes written out\)"):
+        check_expression(shared, where="w", limits=Limits(depth=1000))  # a walk of the tree would never end
+    long = x
+    for _ in range(12):  # 3 · 2¹² tree nodes, 36 distinct parts
+        long = sp.sin(long) * long
+    distinct, tree, depth = check_expression(long, where="w", limits=Limits(depth=1000, tree=10**6))
+    assert distinct < 40 < 10_000 < tree and depth == 25
 
 
 def test_check_expression_depth():

@@ -37,12 +37,20 @@ def _exercise(stem):
 
 
 def target(name, constraint=None):
+    if name == "s-ss":
+        m = _ss()
+        return m if constraint is None else m.constraint(constraint)
     if name.startswith("ex"):
         m = _exercise(name)
         return m if constraint is None else m.constraint(constraint)
     if name.startswith(("p-", "s-")):
         return corpus2.target(name, constraint)
     return corpus.target(name, constraint)
+
+
+@lru_cache(maxsize=None)
+def _ss():
+    return ss_pair()
 
 
 # ------------------------------------------------------------------------------------------ a student's formulas
@@ -168,4 +176,49 @@ def cases():
     add("redundant-revolute-six-rows", "phi", "s-rev", "c", _spatial_rows("sph") + list(si.cross(sj)), False, 5 / 6,
         ["dependent_row"])
     add("redundant-p1-two-cross-rows-right", "phi", "s-p1", "c", list(si.cross(sj))[1:], True, 1.0)
+    return C
+
+
+# ------------------------------------------------------------------ a long γ, written with sympy (item 5)
+def ss_pair():
+    """Two free bodies and a spherical-spherical joint of length 1.3 between P_i = (0.3, −0.1, 0.8) and
+    P_j = (−0.5, 0.2, 0.1)."""
+    from kinbook import spatial as S
+
+    m = S.Mechanism("s-ss")
+    m.add_body("i", points={"P": (0.3, -0.1, 0.8)}, q0=(0, 0, 0, 1, 0.3, -0.2, 0.1))
+    m.add_body("j", points={"P": (-0.5, 0.2, 0.1)}, q0=(1, 0.5, -0.4, 0.9, -0.1, 0.4, 0.2))
+    m.add(S.SphericalSpherical("i", "j", point_i="P", point_j="P", length=1.3, name="c"))
+    return m
+
+
+def ss_sqrt_phi_and_gamma():
+    """Φ = √(dᵀd) − l with d = r_j + A_j s'_j − r_i − A_i s'_i (A(p) of §14.3 with its factor 2), and its γ by
+    sympy (−(Φ_q q̇)_q q̇): some 1.3·10⁵ nodes written out as a tree, a few hundred distinct ones."""
+    qi, qj = corpus2._syms(1), corpus2._syms(2)
+    d = (sp.Matrix(qj[:3]) + corpus2.A_of(qj[3:]) * sp.Matrix([-0.5, 0.2, 0.1])) - \
+        (sp.Matrix(qi[:3]) + corpus2.A_of(qi[3:]) * sp.Matrix([0.3, -0.1, 0.8]))
+    phi = sp.sqrt((d.T * d)[0]) - sp.Rational(13, 10)
+    q = qi + qj
+    qd = sp.Matrix([sp.Symbol("d" + s.name) for s in q])
+    J = sp.Matrix([phi]).jacobian(q)
+    return phi, (-(J * qd).jacobian(q) * qd)[0]
+
+
+def hostile_gamma():
+    """A sympy expression of 2⁴⁰ nodes written out (80 distinct): refused by its size, at once."""
+    e = sp.Symbol("dx1")
+    for _ in range(40):
+        e = sp.sin(e) + sp.cos(e)
+    return e
+
+
+def long_cases():
+    C = []
+    phi, gamma = ss_sqrt_phi_and_gamma()
+    C.append(Case("long-ss-sqrt-phi", "phi", "s-ss", "c", [phi], True, 1.0))
+    C.append(Case("long-ss-sqrt-gamma", "gamma", "s-ss", "c", [gamma], True, 1.0, [], {"phi": [phi]}))
+    C.append(Case("long-ss-gamma-negated", "gamma", "s-ss", "c", [-gamma], False, 0.0, ["gamma_sign"],
+                  {"phi": [phi]}))
+    C.append(Case("long-hostile-gamma", "gamma", "s-ss", "c", [hostile_gamma()], False, 0.0, ["malformed"]))
     return C
