@@ -2,7 +2,7 @@
 docs/mechanism-files.md.
 
 A file names its kind (``kind = "planar"`` by default, or ``"spatial"``); each ``[[constraints]]`` table has a
-``type`` (a constraint type registered in the kind's chapter, :func:`kinbook.core.constraint.constraint_types`) and the keyword arguments of that constraint's class.
+``type`` (a constraint type registered in the kind's chapter, :func:`kinbook.core.registry.constraint_types`) and the keyword arguments of that constraint's class.
 """
 
 from __future__ import annotations
@@ -20,8 +20,8 @@ try:
 except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
-from .core.constraint import constraint_class
 from .core.mechanism import MAX_BODIES
+from .core.registry import constraint_class
 from .errors import KinbookError, MechanismFileError
 
 __all__ = ["load", "loads"]

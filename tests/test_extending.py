@@ -30,7 +30,7 @@ def tutorial():
 
 def test_the_tutorial_runs_and_its_joint_works_everywhere(tutorial):
     m, cls = tutorial["m"], tutorial["CamFollower"]
-    assert kinbook.core.constraint.constraint_class("planar", "cam-follower") is cls
+    assert kinbook.core.registry.constraint_class("planar", "cam-follower") is cls
     q = m.solve_position(1.0)
     from kinbook.planar import plotting
 

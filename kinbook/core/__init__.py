@@ -6,7 +6,8 @@ It imports nothing above it (no chapter, no grading, no book); each name has one
 - :mod:`~kinbook.core.arrays` — numeric input checks shared by every entry point
 - :mod:`~kinbook.core.symbolic` — Φ_q, ν and γ derived from a symbolic Φ; drivers' functions of time
 - :mod:`~kinbook.core.kernels` — the numeric kernels compiled from Φ
-- :mod:`~kinbook.core.constraint` — the constraint family: base class, registry, declared keys, composites
+- :mod:`~kinbook.core.constraint` — the constraint family: the base class that binds declared keys, composites
+- :mod:`~kinbook.core.registry` — the registry of types; the keys a type declares and its generated constructor
 - :mod:`~kinbook.core.assembly` — constraints grouped by kernel, the vectorized evaluation of Φ, Φ_q, ν, γ
 - :mod:`~kinbook.core.mechanism` — the mechanism base: bodies, names, its one cache, the constraint table
 - :mod:`~kinbook.core.solve` — position (Newton–Raphson), velocity and acceleration at one instant

@@ -1,6 +1,6 @@
 """The constraint family both chapters share: an abstract base whose subclasses register themselves by type name,
-per chapter; the keys a type declares (``points``, ``vectors``, ``numbers``, ``functions``) and the constructor
-generated from them; composites declared by their ``parts``.
+per chapter (:mod:`kinbook.core.registry`), bind the keys they declare (``points``, ``vectors``, ``numbers``,
+``functions``) and write their Φ; composites stack the rows of their ``parts``.
 
 :mod:`kinbook.planar` and :mod:`kinbook.spatial` subclass :class:`ConstraintBase` and add only what depends on
 the coordinates. How to add a constraint type: docs/extending.md.
@@ -9,20 +9,17 @@ the coordinates. How to add a constraint type: docs/extending.md.
 from __future__ import annotations
 
 import abc
-import inspect
 import numbers
-from types import MappingProxyType
 
 import sympy as sp
 
 from ..errors import ModelError, UnknownPointError
-from . import kernels
+from . import kernels, registry
 from .reader import check_expression, read_constant, read_expression, read_number
 from .symbolic import t as t_symbol
 from .symbolic import time_function as read_time_function
 
-__all__ = ["ConstraintBase", "time_function", "lookup_point", "constraint_types", "constraint_class", "KINDS",
-           "MEASURES"]
+__all__ = ["ConstraintBase", "time_function", "lookup_point", "sequence"]
 
 
 def time_function(f, owner):
@@ -40,53 +37,6 @@ def lookup_point(body, name, context=None):
         where = f"{context.describe()}: " if context is not None else ""
         raise UnknownPointError(f"{where}body '{body.name}' has no point '{name}' (its points: {known})")
     return body.points[name]
-
-
-KINDS = ("joint", "simple", "driver", "normalization")
-"""What a constraint can be: joints are numbered as the book numbers them in its joint tables; simple
-constraints fix coordinates of one body; drivers are left out of the degrees-of-freedom count;
-normalization rows (spatial) belong to one body."""
-
-
-MEASURES = ("length", "length^2", "angle", "ratio")
-"""What a row of Φ can measure (``Constraint.measures``): a distance, a product of two distances (dot and
-cross products of body vectors, squared lengths), an angle in radians, or a pure number."""
-
-
-_REGISTRY = {}
-
-
-def constraint_types(chapter):
-    """The registered constraint classes of a chapter, by the ``type`` name used in mechanism files.
-
-    Parameters
-    ----------
-    chapter : {"planar", "spatial"}
-
-    Returns
-    -------
-    mapping of str to class
-        A read-only view: a type registered later (a subclass defined in a notebook or a test) appears in it.
-
-    Examples
-    --------
-    >>> import kinbook
-    >>> constraint_types("planar")["revolute"]
-    <class 'kinbook.planar.constraints.Revolute'>
-    """
-    return MappingProxyType(_REGISTRY.setdefault(chapter, {}))
-
-
-def constraint_class(chapter, type_name, where=None, files=False):
-    """The constraint class registered as ``type_name`` in ``chapter``; :class:`ModelError` naming the known
-    types (and ``where``, when given) otherwise. With ``files``, only the types a mechanism file may declare
-    (``in_files``)."""
-    types = {k: v for k, v in _REGISTRY.get(chapter, {}).items() if v.in_files or not files}
-    if type_name in types:
-        return types[type_name]
-    known = ", ".join(types) or "none"
-    prefix = f"{where}: " if where else ""
-    raise ModelError(f"{prefix}`type` must be one of the {chapter} constraint types {known}, got {type_name!r}")
 
 
 class ConstraintBase(abc.ABC):
@@ -128,12 +78,24 @@ class ConstraintBase(abc.ABC):
         ``wrap``, ``measures``, :meth:`phi` and the kernel follow from the parts.
     points, vectors : dict
         ``{key: role}``: file keys naming a point (a vector) of the body in that role; bound to the local
-        coordinates, read in :meth:`phi` with :meth:`point` and :meth:`vector`.
+        coordinates, read in :meth:`phi` with :meth:`point` and :meth:`vector`. ``{key: (role, attribute)}``
+        binds them to another attribute (the value as given stays under the key); ``{key: (role, (a, b))}``
+        takes a list of two points (vectors) and binds them to ``a`` and ``b`` (the two points of an axis).
     numbers : tuple or dict
         File keys of numeric parameters (a dict gives defaults); bound to sympy numbers.
     functions : dict
         ``{key: variable}``: file keys of functions of one variable, written as expressions in it
         (``"2 + cos(psi)"``); bound to a sympy Lambda, called in :meth:`phi` as ``self.profile(ψ)``.
+    aliases : dict
+        ``{alias: (key, …)}``: a key that gives several others at once, when they are not given themselves
+        (``point`` for both ``point_i`` and ``point_j``).
+    defaults : dict
+        ``{key: value}``: keys the constructor may leave out. With None the key stays unbound (its attributes
+        None) and the type's :meth:`_complete` fills them in (an axis perpendicular by default, a value from
+        the bodies' q0).
+    quantities : dict
+        ``{attribute: "length" | "radius" | "angle"}``: what a numeric parameter is, for the checkers (a length
+        that Φ squares, a signed pitch radius, an angle); ``"attr[key]"`` names an entry of a tuple or dict.
     parameters : tuple of str
         Attributes that :meth:`phi` reads and that hold numbers (the declared keys by default): the compiled
         path makes them symbols, so one compiled kernel serves every constraint of the type.
@@ -165,6 +127,9 @@ class ConstraintBase(abc.ABC):
     vectors = {}
     numbers = ()
     functions = {}
+    aliases = {}
+    defaults = {}
+    quantities = {}
     parameters = ()
     kernel = None
     owner = None
@@ -173,14 +138,14 @@ class ConstraintBase(abc.ABC):
         super().__init_subclass__(**kwargs)
         own = cls.__dict__
         if own.get("parts"):
-            _declare_composite(cls)
-        declared = _declared_keys(cls)
-        if declared and "parameters" not in own:
-            cls.parameters = tuple(k for k in declared if k not in cls.functions)
-        if declared and _inherits_base_init(cls):
-            _install_init(cls, declared)
+            registry.declare_composite(cls, ConstraintBase)
+        cls._keys = registry.declared_keys(cls)
+        if "parameters" not in own and (cls._keys or own.get("parts")):
+            cls.parameters = registry.default_parameters(cls)
+        if (cls._keys or own.get("type_name") is not None) and _inherits_declared_init(cls):
+            registry.install_init(cls, ConstraintBase)
         if own.get("type_name") is not None:
-            _register(cls)
+            registry.register(cls)
 
     def __init__(self, bodies, name=None, f=None):
         self.body_names = tuple(str(b) for b in bodies)
@@ -225,20 +190,67 @@ class ConstraintBase(abc.ABC):
             self._bind_parts()
         self.mechanism = mechanism
 
+    def _take_keys(self, given):
+        """Keep the declared keys as given (``self.specs``) for :meth:`bind`: an alias gives the keys left
+        out, and a key that takes a list of points must have as many."""
+        given, cls = dict(given), type(self)
+        for alias, keys in cls.aliases.items():
+            value = given.pop(alias, None)
+            given.update({k: value for k in keys if given.get(k) is None})
+            if any(given.get(k) is None for k in keys):
+                which = ("both " if len(keys) == 2 else "all of ") + " and ".join(f"`{k}`" for k in keys)
+                raise ModelError(f"{self._where()}: give `{alias}` or {which}")
+        for k in cls._keys:
+            if k.count and given.get(k.key) is not None:
+                body = self.body_names[cls.roles.index(k.role)]
+                given[k.key] = sequence(given[k.key], k.count, f"{self._where()}: {k.key} "
+                                         f"({_COUNT.get(k.count, k.count)} {k.kind}s of '{body}')")
+            if k.attrs != (k.key,) and k.key in given:
+                setattr(self, k.key, given[k.key])
+        self.specs = given
+
+    def _where(self):
+        """The constraint named by its bodies, before it has a name or rows: "revolute joint between 'a' and
+        'b'"."""
+        title = (self.title or {}).get("en") or str(self.type_name)
+        names = self.body_names
+        if len(names) == 1:
+            return f"{title} on body '{names[0]}'"
+        return f"{title} between '{names[0]}' and '{names[1]}'"
+
     def _bind_points(self):
-        """Hook: resolve named points, vectors and parameters. The default binds the declared keys; a type
-        with its own ``__init__`` overrides it."""
-        specs = getattr(self, "specs", None)
-        if not specs:
-            return
-        for key, role in self.points.items():
-            setattr(self, key, self._read_point(self.roles.index(role), specs[key], key))
-        for key, role in self.vectors.items():
-            setattr(self, key, self._read_vector(self.roles.index(role), specs[key], key))
-        for key in self.numbers:
-            setattr(self, key, self._read_number(specs[key], key))
-        for key, var in self.functions.items():
-            setattr(self, key, self._read_function(specs[key], var, key))
+        """Bind the declared keys to the bodies (points and vectors to their local coordinates, numbers and
+        functions to sympy), then :meth:`_complete` the rest."""
+        specs = getattr(self, "specs", None) or {}
+        for k in type(self)._keys if specs else ():
+            value = specs.get(k.key)
+            if value is None and k.key in type(self).defaults and type(self).defaults[k.key] is None:
+                for attr in k.attrs:
+                    setattr(self, attr, None)
+                continue
+            if k.kind in ("point", "vector"):
+                read = self._read_point if k.kind == "point" else self._read_vector
+                role = self.roles.index(k.role)
+                values = [read(role, v, k.key) for v in value] if k.count else [read(role, value, k.key)]
+                for attr, v in zip(k.attrs, values):
+                    setattr(self, attr, v)
+            elif k.kind == "number":
+                setattr(self, k.key, self._read_number(value, k.key))
+            else:
+                setattr(self, k.key, self._read_function(value, k.var, k.key))
+        self._complete()
+
+    def _complete(self):
+        """Hook: what follows from the bound keys (perpendiculars of an axis, a default from the bodies' q0)
+        and the checks that need the bodies. The default has nothing to add."""
+        return None
+
+    @classmethod
+    def declared(cls, kind):
+        """(attribute, role index) of each declared ``kind`` ("point" or "vector") that :meth:`phi` reads (the
+        type's ``parameters``): what the checkers may vary."""
+        reads = set(cls.parameters)
+        return tuple((a, cls.roles.index(k.role)) for k in cls._keys if k.kind == kind for a in k.attrs if a in reads)
 
     def _read_point(self, role_index, spec, key):
         """Chapter hook: local coordinates of the point ``spec`` of the body in ``role_index``."""
@@ -368,109 +380,20 @@ class ConstraintBase(abc.ABC):
 _OWN_STATE = {"_views", "_template", "wrap", "measures", "owner", "offset", "rows"}
 """Attributes a composite does not share with its part views (what the views take from their own class)."""
 
-
-def _declared_keys(cls):
-    keys = [*cls.points, *cls.vectors, *cls.numbers, *cls.functions]
-    return tuple(keys)
+_COUNT = {2: "two", 3: "three"}
 
 
-def _inherits_base_init(cls):
+def sequence(value, n, where):
+    """``value`` as a tuple of ``n`` items (a list or tuple, not text or a table)."""
+    if not isinstance(value, (list, tuple)) or len(value) != n:
+        got = f"{len(value)} values" if isinstance(value, (list, tuple)) else f"{type(value).__name__} {value!r}"
+        raise ModelError(f"{where}: expected a list of {n} values, got {got}")
+    return tuple(value)
+
+
+def _inherits_declared_init(cls):
     """True unless the class or a base between it and ConstraintBase writes its own ``__init__``."""
     for klass in cls.__mro__:
         if "__init__" in klass.__dict__:
             return klass is ConstraintBase or getattr(klass.__dict__["__init__"], "declared", False)
     return False
-
-
-_RESERVED = {"name", "f", "self"}
-
-
-def _install_init(cls, keys):
-    """Give a declarative type its constructor: the body roles, then every declared key, then ``name``."""
-    P = inspect.Parameter
-    defaults = cls.numbers if isinstance(cls.numbers, dict) else {}
-    bad = [k for k in keys if not k.isidentifier() or k in _RESERVED or k in cls.roles or hasattr(ConstraintBase, k)]
-    if bad or len(set(keys)) != len(keys):
-        raise ModelError(f"constraint class {cls.__name__}: declared key {(bad or [keys])[0]!r} clashes with a name "
-                         "the constraint uses itself")
-    params = [P(r, P.POSITIONAL_OR_KEYWORD) for r in cls.roles]
-    required = [k for k in keys if k not in defaults]
-    params += [P(k, P.POSITIONAL_OR_KEYWORD) for k in required]
-    if cls.kind == "driver":
-        params.append(P("f", P.POSITIONAL_OR_KEYWORD))
-    params += [P(k, P.POSITIONAL_OR_KEYWORD, default=defaults[k]) for k in keys if k in defaults]
-    params.append(P("name", P.POSITIONAL_OR_KEYWORD, default=None))
-    sig = inspect.Signature(params)
-
-    def __init__(self, *args, **kwargs):
-        try:
-            bound = sig.bind(*args, **kwargs)
-        except TypeError as exc:
-            raise ModelError(f"{cls.type_name or cls.__name__} constraint: {exc}") from None
-        bound.apply_defaults()
-        a = bound.arguments
-        ConstraintBase.__init__(self, [a[r] for r in cls.roles], name=a["name"], f=a.get("f"))
-        self.specs = {k: a[k] for k in keys}
-
-    __init__.__signature__ = inspect.Signature([P("self", P.POSITIONAL_OR_KEYWORD), *params])
-    __init__.__qualname__ = f"{cls.__qualname__}.__init__"
-    __init__.__doc__ = f"Constraint {cls.type_name or cls.__name__} between the bodies in roles {', '.join(cls.roles)}."
-    __init__.declared = True
-    cls.__init__ = __init__
-
-
-def _declare_composite(cls):
-    parts = []
-    for p in cls.parts:
-        part, rename = (p, {}) if isinstance(p, type) else (p[0], dict(p[1]))
-        if not (isinstance(part, type) and issubclass(part, ConstraintBase)):
-            raise ModelError(f"composite {cls.__name__}: parts must be constraint classes, got {part!r}")
-        parts.append((part, rename))
-    cls.parts = tuple(parts)
-    cls.n_eq = sum(p.n_eq for p, _ in parts)
-    if "label" not in cls.__dict__:
-        cls.label = " + ".join(p.label for p, _ in parts)
-    wrap, start = {}, 0
-    for p, _ in parts:
-        wrap.update({start + r: v for r, v in p.wrap.items()})
-        start += p.n_eq
-    cls.wrap = wrap
-    if "measures" not in cls.__dict__:
-        ms = [p.measures for p, _ in parts]
-        cls.measures = None if any(m is None for m in ms) else tuple(x for m in ms for x in m)
-    if "phi" not in cls.__dict__:
-        cls.phi = ConstraintBase._composite_phi
-    if "params" not in cls.__dict__:
-        cls.params = ConstraintBase._composite_params
-
-
-def _register(cls):
-    name, chapter = cls.type_name, cls.chapter
-    where = f"constraint class {cls.__module__}.{cls.__qualname__}"
-    if chapter is None:
-        raise ModelError(f"{where}: subclass kinbook.planar.Constraint or kinbook.spatial.Constraint")
-    if not isinstance(name, str) or not name:
-        raise ModelError(f"{where}: `type_name` must be a non-empty string, got {name!r}")
-    if getattr(cls.phi, "__isabstractmethod__", False):
-        raise ModelError(f"{where} ('{name}'): write its Φ in phi(self, Q, t)")
-    if not isinstance(cls.n_eq, int) or cls.n_eq < 1:
-        raise ModelError(f"{where} ('{name}'): `n_eq` must be a positive integer, got {cls.n_eq!r}")
-    if cls.kind not in KINDS:
-        raise ModelError(f"{where} ('{name}'): `kind` must be one of {', '.join(KINDS)}, got {cls.kind!r}")
-    if cls.measures is not None and (len(cls.measures) != cls.n_eq or not set(cls.measures) <= set(MEASURES)):
-        raise ModelError(f"{where} ('{name}'): `measures` needs one of {', '.join(MEASURES)} per row "
-                         f"({cls.n_eq}), got {cls.measures!r}")
-    if any(not (0 <= r < cls.n_eq) for r in cls.wrap):
-        raise ModelError(f"{where} ('{name}'): `wrap` names rows outside 0..{cls.n_eq - 1}: {cls.wrap!r}")
-    for key, role in [*cls.points.items(), *cls.vectors.items()]:
-        if role not in cls.roles:
-            raise ModelError(f"{where} ('{name}'): key '{key}' is on role {role!r}, not one of {cls.roles}")
-    if cls.__dict__.get("title") is None:
-        word = {"joint": "joint", "driver": "driver", "simple": "constraint", "normalization": "equation"}[cls.kind]
-        cls.title = {"en": f"{name} {word}", "es": f"{name} {word}"}
-    types = _REGISTRY.setdefault(chapter, {})
-    old = types.get(name)
-    if old is not None and (old.__module__, old.__qualname__) != (cls.__module__, cls.__qualname__):
-        raise ModelError(f"{where}: the {chapter} constraint type '{name}' is already "
-                         f"{old.__module__}.{old.__qualname__}")
-    types[name] = cls  # the same class defined again (a notebook cell run twice) replaces itself

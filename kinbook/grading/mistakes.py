@@ -14,14 +14,16 @@ with the result: a code is reported only when the answer is that mistake. Two fa
   Φ_q, ν or γ the way a student gets *the derivation* wrong: the chain-rule term ∂(A s')/∂φ dropped, A where
   B belongs, ν = +Φ_t, γ with the wrong sign, without 2Φ_qt q̇ or Φ_tt, φ̇ without its square.
 
-What a constraint class offers to the catalogue (its points and vectors by body role, its angles, radii and
-lengths, its book forms) is registered by class in :data:`SPECS` — looked up along the class's MRO, never by
-type name; a class without an entry gets the generic variants only.
+What a constraint class offers the catalogue is read from its declaration (the points and vectors its Φ reads,
+by body role; its lengths, radii and angles), so a type written the documented way gets the catalogue of a
+built-in one; what only the catalogue knows (book forms, swaps, hint contexts) is registered by class in
+:data:`SPECS`, looked up along the class's MRO, never by type name.
 """
 
 from __future__ import annotations
 
 import copy
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -39,12 +41,14 @@ DEG = 180.0 / np.pi
 class Spec:
     """What the catalogue knows about a constraint class.
 
+    ``points``, ``vectors``, ``angles``, ``radii``, ``lengths``, ``frame``: from the class (:func:`spec_of`).
+
     Attributes
     ----------
     points : tuple of (attribute, role index)
         Local points read by :meth:`phi` (planar (ξ, η), spatial (ξ, η, ζ)).
     vectors : tuple of (attribute, role index)
-        Local vectors (spatial: axes, arms, the h vectors of a parallel constraint).
+        Local vectors (spatial: axes, arms) read by :meth:`phi`.
     swap_points : tuple of (attribute, attribute)
         Pairs of points of bodies i and j that a student may exchange.
     swap_bodies : bool
@@ -90,22 +94,35 @@ class Spec:
 
 
 SPECS = {}
-"""Constraint class → :class:`Spec` (filled by :func:`register` and :func:`_defaults`)."""
+"""Constraint class → its registered :class:`Spec` (filled by :func:`register` and :func:`_defaults`)."""
+
+_DERIVED = {}
 
 
 def register(cls, spec):
-    """Declare what the catalogue may do with the constraints of ``cls`` (and its subclasses)."""
+    """Declare what only the catalogue knows of ``cls`` and its subclasses: book forms, swaps, hint contexts."""
     SPECS[cls] = spec
+    _DERIVED.clear()
 
 
 def spec_of(c):
-    """The Spec of a constraint: its class's, or the nearest base class's, or an empty one."""
-    if not SPECS:
-        _defaults()
-    for cls in type(c).__mro__:
-        if cls in SPECS:
-            return SPECS[cls]
-    return Spec(context=("driver",) if c.kind == "driver" else ())
+    """The Spec of a constraint: what its class declares, with what is registered for it or its nearest base."""
+    cls = type(c)
+    if cls not in _DERIVED:
+        if not SPECS:
+            _defaults()
+        generic = Spec(context=("driver",) if c.kind == "driver" else ())
+        _DERIVED[cls] = _declared(cls, next((SPECS[k] for k in cls.__mro__ if k in SPECS), generic))
+    return _DERIVED[cls]
+
+
+def _declared(cls, spec):
+    """``spec`` with what the class declares: the points and vectors :meth:`phi` reads, the numeric
+    ``quantities``, and the chapter's frame when it has points or vectors."""
+    points, vectors = (cls.declared(k) if hasattr(cls, "declared") else () for k in ("point", "vector"))
+    of = lambda kind: tuple(a for a, q in getattr(cls, "quantities", {}).items() if q == kind)  # noqa: E731
+    return dataclasses.replace(spec, points=points, vectors=vectors, lengths=of("length"), radii=of("radius"),
+                               angles=of("angle"), frame=cls.chapter if points or vectors else None)
 
 
 def contexts_of(c, quantity=None):
@@ -434,47 +451,30 @@ def _defaults():
     from .. import planar as P
     from .. import spatial as S
 
-    register(P.Revolute, Spec(points=(("s_i", 0), ("s_j", 1)), swap_points=(("s_i", "s_j"),), frame="planar"))
-    register(P.Translational, Spec(points=(("s_Pi", 0), ("s_Qi", 0), ("s_Pj", 1)), swap_bodies=True,
-                                   angles=("phi0",), frame="planar", book=(_book_translational_origin,),
-                                   extra=(_book_translational_dot,),
-                                   derived_book=(_book_table_13_2, _book_gamma_t)))
-    register(P.RevoluteRevolute, Spec(points=(("s_i", 0), ("s_j", 1)), swap_points=(("s_i", "s_j"),),
-                                      lengths=("length",), frame="planar",
-                                      derived_book=(_book_table_13_3, _book_gamma_rr)))
-    register(P.RevoluteTranslational, Spec(points=(("s_Pi", 0), ("s_Pj", 1), ("s_Qj", 1)), swap_bodies=True,
-                                           frame="planar", extra=(_book_ex4_phi8,),
+    register(P.Revolute, Spec(swap_points=(("s_i", "s_j"),)))
+    register(P.Translational, Spec(swap_bodies=True, book=(_book_translational_origin,),
+                                   extra=(_book_translational_dot,), derived_book=(_book_table_13_2, _book_gamma_t)))
+    register(P.RevoluteRevolute, Spec(swap_points=(("s_i", "s_j"),), derived_book=(_book_table_13_3, _book_gamma_rr)))
+    register(P.RevoluteTranslational, Spec(swap_bodies=True, extra=(_book_ex4_phi8,),
                                            derived_book=(_book_table_13_4,)))
-    register(P.Gear, Spec(radii=("radius_i", "radius_j"), angles=("phi0",), context=("gear",),
-                          book=(_gear_carrier_start,), extra=(_gear_fixed_carrier,)))
-    register(P.RackPinion, Spec(radii=("radius",), swap_bodies=True, angles=("initial[phi_i]",), context=("rack",),
-                                extra=(_rack_sliding,)))
+    register(P.Gear, Spec(context=("gear",), book=(_gear_carrier_start,), extra=(_gear_fixed_carrier,)))
+    register(P.RackPinion, Spec(swap_bodies=True, context=("rack",), extra=(_rack_sliding,)))
     register(P.Driver, Spec(driver_angle=True, context=("driver",)))
     register(P.RelativeAngleDriver, Spec(swap_bodies=True, driver_angle=True, context=("driver",)))
-    register(P.DistanceDriver, Spec(points=(("s_Pi", 0), ("s_Qi", 0), ("s_Pj", 1)), swap_bodies=True,
-                                    frame="planar", context=("driver",)))
-    register(P.Ground, Spec(angles=("value[2]",)))
+    register(P.DistanceDriver, Spec(swap_bodies=True, context=("driver",)))
     register(P.Simple, Spec(extra=(_simple_degrees,)))
-    register(S.Spherical, Spec(points=(("P_i", 0), ("P_j", 1)), swap_points=(("P_i", "P_j"),), frame="spatial"))
-    register(S.SphericalSpherical, Spec(points=(("P_i", 0), ("P_j", 1)), swap_points=(("P_i", "P_j"),),
-                                        frame="spatial"))
-    register(S.Universal, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_i", 0), ("a_j", 1)),
-                               swap_points=(("P_i", "P_j"),), frame="spatial", derived_book=(_book_gamma_n1,)))
-    register(S.Revolute, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_j", 1),),
-                              swap_points=(("P_i", "P_j"),), frame="spatial"))
-    register(S.Normal1, Spec(vectors=(("a_i", 0), ("a_j", 1)), frame="spatial", derived_book=(_book_gamma_n1,)))
-    register(S.Normal2, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_i", 0),), swap_bodies=True,
-                             frame="spatial"))
-    register(S.Parallel1, Spec(vectors=(("a_j", 1),), frame="spatial", alternative=_cross_p1))
-    register(S.Parallel2, Spec(points=(("P_i", 0), ("P_j", 1)), swap_bodies=True, frame="spatial",
-                               alternative=_cross_p2))
-    register(S.Cylindrical, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_j", 1),), swap_bodies=True,
-                                 frame="spatial"))
-    register(S.Translational, Spec(points=(("P_i", 0), ("P_j", 1)), vectors=(("a_j", 1),), swap_bodies=True,
-                                   frame="spatial"))
+    register(S.Spherical, Spec(swap_points=(("P_i", "P_j"),)))
+    register(S.SphericalSpherical, Spec(swap_points=(("P_i", "P_j"),)))
+    register(S.Universal, Spec(swap_points=(("P_i", "P_j"),), derived_book=(_book_gamma_n1,)))
+    register(S.Revolute, Spec(swap_points=(("P_i", "P_j"),)))
+    register(S.Normal1, Spec(derived_book=(_book_gamma_n1,)))
+    register(S.Normal2, Spec(swap_bodies=True))
+    register(S.Parallel1, Spec(alternative=_cross_p1))
+    register(S.Parallel2, Spec(swap_bodies=True, alternative=_cross_p2))
+    register(S.Cylindrical, Spec(swap_bodies=True))
+    register(S.Translational, Spec(swap_bodies=True))
     register(S.RevoluteDriver, Spec(driver_angle=True, swap_bodies=True, context=("driver",)))
-    register(S.DistanceDriver, Spec(points=(("P_i", 0), ("P_j", 1)), swap_bodies=True, frame="spatial",
-                                    context=("driver",)))
+    register(S.DistanceDriver, Spec(swap_bodies=True, context=("driver",)))
 
 
 def _book_translational_origin(c):

@@ -17,8 +17,9 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from ..core.constraint import ConstraintBase, constraint_types, lookup_point
+from ..core.constraint import ConstraintBase, lookup_point, sequence
 from ..core.reader import read_constant
+from ..core.registry import constraint_types
 from ..core.symbolic import t as t_symbol
 from ..errors import ModelError
 from .transforms import A as A_matrix
@@ -140,14 +141,6 @@ def _angle_default(value, body, coord="phi", where="an initial value"):
     return body.q0[_COORDS.index(coord)]
 
 
-def _sequence(value, n, where):
-    """``value`` as a tuple of ``n`` items (a list or tuple, not text or a table)."""
-    if not isinstance(value, (list, tuple)) or len(value) != n:
-        got = f"{len(value)} values" if isinstance(value, (list, tuple)) else f"{type(value).__name__} {value!r}"
-        raise ModelError(f"{where}: expected a list of {n} values, got {got}")
-    return tuple(value)
-
-
 def _f(v):
     return np.array([float(x) for x in v], dtype=float)
 
@@ -203,7 +196,7 @@ class Simple(_Linear):
     def name_stems(self):
         return (f"simple {self.body_names[0]} {self.coordinate}",)
 
-    def _bind_points(self):
+    def _complete(self):
         if self.value is None:
             self.value = _angle_default(None, self.bodies[0], self.coordinate)
 
@@ -222,6 +215,7 @@ class Ground(_Linear):
     roles = ("i",)
     measures = ("length", "length", "angle")
     per_body = True
+    quantities = {"value[2]": "angle"}
     parameters = ("value",)
 
     def name_stems(self):
@@ -230,12 +224,12 @@ class Ground(_Linear):
     def __init__(self, body, q=None, name=None):
         super().__init__((body,), name=name)
         if q is not None:
-            q = _sequence(q, 3, f"ground constraint on body '{body}', q (x, y, phi)")
+            q = sequence(q, 3, f"ground constraint on body '{body}', q (x, y, phi)")
             q = tuple(read_constant(v, where=f"ground constraint on body '{body}', q ({c})", symbolic=True)
                       for v, c in zip(q, _COORDS))
         self.value = q
 
-    def _bind_points(self):
+    def _complete(self):
         if self.value is None:
             self.value = tuple(self.bodies[0].q0)
         if len(self.value) != 3:
@@ -260,6 +254,7 @@ class Gear(_Linear):
     title = {"en": "gear pair", "es": "engranaje"}
     roles = ("i", "j", "k")
     measures = ("length",)
+    quantities = {"radius_i": "radius", "radius_j": "radius", "phi0": "angle"}
     parameters = ("radius_i", "radius_j", "phi0")
 
     def __init__(self, i, j, k, radius_i, radius_j, phi0=None, name=None):
@@ -267,9 +262,9 @@ class Gear(_Linear):
         where = f"gear between '{i}' and '{j}'"
         self.radius_i = read_constant(radius_i, where=f"{where}, radius_i", symbolic=True)
         self.radius_j = read_constant(radius_j, where=f"{where}, radius_j", symbolic=True)
-        self.phi0 = None if phi0 is None else _sequence(phi0, 3, f"{where}, phi0 (initial angles of i, j, k)")
+        self.phi0 = None if phi0 is None else sequence(phi0, 3, f"{where}, phi0 (initial angles of i, j, k)")
 
-    def _bind_points(self):
+    def _complete(self):
         given = self.phi0 if self.phi0 is not None else (None, None, None)
         self.phi0 = tuple(_angle_default(v, b, where=f"{self.describe()}: phi0 of body '{b.name}'")
                           for v, b in zip(given, self.bodies))
@@ -297,6 +292,7 @@ class RackPinion(_Linear):
     n_eq = 1
     title = {"en": "rack-and-pinion", "es": "piñón-cremallera"}
     measures = ("length",)
+    quantities = {"radius": "radius", "initial[phi_i]": "angle"}
     parameters = ("radius", "initial")
 
     def __init__(self, i, j, radius, sliding=False, initial=None, name=None):
@@ -314,7 +310,7 @@ class RackPinion(_Linear):
                 raise ModelError(f"{where}: `initial` has unknown key '{unknown[0]}' (accepted: x_i, phi_i, x_j)")
         self.initial = initial
 
-    def _bind_points(self):
+    def _complete(self):
         bi, bj = self.bodies
         given = dict(self.initial or {})
         where = f"{self.describe()}: initial"
@@ -364,9 +360,6 @@ class RelativeAngleDriver(_Linear):
     title = {"en": "relative-angle driver", "es": "restricción motriz de ángulo relativo"}
     measures = ("angle",)
 
-    def __init__(self, i, j, f, name=None):
-        super().__init__((i, j), name=name, f=f)
-
     def phi(self, Q, t=t_symbol):
         return [Q[1][2] - Q[0][2] - self._f_expr(t)]
 
@@ -406,19 +399,10 @@ class Revolute(Constraint):
     n_eq = 2
     title = {"en": "revolute joint", "es": "par de revolución"}
     measures = ("length", "length")
+    points = {"point_i": ("i", "s_i"), "point_j": ("j", "s_j")}
+    aliases = {"point": ("point_i", "point_j")}
     parameters = ("s_i", "s_j")
     kernel = staticmethod(_revolute_kernel)
-
-    def __init__(self, i, j, point=None, point_i=None, point_j=None, name=None):
-        super().__init__((i, j), name=name)
-        self.point_i = point_i if point_i is not None else point
-        self.point_j = point_j if point_j is not None else point
-        if self.point_i is None or self.point_j is None:
-            raise ModelError(f"revolute joint between '{i}' and '{j}': give `point` or both `point_i` and `point_j`")
-
-    def _bind_points(self):
-        self.s_i = self._local(0, self.point_i)
-        self.s_j = self._local(1, self.point_j)
 
     def phi(self, Q, t=t_symbol):
         return list(self._r(Q[0], self.s_i) - self._r(Q[1], self.s_j))
@@ -483,21 +467,18 @@ class Translational(Constraint):
     n_eq = 2
     title = {"en": "translational joint", "es": "par de traslación"}
     measures = ("length^2", "angle")
+    points = {"axis": ("i", ("s_Pi", "s_Qi")), "point_j": ("j", "s_Pj")}
+    quantities = {"phi0": "angle"}
     parameters = ("s_Pi", "s_Qi", "s_Pj", "phi0")
     kernel = staticmethod(_translational_kernel)
 
     def __init__(self, i, j, axis, point_j, phi0=None, name=None):
         super().__init__((i, j), name=name)
-        self.axis = _sequence(axis, 2, f"translational joint between '{i}' and '{j}': axis (two points of '{i}')")
-        self.point_j = point_j
-        where = f"translational joint between '{i}' and '{j}', phi0"
+        self._take_keys({"axis": axis, "point_j": point_j})
+        where = f"{self._where()}, phi0"  # read as it is given: a symbol for a symbolic derivation, too
         self.phi0 = None if phi0 is None else read_constant(phi0, where=where, symbolic=True)
 
-    def _bind_points(self):
-        if len(self.axis) != 2:
-            raise ModelError(f"{self.describe()}: `axis` needs two points of body '{self.bodies[0].name}'")
-        self.s_Pi, self.s_Qi = (self._local(0, p) for p in self.axis)
-        self.s_Pj = self._local(1, self.point_j)
+    def _complete(self):
         if self.s_Pi == self.s_Qi:
             raise ModelError(f"{self.describe()}: the two axis points on body '{self.bodies[0].name}' coincide")
         if self.phi0 is None:
@@ -544,20 +525,18 @@ class RevoluteRevolute(Constraint):
     n_eq = 1
     title = {"en": "revolute-revolute joint", "es": "par revolución-revolución"}
     measures = ("length^2",)
+    points = {"point_i": ("i", "s_i"), "point_j": ("j", "s_j")}
+    quantities = {"length": "length"}
     parameters = ("s_i", "s_j", "length")
     kernel = staticmethod(_rr_kernel)
 
     def __init__(self, i, j, point_i, point_j, length, name=None):
         super().__init__((i, j), name=name)
-        self.point_i, self.point_j = point_i, point_j
-        where = f"revolute-revolute joint between '{i}' and '{j}', length"
+        self._take_keys({"point_i": point_i, "point_j": point_j})
+        where = f"{self._where()}, length"  # read as it is given: a symbol for a symbolic derivation, too
         self.length = read_constant(length, where=where, symbolic=True)
         if self.length.is_positive is False:  # a number ≤ 0, or a symbol known not to be positive
             raise ModelError(f"{where} must be a positive number, got {self.length}")
-
-    def _bind_points(self):
-        self.s_i = self._local(0, self.point_i)
-        self.s_j = self._local(1, self.point_j)
 
     def phi(self, Q, t=t_symbol):
         d = self._r(Q[0], self.s_i) - self._r(Q[1], self.s_j)
@@ -605,19 +584,11 @@ class RevoluteTranslational(Constraint):
     n_eq = 1
     title = {"en": "revolute-translational joint", "es": "par revolución-traslación"}
     measures = ("length^2",)
+    points = {"point_i": ("i", "s_Pi"), "axis": ("j", ("s_Pj", "s_Qj"))}
     parameters = ("s_Pi", "s_Pj", "s_Qj")
     kernel = staticmethod(_rt_kernel)
 
-    def __init__(self, i, j, point_i, axis, name=None):
-        super().__init__((i, j), name=name)
-        self.point_i = point_i
-        self.axis = _sequence(axis, 2, f"revolute-translational joint between '{i}' and '{j}': axis (two points of '{j}')")
-
-    def _bind_points(self):
-        if len(self.axis) != 2:
-            raise ModelError(f"{self.describe()}: `axis` needs two points of body '{self.bodies[1].name}'")
-        self.s_Pi = self._local(0, self.point_i)
-        self.s_Pj, self.s_Qj = (self._local(1, p) for p in self.axis)
+    def _complete(self):
         if self.s_Pj == self.s_Qj:
             raise ModelError(f"{self.describe()}: the two axis points on body '{self.bodies[1].name}' coincide")
 
@@ -667,19 +638,11 @@ class DistanceDriver(Constraint):
     kind = "driver"
     title = {"en": "distance driver", "es": "restricción motriz de distancia"}
     measures = ("length",)
+    points = {"axis": ("i", ("s_Pi", "s_Qi")), "point_j": ("j", "s_Pj")}
     parameters = ("s_Pi", "s_Qi", "s_Pj", "axis_length")
     kernel = staticmethod(_distance_kernel)
 
-    def __init__(self, i, j, axis, point_j, f, name=None):
-        super().__init__((i, j), name=name, f=f)
-        self.axis = _sequence(axis, 2, f"distance driver between '{i}' and '{j}': axis (two points of '{i}')")
-        self.point_j = point_j
-
-    def _bind_points(self):
-        if len(self.axis) != 2:
-            raise ModelError(f"{self.describe()}: `axis` needs two points of body '{self.bodies[0].name}'")
-        self.s_Pi, self.s_Qi = (self._local(0, p) for p in self.axis)
-        self.s_Pj = self._local(1, self.point_j)
+    def _complete(self):
         self.axis_length = sp.sqrt((self.s_Qi[0] - self.s_Pi[0]) ** 2 + (self.s_Qi[1] - self.s_Pi[1]) ** 2)
         if self.axis_length == 0:
             raise ModelError(f"{self.describe()}: the two axis points on body '{self.bodies[0].name}' coincide")

@@ -47,8 +47,9 @@ import numpy as np
 import sympy as sp
 
 from ..core.assembly import stack_params
-from ..core.constraint import ConstraintBase, constraint_types, lookup_point
+from ..core.constraint import ConstraintBase, lookup_point
 from ..core.reader import read_number
+from ..core.registry import constraint_types
 from ..core.symbolic import t as t_symbol
 from ..errors import ModelError, UnknownPointError
 from .rotations import A_from_p as _A_sym
@@ -387,8 +388,8 @@ class Constraint(ConstraintBase):
     """Base class of spatial constraints (see :class:`kinbook.core.constraint.ConstraintBase` for the class attributes,
     naming, rows, binding and registration; docs/extending.md for a new type).
 
-    A subclass declares the points and vectors it reads (or resolves them in its own :meth:`_bind_points`)
-    and implements :meth:`phi` (the symbolic Φ in the bodies' (x, y, z, e0, e1, e2, e3): the single source of
+    A subclass declares the points and vectors it reads (and derives what follows from them in
+    :meth:`_complete`) and implements :meth:`phi` (the symbolic Φ in the bodies' (x, y, z, e0, e1, e2, e3): the single source of
     truth). In :meth:`phi`, :meth:`point` is the global position r + A(p) s' of a declared point and
     :meth:`vector` the global components A(p) s' of a declared vector. A ``kernel`` built from the row
     builders of this module, with the :meth:`params` it reads, is an optional optimization. Its ``label`` is
@@ -473,14 +474,6 @@ def _triple(v, message):
     return np.array([read_number(x, where=message.split(" must ")[0]) for x in v], dtype=float)
 
 
-def _two_points(cls_name, i, j, point, point_i, point_j):
-    point_i = point_i if point_i is not None else point
-    point_j = point_j if point_j is not None else point
-    if point_i is None or point_j is None:
-        raise ModelError(f"{cls_name} between '{i}' and '{j}': give `point` or both `point_i` and `point_j`")
-    return point_i, point_j
-
-
 # ======================================================================================= one-body constraints
 class Normalization(Constraint):
     """Euler parameter normalization of one body: pᵀp − 1 = 0 (textbook §14.5).
@@ -498,9 +491,6 @@ class Normalization(Constraint):
     per_body = True
     in_files = False
     kernel = staticmethod(_kernel(_rows_norm))
-
-    def __init__(self, body, name=None):
-        super().__init__((body,), name=name)
 
     def phi(self, Q, t=t_symbol):
         p = sp.Matrix(Q[0][3:7])
@@ -542,7 +532,7 @@ class Ground(Constraint):
                              f"(x, y, z, e0, e1, e2, e3), got {q!r}")
         self.value = None if q is None else list(q)
 
-    def _bind_points(self):
+    def _complete(self):
         body = self.bodies[0]
         if self.value is None:
             value = np.array([float(v) for v in body.q0])
@@ -588,16 +578,9 @@ class Normal1(Constraint):
     n_eq = 1
     title = {"en": "normal-1 constraint", "es": "restricción normal-1"}
     measures = ("length^2",)
+    vectors = {"vector_i": ("i", "a_i"), "vector_j": ("j", "a_j")}
     parameters = ("a_i", "a_j")
     kernel = staticmethod(_kernel(_rows_n1))
-
-    def __init__(self, i, j, vector_i, vector_j, name=None):
-        super().__init__((i, j), name=name)
-        self.vector_i, self.vector_j = vector_i, vector_j
-
-    def _bind_points(self):
-        self.a_i = self._vector(0, self.vector_i, "vector_i")
-        self.a_j = self._vector(1, self.vector_j, "vector_j")
 
     def phi(self, Q, t=t_symbol):
         return [_sym_dot(_sym_vec(Q[0], _sym3(self.a_i)), _sym_vec(Q[1], _sym3(self.a_j)))]
@@ -622,17 +605,10 @@ class Normal2(Constraint):
     n_eq = 1
     title = {"en": "normal-2 constraint", "es": "restricción normal-2"}
     measures = ("length^2",)
+    vectors = {"vector_i": ("i", "a_i")}
+    points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
     parameters = ("a_i", "P_i", "P_j")
     kernel = staticmethod(_kernel(_rows_n2))
-
-    def __init__(self, i, j, vector_i, point_i, point_j, name=None):
-        super().__init__((i, j), name=name)
-        self.vector_i, self.point_i, self.point_j = vector_i, point_i, point_j
-
-    def _bind_points(self):
-        self.a_i = self._vector(0, self.vector_i, "vector_i")
-        self.P_i = self._point(0, self.point_i, "point_i")
-        self.P_j = self._point(1, self.point_j, "point_j")
 
     def phi(self, Q, t=t_symbol):
         d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
@@ -643,9 +619,11 @@ class Normal2(Constraint):
 
 
 class _ParallelMixin:
-    def _bind_axis(self, spec, what="vector_i"):
-        self.a_i = self._vector(0, spec, what)
+    """The h_1, h_2 ⊥ s_i of a parallel constraint, fixed in body i, from its vector a_i."""
+
+    def _complete(self):
         self.h1, self.h2 = _perpendiculars(self.a_i)
+        super()._complete()
 
 
 class Parallel1(_ParallelMixin, Constraint):
@@ -665,16 +643,9 @@ class Parallel1(_ParallelMixin, Constraint):
     n_eq = 2
     title = {"en": "parallel-1 constraint", "es": "restricción paralela-1"}
     measures = ("length", "length")
+    vectors = {"vector_i": ("i", "a_i"), "vector_j": ("j", "a_j")}
     parameters = ("h1", "h2", "a_j")
     kernel = staticmethod(_kernel(_rows_p1))
-
-    def __init__(self, i, j, vector_i, vector_j, name=None):
-        super().__init__((i, j), name=name)
-        self.vector_i, self.vector_j = vector_i, vector_j
-
-    def _bind_points(self):
-        self._bind_axis(self.vector_i)
-        self.a_j = self._vector(1, self.vector_j, "vector_j")
 
     def phi(self, Q, t=t_symbol):
         sj = _sym_vec(Q[1], _sym3(self.a_j))
@@ -695,17 +666,10 @@ class Parallel2(_ParallelMixin, Constraint):
     n_eq = 2
     title = {"en": "parallel-2 constraint", "es": "restricción paralela-2"}
     measures = ("length", "length")
+    vectors = {"vector_i": ("i", "a_i")}
+    points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
     parameters = ("h1", "h2", "P_i", "P_j")
     kernel = staticmethod(_kernel(_rows_p2))
-
-    def __init__(self, i, j, vector_i, point_i, point_j, name=None):
-        super().__init__((i, j), name=name)
-        self.vector_i, self.point_i, self.point_j = vector_i, point_i, point_j
-
-    def _bind_points(self):
-        self._bind_axis(self.vector_i)
-        self.P_i = self._point(0, self.point_i, "point_i")
-        self.P_j = self._point(1, self.point_j, "point_j")
 
     def phi(self, Q, t=t_symbol):
         d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
@@ -732,16 +696,10 @@ class Spherical(Constraint):
     n_eq = 3
     title = {"en": "spherical joint", "es": "par esférico"}
     measures = ("length", "length", "length")
+    points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
+    aliases = {"point": ("point_i", "point_j")}
     parameters = ("P_i", "P_j")
     kernel = staticmethod(_kernel(_rows_s))
-
-    def __init__(self, i, j, point=None, point_i=None, point_j=None, name=None):
-        super().__init__((i, j), name=name)
-        self.point_i, self.point_j = _two_points(f"{self.type_name} joint", i, j, point, point_i, point_j)
-
-    def _bind_points(self):
-        self.P_i = self._point(0, self.point_i, "point_i")
-        self.P_j = self._point(1, self.point_j, "point_j")
 
     def phi(self, Q, t=t_symbol):
         return list(_sym_point(Q[0], _sym3(self.P_i)) - _sym_point(Q[1], _sym3(self.P_j)))
@@ -764,15 +722,7 @@ class Universal(Spherical):
     type_name = "universal"
     title = {"en": "universal joint", "es": "junta universal"}
     parts = (Spherical, Normal1)
-
-    def __init__(self, i, j, vector_i, vector_j, point=None, point_i=None, point_j=None, name=None):
-        super().__init__(i, j, point=point, point_i=point_i, point_j=point_j, name=name)
-        self.vector_i, self.vector_j = vector_i, vector_j
-
-    def _bind_points(self):
-        super()._bind_points()
-        self.a_i = self._vector(0, self.vector_i, "vector_i")
-        self.a_j = self._vector(1, self.vector_j, "vector_j")
+    vectors = Normal1.vectors
 
 
 class Revolute(_ParallelMixin, Spherical):
@@ -789,15 +739,7 @@ class Revolute(_ParallelMixin, Spherical):
     type_name = "revolute"
     title = {"en": "revolute joint", "es": "par de revolución"}
     parts = (Spherical, Parallel1)
-
-    def __init__(self, i, j, axis_i, axis_j, point=None, point_i=None, point_j=None, name=None):
-        super().__init__(i, j, point=point, point_i=point_i, point_j=point_j, name=name)
-        self.axis_i, self.axis_j = axis_i, axis_j
-
-    def _bind_points(self):
-        super()._bind_points()
-        self._bind_axis(self.axis_i, "axis_i")
-        self.a_j = self._vector(1, self.axis_j, "axis_j")
+    vectors = {"axis_i": ("i", "a_i"), "axis_j": ("j", "a_j")}
 
 
 class Cylindrical(_ParallelMixin, Constraint):
@@ -813,17 +755,9 @@ class Cylindrical(_ParallelMixin, Constraint):
     type_name = "cylindrical"
     title = {"en": "cylindrical joint", "es": "par cilíndrico"}
     parts = (Parallel1, Parallel2)
-
-    def __init__(self, i, j, axis_i, axis_j, point=None, point_i=None, point_j=None, name=None):
-        super().__init__((i, j), name=name)
-        self.point_i, self.point_j = _two_points(f"{self.type_name} joint", i, j, point, point_i, point_j)
-        self.axis_i, self.axis_j = axis_i, axis_j
-
-    def _bind_points(self):
-        self._bind_axis(self.axis_i, "axis_i")
-        self.a_j = self._vector(1, self.axis_j, "axis_j")
-        self.P_i = self._point(0, self.point_i, "point_i")
-        self.P_j = self._point(1, self.point_j, "point_j")
+    vectors = {"axis_i": ("i", "a_i"), "axis_j": ("j", "a_j")}
+    points = Spherical.points
+    aliases = Spherical.aliases
 
 
 class Translational(Cylindrical):
@@ -842,15 +776,12 @@ class Translational(Cylindrical):
     type_name = "translational"
     title = {"en": "translational joint", "es": "par de traslación"}
     parts = (Cylindrical, (Normal1, {"a_i": "hp_i", "a_j": "hp_j"}))
+    vectors = {**Cylindrical.vectors, "perp_i": "i", "perp_j": "j"}
+    defaults = {"perp_i": None, "perp_j": None}
 
-    def __init__(self, i, j, axis_i, axis_j, point=None, point_i=None, point_j=None, perp_i=None, perp_j=None,
-                 name=None):
-        super().__init__(i, j, axis_i, axis_j, point=point, point_i=point_i, point_j=point_j, name=name)
-        self.perp_i, self.perp_j = perp_i, perp_j
-
-    def _bind_points(self):
-        super()._bind_points()
-        self.hp_i = self.h1 if self.perp_i is None else self._vector(0, self.perp_i, "perp_i")
+    def _complete(self):
+        super()._complete()
+        self.hp_i = self.h1 if self.perp_i is None else self.perp_i
         u, h = self.a_i / np.linalg.norm(self.a_i), self.hp_i / np.linalg.norm(self.hp_i)
         if np.linalg.norm(np.cross(u, h)) < 1e-6:
             raise ModelError(f"{self.describe()}: perp_i is parallel to the axis; it must be perpendicular to it")
@@ -859,7 +790,7 @@ class Translational(Cylindrical):
             g = Ai @ np.cross(self.a_i / np.linalg.norm(self.a_i), self.hp_i / np.linalg.norm(self.hp_i))
             self.hp_j = Aj.T @ g
         else:
-            self.hp_j = self._vector(1, self.perp_j, "perp_j")
+            self.hp_j = self.perp_j
 
 
 def _A_q0(body):
@@ -876,20 +807,15 @@ class SphericalSpherical(Constraint):
     n_eq = 1
     title = {"en": "spherical-spherical joint", "es": "par esférico-esférico"}
     measures = ("length^2",)
+    points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
+    numbers = ("length",)
     parameters = ("P_i", "P_j", "l")
     kernel = staticmethod(_kernel(_rows_ss))
 
-    def __init__(self, i, j, point_i, point_j, length, name=None):
-        super().__init__((i, j), name=name)
-        self.point_i, self.point_j = point_i, point_j
-        self.length = length
-
-    def _bind_points(self):
-        self.P_i = self._point(0, self.point_i, "point_i")
-        self.P_j = self._point(1, self.point_j, "point_j")
-        self.l = read_number(self.length, where=f"{self.describe()}: length")
+    def _complete(self):
+        self.l = float(self.length)
         if not self.l > 0:
-            raise ModelError(f"{self.describe()}: length must be a positive number, got {self.length!r}")
+            raise ModelError(f"{self.describe()}: length must be a positive number, got {self.specs['length']!r}")
 
     def phi(self, Q, t=t_symbol):
         d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
@@ -926,17 +852,14 @@ class RevoluteDriver(Constraint):
     title = {"en": "revolute driver", "es": "restricción motriz de rotación"}
     measures = ("angle",)
     wrap = {0: 2 * np.pi}
+    vectors = {"axis_i": ("i", "a_i"), "ref_i": "i", "ref_j": "j"}
+    defaults = {"ref_i": None, "ref_j": None}
     parameters = ("f_i", "g_i", "f_j")
     kernel = staticmethod(_kernel(_rows_angle))
 
-    def __init__(self, i, j, axis_i, f, ref_i=None, ref_j=None, name=None):
-        super().__init__((i, j), name=name, f=f)
-        self.axis_i, self.ref_i, self.ref_j = axis_i, ref_i, ref_j
-
-    def _bind_points(self):
-        u = self._vector(0, self.axis_i, "axis_i")
-        u = u / np.linalg.norm(u)
-        fi = _perpendiculars(u)[0] if self.ref_i is None else self._vector(0, self.ref_i, "ref_i")
+    def _complete(self):
+        u = self.a_i / np.linalg.norm(self.a_i)
+        fi = _perpendiculars(u)[0] if self.ref_i is None else self.ref_i
         fi = fi - u * (u @ fi)
         if np.linalg.norm(fi) < 1e-9:
             raise ModelError(f"{self.describe()}: ref_i is parallel to the axis")
@@ -946,7 +869,7 @@ class RevoluteDriver(Constraint):
             Ai, Aj = (_A_q0(b) for b in self.bodies)
             self.f_j = Aj.T @ (Ai @ self.f_i)
         else:
-            self.f_j = self._vector(1, self.ref_j, "ref_j")
+            self.f_j = self.ref_j
 
     def phi(self, Q, t=t_symbol):
         fj = _sym_vec(Q[1], _sym3(self.f_j))
@@ -971,18 +894,13 @@ class DistanceDriver(Constraint):
     kind = "driver"
     title = {"en": "distance driver", "es": "restricción motriz de distancia"}
     measures = ("length",)
+    vectors = {"axis_i": ("i", "a_i")}
+    points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
     parameters = ("u", "P_i", "P_j")
     kernel = staticmethod(_kernel(_rows_distance))
 
-    def __init__(self, i, j, axis_i, point_i, point_j, f, name=None):
-        super().__init__((i, j), name=name, f=f)
-        self.axis_i, self.point_i, self.point_j = axis_i, point_i, point_j
-
-    def _bind_points(self):
-        u = self._vector(0, self.axis_i, "axis_i")
-        self.u = u / np.linalg.norm(u)
-        self.P_i = self._point(0, self.point_i, "point_i")
-        self.P_j = self._point(1, self.point_j, "point_j")
+    def _complete(self):
+        self.u = self.a_i / np.linalg.norm(self.a_i)
 
     def phi(self, Q, t=t_symbol):
         d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))

@@ -7,7 +7,7 @@ import sympy as sp
 
 import kinbook
 from kinbook import ModelError, planar, spatial
-from kinbook.core.constraint import constraint_class, constraint_types
+from kinbook.core.registry import constraint_class, constraint_types
 
 
 # --------------------------------------------------------------------------------------------- a new type

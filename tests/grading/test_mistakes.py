@@ -35,7 +35,7 @@ def test_every_generated_structural_mistake_is_named(mech_name, name):
 
 
 def test_every_constraint_class_has_a_spec_by_class():
-    from kinbook.core.constraint import constraint_types
+    from kinbook.core.registry import constraint_types
 
     for chapter in ("planar", "spatial"):
         for cls in constraint_types(chapter).values():
