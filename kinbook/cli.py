@@ -206,19 +206,19 @@ def _cmd_validate(args):
 
 
 def _cmd_override(args):
-    from .classroom.course import override
+    from .classroom.override import override
 
     print(override(args.gradebook, args.student, args.exercise, args.part, args.score, args.why, remove=args.remove))
 
 
 def _cmd_due(args):
-    from .classroom.course import due
+    from .classroom.override import due
 
     print(due(args.gradebook, args.exercise, args.when, penalty=args.penalty, cap=args.cap, policy=args.policy))
 
 
 def _cmd_extend(args):
-    from .classroom.course import extend
+    from .classroom.override import extend
 
     print(extend(args.gradebook, args.student, args.exercise, args.when, args.why))
 

@@ -182,12 +182,11 @@ def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="la
     list of Entry
         In a stable order (by path).
     """
-    from .naming import compile_pattern, read_name
+    from .naming import compile_pattern
 
     if policy not in POLICIES:
         raise ValueError(f"policy must be one of {', '.join(POLICIES)}, got {policy!r}")
     rx = compile_pattern(pattern)
-    keep = roster.knows if roster is not None else None
     found = []  # (parts, root, stat or None, problem)
     for given in paths:
         given = os.fspath(given)
@@ -201,54 +200,56 @@ def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="la
             found += _walk(given)
         else:
             found.append(((os.path.basename(given),), root, st, _problem(os.path.basename(given), st, True)))
-    entries = []
-    for parts, root, st, problem in found:
-        root_name = os.path.basename(os.path.realpath(root)) if len(parts) == 1 else ""
-        readable = st is not None and problem is None
-        e = Entry(shown(os.path.join(root, *parts)), root, parts,
-                  (st.st_dev, st.st_ino, st.st_size) if readable else None, "")
-        if problem is not None and problem[0] == "ignored":
-            e.status, e.message, e.result = problem[0], problem[1], False
-            entries.append(e)
-            continue
-        if st is not None:
-            e.mtime = st.st_mtime
-        name = read_name(parts, exercise, root_name or os.path.basename(os.path.realpath(root)), rx, keep)
-        e._named, e.attempt, e.late = name.exercise_named, name.attempt, name.late
-        if name.time is not None:
-            e.submitted, e.submitted_from = name.time.isoformat(), "name"
-        elif st is not None and file_times:
-            e.submitted = _dt.datetime.fromtimestamp(int(st.st_mtime), _dt.timezone.utc).isoformat()
-            e.submitted_from = "file"
-        e._order = (name.attempt, (name.time or _dt.datetime.min).isoformat(), e.mtime, e.path)
-        if name.raw is None:
-            e.status, e.message, e.result = "ignored", f"no student: the path {name.why}", False
-            entries.append(e)
-            continue
-        known = roster.find(name.raw, name.key) if roster is not None else None
-        if known is not None:
-            e.student, e._raw, e.on_roster = known.student, known.student, True
-        else:
-            e.student, bad = student_id(name.raw)
-            e._raw = name.raw
-            e.on_roster = False if roster is not None else None
-            if bad and problem is None:
-                problem = ("bad-id", bad)
-        if problem is not None:
-            e.status, e.message = problem
-        elif e.ident[2] > max_bytes:
-            e.status, e.message = "too-large", f"the file has {e.ident[2]:,} bytes (at most {max_bytes:,}); not read"
-        entries.append(e)
-    if rx is None:
-        named = [e for e in entries if e._named]
-        if named:
-            for e in entries:
-                if e._named is False and e.status is None:
-                    e.status, e.result = "ignored", False
-                    e.message = (f"not named after the exercise {exercise!r} (other notebooks here are): not graded; "
-                                 "rename it, or give --id-pattern")
+    entries = [_entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times)
+               for parts, root, st, problem in found]
+    if rx is None and any(e._named for e in entries):
+        for e in entries:
+            if e._named is False and e.status is None:
+                e.status, e.result = "ignored", False
+                e.message = (f"not named after the exercise {exercise!r} (other notebooks here are): not graded; "
+                             "rename it, or give --id-pattern")
     _attempts(entries, policy)
     return sorted(entries, key=lambda e: e.path)
+
+
+def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times):
+    """The :class:`Entry` of one listed path: its student, attempt and time read from the path, or why not."""
+    from .naming import read_name
+
+    readable = st is not None and problem is None
+    e = Entry(shown(os.path.join(root, *parts)), root, parts, (st.st_dev, st.st_ino, st.st_size) if readable else None,
+              "")
+    if problem is not None and problem[0] == "ignored":
+        e.status, e.message, e.result = problem[0], problem[1], False
+        return e
+    if st is not None:
+        e.mtime = st.st_mtime
+    name = read_name(parts, exercise, os.path.basename(os.path.realpath(root)), rx,
+                     roster.knows if roster is not None else None)
+    e._named, e.attempt, e.late = name.exercise_named, name.attempt, name.late
+    if name.time is not None:
+        e.submitted, e.submitted_from = name.time.isoformat(), "name"
+    elif st is not None and file_times:
+        e.submitted = _dt.datetime.fromtimestamp(int(st.st_mtime), _dt.timezone.utc).isoformat()
+        e.submitted_from = "file"
+    e._order = (name.attempt, (name.time or _dt.datetime.min).isoformat(), e.mtime, e.path)
+    if name.raw is None:
+        e.status, e.message, e.result = "ignored", f"no student: the path {name.why}", False
+        return e
+    known = roster.find(name.raw, name.key) if roster is not None else None
+    if known is not None:
+        e.student, e._raw, e.on_roster = known.student, known.student, True
+    else:
+        e.student, bad = student_id(name.raw)
+        e._raw = name.raw
+        e.on_roster = False if roster is not None else None
+        if bad and problem is None:
+            problem = ("bad-id", bad)
+    if problem is not None:
+        e.status, e.message = problem
+    elif e.ident[2] > max_bytes:
+        e.status, e.message = "too-large", f"the file has {e.ident[2]:,} bytes (at most {max_bytes:,}); not read"
+    return e
 
 
 def _attempts(entries, policy):

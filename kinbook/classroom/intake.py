@@ -94,51 +94,10 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
     entries = collect(submissions, src.exercise, max_bytes=max_bytes, pattern=pattern, roster=roster, policy=policy,
                       file_times=file_times)
     for e in entries:
-        if e.status in (None, "superseded"):
-            try:
-                digest = hashlib.sha256(read_entry(e, max_bytes)).hexdigest()
-            except Refused as exc:
-                e.status, e.message, digest = exc.status, exc.message, ""
-            if digest and digest == src.sha256:
-                e.status, e.message = "refused", "identical to the instructor's source notebook: not graded"
-                e.result = True
-        else:
-            digest = ""
-        e.sha256 = digest
+        _digest(e, src, max_bytes)
         if e.on_roster is False and e.student and e.student not in plan.off_roster and e.result:
             plan.off_roster.append(e.student)
-        if e.status in ("ignored",):
-            book.record_file(run, src.exercise, e, "ignored", e.message)
-            say(f"ignored   {e.path}: {e.message}")
-            continue
-        if e.status == "superseded":
-            if book.attempt_of(src.exercise, e.student, digest) is None:
-                book.record(_history(src, e), run)
-            book.record_file(run, src.exercise, e, "superseded", e.message, digest)
-            say(f"history   {e.path}: {e.message}")
-            continue
-        if e.status is not None:
-            if e.result:
-                previous = book.attempt_of(src.exercise, e.student, digest)
-                if previous is not None and not (force or regrade):
-                    plan.skipped += 1
-                    book.record_file(run, src.exercise, e, "skipped", "recorded before: " + e.message)
-                    continue
-                e.replace = previous[0] if previous is not None else None
-                plan.refused.append(e)
-                book.record_file(run, src.exercise, e, e.status, e.message, digest)
-            else:
-                book.record_file(run, src.exercise, e, e.status, e.message, digest)
-                say(f"{e.status:9} {e.path}: {e.message}")
-            continue
-        previous = book.attempt_of(src.exercise, e.student, digest)
-        if previous is not None and previous[1] == src.sha256 and previous[2] != "superseded" and not force:
-            plan.skipped += 1
-            book.record_file(run, src.exercise, e, "skipped", "graded before (same file, same source)", digest)
-            continue
-        e.replace = previous[0] if previous is not None else None
-        book.record_file(run, src.exercise, e, "graded", "", digest)
-        plan.todo.append(e)
+        _decide(book, run, src, e, plan, force or regrade, say)
     plan.entries = {e.path: e for e in entries}
     graded_now = {e.student for e in plan.todo} | {e.student for e in plan.refused}
     plan.stale = [s for s in book.stale(src.exercise) if s not in graded_now]
@@ -149,6 +108,54 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
         say(f"not on the roster ({len(plan.off_roster)}): {', '.join(plan.off_roster[:20])}"
             + (" …" if len(plan.off_roster) > 20 else "") + " — graded, and listed in the report")
     return plan
+
+
+def _digest(e, src, max_bytes):
+    """Read a gradable entry once for its sha256 (a file identical to the source is refused)."""
+    e.sha256 = ""
+    if e.status not in (None, "superseded"):
+        return
+    try:
+        e.sha256 = hashlib.sha256(read_entry(e, max_bytes)).hexdigest()
+    except Refused as exc:
+        e.status, e.message = exc.status, exc.message
+        return
+    if e.sha256 == src.sha256:
+        e.status, e.message, e.result = "refused", "identical to the instructor's source notebook: not graded", True
+
+
+def _decide(book, run, src, e, plan, force, say):
+    """What becomes of one entry: a row of the ``files`` table, and the plan's todo, refused or skipped."""
+    ex, digest = src.exercise, e.sha256
+    if e.status == "ignored":
+        book.record_file(run, ex, e, "ignored", e.message)
+        say(f"ignored   {e.path}: {e.message}")
+        return
+    if e.status == "superseded":
+        if book.attempt_of(ex, e.student, digest) is None:
+            book.record(_history(src, e), run)
+        book.record_file(run, ex, e, "superseded", e.message, digest)
+        say(f"history   {e.path}: {e.message}")
+        return
+    previous = book.attempt_of(ex, e.student, digest)
+    if e.status is not None and not e.result:  # refused beside a gradable file of the same student: listed
+        book.record_file(run, ex, e, e.status, e.message, digest)
+        say(f"{e.status:9} {e.path}: {e.message}")
+    elif e.status is not None:  # refused, and the student's only file: their result
+        if previous is not None and not force:
+            plan.skipped += 1
+            book.record_file(run, ex, e, "skipped", "recorded before: " + e.message)
+            return
+        e.replace = previous[0] if previous is not None else None
+        plan.refused.append(e)
+        book.record_file(run, ex, e, e.status, e.message, digest)
+    elif previous is not None and previous[1] == src.sha256 and previous[2] != "superseded" and not force:
+        plan.skipped += 1
+        book.record_file(run, ex, e, "skipped", "graded before (same file, same source)", digest)
+    else:
+        e.replace = previous[0] if previous is not None else None
+        book.record_file(run, ex, e, "graded", "", digest)
+        plan.todo.append(e)
 
 
 def _history(src, e):

@@ -145,6 +145,43 @@ _MOODLE = {"identifier": "lms_id", "full name": "name", "first name": "first", "
            "groups": "section"}
 
 
+def _format(header):
+    """(source, column mapping) of a roster's header: Canvas's, Moodle's or kinbook's."""
+    if {"sis user id", "sis login id"} & set(header) and "student" in header:
+        return "canvas", _CANVAS
+    if "identifier" in header or ("email address" in header and "first name" in header) or "full name" in header:
+        return "moodle", _MOODLE
+    return "kinbook", _KINBOOK
+
+
+def _values(source, cols, row, n):
+    """{field: text} of a roster row, or None for a row that is not a student (blank, Canvas's extra rows)."""
+    if not any(c.strip() for c in row):
+        return None
+    values = {f: _clean(row[i]) if i < len(row) else "" for f, i in cols.items()}
+    if source == "canvas":
+        if "points possible" in values.get("name", "").casefold() or (not values.get("lms_id") and n <= 3):
+            return None  # the 'Points Possible' (and posting policy) rows under the header
+        if values.get("name", "").casefold() in ("student, test", "test student"):
+            return None  # Canvas's own test student
+    if source == "moodle" and values.get("lms_id", "").casefold().startswith("participant"):
+        values["lms_id"] = values["lms_id"].split()[-1]
+    return values
+
+
+def _check_id(path, n, sid, id_column, seen):
+    if not sid:
+        raise GradingError(f"roster {str(path)!r}, row {n}: no student id"
+                           + (f" in column {id_column!r}" if id_column else ""))
+    fixed, problem = student_id(sid)
+    if problem or fixed != sid:
+        raise GradingError(f"roster {str(path)!r}, row {n}: the id {sid!r} is not a safe file name (letters, "
+                           f"digits and ._@+- only, at most 64 characters); choose another column with --roster-id")
+    if id_key(sid) in seen:
+        raise GradingError(f"roster {str(path)!r}: rows {seen[id_key(sid)]} and {n} have the same id {sid!r}")
+    seen[id_key(sid)] = n
+
+
 def read_roster(path, id_column=None):
     """Read a roster file (see the module docstring) → :class:`Roster`.
 
@@ -173,12 +210,7 @@ def read_roster(path, id_column=None):
     if not rows:
         raise GradingError(f"roster {str(path)!r} is empty")
     header = [_canonical(h) for h in rows[0]]
-    if {"sis user id", "sis login id"} & set(header) and "student" in header:
-        source, mapping = "canvas", _CANVAS
-    elif "identifier" in header or ("email address" in header and "first name" in header) or "full name" in header:
-        source, mapping = "moodle", _MOODLE
-    else:
-        source, mapping = "kinbook", _KINBOOK
+    source, mapping = _format(header)
     cols = {}
     for i, h in enumerate(header):
         f = mapping.get(h)
@@ -196,34 +228,16 @@ def read_roster(path, id_column=None):
                            f"{', '.join(rows[0])} — see docs/instructors.md, or name the id column with --roster-id")
     students, seen = [], {}
     for n, row in enumerate(rows[1:], start=2):
-        if not any(c.strip() for c in row):
+        values = _values(source, cols, row, n)
+        if values is None:
             continue
-        values = {f: _clean(row[i]) if i < len(row) else "" for f, i in cols.items()}
-        if source == "canvas":
-            if "points possible" in values.get("name", "").casefold() or (not values.get("lms_id") and n <= 3):
-                continue  # the 'Points Possible' (and posting policy) rows under the header
-            if values.get("name", "").casefold() in ("student, test", "test student"):
-                continue  # Canvas's own test student
-        if source == "moodle" and values.get("lms_id", "").casefold().startswith("participant"):
-            values["lms_id"] = values["lms_id"].split()[-1]
         if chosen is not None:
             sid = _clean(row[chosen]) if chosen < len(row) else ""
-        elif source == "kinbook":
-            sid = values.get("student", "")
-        elif source == "canvas":
-            sid = values.get("login") or values.get("sis_id") or values.get("lms_id", "")
         else:
-            sid = values.get("sis_id") or values.get("login") or values.get("email", "")
-        if not sid:
-            raise GradingError(f"roster {str(path)!r}, row {n}: no student id"
-                               + (f" in column {id_column!r}" if id_column else ""))
-        fixed, problem = student_id(sid)
-        if problem or fixed != sid:
-            raise GradingError(f"roster {str(path)!r}, row {n}: the id {sid!r} is not a safe file name (letters, "
-                               f"digits and ._@+- only, at most 64 characters); choose another column with --roster-id")
-        if id_key(sid) in seen:
-            raise GradingError(f"roster {str(path)!r}: rows {seen[id_key(sid)]} and {n} have the same id {sid!r}")
-        seen[id_key(sid)] = n
+            sid = {"kinbook": values.get("student", ""),
+                   "canvas": values.get("login") or values.get("sis_id") or values.get("lms_id", "")}.get(
+                source, values.get("sis_id") or values.get("login") or values.get("email", ""))
+        _check_id(path, n, sid, id_column, seen)
         values["student"] = sid
         students.append(Student(**{f: values.get(f, "") for f in FIELDS}))
     return Roster(students, source)

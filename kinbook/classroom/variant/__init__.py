@@ -23,9 +23,9 @@ import warnings
 
 import numpy as np
 
-from ..errors import GradingError, KinbookError
-from .notebook import find_parameters, grader_code, load_source, student_notebook
-from .parts import parameters, part, recording
+from ...errors import GradingError, KinbookError
+from ..notebook import find_parameters, grader_code, load_source, student_notebook
+from ..parts import parameters, part, recording
 
 __all__ = ["student_parameters", "variant", "references", "seed_from", "draw", "MAX_DRAWS"]
 

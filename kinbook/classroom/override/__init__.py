@@ -1,5 +1,5 @@
-"""The instructor's decisions about a course, stored in the gradebook beside the grades (``kinbook override``,
-``kinbook due``, ``kinbook extend``).
+"""``kinbook override`` — and its kin ``kinbook due`` and ``kinbook extend``: the instructor's decisions about a course,
+stored in the gradebook beside the grades.
 
 None of them changes a graded attempt: they are applied when a score is read (:func:`kinbook.classroom.scores.final`)
 — in the exports, the report and the feedback pages — so they survive every regrade, ``--force`` and ``--regrade``.
@@ -7,9 +7,9 @@ None of them changes a graded attempt: they are applied when a score is read (:f
 
 from __future__ import annotations
 
-from ..errors import GradingError
-from .gradebook import Gradebook
-from .scores import POLICIES, parse_due
+from ...errors import GradingError
+from ..gradebook import Gradebook
+from ..scores import POLICIES, parse_due
 
 __all__ = ["override", "due", "extend"]
 

@@ -6,10 +6,10 @@ import json
 import os
 from pathlib import Path
 
-from ..errors import GradingError
-from .files import atomic_write
-from .notebook import load_source, locked_checksums, student_notebook
-from .variant import references, student_parameters
+from ...errors import GradingError
+from ..files import atomic_write
+from ..notebook import load_source, locked_checksums, student_notebook
+from ..variant import references, student_parameters
 
 __all__ = ["release", "write_variant", "write_variants", "write_notebook"]
 
