@@ -17,7 +17,7 @@ if "jsonschema" not in _sys.modules:
     _sys.modules.setdefault("rfc3987_syntax", None)
 
 from .grade import grade, grade_submission  # noqa: E402
-from .parts import Part, parameters, part  # noqa: E402
+from .parts import Part, parameters, part, reference_calls  # noqa: E402
 from .release import release, write_variant  # noqa: E402
 from .results import STATUSES, SubmissionResult  # noqa: E402
 from .variant import student_parameters, variant  # noqa: E402
@@ -25,5 +25,5 @@ from .variant import student_parameters, variant  # noqa: E402
 # (nbformat and nbclient are imported inside the functions that need them, so that a student's kernel that
 # imports ``part`` stays light)
 
-__all__ = ["part", "parameters", "Part", "release", "write_variant", "variant", "student_parameters", "grade",
+__all__ = ["part", "parameters", "reference_calls", "Part", "release", "write_variant", "variant", "student_parameters", "grade",
            "grade_submission", "SubmissionResult", "STATUSES"]

@@ -41,13 +41,14 @@ from .notebook import (
     MAX_NOTEBOOK_BYTES,
     checksum,
     find_parameters,
+    grader_segments,
     load_source,
     missing_locked,
     parse_submission,
     student_notebook,
 )
 from .parts import CHECKS
-from .reference_use import reference_use
+from .reference_use import exercise_calls, reference_use
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, worst
 from .sanitize import clean, clean_result
 from .serialize import DecodeError, decode
@@ -286,7 +287,11 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         where = f" at {_cell_name(cells, ex.cell)}" if ex.cell else ""
         stopped = (ex.status, f"{ex.message}{where}" + (f"; {_raised(cells, ex.errors, ex.cell)}"
                                                           if _raised(cells, ex.errors, ex.cell) else ""))
-    used = reference_use(code, [p.answer for p in parts])
+    locked_sums = {checksum(c) for c in code_locked}
+    mine = [i for i, c in enumerate((c for c in cells if c["cell_type"] == "code"), 1) if checksum(c) in locked_sums]
+    numbers = [i for i, c in enumerate(cells, 1) if c["cell_type"] == "code"]  # as the student sees them
+    used = reference_use(code, [p.answer for p in parts], calls=_reference_calls(source), locked=mine,
+                         numbers=numbers)
     grades = []
     for p in parts:
         if p.answer in problems:
@@ -328,6 +333,17 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
                 "(only answer cells are yours to edit)")
         message = f"{message}; {note}" if message else note
     return done(status, message, grades, ran=limits)
+
+
+_CALLS = {}
+
+
+def _reference_calls(source):
+    """What counts as kinbook's reference in this exercise (:func:`~.reference_use.exercise_calls`), once per
+    source."""
+    if source.sha256 not in _CALLS:
+        _CALLS[source.sha256] = exercise_calls([(kind, code) for _, kind, code in grader_segments(source)])
+    return _CALLS[source.sha256]
 
 
 def _first_line(text, limit=60):

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 
 from ..errors import GradingError
 
-__all__ = ["Part", "part", "parameters", "CHECKS", "recording"]
+__all__ = ["Part", "part", "parameters", "reference_calls", "CHECKS", "recording"]
 
 #: check name → (function name in kinbook.grading, needs a target (True) or an expected value (False))
 CHECKS = {
@@ -175,3 +175,21 @@ def parameters(defaults=None, **ranges):
     if missing:
         raise GradingError(f"parameters(): no default for {', '.join(missing)}")
     return defaults
+
+
+def reference_calls(*names):
+    """Declare what counts as kinbook's reference in this exercise (reported when an answer comes from it).
+
+    ``"kinbook.spatial.A_from_euler"`` names a kinbook function (counted however it is reached: ``ks.A_from_euler``,
+    an alias, ``functools.partial`` …), ``".solve_position"`` a method (counted on objects from kinbook only), a bare
+    ``"E"`` both. Without a declaration, the grader counts the kinbook functions and methods whose results reach the
+    hidden checks' ``expected=`` values; the Φ family (``symbolic()``, ``derivation()``, a constraint's ``phi()`` …)
+    always counts. The grader reads the declaration from the source's code (literal strings); running it does
+    nothing.
+
+    >>> reference_calls("kinbook.spatial.A_from_euler", ".solve_position")
+    """
+    for name in names:
+        if not isinstance(name, str) or not name.strip("."):
+            raise GradingError(f"reference_calls() takes names as strings, got {name!r}")
+    return None

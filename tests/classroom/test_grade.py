@@ -117,13 +117,13 @@ def test_an_answer_far_larger_than_the_reference_is_not_checked(batch):
 
 def test_answers_taken_from_the_reference_are_reported_not_penalized(batch):
     p = parts(batch, "reference")
-    assert p["revolute"].score == 4 and p["revolute"].reference == "mech.constraint_phi() (cell 2)"
+    assert p["revolute"].score == 4 and p["revolute"].reference == "mech.constraint_phi() (cell 4)"
     assert p["angle"].reference == ""
     assert all(q.reference == "" for q in batch["results"]["good"].parts)
     rows = [r for r in csv.DictReader(open(batch["out"] / "grades.csv", encoding="utf-8")) if r["student"] == "reference"]
-    assert {r["part"]: r["reference"] for r in rows} == {"revolute": "mech.constraint_phi() (cell 2)", "angle": ""}
+    assert {r["part"]: r["reference"] for r in rows} == {"revolute": "mech.constraint_phi() (cell 4)", "angle": ""}
     page = (batch["out"] / "feedback" / "reference" / "tiny.html").read_text(encoding="utf-8")
-    assert "computed with kinbook's own reference: mech.constraint_phi() (cell 2)" in page
+    assert "computed with kinbook's own reference: mech.constraint_phi() (cell 4)" in page
 
 
 def test_wrong_answers_get_the_checkers_messages(batch):
