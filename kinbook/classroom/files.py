@@ -30,19 +30,46 @@ from pathlib import Path
 
 from .results import Refused
 
-__all__ = ["atomic_write", "Entry", "collect", "read_entry", "shown", "student_id", "MAX_ID_CHARS"]
+__all__ = ["atomic_write", "PUBLIC_FILE", "PUBLIC_DIR", "Entry", "collect", "read_entry", "shown", "student_id", "MAX_ID_CHARS"]
 
 MAX_ID_CHARS = 64
 _ID_EXTRA = "._@+-"
 
 
-def atomic_write(path, data):
+#: Files and directories an instructor hands out (releases, feedback pages): readable by everyone, as nbgrader
+#: makes them, whatever the umask.
+PUBLIC_FILE, PUBLIC_DIR = 0o644, 0o755
+
+
+def _umask():
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError):
+        pass
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def atomic_write(path, data, mode=None, dir_mode=None):
     """Write ``data`` (str or bytes) to ``path`` through a temporary file in the same directory and
-    ``os.replace``."""
+    ``os.replace``.
+
+    ``mode``: the file's permissions (default: what ``open`` would give, 0666 less the umask); ``dir_mode``: the
+    permissions of the directories this call creates (default: ``mkdir``'s). Releases and feedback are written
+    with :data:`PUBLIC_FILE` and :data:`PUBLIC_DIR`."""
     path = Path(path)
+    missing = [p for p in reversed(path.parents) if not p.exists()]
     path.parent.mkdir(parents=True, exist_ok=True)
+    if dir_mode is not None:
+        for d in missing:
+            os.chmod(d, dir_mode)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
+        os.fchmod(fd, (0o666 & ~_umask()) if mode is None else mode)
         with os.fdopen(fd, "wb") as f:
             f.write(data.encode("utf-8") if isinstance(data, str) else data)
             f.flush()

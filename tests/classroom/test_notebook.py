@@ -1,6 +1,7 @@
 """Source notebooks, releases, answers as data, the audit hook — without running submissions."""
 
 import json
+import os
 import subprocess
 import sys
 
@@ -227,3 +228,37 @@ def test_collected_directories_yield_this_exercise_only(tmp_path):
     flat.mkdir()
     (flat / "dave.ipynb").write_text("{}")
     assert [e.student for e in collect([flat], "ex01", max_bytes=1000)] == ["dave"]
+
+
+def test_releases_and_feedback_are_readable_by_others(tmp_path):
+    """Released notebooks, the manifest and feedback pages were written 0600: copied to a shared hub folder, the
+    students could not open them. They are 0644 (their new directories 0755) whatever the umask, like nbgrader's;
+    the gradebook's other exports follow the umask."""
+    import stat
+
+    from kinbook.classroom import write_variant
+    from kinbook.classroom.feedback import write_pages
+    from kinbook.classroom.gradebook import Gradebook
+    from kinbook.classroom.results import PartGrade, SubmissionResult
+
+    from .conftest import ROOT
+
+    def mode(p):
+        return stat.S_IMODE(os.stat(p).st_mode)
+
+    old = os.umask(0o077)
+    try:
+        out = tmp_path / "course" / "release"
+        written = release([SOURCE], out)
+        variant = write_variant(os.path.join(ROOT, "exercises", "ex09-point-kinematics.ipynb"), "alice",
+                                tmp_path / "course" / "variants" / "alice")
+        with Gradebook(tmp_path / "graded") as book:
+            book.record(SubmissionResult("alice", "tiny", "x.ipynb", "0" * 64, "ok", "", [PartGrade("a", 1, 1, "ok")]))
+            pages = write_pages(book, tmp_path / "graded" / "feedback")
+            book.export()
+    finally:
+        os.umask(old)
+    assert [mode(p) for p in written + [out / "manifest.json", variant] + pages] == [0o644] * (3 + len(pages))
+    assert mode(out) == mode(tmp_path / "course") == mode(variant.parent) == 0o755
+    assert mode(tmp_path / "graded" / "feedback") == mode(tmp_path / "graded" / "feedback" / "alice") == 0o755
+    assert mode(tmp_path / "graded" / "grades.csv") == 0o600  # (umask 077: the instructor's own files stay private)

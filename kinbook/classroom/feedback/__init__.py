@@ -14,7 +14,7 @@ from __future__ import annotations
 import html
 from pathlib import Path
 
-from ..files import atomic_write
+from ..files import PUBLIC_DIR, PUBLIC_FILE, atomic_write
 from ..gradebook import Gradebook
 
 __all__ = ["write_pages", "feedback", "page", "STATUS_WORDS", "part_words"]
@@ -118,6 +118,10 @@ def _index(student, name, finals):
             f"</p><table><tr><th>exercise</th><th>score</th><th>status</th></tr>{rows}</table></body></html>")
 
 
+#: Feedback is handed out: readable by everyone (0644, directories 0755), like nbgrader's.
+_PUBLIC = {"mode": PUBLIC_FILE, "dir_mode": PUBLIC_DIR}
+
+
 def write_pages(book, out, students=None):
     """Write ``out/<student>/<exercise>.html`` and ``out/<student>/index.html`` for ``students`` (default: every
     student of the gradebook and of its roster). Returns the pages written."""
@@ -137,9 +141,9 @@ def write_pages(book, out, students=None):
     for student, items in sorted(mine.items()):
         for f, r, when in items:
             written.append(atomic_write(out / student / f"{f.exercise}.html",
-                                        page(f, r, name=names.get(student, ""), graded=when)))
+                                        page(f, r, name=names.get(student, ""), graded=when), **_PUBLIC))
         written.append(atomic_write(out / student / "index.html",
-                                    _index(student, names.get(student, ""), [f for f, _, _ in items])))
+                                    _index(student, names.get(student, ""), [f for f, _, _ in items]), **_PUBLIC))
     return written
 
 

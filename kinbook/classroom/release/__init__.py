@@ -7,7 +7,7 @@ import os
 from pathlib import Path
 
 from ...errors import GradingError
-from ..files import atomic_write
+from ..files import PUBLIC_DIR, PUBLIC_FILE, atomic_write
 from ..notebook import load_source, locked_checksums, student_notebook
 from ..variant import references, student_parameters
 
@@ -15,10 +15,11 @@ __all__ = ["release", "write_variant", "write_variants", "write_notebook"]
 
 
 def write_notebook(nb, path):
-    """Write a notebook atomically (:func:`kinbook.classroom.files.atomic_write`)."""
+    """Write a notebook atomically (:func:`kinbook.classroom.files.atomic_write`), readable by everyone (0644;
+    the directories it creates 0755), like nbgrader's releases."""
     import nbformat
 
-    return atomic_write(path, nbformat.writes(nb) + "\n")
+    return atomic_write(path, nbformat.writes(nb) + "\n", mode=PUBLIC_FILE, dir_mode=PUBLIC_DIR)
 
 
 def release(sources, outdir="release"):
@@ -53,7 +54,7 @@ def release(sources, outdir="release"):
             "parts": [{"part": p.name, "points": p.points, "answer": p.answer, "check": p.check,
                        "hidden": p.hidden} for p in parts],
         }
-    atomic_write(manifest_path, json.dumps(manifest, indent=1, sort_keys=True))
+    atomic_write(manifest_path, json.dumps(manifest, indent=1, sort_keys=True), mode=PUBLIC_FILE, dir_mode=PUBLIC_DIR)
     return written
 
 
