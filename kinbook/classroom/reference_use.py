@@ -54,8 +54,22 @@ import ast
 import builtins
 import functools
 import re
-import sys
 from dataclasses import dataclass
+
+from .code_reading import (
+    IPYTHON_NOTEBOOK_CHARS,
+    Unread,
+    call_name,
+    constant_str,
+    dotted,
+    literal_code,
+    literal_getattr,
+    parse_cell,
+    parsed,
+    target_names,
+    unfollowable,
+    value_path,
+)
 
 __all__ = ["reference_use", "exercise_calls", "declared_calls", "ReferenceCalls", "PHI_FAMILY", "REFERENCE_CALLS",
            "DYNAMIC_CALLS", "MAX_CODE_CHARS"]
@@ -68,139 +82,11 @@ REFERENCE_CALLS = REFERENCE_METHODS | REFERENCE_FUNCTIONS
 #: Calls whose effect a static reading cannot follow.
 DYNAMIC_CALLS = frozenset({"exec", "eval", "compile", "getattr", "__import__", "globals", "vars", "locals",
                            "import_module", "setattr", "__getattribute__"})
-#: Magics whose argument is code run in the notebook's namespace: followed like the cell's own code.
-CODE_MAGICS = frozenset({"time", "timeit", "prun", "capture", "debug"})
-#: Magics that cannot assign a variable of the notebook: nothing to follow.
-INERT_MAGICS = frozenset({"matplotlib", "precision", "pprint", "who", "whos", "who_ls", "lsmagic", "magic", "pwd",
-                          "pinfo", "pinfo2", "pdoc", "pdef", "psource", "history", "xmode", "colors", "page",
-                          "config", "notebook", "ls", "env"})
-#: Calls and attributes through which code can assign any variable of the notebook unseen.
-_ASSIGNING_CALLS = frozenset({"exec", "eval", "compile", "run_cell", "run_line_magic", "run_cell_magic", "globals",
-                              "vars", "locals", "setattr", "__import__", "import_module", "reload", "execfile"})
-_ASSIGNING_ATTRS = frozenset({"user_ns", "user_global_ns", "__dict__", "__globals__", "__builtins__", "f_globals",
-                              "f_locals"})
-_ASSIGNING_MODULES = frozenset({"__main__", "builtins", "__builtin__", "importlib", "runpy", "inspect"})
 _MAX_CELLS = 2000
 _BUILTIN_NAMES = frozenset(dir(builtins))
 #: Characters of code analysed at most (about a second of the grader's time; a notebook's own code is a few
 #: thousand): beyond, every answer is reported "not followed" rather than spending minutes of the grader's time.
 MAX_CODE_CHARS = 300_000
-
-
-def _call_name(node):
-    f = node.func
-    if isinstance(f, ast.Attribute):
-        return f.attr, f"{_dotted(f.value)}.{f.attr}()"
-    if isinstance(f, ast.Name):
-        return f.id, f"{f.id}()"
-    return None, None
-
-
-def _dotted(node):
-    """``a.b(…).c`` for a chain of names, attributes and calls (iteratively: a chain may be thousands long)."""
-    suffix = []
-    while isinstance(node, (ast.Attribute, ast.Call)) and len(suffix) < 6:
-        if isinstance(node, ast.Attribute):
-            suffix.append("." + node.attr)
-            node = node.value
-        else:
-            suffix.append("(…)")
-            node = node.func
-    head = node.id if isinstance(node, ast.Name) else "…"
-    return head + "".join(reversed(suffix)) if len(suffix) < 6 else "…" + "".join(reversed(suffix))
-
-
-def _target_names(target):
-    """The variables a target (re)binds, and the variables it changes in place (a[i] = …, a.b = …)."""
-    bound, changed = [], []
-    if isinstance(target, ast.Name):
-        bound.append(target.id)
-    elif isinstance(target, (ast.Tuple, ast.List)):
-        for t in target.elts:
-            b, c = _target_names(t.value if isinstance(t, ast.Starred) else t)
-            bound += b
-            changed += c
-    elif isinstance(target, (ast.Subscript, ast.Attribute)):
-        base = target.value
-        while isinstance(base, (ast.Subscript, ast.Attribute)):
-            base = base.value
-        if isinstance(base, ast.Name):
-            changed.append(base.id)
-    return bound, changed
-
-
-def _literal_code(call):
-    """The code of ``exec("…")``/``eval("…")``, ``get_ipython().run_line_magic("time", "…")`` or
-    ``run_cell_magic("capture", "", "…")`` with literal code, parsed: a list of statements, or an expression
-    whose value is the call's (``eval``, ``x = %time expr``); None for any other call, or code that is not
-    Python (then it counts as code the analysis cannot follow)."""
-    name = _call_name(call)[0]
-    args = call.args
-    if not args or not all(isinstance(a, ast.Constant) and isinstance(a.value, str) for a in args):
-        return None
-    if name in ("exec", "eval") and len(args) == 1 and not call.keywords:
-        return _parsed(args[0].value, expression=name == "eval")
-    if name == "run_line_magic" and len(args) == 2 and args[0].value in CODE_MAGICS:
-        words = args[1].value.split(None, 8)
-        for k in range(len(words)):  # `%timeit -n 10 -o expr`: the options first
-            if k and not words[k - 1].startswith("-") and not words[k - 1].isdigit():
-                break
-            code = _parsed(args[1].value.split(None, k)[-1] if k else args[1].value, expression=True)
-            if code is not None:
-                return code
-        return None
-    if name == "run_cell_magic" and len(args) == 3 and args[0].value in CODE_MAGICS:
-        return _parsed(args[2].value)
-    return None
-
-
-def _parsed(code, expression=False):
-    """Statements (a list), or with ``expression`` an expression when ``code`` is one; None when not Python."""
-    try:
-        return ast.parse(code, mode="eval").body if expression else ast.parse(code).body
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
-        return _parsed(code) if expression else None
-
-
-def _installed(module):
-    """Whether the top-level module ``module`` is found in the grader's environment (searched, never imported):
-    a module the notebook wrote to its own directory is not."""
-    if module in sys.builtin_module_names or module in sys.modules:
-        return True
-    from importlib.machinery import PathFinder
-
-    try:
-        return PathFinder.find_spec(module, [p for p in sys.path if p not in ("", ".")]) is not None
-    except (ImportError, ValueError):
-        return False
-
-
-def _unfollowable(tree, cell):
-    """The first place in ``tree`` where code could assign any variable unseen, described, or None."""
-    for sub in ast.walk(tree):
-        if isinstance(sub, ast.Call):
-            name = _call_name(sub)[0]
-            if name in _ASSIGNING_CALLS and _literal_code(sub) is None:
-                what = name
-                if name in ("run_line_magic", "run_cell_magic") and sub.args and isinstance(sub.args[0], ast.Constant):
-                    magic = str(sub.args[0].value)
-                    if magic in INERT_MAGICS:
-                        continue
-                    what = ("%%" if name == "run_cell_magic" else "%") + magic
-                return f"{what}, cell {cell}"
-        elif isinstance(sub, ast.Attribute) and sub.attr in _ASSIGNING_ATTRS:
-            return f"{sub.attr}, cell {cell}"
-        elif isinstance(sub, ast.Name) and sub.id in _ASSIGNING_MODULES:
-            return f"{sub.id}, cell {cell}"
-        elif isinstance(sub, (ast.Import, ast.ImportFrom)):
-            if isinstance(sub, ast.ImportFrom) and sub.level:
-                return f"a relative import, cell {cell}"
-            modules = [sub.module] if isinstance(sub, ast.ImportFrom) else [a.name for a in sub.names]
-            for module in modules:
-                top = (module or "").split(".")[0]
-                if top in _ASSIGNING_MODULES or not _installed(top):
-                    return f"import of {top!r}, which is not an installed module, cell {cell}"
-    return None
 
 
 @dataclass(frozen=True)
@@ -233,18 +119,6 @@ _HISTORY_N = re.compile(r"_\d+$")
 _MUTATORS = frozenset({"append", "extend", "insert", "update", "__setitem__", "setdefault", "add", "put"})
 
 
-def _constant_str(node):
-    return node.value if isinstance(node, ast.Constant) and isinstance(node.value, str) else None
-
-
-def _literal_getattr(node):
-    """``getattr(obj, "name")`` as ``(obj, "name")``, or None."""
-    if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "getattr"
-            and len(node.args) >= 2 and _constant_str(node.args[1]) is not None):
-        return node.args[0], _constant_str(node.args[1])
-    return None
-
-
 class _Flow:
     """What the notebook's code does with kinbook, statement by statement (see the module docstring)."""
 
@@ -268,7 +142,7 @@ class _Flow:
     # ----------------------------------------------------------------------------------------- kinbook names
     def qualify(self, node):
         """The qualified kinbook name an expression stands for (``kinbook.spatial.A_from_euler``), or None."""
-        lit = _literal_getattr(node)
+        lit = literal_getattr(node)
         if lit is not None:
             base = self.qualify(lit[0])
             return f"{base}.{lit[1]}" if base else None
@@ -315,10 +189,10 @@ class _Flow:
         """The method name of a ``methodcaller("name")`` expression (or a name bound to one), or None."""
         if isinstance(node, ast.Name):
             return self.callers.get(node.id)
-        if (isinstance(node, ast.Call) and node.args and _constant_str(node.args[0]) is not None
+        if (isinstance(node, ast.Call) and node.args and constant_str(node.args[0]) is not None
                 and (isinstance(node.func, ast.Name) and self.helpers.get(node.func.id) == "methodcaller"
                      or isinstance(node.func, ast.Attribute) and node.func.attr == "methodcaller")):
-            return _constant_str(node.args[0])
+            return constant_str(node.args[0])
         return None
 
     # ----------------------------------------------------------------------------------------------- values
@@ -327,22 +201,22 @@ class _Flow:
         pending = None  # a methodcaller of a reference method: the reference once applied to a kinbook object
         for sub in ast.walk(node):
             if isinstance(sub, ast.Call):
-                code = _literal_code(sub)
+                code = literal_code(sub)
                 if code is not None:  # eval("…"), %time …: the code inside is what gives the value
                     found = self.origin(code, cell) if not isinstance(code, list) else self.block(code, cell)
                     if found:
                         return found
                     continue
-                name, text = _call_name(sub)
+                name, text = call_name(sub)
                 method = isinstance(sub.func, ast.Attribute)
                 caller = self._caller(sub.func) or self._caller(sub)
                 if caller in self.calls.methods:
                     pending = pending or f"methodcaller({caller!r}) (cell {cell})"
-                lit = _literal_getattr(sub)
+                lit = literal_getattr(sub)
                 if lit is not None:
                     if not self.cell_locked and (self.reference_method(lit[0], lit[1])
                                                  or self.reference_function(sub)):
-                        return f"getattr({_dotted(lit[0])}, {lit[1]!r}) (cell {cell})"
+                        return f"getattr({dotted(lit[0])}, {lit[1]!r}) (cell {cell})"
                     continue
                 if name in self.defined and not method:
                     if name in self.functions:
@@ -358,9 +232,9 @@ class _Flow:
                 if self.cell_locked:
                     continue
                 if self.reference_method(sub.value, sub.attr):
-                    return f"{_dotted(sub.value)}.{sub.attr}() (cell {cell})"
+                    return f"{dotted(sub.value)}.{sub.attr}() (cell {cell})"
                 if self.reference_function(sub):
-                    return f"{_dotted(sub)}() (cell {cell})"
+                    return f"{dotted(sub)}() (cell {cell})"
             elif isinstance(sub, ast.Name) and isinstance(sub.ctx, ast.Load):
                 if sub.id in self.tainted:
                     return self.tainted[sub.id]
@@ -487,7 +361,7 @@ class _Flow:
             targets = stmt.targets if isinstance(stmt, ast.Assign) else [stmt.target]
             found = self.origin(value, cell) if value is not None else None
             for target in targets:
-                bound, changed = _target_names(target)
+                bound, changed = target_names(target)
                 if isinstance(stmt, ast.AugAssign):
                     changed, bound = changed + bound, []
                 for name in bound:
@@ -500,7 +374,7 @@ class _Flow:
             return
         if isinstance(stmt, (ast.For, ast.AsyncFor)):
             found = self.origin(stmt.iter, cell)
-            for name in _target_names(stmt.target)[0]:
+            for name in target_names(stmt.target)[0]:
                 self._bind(name, stmt.iter if self.from_kinbook(stmt.iter) else None, found)
             self.block(stmt.body + stmt.orelse, cell)
             return
@@ -508,7 +382,7 @@ class _Flow:
             for item in stmt.items:
                 found = self.origin(item.context_expr, cell)
                 if item.optional_vars is not None:
-                    for name in _target_names(item.optional_vars)[0]:
+                    for name in target_names(item.optional_vars)[0]:
                         self._bind(name, None, found)
             self.block(stmt.body, cell)
             return
@@ -532,7 +406,7 @@ class _Flow:
             return
         if isinstance(stmt, ast.Expr):
             value = stmt.value
-            code = _literal_code(value) if isinstance(value, ast.Call) else None
+            code = literal_code(value) if isinstance(value, ast.Call) else None
             if code is not None:  # exec("…"), %time …, %%capture
                 if isinstance(code, list):
                     self.block(code, cell)
@@ -556,7 +430,7 @@ class _Flow:
         if node is None:
             return
         for sub in ast.walk(node):
-            if isinstance(sub, ast.Call) and _call_name(sub)[0] == "part":
+            if isinstance(sub, ast.Call) and call_name(sub)[0] == "part":
                 for k in sub.keywords:
                     if k.arg == "expected":
                         base = k.value
@@ -581,32 +455,16 @@ class _Flow:
         self.cell_locked = False
 
 
-def _value_path(node):
-    """The nodes an expression's value depends on: all but subscripts' indices (``q[mech.index("phi2")]`` takes
-    its value from ``q``; the index only selects)."""
-    stack = [node]
-    while stack:
-        sub = stack.pop()
-        yield sub
-        for name, child in ast.iter_fields(sub):
-            if isinstance(sub, ast.Subscript) and name == "slice":
-                continue
-            if isinstance(child, ast.AST):
-                stack.append(child)
-            elif isinstance(child, list):
-                stack.extend(c for c in child if isinstance(c, ast.AST))
-
-
 def declared_calls(code):
     """What ``reference_calls("kinbook.spatial.A_from_euler", ".solve_position", "E")`` calls in ``code``
     declare (literal strings only), or None when there is none."""
     found = None
-    for tree in (_parsed(c) for c in code):
+    for tree in (parsed(c) for c in code):
         for sub in ast.walk(ast.Module(body=tree or [], type_ignores=[])):
-            if isinstance(sub, ast.Call) and _call_name(sub)[0] == "reference_calls":
+            if isinstance(sub, ast.Call) and call_name(sub)[0] == "reference_calls":
                 found = found or ReferenceCalls()
                 for arg in sub.args:
-                    text = _constant_str(arg)
+                    text = constant_str(arg)
                     if not text:
                         continue
                     name = text.rsplit(".", 1)[-1]
@@ -644,7 +502,7 @@ def exercise_calls(segments):
 
     def calls_in(expr, path=True):
         out = set()
-        for sub in (_value_path(expr) if path else ast.walk(expr)):
+        for sub in (value_path(expr) if path else ast.walk(expr)):
             if isinstance(sub, ast.Call):
                 q = flow.qualify(sub.func)
                 if q is not None:
@@ -657,7 +515,7 @@ def exercise_calls(segments):
         return out
 
     for kind, code in segments:
-        tree = _parsed(code)
+        tree = parsed(code)
         for stmt in tree or []:
             if kind != "hidden":
                 visible |= calls_in(stmt, path=False)
@@ -665,9 +523,9 @@ def exercise_calls(segments):
                 if isinstance(sub, ast.Assign):
                     through = calls_in(sub.value)
                     for target in sub.targets:
-                        for name in _target_names(target)[0]:
+                        for name in target_names(target)[0]:
                             deps[name] = through
-                elif kind == "hidden" and isinstance(sub, ast.Call) and _call_name(sub)[0] == "part":
+                elif kind == "hidden" and isinstance(sub, ast.Call) and call_name(sub)[0] == "part":
                     for k in sub.keywords:
                         if k.arg == "expected":
                             found |= calls_in(k.value)
@@ -694,44 +552,6 @@ def kinbook_method(name):
     ``.max()`` of an array computed with kinbook."""
     return not name.startswith("_") and re.search(rf"^[ \t]+def {re.escape(name)}\(\s*(self|cls)\b", _kinbook_text(),
                                                   re.MULTILINE) is not None
-
-
-#: IPython's transformation of a cell costs (lines × magics): it is applied only to a cell that is not plain
-#: Python, of at most this many characters and escape lines, and to this many characters in a notebook at most;
-#: beyond, the cell is reported as code the analysis does not read.
-IPYTHON_CELL_CHARS = 10_000
-IPYTHON_CELL_ESCAPES = 10
-IPYTHON_NOTEBOOK_CHARS = 20_000
-_ESCAPE = re.compile(r"^\s*[%!]|=\s*[%!]|\?\s*$", re.MULTILINE)
-
-
-def _parse(code, budget):
-    """The cell's syntax tree as the kernel runs it, or None when it does not run (not Python); raises
-    :class:`_Unread` when it holds IPython syntax beyond ``budget`` (characters left to transform, a list)."""
-    try:
-        return ast.parse(code)
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
-        pass
-    escapes = len(_ESCAPE.findall(code))
-    if not escapes:
-        return None
-    if len(code) > IPYTHON_CELL_CHARS or escapes > IPYTHON_CELL_ESCAPES or len(code) > budget[0]:
-        raise _Unread()
-    budget[0] -= len(code)
-    try:  # magics, shell escapes and `?` help become Python as the kernel makes them before compiling
-        from IPython.core.inputtransformer2 import TransformerManager
-
-        code = TransformerManager().transform_cell(code)
-    except Exception:  # IPython missing, or a cell it cannot transform: the kernel could not run it either
-        return None
-    try:
-        return ast.parse(code)
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
-        return None
-
-
-class _Unread(Exception):
-    pass
 
 
 def reference_use(cells, answers, calls=None, locked=(), numbers=None):
@@ -772,15 +592,15 @@ def reference_use(cells, answers, calls=None, locked=(), numbers=None):
     budget = [IPYTHON_NOTEBOOK_CHARS]
     for index, code in enumerate(cells[:_MAX_CELLS]):
         try:
-            tree = _parse(code, budget)
-        except _Unread:
+            tree = parse_cell(code, budget)
+        except Unread:
             flow.unfollowed = flow.unfollowed or f"IPython syntax the analysis does not read, cell {numbers[index]}"
             continue
         if tree is None:
             continue
         try:
             flow.cell(tree, numbers[index])
-            flow.unfollowed = flow.unfollowed or _unfollowable(tree, numbers[index])
+            flow.unfollowed = flow.unfollowed or unfollowable(tree, numbers[index])
         except RecursionError:  # code nested beyond what the analysis follows: said so, not a grader failure
             return {name: f"not followed: code nested too deeply (cell {numbers[index]})" for name in answers}
     unseen = f"not followed: code that could assign it unseen ({flow.unfollowed})" if flow.unfollowed else ""

@@ -491,3 +491,44 @@ def test_bubblewrap_and_setpriv_come_from_a_fixed_path(monkeypatch, tmp_path):
     if BWRAP:
         cmd = bwrap.command(["/bin/true"])
         assert str(tmp_path) not in " ".join(cmd) and "--as-pid-1" in cmd
+
+
+def test_a_cgroup_v2_hierarchy_is_used_where_its_controllers_are_delegated(tmp_path, monkeypatch):
+    """The cgroup v2 path on a host that has one (this machine mounts v1 beside an empty v2): a directory with the
+    memory and pids controllers that this process may write gets the sandbox's group, with its limits."""
+    from kinbook.classroom.sandbox import cgroup
+
+    grader = tmp_path / "user.slice" / "grader"
+    grader.mkdir(parents=True)
+    (grader / "cgroup.controllers").write_text("cpuset cpu io memory pids\n")
+    (grader / "cgroup.subtree_control").write_text("")
+    monkeypatch.setattr(cgroup, "_mounts", lambda: [(str(tmp_path), "cgroup2", {"rw"})])
+    monkeypatch.setattr(cgroup, "_own", lambda: {"": "/user.slice/grader"})
+    group, why = cgroup.create()
+    assert why is None and group.version == "v2" and group.describe == "cgroup v2 (memory, pids, cpu)"
+    d = group.dirs[""]
+    assert os.path.dirname(d) == str(grader) and os.path.basename(d).startswith(f"kinbook-{os.getpid()}-")
+    assert (grader / "cgroup.subtree_control").read_text() == "+cpu +memory +pids"
+    assert open(os.path.join(d, "pids.max")).read() == "256" and open(os.path.join(d, "cpu.max")).read() == \
+        "100000 100000"
+    group.set_memory(123 << 20)
+    assert open(os.path.join(d, "memory.max")).read() == str(123 << 20)
+    assert open(os.path.join(d, "memory.swap.max")).read() == "0"
+    with open(os.path.join(d, "memory.events"), "w") as f:
+        f.write("low 0\nhigh 0\nmax 3\noom 1\noom_kill 1\n")
+    assert group.oom_kills() == 1
+    (grader / "cgroup.controllers").write_text("cpuset io\n")  # not delegated: said so, and rlimits instead
+    group, why = cgroup.create()
+    assert group is None and "memory, pids are not available" in why
+
+
+def test_text_printed_by_kinbook_grade_is_inert(tmp_path, capsys):
+    """What `kinbook grade` prints of a student's text (an exception message with a terminal's escapes, a carriage
+    return, bidirectional controls) cannot set the window title, overwrite a line or print a fake one."""
+    from kinbook.cli import main
+
+    code = main(["grade", SOURCE, submission("ansi"), "-o", str(tmp_path / "g"), "--timeout", "300", "--memory", "400",
+                 *([] if BWRAP else ["--no-isolation"])])
+    out = capsys.readouterr().out
+    assert code == 0 and "missing-answer" in out
+    assert not set("\x1b\r\x07\u202e\u2028") & set(out), repr(out)

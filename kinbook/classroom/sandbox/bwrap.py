@@ -6,7 +6,9 @@ namespaces. :func:`command` asks it for:
 * a new user namespace with one user, uid/gid 65534 inside, no capabilities, no further user namespaces
   (``--disable-userns``), ``PR_SET_NO_NEW_PRIVS``;
 * new pid, network (nothing but a down loopback), IPC, UTS and cgroup namespaces, a new session
-  (``--new-session``: no terminal to inject input into), death with its parent (``--die-with-parent``);
+  (``--new-session``: no terminal to inject input into), death with its parent (``--die-with-parent``); the
+  command runs as the sandbox's pid 1 (``--as-pid-1``): bubblewrap keeps no init of its own inside, which held
+  descriptors of the grading process and which no reset could kill;
 * a root that is an empty read-only tmpfs holding only: ``/usr`` and the top-level links into it, the Python
   installation, the virtual environment and the kinbook package — all read-only, at their own paths (the
   rest of a checkout, the instructor's files, ``collected/`` and ``graded/`` simply do not exist there) —,

@@ -10,8 +10,7 @@ Channels between the grading process (outside) and the sandbox (inside)
     the event pipe (the zygote's stdout)
         events, one line each: ``ready``, ``worker PID``, ``exit N`` / ``signal N`` (the worker ended),
         ``clean`` / ``dirty REASON`` (after ``reset``). Both are passed to the zygote as descriptors of their
-        own, never as bubblewrap's standard input and output: bubblewrap's init (pid 1 in the sandbox) keeps
-        those, where a student's process could reach them;
+        own, never as bubblewrap's standard input and output;
     descriptor :data:`JOB_FD` (read end, inside)
         one job frame per ``run``, read by that run's worker only — the zygote never reads it, so no
         submission ever enters the zygote's memory (which every later kernel would inherit);

@@ -505,6 +505,9 @@ def serve(layout, job_fd, result_fd):
 
     set_dumpable(False)
     set_child_subreaper()
+    # pid 1 of the sandbox receives from inside only the signals it handles: none but SIGCHLD (Python's own SIGINT
+    # handler would let a student's process end the zygote with a KeyboardInterrupt)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
     soft, hard = resource.getrlimit(resource.RLIMIT_FSIZE)
     if hard == resource.RLIM_INFINITY or hard > FILE_SIZE_LIMIT:
