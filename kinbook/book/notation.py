@@ -29,7 +29,8 @@ import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
 __all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "html_math", "equations", "matrix", "names",
-           "book_form", "factored", "lines", "Math", "local_points", "table", "tidy"]
+           "book_form", "factored", "lines", "Math", "local_points", "table", "tidy", "spatial_form",
+           "SPATIAL_DEFINITIONS"]
 
 
 
@@ -510,3 +511,67 @@ def table(M, row_labels, columns=None, mech=None, width=58):
         out.append(rf"\begin{{array}}{{c|{'c' * len(cols)}}} & " + " & ".join(columns[c] for c in cols)
                    + r" \\ \hline " + body + r"\end{array}")
     return out
+
+
+# ------------------------------------------------------------------------------------- spatial joints, the book's way
+_SPATIAL_FORMS = {
+    # type name: (Φ as §14.4 writes it, [(the book's symbol, attribute)] of the local data it needs)
+    "Normal1": (r"\mathbf s_i^T\mathbf s_j", [(r"\mathbf s'_i", "a_i"), (r"\mathbf s'_j", "a_j")]),
+    "Normal2": (r"\mathbf s_i^T\mathbf d", [(r"\mathbf s'_i", "a_i"), (r"\mathbf s'^P_i", "P_i"),
+                                            (r"\mathbf s'^P_j", "P_j")]),
+    "Parallel1": (r"\begin{bmatrix}\mathbf h_1^T\mathbf s_j\\ \mathbf h_2^T\mathbf s_j\end{bmatrix}",
+                  [(r"\mathbf h'_1", "h1"), (r"\mathbf h'_2", "h2"), (r"\mathbf s'_j", "a_j")]),
+    "Parallel2": (r"\begin{bmatrix}\mathbf h_1^T\mathbf d\\ \mathbf h_2^T\mathbf d\end{bmatrix}",
+                  [(r"\mathbf h'_1", "h1"), (r"\mathbf h'_2", "h2"), (r"\mathbf s'^P_i", "P_i"),
+                   (r"\mathbf s'^P_j", "P_j")]),
+    "Spherical": (r"\mathbf r_i + \mathbf A_i\mathbf s'^P_i - \mathbf A_j\mathbf s'^P_j - \mathbf r_j",
+                  [(r"\mathbf s'^P_i", "P_i"), (r"\mathbf s'^P_j", "P_j")]),
+    "SphericalSpherical": (r"\mathbf d^T\mathbf d - l^2", [(r"\mathbf s'^P_i", "P_i"), (r"\mathbf s'^P_j", "P_j"),
+                                                          ("l", "l")]),
+}
+
+SPATIAL_DEFINITIONS = (r"\mathbf s_k = \mathbf A_k\mathbf s'_k,\quad \mathbf h_k = \mathbf A_i\mathbf h'_k\ "
+                       r"(\perp \mathbf s_i),\quad \mathbf d = \mathbf r_j + \mathbf A_j\mathbf s'^P_j - \mathbf r_i - "
+                       r"\mathbf A_i\mathbf s'^P_i,\quad \mathbf A_k = \mathbf A(\mathbf p_k)\ \text{(§14.3)}")
+"""What the symbols of :func:`spatial_form` stand for (§14.4)."""
+
+
+def _number(x):
+    x = float(x)
+    return f"{0.0 if abs(x) < 5e-13 else x:.10g}"
+
+
+def _local(value):
+    value = np.atleast_1d(np.asarray(value, dtype=float))
+    if value.size == 1:
+        return _number(value[0])
+    return r"[" + r",\ ".join(_number(x) for x in value) + r"]^T"
+
+
+def _leaves(c):
+    return [c] if not c.parts else [leaf for v in c.part_views() for leaf in _leaves(v)]
+
+
+_TRANSLATIONAL_N1 = (r"\mathbf h_i^T\mathbf h_j", [(r"\mathbf h'_i", "a_i"), (r"\mathbf h'_j", "a_j")])
+
+
+def spatial_form(constraint, definitions=False):
+    """A spatial joint's Φ as §14.4 writes it — in vectors (s_iᵀs_j, s_iᵀd, r_i + A_i s'^P_i − A_j s'^P_j − r_j,
+    the translational joint's h_iᵀh_j, and kinbook's two rows h_1ᵀs_j, h_2ᵀs_j for the book's s̃_i s_j = 0) —
+    part by part, each with its local vectors as numbers; LaTeX (an ``aligned`` block, with a last row saying what
+    the symbols stand for when ``definitions``), or None for a type the book does not write so (drivers, the
+    normalization)."""
+    rows = []
+    for leaf in _leaves(constraint):
+        form = _SPATIAL_FORMS.get(type(leaf).__name__)
+        if form is None:
+            return None
+        if type(leaf).__name__ == "Normal1" and type(getattr(leaf, "owner", None)).__name__ == "Translational":
+            form = _TRANSLATIONAL_N1
+        tex, data = form
+        values = r",\quad ".join(f"{sym} = {_local(getattr(leaf, attr))}" for sym, attr in data)
+        rows.append(rf"\Phi^{{({leaf.label})}} &= {tex}, & {values}")
+    body = r"\\ ".join(rows)
+    if definitions:
+        body += r"\\[2pt] & \text{with } & " + SPATIAL_DEFINITIONS
+    return r"\begin{aligned}" + body + r"\end{aligned}"

@@ -340,14 +340,22 @@ class _Motion(Check):
 
 
 class JointSummary:
-    """A joint's Φ as kinbook writes it (book notation, its bodies' symbols), its value at a configuration, its
-    number of equations and the relative degrees of freedom it leaves (:func:`joint_summary`)."""
+    """A joint's Φ as the book writes it — §14.4's vector form, part by part, its local vectors as numbers
+    (:func:`~kinbook.book.notation.spatial_form`; for a type without one, kinbook's Φ in its bodies' symbols) —,
+    its value at a configuration, its number of equations and the relative degrees of freedom it leaves
+    (:func:`joint_summary`). The polynomial in the Euler parameters is ``mech.derivation(name).Phi``."""
 
     def __init__(self, mech, q, constraint):
+        from .notation import latex, spatial_form
+
         c = mech.constraint(constraint) if isinstance(constraint, str) else constraint
         self.constraint, self.q = c, np.asarray(q, dtype=float)
         self.value = mech.Phi(self.q)[c.rows]
         self.dof = relative_dof(mech, self.q)
+        form = spatial_form(c, definitions=True)
+        if form is not None:
+            self.tex = form
+            return
         labels = _leaf_labels(c)
         head = rf"\Phi^{{({labels[0]})}}" if len(labels) == 1 else (
             r"\begin{bmatrix}" + r"\\ ".join(rf"\Phi^{{({lab})}}" for lab in labels) + r"\end{bmatrix}")

@@ -1,6 +1,8 @@
 """verify's joint tables (notebook 14-4): values checked against geometry and finite differences, and each
 table shown to fail when its input is wrong."""
 
+import re
+
 import numpy as np
 import pytest
 import sympy as sp
@@ -60,6 +62,8 @@ def test_joint_summary_counts_what_geometry_says(name):
     assert html.startswith("<div>\\[") and "$" not in html
     heads = {"s": ["s,3"], "r": ["s,3", "p1,2"], "c": ["p1,2", "p2,2"], "t": ["p1,2", "p2,2", "n1,1"]}[name]
     assert all(f"\\Phi^{{({h})}}" in s.tex for h in heads) and "+" not in s.tex.split("=")[0]
+    # the book's vector form (§14.4), its local vectors as numbers: no polynomial in the Euler parameters
+    assert "e_{0" not in s.tex and "\\mathbf A" in s.tex and not re.search(r"\d\.\d{6,}", s.tex)
 
 
 def test_motion_table_reads_the_rows_a_motion_breaks():

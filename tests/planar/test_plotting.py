@@ -286,12 +286,15 @@ def test_explorer_widget_works_in_degrees_and_shows_the_limit(four_bar):
     box = plotting.explorer(m, values=[1.0, 5.5], static=False)
     slider, status = box.kinbook_slider, box.kinbook_status
     assert (slider.min, slider.max, slider.value) == pytest.approx((np.degrees(1.0), np.degrees(5.5), 135.0))
-    assert "φ₂ = 135°: max|Φ|" in status.value
+    assert "φ₂ = 135°: max|Φ|" in status.value and "(regular)" in status.value
     slider.value = 285.0  # near the dead point: still assembles, Φ_q badly conditioned
     assert "φ₂ = 285°: max|Φ|" in status.value
     slider.value = 300.0  # a jump past the dead point: the limit configuration, and where it is
     assert "does not assemble</b> at φ₂ = 300°" in status.value
     assert abs(_stops_at(status.value) - LIMITS[1]) < 0.01
+    # beside a condition number in the thousands the limit is called near-singular, never "regular"
+    cond = float(re.search(r"cond\(Φ<sub>q</sub>\) = ([0-9.e+]+)", status.value).group(1))
+    assert cond > 1e3 and "(regular)" not in status.value and "near-singular" in status.value
     slider.value = 200.0  # from the limit back into the range
     assert "φ₂ = 200°: max|Φ|" in status.value
 

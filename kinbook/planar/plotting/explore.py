@@ -86,6 +86,18 @@ def _status(mech, q, t):
     return ("max|Φ| < 1e-10" if res < 1e-10 else f"max|Φ| = {res:.2e}"), mech.diagnose(q, t)
 
 
+def _verdict(d, reached):
+    """What the status line calls Φ_q: the diagnosis when Φ_q is singular; "near-singular" where the mechanism
+    stopped short of the value asked for (the driver's dead point is within the last step: the continuation could
+    not get past it) or the condition number has passed 1000 — "regular" there would contradict the number
+    beside it."""
+    if d.singular:
+        return d.kind
+    if not reached:
+        return "near-singular: the driver's dead point"
+    return "near-singular" if d.cond >= 1e3 else "regular"
+
+
 def _live_kernel():
     try:
         from IPython import get_ipython
@@ -247,7 +259,7 @@ def _explorer_widget(mech, axis, values, frames):
         state["t"], state["q"] = at.t, at.q
         res, d = _status(mech, at.q, at.t)
         colour = "#2e7d32" if d.cond < 1e3 else ("#ef6c00" if d.cond < 1e8 else "#c62828")
-        cond = f'<span style="color:{colour}">cond(Φ<sub>q</sub>) = {d.cond:.4g}</span> ({d.kind})'
+        cond = f'<span style="color:{colour}">cond(Φ<sub>q</sub>) = {d.cond:.4g}</span> ({_verdict(d, at.reached)})'
         if at.reached:
             status.value = f"{axis.unicode} = {axis.text(v)}: {res}, {cond}"
         else:
