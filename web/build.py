@@ -46,11 +46,19 @@ MATHJAX_PARTS = ("tex-chtml.js", "input", "output/chtml", "a11y", "sre", "ui", "
 # The page of the live site that opens one notebook (JupyterLite's Notebook interface), from a book page.
 LIVE_NOTEBOOK = "../live/notebooks/index.html?path={name}"
 
-# What the first cell of each live notebook runs: kinbook (and its dependencies: numpy, scipy, sympy and
-# matplotlib from the Pyodide distribution) and ipywidgets for the sliders, from the site's piplite index.
+# What the first cell of each live notebook runs: kinbook and ipywidgets (for the sliders) from the site's piplite
+# index — their dependencies numpy, scipy, sympy and matplotlib are already loaded: web/lite/jupyter-lite.json has
+# the kernel load them while it starts (loadPyodideOptions), in parallel with the kernel's own packages. Then
+# matplotlib's font list, which Pyodide builds anew at each visit: here, quietly, rather than as a red "Matplotlib
+# is building the font cache" box under the chapter's first plot.
 INSTALL_CELL = """\
 # Running in your browser (JupyterLite): this cell installs kinbook and ipywidgets from this site.
-%pip install -q kinbook ipywidgets"""
+%pip install -q kinbook ipywidgets
+import logging
+fonts_log = logging.getLogger("matplotlib.font_manager")
+fonts_log.setLevel(logging.ERROR)
+import matplotlib.font_manager  # matplotlib lists its fonts (once per visit)
+fonts_log.setLevel(logging.NOTSET)"""
 
 LITE_KERNELSPEC = {"name": "python", "display_name": "Python (Pyodide)", "language": "python"}
 

@@ -169,26 +169,39 @@ def watch(page, seen):
     return page
 
 
-@pytest.fixture(scope="session")
-def site():
-    """The built site (make book + make lite) with the Pyodide test fixture put in live/static/pyodide/ and
-    the live site's pyodideUrl pointed at it: a hard-linked copy, so build/site/ itself stays as shipped."""
+PYODIDE_FIXTURE = Path(os.environ.get("KINBOOK_PYODIDE_FIXTURE",
+                                     ROOT / ".venv-web" / "pyodide-fixture" / "pyodide"))
+
+
+def site_with_pyodide_fixture(copy):
+    """Copy the built site (make book + make lite) to ``copy`` with the Pyodide test fixture in live/static/pyodide/
+    and the live site's pyodideUrl pointed at it: hard links, so build/site/ itself stays as shipped. Returns
+    ``copy``, or raises RuntimeError naming what to build first. (Also used by benchmarks/live_site.py.)"""
     if not (SITE / "index.html").exists() or not (SITE / "live" / "index.html").exists():
-        pytest.fail("build/site/ is incomplete: run `make book` and `make lite` (make test-web does)")
-    fixture = Path(os.environ.get("KINBOOK_PYODIDE_FIXTURE", ROOT / ".venv-web" / "pyodide-fixture" / "pyodide"))
-    if not (fixture / "pyodide.js").exists():
-        pytest.fail(f"{fixture} is missing: run tests/web/fixture/prepare.py (make test-web does)")
-    copy = ROOT / "build" / "web" / "test-site"
+        raise RuntimeError("build/site/ is incomplete: run `make book` and `make lite` (make test-web does)")
+    if not (PYODIDE_FIXTURE / "pyodide.js").exists():
+        raise RuntimeError(f"{PYODIDE_FIXTURE} is missing: run tests/web/fixture/prepare.py (make test-web does)")
+    copy = Path(copy)
     if copy.exists():
         shutil.rmtree(copy)
     shutil.copytree(SITE, copy, copy_function=os.link)
-    shutil.copytree(fixture, copy / "live" / "static" / "pyodide", copy_function=os.link)
+    shutil.copytree(PYODIDE_FIXTURE, copy / "live" / "static" / "pyodide", copy_function=os.link)
     config_path = copy / "live" / "jupyter-lite.json"
     config = json.loads(config_path.read_text())
     settings = config["jupyter-config-data"]["litePluginSettings"]["@jupyterlite/pyodide-kernel-extension:kernel"]
     settings["pyodideUrl"] = "./static/pyodide/pyodide.js"
     config_path.unlink()  # a hard link: write a new file, not through the link into build/site/
     config_path.write_text(json.dumps(config, indent=2))
+    return copy
+
+
+@pytest.fixture(scope="session")
+def site():
+    """The built site served from 127.0.0.1 with the Pyodide test fixture (:func:`site_with_pyodide_fixture`)."""
+    try:
+        copy = site_with_pyodide_fixture(ROOT / "build" / "web" / "test-site")
+    except RuntimeError as err:
+        pytest.fail(str(err))
     server = StaticServer(copy)
     yield server
     server.close()
