@@ -130,7 +130,9 @@ _ENTRIES = [
        N_("one term of the reference is absent from the answer"),
        gear=N_("a term of eq. 38 is missing: with a moving carrier k, both wheels turn relative to it, (φ_i − φ_i⁰) "
                "− (φ_k − φ_k⁰)"),
-       accel=N_("a term is missing: r̈^P = r̈ + B s' φ̈ − A s' φ̇² has a tangential and a centripetal part")),
+       accel=N_("a term is missing: r̈^P = r̈ + B s' φ̈ − A s' φ̇² has a tangential and a centripetal part"),
+       normalization=N_("a body's normalization row pᵀp − 1 = 0 has Φ_q = 2pᵀ, ν = 0 and γ = −2ṗᵀṗ: its γ is not "
+                        "zero")),
     _m("swapped_bodies",
        N_("bodies i and j swapped"),
        N_("the joint's roles are not symmetric here: keep body i (the one carrying the axis or the first radius) as "
@@ -182,7 +184,9 @@ _ENTRIES = [
     _m("gamma_sign",
        N_("γ with the wrong sign"),
        N_("γ = −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt; mind the minus sign (the book drops it in one place, erratum "
-           "13.8-gamma-sign); if your Φ row is the negative of the book's, pass it as phi=...")),
+           "13.8-gamma-sign); if your Φ row is the negative of the book's, pass it as phi=..."),
+       spatial=N_("γ = −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt (§14.5), for Table 14.1's rows too: mind the minus sign; if "
+                  "your Φ row is the negative of the reference's, pass it as phi=...")),
     _m("missing_qt_term",
        N_("missing 2Φ_qt q̇"),
        N_("when Φ_q depends on t, γ has the term −2Φ_qt q̇")),
@@ -351,6 +355,9 @@ add_texts({
                         "2dᵀ∂d/∂q, of A(p) = 2[…]); pass your own Φ as phi= if you scaled it"),
     "d.degrees_value": N_("{got} is {expected} rad in degrees"),
     "d.on_body": N_("{what} on body {body} only"),
+    "d.motion_degrees": N_("the motion f(t) − f(0) (its amplitude or its rate) in degrees"),
+    "d.cross_terms": N_("the cross terms (products of one body's velocities with the other's)"),
+    "d.dC_missing": N_("dᵀC_i, the derivative of s_i, is missing: s_i = A_i s'_i depends on p_i too"),
     "d.vanishing": N_("the factor {factor} vanishes at {where}, where your row is zero although {ref} = {value} is "
                       "not"),
     "d.vanishing_jacobian": N_("your row is f(q) × {ref}'s row, and f goes from {lo} to {hi} over the "

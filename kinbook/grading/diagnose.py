@@ -13,6 +13,7 @@ import itertools
 import numpy as np
 
 from . import mistakes as M
+from . import slips
 from ._i18n import Msg
 from .match import same, scale_match, scale_of
 
@@ -464,6 +465,16 @@ def _candidates(target, ex, r, own, expected):
                 if row == pos:
                     V = values[:, ex.data.cols] if q == "Phi_q" else values[:, None]
                     out.append(("book_misprint", f * V, None, erratum))
+        for slip in M.spec_of(c).derived_slips:
+            for row, values, code, detail in slip(target, c, ex.s, ref, q):
+                if row == pos:
+                    V = values[:, ex.data.cols] if q == "Phi_q" else values[:, None]
+                    out.append((code, f * V, Msg("d.dC_missing") if detail == "dC" else None, None))
+    owner = target.owner(r.ref) if r.ref is not None and not isinstance(r.ref, tuple) else None
+    if owner is not None and owner.kind == "normalization" and q != "Phi_q":
+        # pᵀp − 1: γ = −2ṗᵀṗ, nothing of A in it — its zero γ is the term forgotten, not a chain rule
+        out.append(("missing_term", np.zeros_like(expected), Msg("d.missing_term", term="−2ṗᵀṗ"), None))
+        sources = []
     for key, tape, row, factor in sources:
         rules = _rules(target)
         exact = ex.rule_values(key, tape, "exact")
@@ -476,8 +487,16 @@ def _candidates(target, ex, r, own, expected):
             quad = factor * exact["quad"][:, row][:, None]
             qt = factor * exact["qt"][:, row][:, None]
             tt = factor * exact["tt"][:, row][:, None]
-            late.insert(0, ("gamma_sign", -quad + qt + tt, None, "13.8-gamma-sign"))
+            # the book prints γ without its minus sign in §13.8 only: the erratum is cited for planar rows
+            late.insert(0, ("gamma_sign", -quad + qt + tt, None,
+                            "13.8-gamma-sign" if target.kind == "planar" else None))
             out.append(("missing_qt_term", quad + tt, None, None))
+            if key != "own":
+                ncoord = len(target.mech.COORDS)
+                bodies = [[ncoord * (b.number - 1) + k for k in range(ncoord)] for b in owner.bodies]
+                V = slips.cross_term_flipped(tape, row, ex.s, expected, factor, bodies)
+                if V is not None:
+                    out.append(("sign_flip", V, Msg("d.sign_of", what=Msg("d.cross_terms")), None))
             out.append(("missing_tt_term", quad + qt, None, None))
             H = _hdiag(ex, key, tape)
             QD = ex.s.QD

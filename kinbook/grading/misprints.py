@@ -30,8 +30,16 @@ def book_A_of_p(p):
 
     Returns
     -------
-    ndarray, shape (3, 3)
+    ndarray, shape (3, 3) — a sympy Matrix when ``p`` holds symbols (a Φ written with the book's A)
     """
+    if any(isinstance(x, sp.Basic) and not x.is_Number for x in p):
+        e0, e1, e2, e3 = p
+        half = sp.Rational(1, 2)
+        return sp.Matrix([
+            [e0**2 + e1**2 - half, e1 * e2 - e0 * e3, e1 * e3 - e0 * e2],
+            [e1 * e2 - e0 * e3, e0**2 + e2**2 - half, e2 * e3 - e0 * e1],
+            [e1 * e3 - e0 * e2, e2 * e3 - e0 * e1, e0**2 + e3**2 - half],
+        ])
     e0, e1, e2, e3 = np.asarray(p, dtype=float)
     return np.array([
         [e0**2 + e1**2 - 0.5, e1 * e2 - e0 * e3, e1 * e3 - e0 * e2],

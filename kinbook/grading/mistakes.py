@@ -28,8 +28,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import slips
 from ._i18n import Msg
 from .misprints import EX4_PHI8, book_n1_acceleration
+from .slips import book_A_rows, n2_without_dC
 
 __all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "alternative_variants", "contexts_of", "register",
            "length_factors", "book_form", "book_rows"]
@@ -75,6 +77,9 @@ class Spec:
     derived_book : tuple of callables
         ``f(target, c, samples, reference) -> [(quantity, row in c's block, values, erratum)]``: the book's
         misprinted Jacobian entries and γ rows, made from kinbook's own reference values at the samples.
+    derived_slips : tuple of callables
+        ``f(target, c, samples, reference, quantity) -> [(row in c's block, values, code, detail)]``: a student's
+        slips in deriving Φ_q, ν or γ made the same way (n2's dᵀC_i left out).
     """
 
     points: tuple = ()
@@ -90,6 +95,7 @@ class Spec:
     book: tuple = ()
     extra: tuple = ()
     derived_book: tuple = ()
+    derived_slips: tuple = ()
     alternative: object = None
 
 
@@ -130,12 +136,18 @@ def contexts_of(c, quantity=None):
     ctx = list(spec_of(c).context)
     if c.kind == "driver" and "driver" not in ctx:
         ctx.append("driver")
+    if c.kind == "normalization":
+        ctx.append("normalization")
+    chapter = getattr(c, "chapter", None) or ("spatial" if len(getattr(c, "COORDS", ())) == 7 or _is_spatial(c)
+                                              else "planar")
+    if chapter == "spatial":  # the speed and acceleration hints write planar formulas (eqs. 10, 13)
+        ctx.append(chapter)
     if quantity == "nu":
         ctx.append("speed")
     elif quantity == "gamma":
         ctx.append("accel")
-    ctx.append(getattr(c, "chapter", None) or ("spatial" if len(getattr(c, "COORDS", ())) == 7 or
-                                               _is_spatial(c) else "planar"))
+    if chapter != "spatial":
+        ctx.append(chapter)
     return tuple(ctx)
 
 
@@ -276,6 +288,10 @@ def _structural(target, c):
                         if e is not None:
                             yield Variant(code, e, Msg("d.on_body", what=what, body=names[role]),
                                           derived=code == "A_transposed")
+        if spec.frame == "spatial":  # the matrix §14.3 prints for A(p), copied into the joint
+            e = safe(lambda: book_A_rows(c, Q, mech.t))
+            if e is not None:
+                yield from add("book_misprint", e, None, "14.3-A-of-p")
     # the sign of one local coordinate, of a whole A s', of a coordinate term
     for attr, role in spec.points + spec.vectors:
         v = getattr(c, attr, None)
@@ -320,7 +336,8 @@ def _structural(target, c):
         f = c.f
         f0 = f.subs(mech.t, 0)
         for g, detail in ((f * DEG, Msg("d.function_degrees")), (f - f0 + f0 * DEG, Msg("d.constant_degrees",
-                                                                                         name="φ⁰"))):
+                                                                                         name="φ⁰")),
+                          (f0 + (f - f0) * DEG, Msg("d.motion_degrees"))):
             e = safe(lambda g=g: _phi(target, c, f=sp.expand(g)))
             if e is not None:
                 yield from add("degrees", e, detail)
@@ -396,54 +413,9 @@ def _degrees(target, c, attr):
     return _phi(target, c, **{attr: cur * DEG})
 
 
-# ============================================================================================ plausible factors
 def length_factors(c, limit=12):
-    """The lengths of constraint ``c``'s own geometry a student may multiply a row by: the length attributes
-    of its class (the r-r joint's l), the distances between the named points of each of its bodies (a crank's
-    O_A–A) and each named point's distance from its body's origin, then the constraint's own local points
-    (their distances on one body, their norms) — ``[(value, detail Msg)]`` named in the mechanism's notation,
-    without 0, 1 and repeated values, at most ``limit``. None for a constraint without points or lengths."""
-    out = []
-
-    def add(value, detail):
-        try:
-            value = float(value)
-        except (TypeError, ValueError):
-            return
-        if not np.isfinite(value) or value <= 1e-9 or abs(value - 1.0) <= 1e-9:
-            return
-        if any(abs(value - v) <= 1e-9 * value for v, _ in out):
-            return
-        out.append((value, detail))
-
-    spec = spec_of(c)
-    if not (spec.points or spec.vectors or spec.lengths):
-        return out  # a row of angles (a driver, a gear, a normalization): no length of it is plausible
-    names = [b.name for b in getattr(c, "bodies", ())]
-    for attr in spec.lengths:
-        add(getattr(c, attr, None), Msg("d.factor_joint_length", name=attr))
-    for body in getattr(c, "bodies", ()):
-        points = list((getattr(body, "points", None) or {}).items())
-        for k, (a, pa) in enumerate(points):
-            for b, pb in points[k + 1:]:
-                add(np.linalg.norm(np.asarray(pa, float) - np.asarray(pb, float)),
-                    Msg("d.factor_length", a=a, b=b, body=body.name))
-        for a, pa in points:
-            add(np.linalg.norm(np.asarray(pa, float)), Msg("d.factor_radius", point=a, body=body.name))
-    local = []  # the constraint's own local points (s'_i^P …): their distances and their norms
-    for attr, role in spec.points:
-        v = getattr(c, attr, None)
-        if v is not None and role < len(names):
-            try:
-                local.append((attr, role, np.asarray([float(x) for x in v])))
-            except (TypeError, ValueError):  # a symbolic coordinate: no number to try
-                pass
-    for k, (a, role, pa) in enumerate(local):
-        for b, role_b, pb in local[k + 1:]:
-            if role_b == role:
-                add(np.linalg.norm(pa - pb), Msg("d.factor_local_pair", a=a, b=b, body=names[role]))
-        add(np.linalg.norm(pa), Msg("d.factor_local", a=a, body=names[role]))
-    return out[:limit]
+    """The lengths of constraint ``c``'s own geometry a row may be multiplied by (:func:`slips.length_factors`)."""
+    return slips.length_factors(c, spec_of(c), limit)
 
 
 # ============================================================================================ the registry
@@ -468,7 +440,7 @@ def _defaults():
     register(S.Universal, Spec(swap_points=(("P_i", "P_j"),), derived_book=(_book_gamma_n1,)))
     register(S.Revolute, Spec(swap_points=(("P_i", "P_j"),)))
     register(S.Normal1, Spec(derived_book=(_book_gamma_n1,)))
-    register(S.Normal2, Spec(swap_bodies=True))
+    register(S.Normal2, Spec(swap_bodies=True, derived_slips=(n2_without_dC,)))
     register(S.Parallel1, Spec(alternative=_cross_p1))
     register(S.Parallel2, Spec(swap_bodies=True, alternative=_cross_p2))
     register(S.Cylindrical, Spec(swap_bodies=True))

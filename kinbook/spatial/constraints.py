@@ -809,6 +809,7 @@ class SphericalSpherical(Constraint):
     measures = ("length^2",)
     points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
     numbers = ("length",)
+    quantities = {"l": "length"}  # the l that Φ squares (the checkers name l for l²)
     parameters = ("P_i", "P_j", "l")
     kernel = staticmethod(_kernel(_rows_ss))
 

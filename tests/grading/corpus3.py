@@ -222,3 +222,67 @@ def long_cases():
                   {"phi": [phi]}))
     C.append(Case("long-hostile-gamma", "gamma", "s-ss", "c", [hostile_gamma()], False, 0.0, ["malformed"]))
     return C
+
+
+# ------------------------------------------------------------------ the spatial catalogue's gaps (item 7)
+def book_A(p):
+    """A(p) as §14.3 prints it (typed from the text): symmetric, without the factor 2 (erratum 14.3-A-of-p)."""
+    e0, e1, e2, e3 = p
+    h = sp.Rational(1, 2)
+    return sp.Matrix([[e0**2 + e1**2 - h, e1 * e2 - e0 * e3, e1 * e3 - e0 * e2],
+                      [e1 * e2 - e0 * e3, e0**2 + e2**2 - h, e2 * e3 - e0 * e1],
+                      [e1 * e3 - e0 * e2, e2 * e3 - e0 * e1, e0**2 + e3**2 - h]])
+
+
+def _split_cross(gamma, qd_i, qd_j):
+    """γ's cross terms (those with a velocity of each body), by sympy: γ − γ(q̇_j = 0) − γ(q̇_i = 0)."""
+    alone_i = gamma.xreplace({v: 0 for v in qd_j})
+    alone_j = gamma.xreplace({v: 0 for v in qd_i})
+    return sp.expand(gamma - alone_i - alone_j)
+
+
+def spatial_gap_cases():
+    C = []
+
+    def add(id, check, mech, answer, passed, score, mistakes=(), **opts):
+        C.append(Case(id, check, mech, "c", answer, passed, score, list(mistakes), opts))
+
+    qi, qj = corpus2._syms(1), corpus2._syms(2)
+    PI, PJ, AI, AJ = (sp.Matrix(v) for v in (corpus2.PI, corpus2.PJ, corpus2.AI, corpus2.AJ))
+    A_i, A_j = corpus2.A_of(qi[3:]), corpus2.A_of(qj[3:])
+    ri, rj = sp.Matrix(qi[:3]), sp.Matrix(qj[:3])
+    # the book's A(p) inside a spherical joint
+    s3_book = list(ri + book_A(qi[3:]) * PI - rj - book_A(qj[3:]) * PJ)
+    add("gap-book-A-in-spherical", "phi", "s-sph", s3_book, False, 0.0, ["book_misprint"])
+    # Aᵀ on body j only
+    s3_t = list(ri + A_i * PI - rj - A_j.T * PJ)
+    add("gap-A-transposed-body-j-only", "phi", "s-sph", s3_t, False, 0.0, ["A_transposed"])
+    # l for l² in the s-s joint (l = 1.3)
+    d = (sp.Matrix(qj[:3]) + A_j * sp.Matrix([-0.5, 0.2, 0.1])) - (sp.Matrix(qi[:3]) + A_i * sp.Matrix([0.3, -0.1, 0.8]))
+    add("gap-ss-l-for-l-squared", "phi", "s-ss", [(d.T * d)[0] - 1.3], False, 0.0, ["missing_square"])
+    add("gap-ss-right", "phi", "s-ss", [(d.T * d)[0] - 1.69], True, 1.0)
+    # one γ cross-term sign: the n1 joint's 2ṡ_iᵀṡ_j
+    si, sj = A_i * AI, A_j * AJ
+    n1 = (si.T * sj)[0]
+    _, g = corpus2._derive([n1])
+    qdi, qdj = [sp.Symbol("d" + s.name) for s in qi], [sp.Symbol("d" + s.name) for s in qj]
+    cross = _split_cross(g[0], qdi, qdj)
+    assert cross != 0
+    add("gap-n1-gamma-right", "gamma", "s-n1", [g[0]], True, 1.0)
+    add("gap-n1-gamma-cross-term-sign", "gamma", "s-n1", [g[0] - 2 * cross], False, 0.0, ["sign_flip"])
+    # n2 = s_iᵀd: its Jacobian without dᵀC_i (s_i's p_i held constant: only d differentiated)
+    dn = rj + A_j * PJ - ri - A_i * PI
+    frozen = [sp.Symbol(f"f{k}") for k in range(4)]
+    si_frozen = corpus2.A_of(frozen) * AI
+    row = sp.Matrix([(si_frozen.T * dn)[0]]).jacobian(qi + qj).xreplace(dict(zip(frozen, qi[3:])))
+    add("gap-n2-jacobian-without-dC", "jacobian", "s-n2", row, False, None, ["missing_chain_rule"])
+    add("gap-n2-jacobian-right", "jacobian", "s-n2", sp.Matrix([(si.T * dn)[0]]).jacobian(qi + qj), True, 1.0)
+    return C
+
+
+def driver_gap_cases():
+    """The corpus' pendulum driver φ1 = 0.3 + 0.5 sin 4t: its amplitude typed in degrees (0.5 rad = 28.6479°)."""
+    return [Case("gap-driver-amplitude-degrees", "phi", "p-driver", "d", ["phi1 - 0.3 - 28.6479*sin(4*t)"], False,
+                 0.0, ["degrees"]),
+            Case("gap-driver-amplitude-degrees-gamma", "gamma", "p-driver", "d",
+                 [f"-{28.64788975654116 * 16}*sin(4*t)"], False, 0.0, ["degrees"])]

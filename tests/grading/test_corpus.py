@@ -18,7 +18,8 @@ CHECKS = {
 }
 
 CASES = ([(case, corpus.target) for case in corpus.CASES] + [(case, corpus2.target) for case in corpus2.cases()]
-         + [(case, corpus3.target) for case in corpus3.cases() + corpus3.long_cases()])
+         + [(case, corpus3.target) for case in corpus3.cases() + corpus3.long_cases()
+                                                  + corpus3.spatial_gap_cases() + corpus3.driver_gap_cases()])
 
 
 def _run(case, target):
