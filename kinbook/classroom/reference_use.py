@@ -133,8 +133,8 @@ class _Flow:
         self.kb = {}         # name → qualified kinbook name ("kinbook.spatial"), or "" for an object from kinbook
         self.star = False    # ``from kinbook… import *``
         self.own_methods = set()  # method names the notebook's own classes define
-        self.helpers = {}    # name → "methodcaller" / "partial" (operator's and functools')
-        self.callers = {}    # name → method name, for ``methodcaller("symbolic")`` objects
+        self.helpers = {}    # name → "methodcaller", "attrgetter", "partial", "sys", "sys.modules"
+        self.callers = {}    # name → (helper, attribute), for ``methodcaller("symbolic")`` objects
         self.setters = {}    # function name → (globals it assigns, whether it changes an argument in place)
         self.history = None  # the reference use shown as the last output (IPython's ``_``, ``Out``)
         self.unfollowed = None  # the first place where code could assign any variable unseen
@@ -186,13 +186,25 @@ class _Flow:
                 and q.rsplit(".", 1)[-1] in self.calls.functions)
 
     def _caller(self, node):
-        """The method name of a ``methodcaller("name")`` expression (or a name bound to one), or None."""
+        """``(helper, name)`` of a ``methodcaller("name")`` or ``attrgetter("name")`` expression (or of a name bound
+        to one), or None."""
         if isinstance(node, ast.Name):
             return self.callers.get(node.id)
-        if (isinstance(node, ast.Call) and node.args and constant_str(node.args[0]) is not None
-                and (isinstance(node.func, ast.Name) and self.helpers.get(node.func.id) == "methodcaller"
-                     or isinstance(node.func, ast.Attribute) and node.func.attr == "methodcaller")):
-            return constant_str(node.args[0])
+        if isinstance(node, ast.Call) and node.args and constant_str(node.args[0]) is not None:
+            f = node.func
+            helper = self.helpers.get(f.id) if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) \
+                else None
+            if helper in ("methodcaller", "attrgetter"):
+                return helper, constant_str(node.args[0])
+        return None
+
+    def _pending(self, caller, cell):
+        """The description of a methodcaller/attrgetter of the reference, or None."""
+        if caller is None:
+            return None
+        helper, name = caller
+        if name in self.calls.methods or helper == "attrgetter" and name in self.calls.functions:
+            return f"{helper}({name!r}) (cell {cell})"
         return None
 
     # ----------------------------------------------------------------------------------------------- values
@@ -209,9 +221,7 @@ class _Flow:
                     continue
                 name, text = call_name(sub)
                 method = isinstance(sub.func, ast.Attribute)
-                caller = self._caller(sub.func) or self._caller(sub)
-                if caller in self.calls.methods:
-                    pending = pending or f"methodcaller({caller!r}) (cell {cell})"
+                pending = pending or self._pending(self._caller(sub.func) or self._caller(sub), cell)
                 lit = literal_getattr(sub)
                 if lit is not None:
                     if not self.cell_locked and (self.reference_method(lit[0], lit[1])
@@ -227,8 +237,10 @@ class _Flow:
                 if name in DYNAMIC_CALLS and not method:
                     return f"dynamic code ({name}), not followed (cell {cell})"
             elif isinstance(sub, ast.Attribute):
-                if sub.attr in ("__dict__", "__globals__", "__builtins__"):
-                    return f"dynamic code ({sub.attr}), not followed (cell {cell})"
+                if sub.attr in ("__dict__", "__globals__", "__builtins__") or (
+                        sub.attr == "modules" and isinstance(sub.value, ast.Name)
+                        and self.helpers.get(sub.value.id) == "sys"):
+                    return f"dynamic code ({dotted(sub)}), not followed (cell {cell})"
                 if self.cell_locked:
                     continue
                 if self.reference_method(sub.value, sub.attr):
@@ -238,8 +250,9 @@ class _Flow:
             elif isinstance(sub, ast.Name) and isinstance(sub.ctx, ast.Load):
                 if sub.id in self.tainted:
                     return self.tainted[sub.id]
-                if self.callers.get(sub.id) in self.calls.methods:  # a methodcaller, passed on (map(f, …))
-                    pending = pending or f"methodcaller({self.callers[sub.id]!r}) (cell {cell})"
+                pending = pending or self._pending(self.callers.get(sub.id), cell)  # passed on (map(f, …))
+                if self.helpers.get(sub.id) == "sys.modules":
+                    return f"dynamic code (sys.modules), not followed (cell {cell})"
                 if sub.id in self.functions:  # a function or class of the notebook that uses the reference,
                     return self.functions[sub.id]  # passed as a value (map(f, …), A.Phi)
                 if self.history and (sub.id in _HISTORY or _HISTORY_N.match(sub.id)):
@@ -280,7 +293,7 @@ class _Flow:
             self.kb.pop(name, None)
         if isinstance(value, (ast.Name, ast.Attribute)):
             helper = value.id if isinstance(value, ast.Name) else value.attr
-            if helper in ("methodcaller", "partial") or self.helpers.get(helper):
+            if helper in ("methodcaller", "attrgetter", "partial") or self.helpers.get(helper):
                 self.helpers[name] = self.helpers.get(helper, helper)
 
     def effects(self, stmt, cell):
@@ -353,8 +366,11 @@ class _Flow:
                     if alias.name in self.calls.functions and not qual.startswith(_NOT_REFERENCE) \
                             and not self.cell_locked:
                         self.functions[name] = f"{module}.{alias.name} (cell {cell})"
-                if qual in ("operator.methodcaller", "functools.partial") or alias.name in ("operator", "functools"):
+                if qual in ("operator.methodcaller", "operator.attrgetter", "functools.partial") \
+                        or alias.name in ("operator", "functools", "sys"):
                     self.helpers[name] = alias.name.rsplit(".", 1)[-1]
+                if qual == "sys.modules":
+                    self.helpers[name] = "sys.modules"
             return
         if isinstance(stmt, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
             value = stmt.value

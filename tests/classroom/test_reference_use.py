@@ -149,6 +149,12 @@ EVASIONS = [  # (answer, student's cells after the set-up, what is reported)
     ("A", ["def fill(out, v):\n    out[:] = v", "A = np.zeros((3, 3))", "fill(A, ks.A_from_euler(psi, theta, phi))"],
      "ks.A_from_euler() (cell 6)"),
     ("EGt", ["p = np.array([1.0, 0, 0, 0])", "EGt = ks.E(p) @ ks.G(p).T"], "ks.E() (cell 5)"),
+    ("A", ["from operator import attrgetter", "A = attrgetter('A_from_euler')(ks)(psi, theta, phi)"],
+     "attrgetter('A_from_euler') (cell 5)"),
+    ("A", ["import sys", "m = sys.modules['kinbook.spatial']", "A = m.A_from_euler(psi, theta, phi)"],
+     "dynamic code (sys.modules), not followed (cell 5)"),
+    ("A", ["from sys import modules as mods", "A = mods['kinbook.spatial'].A_from_euler(psi, theta, phi)"],
+     "dynamic code (sys.modules), not followed (cell 5)"),
     ("p", [OWN_A + "A = Rz(psi) @ Rx(theta) @ Rz(phi)", "p = ks.p_from_A(A)"], "ks.p_from_A() (cell 5)"),
 ]
 PHI_EVASIONS = [
@@ -198,6 +204,8 @@ INNOCENT = [  # (set-up, answer, cells): look-alikes of the reference that are t
                         "Phi = methodcaller('phi')(J())"]),
     (PHI_SETUP, "Phi", ["Phi = sp.Matrix([x1 - x2 + sp.cos(phi2)])", "print(Phi - mech.symbolic().Phi[0:1, :])"]),
     (PHI_SETUP, "Phi", ["expr = x1 - x2", "Phi = sp.Matrix([sp.diff(expr, x1)])"]),
+    (PHI_SETUP, "Phi", ["from operator import attrgetter", "Phi = sp.Matrix([attrgetter('real')(x1 - x2)])"]),
+    (PHI_SETUP, "Phi", ["import sys", "v = sys.version_info", "Phi = sp.Matrix([x1 - x2])"]),
     (PHI_SETUP, "Phi", ["class J:\n    def phi(self):\n        return sp.Matrix([x1])\n    def both(self):\n"
                         "        return self.phi()", "Phi = J().both()"]),
     # a locked cell of the release that computes with kinbook (data it hands out): the instructor's, not the student's
