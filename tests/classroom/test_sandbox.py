@@ -509,7 +509,7 @@ def test_a_cgroup_v2_hierarchy_is_used_where_its_controllers_are_delegated(tmp_p
     d = group.dirs[""]
     assert os.path.dirname(d) == str(grader) and os.path.basename(d).startswith(f"kinbook-{os.getpid()}-")
     assert (grader / "cgroup.subtree_control").read_text() == "+cpu +memory +pids"
-    assert open(os.path.join(d, "pids.max")).read() == "256" and open(os.path.join(d, "cpu.max")).read() == \
+    assert open(os.path.join(d, "pids.max")).read() == "64" and open(os.path.join(d, "cpu.max")).read() == \
         "100000 100000"
     group.set_memory(123 << 20)
     assert open(os.path.join(d, "memory.max")).read() == str(123 << 20)

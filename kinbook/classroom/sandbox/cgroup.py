@@ -34,9 +34,10 @@ import time
 
 __all__ = ["Cgroup", "create", "unavailable", "machine_memory_mb", "PIDS_MAX"]
 
-#: Tasks (processes and threads) one sandbox may have: its own few processes and their threads (about 30)
-#: leave room for a notebook's, not for a fork bomb.
-PIDS_MAX = 256
+#: Tasks (processes and threads) one sandbox may have: a run takes about 22 (bubblewrap, the zygote, the worker,
+#: the launcher, the kernel and their threads); the rest is room for a notebook's own, not for a fork bomb — nor
+#: for many processes each holding descriptors whose kernel buffers no memory limit counts.
+PIDS_MAX = 64
 #: One CPU per sandbox (quota per period, in microseconds).
 CPU_PERIOD_US = 100_000
 CPU_QUOTA_US = 100_000
