@@ -34,7 +34,7 @@ _SUBMODULES = ("examples", "exercises", "planar", "spatial", "grading", "core", 
 
 
 _FROM = {"load": "files", "loads": "files", "notebook_setup": "book.display", "try_it": "book.tryits",
-         "reveal": "book.tryits"}
+         "reveal": "book.tryits", "another": "book.tryits"}
 _RENAMED = {"notebook_setup": "setup"}
 
 

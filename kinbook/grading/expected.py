@@ -29,7 +29,8 @@ from .misprints import book_A_of_p
 __all__ = ["Expected", "stack", "A", "point_position", "point_velocity", "point_acceleration", "A_from_axes",
            "local_components", "global_components", "spatial_point_position", "A_from_euler", "euler_from_A",
            "omega_from_euler_rates", "A_from_p", "p_from_A", "p_from_axis_angle", "omega_from_p_dot",
-           "coordinates", "rack_displacement", "planet_speed", "speed", "rr_jacobian_phi", "rr_gamma"]
+           "coordinates", "rack_displacement", "planet_speed", "speed", "rr_jacobian_phi", "rr_gamma",
+           "constraint_values"]
 
 DEG = 180.0 / np.pi
 
@@ -451,3 +452,76 @@ def omega_from_p_dot(p, p_dot, frame="global"):
         ("factor_2_missing", 0.5 * w, None, None),
         ("sign_flip", 2 * M @ pd, Msg("x.E_column"), None),
     ], kind="vector", context=("omega", "vector"))
+
+
+# ============================================================================================ constraints, as numbers
+def constraint_values(constraint, quantity, q, qd=None, t=0.0, rows=None):
+    """Φ, Φ_q, ν or γ of one constraint at one state, as numbers (an exercise asking for the values at a test
+    configuration), with the catalogue's mistakes of that constraint carried through to the same numbers:
+    each structural variant (:func:`kinbook.grading.mistakes.structural`: points exchanged, Aᵀ for A, A left
+    out, a local coordinate's sign, the book's misprints …), the derivation slips (A treated as constant, A for
+    B), γ's sign, the book's +(Φ_q q̇)_q q̇.
+
+    Parameters
+    ----------
+    constraint : Constraint
+        One constraint of a mechanism (``mech.constraint("B")``).
+    quantity : {"Phi", "Phi_q", "nu", "gamma"}
+    q, qd : array_like, shape (n,)
+        The state (``qd`` for γ).
+    rows : int or sequence of int, optional
+        Which of the constraint's rows (0-based; default all; an int gives one number).
+
+    Returns
+    -------
+    Expected
+        ``value``: the mechanism's own numbers (Φ_q with all n columns); variants as above.
+    """
+    from ..errors import InputError
+    from . import mistakes as M
+    from .target import target_for
+
+    if quantity not in ("Phi", "Phi_q", "nu", "gamma"):
+        raise InputError(f"`quantity` must be 'Phi', 'Phi_q', 'nu' or 'gamma', got {quantity!r}")
+    target = target_for(constraint)
+    mech = target.mech
+    q = _v(q)
+    qd = np.zeros_like(q) if qd is None else _v(qd)
+    Q, QD, T = q[None, :], qd[None, :], np.array([float(t)])
+    block = list(range(len(target.block(constraint)))) if rows is None else rows  # an int: one number
+    sl = slice(constraint.rows.start, constraint.rows.stop)
+    own = {"Phi": lambda: mech.Phi(q, t)[sl], "Phi_q": lambda: mech.Phi_q(q, t)[sl],
+           "nu": lambda: mech.nu(q, t)[sl], "gamma": lambda: mech.gamma(q, qd, t)[sl]}[quantity]()
+    value = _v(own)[block]
+
+    def pick(d):
+        return _v(d[quantity][0])[block]
+
+    out = Expected(value, kind="value", context=M.contexts_of(constraint, quantity))
+    if quantity in ("nu", "gamma"):  # the whole right-hand side negated first: a variant that negates a
+        out.add(f"{quantity}_sign", -value)  # one-row constraint (a vector's sign) is the same number
+    for v in M.structural(target, constraint):
+        try:
+            d = target.tape(v.exprs).derived(Q, QD, T)
+        except Exception:  # noqa: BLE001 — a variant the tape cannot evaluate is not offered
+            continue
+        out.add(v.code, pick(d), v.detail, v.erratum)
+    if quantity in ("Phi_q", "gamma"):
+        tape = target.tape(list(target.symbolic_phi()))
+        if target.kind == "planar":
+            rules = [("chain_dropped", "missing_chain_rule", ()), ("A_for_B", "A_for_B", ())]
+        else:  # A(p) differentiated as a constant: the p columns frozen
+            p_cols = [7 * b + k for b in range(target.n // 7) for k in range(3, 7)]
+            rules = [("exact", "missing_chain_rule", tuple(p_cols))]
+        for rule, code, frozen in rules:
+            d = tape.derived(Q, QD, T, rule=rule, frozen=frozen)
+            out.add(code, pick(d))
+        if quantity == "gamma":
+            d = tape.derived(Q, QD, T, parts=True)
+            printed = None if target.kind == "spatial" else "13.8-gamma-sign"
+            out.add("gamma_sign", _v(-d["quad"][0] + d["qt"][0] + d["tt"][0])[block], None, printed)
+            out.add("missing_qt_term", _v(d["quad"][0] + d["tt"][0])[block])
+            out.add("missing_tt_term", _v(d["quad"][0] + d["qt"][0])[block])
+    if quantity == "nu":
+        out.add("nu_missing", np.zeros_like(value))
+    return out

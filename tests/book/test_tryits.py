@@ -62,3 +62,51 @@ def test_notebooks_and_registry_agree():
                 assert not clash, f"{id_}: pasting the worked answer would rebind {sorted(clash)}"
                 used[id_] = notebook
     assert sorted(used) == sorted(TRY_ITS), f"registered but not in a notebook: {sorted(set(TRY_ITS) - set(used))}"
+
+
+@pytest.mark.parametrize("item", [i for i in TRY_ITS.values() if i.ranges], ids=[k for k, i in TRY_ITS.items() if i.ranges])
+def test_another_draws_fresh_data_checked_and_revealed_the_same_way(item):
+    """kb.another: the same k gives the same data (seeded), other data than the notebook's; the variant's worked
+    answer passes, the notebook's answer is named as the answer for other data, kb.reveal shows the variant's
+    data; k = 0 goes back to the notebook."""
+    from kinbook.book.tryits import another, reveal, try_it
+
+    try:
+        seen = []
+        for k in (1, 2):
+            v = another(item.id, k)
+            assert repr(v.data) != repr(item.data) and repr(another(item.id, k).data) == repr(v.data)
+            assert str(v.seed) in repr(v) and item.stated(v.data) in repr(v)
+            result = try_it(item.id, item.reference_answer(v.data))
+            assert result.passed, (v.data, result)
+            if item.reference_answer(v.data) is not None:
+                old = try_it(item.id, item.reference_answer())
+                assert not old.passed
+            shown = reveal(item.id)
+            assert shown.code.splitlines()[0] == item.solution_code(v.data).splitlines()[0]
+            seen.append(v.data)
+        assert repr(seen[0]) != repr(seen[1])
+    finally:
+        another(item.id, 0)
+    assert try_it(item.id, item.reference_answer()).passed
+
+
+def test_another_draws_the_next_variant_and_refuses_a_bad_k():
+    from kinbook.book.tryits import another
+    from kinbook.errors import InputError
+
+    try:
+        first, second = another("13-5/try-3"), another("13-5/try-3")
+        assert (first.k, second.k) == (1, 2)
+        with pytest.raises(InputError, match="k must be a whole number"):
+            another("13-5/try-3", -1)
+        assert "no other data" in repr(another("13-5/try-1"))
+    finally:
+        another("13-5/try-3", 0)
+
+
+def test_a_copied_printed_answer_is_named_other_data():
+    from kinbook.book.tryits import get
+
+    r = get("13-3/try-1").check(["x1 - x2 + cos(phi2)", "y1 - y2 + sin(phi2)"])   # the book's crank, printed above
+    assert r.mistakes == ["wrong_data"] and "printed above" in r.messages[0]

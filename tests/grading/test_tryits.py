@@ -6,6 +6,7 @@ Then every graded part of every exercise notebook (ex01–ex12, as the grader re
 re-run with the wrong answers generated from kinbook's reference (tests/grading/generated.py): none passes,
 and at most 1 in 10 gets only the generic "wrong value" (the figure is printed)."""
 
+import numpy as np
 import pytest
 
 from .generated import exercise_parts, tryit_parts, wrong_answers
@@ -32,12 +33,56 @@ def test_a_typical_wrong_answer_is_named(t, answer, code):
 
 
 def test_at_most_one_in_ten_wrong_answers_gets_the_generic_wrong_value():
-    generic = 0
+    generic, per = 0, {}
     for t, answer, _ in WRONG:
         r = t.check(answer)
         generic += r.mistakes == ["wrong_value"]
+        per.setdefault(t.id, [0, 0])[0] += 1
+        per[t.id][1] += r.mistakes == ["wrong_value"]
+    chapter = [t for t in TRY_ITS if t.id[0].isdigit()]
+    print(f"\n{len(WRONG)} typed wrong answers over {len(TRY_ITS)} try-its and exercise parts "
+          f"({len({t.id for t in chapter})} chapter try-its): {generic} with only the generic 'wrong value' "
+          f"({generic / len(WRONG):.1%}); per try-it (wrong, generic): {per}")
     assert len(WRONG) >= 80
+    assert all(n >= 3 for id_, (n, _) in per.items() if id_[0].isdigit()), per
     assert generic / len(WRONG) <= 0.1, generic
+
+
+def _reference_strings(value):
+    """How the reference's numbers would be written (6 digits as the checkers print them, 4 and 3 decimals)."""
+    from kinbook.grading.report import fmt
+
+    out = set()
+    for x in np.ravel(np.asarray(getattr(value, "value", value), float)):
+        if abs(x) > 1e-6:
+            out |= {fmt(x), f"{x:.4f}", f"{x:.3f}", f"{x:.2f}"}
+    return {s for s in out if len(s.lstrip("-")) >= 5}
+
+
+def test_a_wrong_number_never_shows_the_reference():
+    """A try-it's feedback on a wrong number says which entries are off and how, never the value itself (in English
+    and in Spanish, headline, notes and per-entry rows)."""
+    from kinbook.grading import set_language
+
+    numeric = [(t, a, c) for t, a, c in WRONG if t.id[0].isdigit() and getattr(t, "item", None) is not None
+               and "reveal" in __import__("inspect").signature(t.item.checker).parameters]
+    assert len(numeric) >= 60
+    leaks = []
+    try:
+        for lang in ("en", "es"):
+            set_language(lang)
+            for t, answer, _ in numeric:
+                r = t.check(answer)
+                text = "\n".join(r.messages + [row.message for row in r.rows])
+                ref = t.item.target(**t.item.data)
+                if t.id == "13-3/try-2":  # the solution of the Newton problem
+                    ref = ref.solution()
+                shown = [s for s in _reference_strings(ref) if s in text]
+                if shown:
+                    leaks.append((t.id, lang, shown, text[:200]))
+    finally:
+        set_language("en")
+    assert not leaks, leaks
 
 
 def test_every_exercise_part_and_try_it_with_generated_wrong_answers_is_named():

@@ -103,3 +103,66 @@ def test_rotation_against_kinbook_spatial():
     assert check_rotation(A, expected).passed
     p = rotations.p_from_A(expected)
     assert check_euler_parameters(-np.asarray(p), p).passed
+
+
+@pytest.mark.parametrize("kw, arg", [
+    ({"rtol": -1}, "rtol"), ({"rtol": 0.5}, "rtol"), ({"rtol": "1e-3"}, "rtol"), ({"rtol": np.nan}, "rtol"),
+    ({"atol": -1e-9}, "atol"), ({"atol": 10.0}, "atol"), ({"atol": True}, "atol"),
+    ({"periodic": [5]}, "periodic"), ({"periodic": [0.5]}, "periodic"), ({"periodic": [[0, 1]]}, "periodic"),
+    ({"periodic": [True]}, "periodic"), ({"angles": "yes"}, "angles"), ({"reveal": "no"}, "reveal"),
+    ({"name": 3}, "name"),
+])
+def test_a_bad_option_is_refused_naming_it(kw, arg):
+    """A tolerance that would fail a right answer ("expected 1, got 1") or pass a wrong one, an index numpy would
+    trip on: an InputError naming the argument, never a verdict."""
+    from kinbook.errors import InputError
+
+    with pytest.raises(InputError, match=f"`{arg}`"):
+        check_value([1.0, 2.0], [1.0, 2.0], **kw)
+
+
+@pytest.mark.parametrize("call, arg", [
+    (lambda: check_rotation(A, A, angles=(1.0, 2.0)), "angles"),
+    (lambda: check_rotation(A, A, angles=(0.1, 0.2, 0.3)), "angles"),
+    (lambda: check_rotation(A, A[:2]), "expected"),
+    (lambda: check_euler_parameters(P, P, axis=AXIS), "axis"),
+    (lambda: check_euler_parameters(P, P, axis=[0, 0, 0], angle=1.0), "axis"),
+    (lambda: check_euler_parameters(P, P, axis=AXIS, angle="x"), "angle"),
+    (lambda: check_euler_parameters(P, P, axis=[1, 0, 0], angle=CHI), "axis"),
+    (lambda: check_euler_parameters(P, 2 * P), "expected"),
+    (lambda: check_value(1.0, np.nan), "expected"),
+    (lambda: check_value(1.0, "abc"), "expected"),
+])
+def test_rotation_and_parameter_options_are_validated(call, arg):
+    from kinbook.errors import InputError
+
+    with pytest.raises(InputError, match=f"`{arg}`"):
+        call()
+
+
+def test_periodic_compares_angles_modulo_a_turn_and_numeric_strings_are_read():
+    assert check_value([1.0, 0.5 - 2 * np.pi], [1.0, 0.5], periodic=[1]).passed
+    assert check_value([1.0, 0.5 - 2 * np.pi], [1.0, 0.5], periodic=[False, True]).passed
+    assert not check_value([1.0, 0.5 - 2 * np.pi], [1.0, 0.5]).passed
+    assert check_value(["pi/4", "-0.5"], [np.pi / 4, -0.5]).passed
+    r = check_value({"a": 1}, [1.0])
+    assert r.mistakes == ["malformed"] and "dict" in r.messages[0]
+
+
+def test_without_reveal_a_wrong_number_is_described_never_given():
+    exp = [1.2345678, -2.3456789]
+    for wrong in ([1.0, -2.3456789], [-1.2345678, 2.3456789], [12.0, -2.3456789], [0.0, 0.0]):
+        r = check_value(wrong, exp, reveal=False)
+        text = " ".join(r.messages + [row.message for row in r.rows])
+        assert not r.passed and "1.23457" not in text and "2.34568" not in text, text
+    r = check_value([1.0, -2.3456789], exp, reveal=False)
+    assert "value[1] is too small" in r.messages[0] and r.rows[1].status == "ok"
+    assert "wrong sign" in check_value(-1.5, 1.5, reveal=False).messages[0]
+    assert "expected [1.23457, -2.34568]" in check_value([1.0, -2.3456789], exp).messages[0]   # exercises: reveal
+
+
+def test_multiplied_by_only_for_a_plausible_factor_of_a_nonzero_value():
+    assert check_value([0.0, 0.0], [3.0, 4.0]).mistakes == ["wrong_value"]          # v of a fixed point: not "× 0"
+    assert check_value([1.37 * 3, 1.37 * 4], [3.0, 4.0]).mistakes == ["wrong_value"]   # not a plausible factor
+    assert check_value([1.5, 2.0], [3.0, 4.0]).mistakes == ["scaled"]
+    assert check_value([3000.0, 4000.0], [3.0, 4.0]).mistakes == ["scaled"]

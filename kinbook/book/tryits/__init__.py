@@ -108,7 +108,7 @@ class TryIt:
         from ...grading.result import CheckResult
 
         others = list(self.lookalikes(**data)) if self.lookalikes is not None else []
-        if data != self.data:
+        if not _same(data, self.data):
             others.append((self.target(**self.data), _msg("x.other_data", what=both_texts("notebook_data"))))
         for target, detail in others:
             try:
@@ -131,7 +131,7 @@ class TryIt:
         seen = []
         if self.lookalikes is not None:
             seen += list(self.lookalikes(**data))
-        if data != self.data:  # a variant: the notebook's own answer is a lookalike too
+        if not _same(data, self.data):  # a variant: the notebook's own answer is a lookalike too
             other = self.target(**self.data)
             seen.append((np.asarray(getattr(other, "value", other), float), _msg("x.other_data",
                                                                                 what=both_texts("notebook_data"))))
@@ -177,6 +177,12 @@ class TryIt:
         if callable(self.statement):
             return self.statement(**data)
         return self.statement.format(**{k: _literal(v) for k, v in data.items()})
+
+
+def _same(a, b):
+    """Two sets of data are the same (arrays compared by value)."""
+    return a.keys() == b.keys() and all(np.array_equal(np.asarray(a[k], dtype=object), np.asarray(b[k], dtype=object))
+                                        for k in a)
 
 
 def _literal(v):
@@ -339,7 +345,7 @@ class Revealed:
 
     def _head(self):
         head = _tr("worked", title=_title(self.item))
-        if self.data != self.item.data:
+        if not _same(self.data, self.item.data):
             head += " " + _tr("with_data", data=self.item.stated(self.data))
         if self.uses:
             head += ". " + _tr("uses", names=", ".join(self.uses))
@@ -459,7 +465,7 @@ def another(id, k=None):
     for attempt in range(MAX_DRAWS):
         seed = seed_from(f"try-it:{id}:{k}:{attempt}")
         data = draw(item.ranges, item.data, seed)
-        if data == item.data:  # the notebook's own data: not a new variant
+        if _same(data, item.data):  # the notebook's own data: not a new variant
             continue
         try:
             item.target(**data)

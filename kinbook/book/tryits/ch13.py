@@ -131,17 +131,20 @@ register("13-2/try-1", "my_Phi", check_phi,
          statement="(ξ_1^A, η_1^A) = ({xi_1A}, {eta_1A}), (ξ_2^A, η_2^A) = ({xi_2A}, {eta_2A})")
 
 
-def _s13_2_2(*, xi_Q1):
-    # r_1^P = (x1, y1), r_1^Q = (x1 + ξ cos φ1, y1 + ξ sin φ1), r_2^P = (x2, y2); eq. 26 with O → Q
-    my_Phi_t = [f"(x1 - (x1 + {xi_Q1}*cos(phi1)))*(y2 - y1) - (y1 - (y1 + {xi_Q1}*sin(phi1)))*(x2 - x1)",
+def _s13_2_2(*, xi_Q1, eta_Q1):
+    # r_1^P = (x1, y1), r_1^Q = r_1 + A_1 s'^Q_1, r_2^P = (x2, y2); eq. 26 with O → Q
+    xQ = f"(x1 + {xi_Q1}*cos(phi1) - {eta_Q1}*sin(phi1))"
+    yQ = f"(y1 + {xi_Q1}*sin(phi1) + {eta_Q1}*cos(phi1))"
+    my_Phi_t = [f"(x1 - {xQ})*(y2 - y1) - (y1 - {yQ})*(x2 - x1)",
                 "phi1 - phi2 - (0 - 0)"]
     return my_Phi_t
 
 
 register("13-2/try-2", "my_Phi_t", check_phi,
-         lambda xi_Q1: _two_bodies("guide and slider", {"P": (0, 0), "Q": (xi_Q1, 0)}, {"P": (0, 0)},
-                                   Translational("b1", "b2", axis=("P", "Q"), point_j="P")), _s13_2_2,
-         data={"xi_Q1": 1}, ranges={"xi_Q1": (0.5, 2.5)}, statement="Q_1 = ({xi_Q1}, 0)")
+         lambda xi_Q1, eta_Q1: _two_bodies("guide and slider", {"P": (0, 0), "Q": (xi_Q1, eta_Q1)}, {"P": (0, 0)},
+                                           Translational("b1", "b2", axis=("P", "Q"), point_j="P")), _s13_2_2,
+         data={"xi_Q1": 1, "eta_Q1": 0}, ranges={"xi_Q1": (0.5, 2.5), "eta_Q1": (-0.8, 0.8)},
+         statement="Q_1 = ({xi_Q1}, {eta_Q1})")
 
 
 def _s13_2_3(*, xi_B, eta_B, xi_C, eta_C, l_BC):

@@ -116,7 +116,7 @@ register("14-2/try-2", "my_omega_body", check_value,
          statement=_ANG_TEXT + ", ψ̇ = {psi_rate}, θ̇ = {theta_rate}, φ̇ = {phi_rate} rad/s")
 
 _A_14_2_3 = np.array([[2.0, -1.0, 2.0], [2.0, 2.0, -1.0], [-1.0, 2.0, 2.0]]) / 3
-_A_GIVEN = [_A_14_2_3] + [np.round(R.A_from_euler(*np.radians(a)), 4) for a in
+_A_GIVEN = [_A_14_2_3] + [np.round(R.A_from_euler(*np.radians(a)), 6) for a in
                           ([30, 50, 70], [-120, 35, 20], [150, 110, -45], [60, 140, 160], [-30, 80, -100],
                            [100, 20, 10], [-80, 65, 135])]
 
@@ -130,7 +130,7 @@ def _s14_2_3(*, A_given):
 
 register("14-2/try-3", "my_angles", check_value, lambda A_given: X.euler_from_A(A_given), _s14_2_3,
          {"name": "(ψ, θ, φ)"}, data={"A_given": _A_14_2_3}, ranges={"A_given": _A_GIVEN},
-         statement=lambda A_given: "A_given = " + np.array2string(np.asarray(A_given), precision=4,
+         statement=lambda A_given: "A_given = " + np.array2string(np.asarray(A_given), precision=6,
                                                                  separator=", ").replace("\n", ""),
          explanation={"en": "the third row of A = A_z(ψ) A_x(θ) A_z(φ) is [sin θ sin φ, sin θ cos φ, cos θ] and its "
                             "third column [sin ψ sin θ, −cos ψ sin θ, cos θ]. arccos gives θ in [0, π]; the triple "
