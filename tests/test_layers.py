@@ -36,9 +36,6 @@ face's ``__init__`` has run before any module of the package and imports only th
 lazily, and taking one of them from below would be an upward import."""
 
 PENDING_CIRCLES = {
-    frozenset({"kinbook.book.tryits", "kinbook.book.tryits.ch13", "kinbook.book.tryits.ch14"}):
-        "the try-it registry loads its chapter modules, which import `register` from it; H25a is rewriting "
-        "the try-its (issue 25): the registry belongs in a module of its own",
 }
 """Circles known and being removed in another open branch; the test fails when one of them is gone (strike it)."""
 

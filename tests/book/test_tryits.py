@@ -100,7 +100,7 @@ def test_another_draws_the_next_variant_and_refuses_a_bad_k():
         assert (first.k, second.k) == (1, 2)
         with pytest.raises(InputError, match="k must be a whole number"):
             another("13-5/try-3", -1)
-        assert "no other data" in repr(another("13-5/try-1"))
+        assert "no other data" in repr(another("14-5/try-2"))
     finally:
         another("13-5/try-3", 0)
 

@@ -30,7 +30,7 @@ from ...planar import (
     Translational,
     point_velocity,
 )
-from . import register
+from .registry import register
 
 __all__ = []  # nothing to import from here: importing the module registers its try-its
 
@@ -172,13 +172,16 @@ def _example(name):
 
 
 @lru_cache(maxsize=64)
-def _edited(name, body, point, value):
-    """The book's example ``name`` with one local point of one body moved (a try-it's own data)."""
+def _edited(name, body, point, value, *more):
+    """The book's example ``name`` with local points of its bodies moved (a try-it's own data): ``body, point,
+    value`` and as many more triples."""
     data = tomllib.loads(examples.path(name).read_text(encoding="utf-8"))
+    edits = [(body, point, value)] + [tuple(more[k:k + 3]) for k in range(0, len(more), 3)]
     for b in data["bodies"]:
-        if b["name"] == body:
-            b["points"][point] = [float(v) for v in value]
-    return build(data, source=f"{name} with {body}.{point} = {list(value)}")
+        for who, where, at in edits:
+            if b["name"] == who:
+                b["points"][where] = [float(v) for v in at]
+    return build(data, source=f"{name} with " + ", ".join(f"{w}.{p} = {list(v)}" for w, p, v in edits))
 
 
 @lru_cache(maxsize=64)
@@ -350,24 +353,31 @@ register("13-4/try-3", "my_dx", check_value, _t13_4_3, _s13_4_3, {"name": "rack 
 
 
 # ------------------------------------------------------------------------------------------------- 13-5
-def _s13_5_1():
-    my_J1 = [["1", "0", "0", "-1", "0", "-sin(phi2)"],
-             ["0", "1", "0", "0", "-1", "cos(phi2)"]]
+def _s13_5_1(*, xi_OA, eta_OA):
+    # Φ_4 = x1 − (x2 + ξ cos φ2 − η sin φ2), Φ_5 = y1 − (y2 + ξ sin φ2 + η cos φ2), the ground at its origin
+    my_J1 = [["1", "0", "0", "-1", "0", f"{xi_OA}*sin(phi2) + {eta_OA}*cos(phi2)"],
+             ["0", "1", "0", "0", "-1", f"-{xi_OA}*cos(phi2) + {eta_OA}*sin(phi2)"]]
     return my_J1
 
 
-register("13-5/try-1", "my_J1", check_jacobian, lambda: _example("ch13_example3")[0].constraint("1"), _s13_5_1)
+register("13-5/try-1", "my_J1", check_jacobian,
+         lambda xi_OA, eta_OA: _edited("ch13_example3", "crank", "OA", (xi_OA, eta_OA)).constraint("1"), _s13_5_1,
+         data={"xi_OA": -1, "eta_OA": 0}, ranges={"xi_OA": (-1.4, -0.6), "eta_OA": (-0.4, 0.4)},
+         statement="(ξ_2^{{O_A}}, η_2^{{O_A}}) = ({xi_OA}, {eta_OA})")
 
 
-def _s13_5_2():
-    dx = "(x2 + cos(phi2) - x3 + 1.5*cos(phi3))"      # x^A − x^B
-    dy = "(y2 + sin(phi2) - y3 + 1.5*sin(phi3))"      # y^A − y^B
-    my_J8 = [[f"2*{dx}", f"2*{dy}", f"-2*{dx}*sin(phi2) + 2*{dy}*cos(phi2)",
-              f"-2*{dx}", f"-2*{dy}", f"-3*{dx}*sin(phi3) + 3*{dy}*cos(phi3)"]]
+def _s13_5_2(*, xi_A, xi_B):
+    dx = f"(x2 + {xi_A}*cos(phi2) - x3 - {xi_B}*cos(phi3))"      # x^A − x^B
+    dy = f"(y2 + {xi_A}*sin(phi2) - y3 - {xi_B}*sin(phi3))"      # y^A − y^B
+    my_J8 = [[f"2*{dx}", f"2*{dy}", f"-2*{xi_A}*{dx}*sin(phi2) + 2*{xi_A}*{dy}*cos(phi2)",
+              f"-2*{dx}", f"-2*{dy}", f"2*{xi_B}*{dx}*sin(phi3) - 2*{xi_B}*{dy}*cos(phi3)"]]
     return my_J8
 
 
-register("13-5/try-2", "my_J8", check_jacobian, lambda: _example("ch13_example3")[0].constraint("3"), _s13_5_2)
+register("13-5/try-2", "my_J8", check_jacobian,
+         lambda xi_A, xi_B: _edited("ch13_example3", "crank", "A", (xi_A, 0), "rocker", "B", (xi_B, 0)).constraint("3"),
+         _s13_5_2, data={"xi_A": 1, "xi_B": -1.5}, ranges={"xi_A": (0.8, 1.3), "xi_B": (-1.9, -1.2)},
+         statement="ξ_2^A = {xi_A}, ξ_3^B = {xi_B} (η = 0)")
 
 
 def _s13_5_3(mech, *, t_J):

@@ -8,7 +8,7 @@ from ...grading import check_euler_parameters, check_gamma, check_jacobian, chec
 from ...grading import expected as X
 from ...spatial import A_from_p
 from ...spatial import rotations as R
-from . import register
+from .registry import register
 
 __all__ = []  # nothing to import from here: importing the module registers its try-its
 
@@ -227,13 +227,13 @@ register("14-4/try-1", "my_Phi_s", check_phi, _t14_4_1, _s14_4_1, data={"s_i_P":
          statement="s'_i^P = {s_i_P}, s'_j^P = {s_j_P}")
 
 
-def _s14_4_2():
+def _s14_4_2(*, vec_i, vec_j):
     import sympy as sp
 
     from ...spatial import E, a_bar
 
     par_i, par_j = sp.Matrix(sp.symbols("e01 e11 e21 e31", real=True)), sp.Matrix(sp.symbols("e02 e12 e22 e32", real=True))
-    loc_i, loc_j = sp.Matrix([0, 0, 1]), sp.Matrix([1, 0, 0])
+    loc_i, loc_j = sp.Matrix(vec_i), sp.Matrix(vec_j)
     dAa_i = 2 * (E(par_i) * a_bar(loc_i) + loc_i * par_i.T)            # ∂(A_i loc_i)/∂par_i
     dAa_j = 2 * (E(par_j) * a_bar(loc_j) + loc_j * par_j.T)
     glob_i, glob_j = A_from_p(par_i) * loc_i, A_from_p(par_j) * loc_j
@@ -241,18 +241,21 @@ def _s14_4_2():
     return my_Phi_q_n1
 
 
-def _t14_4_2():
+def _t14_4_2(vec_i, vec_j):
     from ...spatial import Normal1
 
-    return _two_spatial_bodies({"O": (0, 0, 0), "C": (1.2, 0, 0), "B": (1.2, 0, 1.0)},
-                               {"O": (0, 0, 0), "C": (0.5, 0, 0), "B": (1.5, 0, 0)},
+    C_i, C_j = np.array([1.2, 0, 0]), np.array([0.5, 0, 0])
+    return _two_spatial_bodies({"O": (0, 0, 0), "C": tuple(C_i), "B": tuple(C_i + vec_i)},
+                               {"O": (0, 0, 0), "C": tuple(C_j), "B": tuple(C_j + vec_j)},
                                Normal1("i", "j", vector_i=["C", "B"], vector_j=["C", "B"], name="n1"))
 
 
-register("14-4/try-2", "my_Phi_q_n1", check_jacobian, _t14_4_2, _s14_4_2)
+_VECTORS = [[0, 0, 1], [1, 0, 0], [0, 1, 0], [1, 1, 0], [0, 2, 1], [1, 0, -1]]
+register("14-4/try-2", "my_Phi_q_n1", check_jacobian, _t14_4_2, _s14_4_2, data={"vec_i": [0, 0, 1], "vec_j": [1, 0, 0]},
+         ranges={"vec_i": _VECTORS, "vec_j": _VECTORS}, statement="s'_i = {vec_i}, s'_j = {vec_j}")
 
 
-def _s14_4_3():
+def _s14_4_3(*, P_i):
     import sympy as sp
 
     from ...spatial import skew
@@ -261,20 +264,23 @@ def _s14_4_3():
     rot_1, rot_2 = A_from_p(list(sym_i[3:])), A_from_p(list(sym_j[3:]))
     axis_i, axis_j = sp.Matrix([0, 0, sp.Rational(4, 5)]), sp.Matrix([0, 0, sp.Rational(1, 2)])
     cross_in_i = skew(list(axis_i)) * rot_1.T * rot_2 * axis_j            # s_i × s_j in body i's components: row 3 ≡ 0
-    ball_rows = sp.Matrix(sym_i[:3]) + rot_1 * sp.Matrix([sp.Rational(6, 5), 0, 0]) - sp.Matrix(sym_j[:3])
+    ball_rows = sp.Matrix(sym_i[:3]) + rot_1 * sp.Matrix(P_i) - sp.Matrix(sym_j[:3])
     my_Phi_r = ball_rows.col_join(cross_in_i[:2, :])
     return my_Phi_r
 
 
-def _t14_4_3():
+def _t14_4_3(P_i):
     from ...spatial import Revolute
 
-    return _two_spatial_bodies({"O": (0, 0, 0), "P": (1.2, 0, 0), "Q": (1.2, 0, 0.8)},
+    P = np.array(P_i, float)
+    return _two_spatial_bodies({"O": (0, 0, 0), "P": tuple(P), "Q": tuple(P + [0, 0, 0.8])},
                                {"P": (0, 0, 0), "T": (1.4, 0, 0), "U": (1.4, 0, 0.5)},
                                Revolute("i", "j", point="P", axis_i=["P", "Q"], axis_j=["T", "U"], name="r"))
 
 
-register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3,
+register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3, data={"P_i": [1.2, 0, 0]},
+         ranges={"P_i": [[1.2, 0, 0], [0.5, 0.5, 0], [1, 0, 0.3], [0, 1.5, 0], [0.8, -0.4, 0.2]]},
+         statement="P at {P_i} on body i (s'_i, s'_j along ζ as above)",
          explanation={"en": "the checker accepts the two rows although they are not kinbook's h_1ᵀs_j, h_2ᵀs_j letter "
                             "for letter: with s'_i along ζ, kinbook's h'_1 = η and h'_2 = −ξ, so these rows are "
                             "kinbook's rows times a constant (−0.8 here): the same constraint. That is the idea of "
