@@ -295,6 +295,10 @@ _hints_for(
     accel=N_("in r̈^P = r̈ + B s' φ̈ − A s' φ̇² (eq. 13) B goes with φ̈ and A with φ̇²"))
 _hints_for(
     "swapped_entries",
+    accel=N_("the right numbers in the wrong places: x comes before y, and each row of γ belongs to the row of Φ it "
+             "comes from (a revolute joint's x row, then its y row)"),
+    speed=N_("the right numbers in the wrong places: x comes before y, and each row of ν belongs to the row of Φ it "
+             "comes from"),
     angles=N_("the z-x-z angles come in the order of the turns: ψ (about z), θ (about the line of nodes), φ (about ζ)"),
     vector=N_("the right numbers in the wrong places: a vector's components come in the order x, y(, z)"),
     value=N_("the right numbers in the wrong places: check which entry each number belongs to"))

@@ -202,7 +202,7 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
     if quantity == "Phi_q" and own is None:
         _factored_rows(target, m)
     if own is None and quantity in ("nu", "gamma"):
-        _exchanged_rows(target, m)
+        _exchanged_rows(target, m, quantity)
     result = report.derived_result(target, quantity, m, data, rtol, notes=notes,
                                    extra_codes=["transposed"] if data.transposed else [])
     if symbolic and A.kind == "symbolic":
@@ -223,7 +223,7 @@ def _factored_rows(target, m):
             r.detail = Msg("d.jacobian_of", c=fmt(c), ref=target.label(r.ref))
 
 
-def _exchanged_rows(target, m):
+def _exchanged_rows(target, m, quantity):
     """Rows of ν and γ are tied to the rows of Φ they come from: the right rows in each other's places (sin and
     cos exchanged between the x and y rows of γ) are a mistake of those rows — named as exchanged, no credit —
     not the half-credit "rows out of the book's order" of a Φ (issue 25). Φ_q keeps that half credit: its rows
@@ -235,7 +235,7 @@ def _exchanged_rows(target, m):
             other = r.ref
             r.status, r.code, r.score, r.ref = "wrong", "swapped_entries", 0.0, r.k
             r.detail = Msg("d.row_of", other=target.label(other), row=target.label(r.k))
-            r.context = M.contexts_of(target.owner(r.k))
+            r.context = M.contexts_of(target.owner(r.k), quantity)
 
 
 def _own(target, phi, quantity, data, rtol, notes):

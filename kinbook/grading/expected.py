@@ -36,7 +36,7 @@ DEG = 180.0 / np.pi
 
 add_texts({
     "x.term_in": N_("the sign of the term {term} in {row}"),
-    "x.other_data": N_("{what}"),
+    "x.other_data": N_("this is {what}"),
     "x.frame_r": N_("r is already in global components: only s' is turned by A"),
     "x.rates": N_("φ̈ and φ̇² exchanged (the slip of the book's example 6)"),
     "x.relative": N_("this is the speed relative to the carrier, φ̇_j − φ̇_k; the question asks for the absolute one"),

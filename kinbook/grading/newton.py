@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError, KinbookError
-from ..i18n import N_
+from ..i18n import N_, Np_
 from ._i18n import Msg, add_texts
 from .report import fmt, hints
 from .result import CheckResult, RowResult
@@ -36,6 +36,8 @@ add_texts({
     "n.step_chord": N_("Φ_q of the guess kept for every step (evaluate it at q_{j})"),
     "n.step_time": N_("Φ and Φ_q evaluated at t = {t0}, not at the question's t"),
     "n.step_degrees": N_("the angles of q_{k} in degrees"),
+    "n.steps_off": Np_("wrong: {n} of your {total} steps is not a Newton–Raphson step",
+                       "wrong: {n} of your {total} steps are not Newton–Raphson steps"),
     "n.first_bad": N_("step {k} (q_{j} → q_{k}): {why}"),
     "n.not_converged": N_("after {k} steps max |Φ(q_{k})| = {res}: not converged yet"),
     "n.other_mode": N_("your loop converged, but to the other assembly mode, not the one the guess leads to"),
@@ -123,6 +125,8 @@ def check_iterates(answer, problem, *, tol=1e-8, rtol=1e-6, reveal=False, name=N
             first_bad = (j, code, why)
     if first_bad is not None:
         j, code, why = first_bad
+        bad = sum(1 for r in rows if r.status != "ok")
+        notes.append(Msg("n.steps_off", n=bad, total=len(rows)))
         notes.append(Msg("n.first_bad", k=j + 1, j=j, why=why))
         codes.append(code)
     last = a[-1]

@@ -22,7 +22,7 @@ import numbers
 import numpy as np
 
 from ..errors import InputError
-from ..i18n import N_
+from ..i18n import N_, Np_
 from ._i18n import Msg, add_texts
 from .expected import DEG, Expected
 from .misprints import book_A_of_p
@@ -38,8 +38,10 @@ _PLAUSIBLE = (2.0, 0.5, -2.0, -0.5, np.pi, 1 / np.pi, 2 * np.pi, 1 / (2 * np.pi)
 _MAX_RTOL = 0.1
 
 add_texts({
-    "v.off_head": N_("wrong: {k} of {n} entries are off — {entries}"),
+    "v.off_head": Np_("wrong: {n} of {total} entries is off — {entries}",
+                      "wrong: {n} of {total} entries are off — {entries}"),
     "v.off_scalar": N_("wrong: your value {how}"),
+    "v.off_count": N_("wrong: {k} of {n} entries are off (the table says how)"),
     "v.entry_how": N_("{where} {how}"),
     "v.more": N_("and {k} more"),
     "v.too_large": N_("is too large"),
@@ -366,11 +368,14 @@ def _head(a, e, rtol, atol, per, name, reveal):
     if e.size == 1:
         return [Msg("v.off_scalar", how=_how(a.ravel()[0], e.ravel()[0], per.ravel()[0], rtol, atol, scale))]
     wrong = [idx for idx in np.ndindex(e.shape) if err[idx] > atol + rtol * scale]
-    shown = [Msg("v.entry_how", where=_indexed(name, idx), how=_how(a[idx], e[idx], per[idx], rtol, atol, scale))
-             for idx in wrong[:6]]
-    if len(wrong) > 6:
-        shown.append(Msg("v.more", k=len(wrong) - 6))
-    head = Msg("v.off_head", k=len(wrong), n=e.size, entries=shown)
+    if len(wrong) > 3 and e.size <= 64:  # the table below says how each one is off
+        head = Msg("v.off_count", k=len(wrong), n=e.size)
+    else:
+        shown = [Msg("v.entry_how", where=_indexed(name, idx), how=_how(a[idx], e[idx], per[idx], rtol, atol, scale))
+                 for idx in wrong[:6]]
+        if len(wrong) > 6:
+            shown.append(Msg("v.more", k=len(wrong) - 6))
+        head = Msg("v.off_head", n=len(wrong), total=e.size, entries=shown)
     if e.ndim == 1 and e.size in (2, 3) and not per.any():
         na, ne = np.linalg.norm(a), np.linalg.norm(e)
         if ne > 0 and na > 0:

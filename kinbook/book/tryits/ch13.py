@@ -248,8 +248,8 @@ def _s13_3_3(q1, *, xi_C, eta_C):
 
 def _l13_3_3(xi_C, eta_C):
     m1, q1 = _example("ch13_example1")
-    return [(m1.point_position(q1, b, p), _printed(f"the position of {p} printed above", f"la posición de {p} "
-                                                                                          "impresa arriba"))
+    return [(m1.point_position(q1, b, p), _printed(f"the position of {p}, printed above", f"la posición de {p}, "
+                                                                                           "impresa arriba"))
             for b, p in (("crank", "A"), ("rocker", "B"), ("coupler", "B"))]
 
 
@@ -442,10 +442,10 @@ def _t13_6_2(d_D):
     v = point_velocity(qd[6:8], q[8], qd[8], [1.5 - d_D, 0.0])    # O_B is at ξ_3 = 1.5, B at −1.5
     vB = m.point_velocity(q, qd, "rocker", "B")
     return X.speed(float(np.linalg.norm(v)), others=[
-        ("wrong_data", float(np.linalg.norm(vB)), _printed("|v_B| printed above", "|v_B| impresa arriba")),
-        ("wrong_data", d_D * abs(qd[5]), _printed("the crank's φ̇_2 used: D is on the rocker, which turns at φ̇_3",
-                                                  "se usó φ̇_2 de la manivela: D está en el balancín, que gira a "
-                                                  "φ̇_3"))])
+        ("wrong_data", float(np.linalg.norm(vB)), _printed("|v_B|, printed above", "|v_B|, impresa arriba")),
+        ("wrong_data", d_D * abs(qd[5]), _printed("the speed with the crank's φ̇_2: D is on the rocker, which turns at φ̇_3",
+                                                  "la celeridad con el φ̇_2 de la manivela: D está en el balancín, "
+                                                  "que gira a φ̇_3"))])
 
 
 register("13-6/try-2", "my_speed_D", check_value, _t13_6_2, _s13_6_2, {"name": "|v_D| (m/s)"},
@@ -464,9 +464,9 @@ def _l13_6(which):
     def lookalikes(**_):
         m, q, qd, qdd = _ex3_motion()
         if which == "v":
-            return [(m.point_velocity(q, qd, "rocker", "B"), _printed("v_B printed above", "v_B impresa arriba"))]
-        return [(m.point_acceleration(q, qd, qdd, "rocker", "B"), _printed("a_B printed above",
-                                                                          "a_B impresa arriba"))]
+            return [(m.point_velocity(q, qd, "rocker", "B"), _printed("v_B, printed above", "v_B, impresa arriba"))]
+        return [(m.point_acceleration(q, qd, qdd, "rocker", "B"), _printed("a_B, printed above",
+                                                                          "a_B, impresa arriba"))]
     return lookalikes
 
 

@@ -255,7 +255,7 @@ register("14-4/try-2", "my_Phi_q_n1", check_jacobian, _t14_4_2, _s14_4_2, data={
          ranges={"vec_i": _VECTORS, "vec_j": _VECTORS}, statement="s'_i = {vec_i}, s'_j = {vec_j}")
 
 
-def _s14_4_3(*, P_i):
+def _s14_4_3(*, P_hinge):
     import sympy as sp
 
     from ...spatial import skew
@@ -264,23 +264,23 @@ def _s14_4_3(*, P_i):
     rot_1, rot_2 = A_from_p(list(sym_i[3:])), A_from_p(list(sym_j[3:]))
     axis_i, axis_j = sp.Matrix([0, 0, sp.Rational(4, 5)]), sp.Matrix([0, 0, sp.Rational(1, 2)])
     cross_in_i = skew(list(axis_i)) * rot_1.T * rot_2 * axis_j            # s_i × s_j in body i's components: row 3 ≡ 0
-    ball_rows = sp.Matrix(sym_i[:3]) + rot_1 * sp.Matrix(P_i) - sp.Matrix(sym_j[:3])
+    ball_rows = sp.Matrix(sym_i[:3]) + rot_1 * sp.Matrix(P_hinge) - sp.Matrix(sym_j[:3])
     my_Phi_r = ball_rows.col_join(cross_in_i[:2, :])
     return my_Phi_r
 
 
-def _t14_4_3(P_i):
+def _t14_4_3(P_hinge):
     from ...spatial import Revolute
 
-    P = np.array(P_i, float)
+    P = np.array(P_hinge, float)
     return _two_spatial_bodies({"O": (0, 0, 0), "P": tuple(P), "Q": tuple(P + [0, 0, 0.8])},
                                {"P": (0, 0, 0), "T": (1.4, 0, 0), "U": (1.4, 0, 0.5)},
                                Revolute("i", "j", point="P", axis_i=["P", "Q"], axis_j=["T", "U"], name="r"))
 
 
-register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3, data={"P_i": [1.2, 0, 0]},
-         ranges={"P_i": [[1.2, 0, 0], [0.5, 0.5, 0], [1, 0, 0.3], [0, 1.5, 0], [0.8, -0.4, 0.2]]},
-         statement="P at {P_i} on body i (s'_i, s'_j along ζ as above)",
+register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3, data={"P_hinge": [1.2, 0, 0]},
+         ranges={"P_hinge": [[1.2, 0, 0], [0.5, 0.5, 0], [1, 0, 0.3], [0, 1.5, 0], [0.8, -0.4, 0.2]]},
+         statement="P at {P_hinge} on body i (s'_i, s'_j along ζ as above)",
          explanation={"en": "the checker accepts the two rows although they are not kinbook's h_1ᵀs_j, h_2ᵀs_j letter "
                             "for letter: with s'_i along ζ, kinbook's h'_1 = η and h'_2 = −ξ, so these rows are "
                             "kinbook's rows times a constant (−0.8 here): the same constraint. That is the idea of "

@@ -244,8 +244,8 @@ _TEXT = {
     "no_variants": {"en": "{title} has no other data to draw: its data is the notebook's.",
                     "es": "{title} no tiene otros datos que sortear: sus datos son los del cuaderno."},
     "with_data": {"en": "for the data {data}", "es": "para los datos {data}"},
-    "notebook_data": {"en": "this is the answer for the notebook's data, not for this variant's",
-                      "es": "esta es la respuesta para los datos del cuaderno, no para los de esta variante"},
+    "notebook_data": {"en": "the answer for the notebook's data, not for this variant's",
+                      "es": "la respuesta para los datos del cuaderno, no para los de esta variante"},
     "why": {"en": "Why", "es": "Por qué"},
 }
 
