@@ -42,28 +42,42 @@ def shown_answer(value):
         return "(this answer cannot be shown)"
 
 
-def _assigns(code, name):
-    """Whether ``code`` binds ``name`` at its top level (assignment, augmented or annotated, for, with, import, def)."""
+#: Beyond this much code in a submission, where an answer was assigned is looked up by a plain pattern, not parsed
+#: (the grader's time stays bounded on a notebook of 8 MB of code; the feedback then shows less, nothing else).
+MAX_PARSED_CHARS = 300_000
+
+
+def _bound(code, parse):
+    """The names ``code`` binds or changes at any level (assignment, augmented or annotated, item or attribute
+    assignment, for, :=, import, def, class), or None when it is not parsed (``parse`` False, or it does not parse)."""
+    if not parse:
+        return None
     try:
         tree = ast.parse(code)
     except (SyntaxError, ValueError, RecursionError, MemoryError):
-        return re.search(rf"(?m)^\s*{re.escape(name)}\s*(\[.*\])?\s*[+\-*/@]?=", code) is not None
+        return None
+    names = set()
     for node in ast.walk(tree):
-        targets = []
-        if isinstance(node, ast.Assign):
-            targets = node.targets
-        elif isinstance(node, (ast.AugAssign, ast.AnnAssign, ast.For, ast.NamedExpr)):
-            targets = [node.target]
-        elif isinstance(node, (ast.FunctionDef, ast.ClassDef)) and node.name == name:
-            return True
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            names.add(node.name)
         elif isinstance(node, (ast.Import, ast.ImportFrom)):
-            if any((a.asname or a.name.split(".")[0]) == name for a in node.names):
-                return True
-        for t in targets:
-            for sub in ast.walk(t):
-                if isinstance(sub, ast.Name) and sub.id == name:
-                    return True
-    return False
+            names.update((a.asname or a.name.split(".")[0]) for a in node.names)
+        elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            names.add(node.id)
+        elif isinstance(node, (ast.Subscript, ast.Attribute)) and isinstance(node.ctx, ast.Store):
+            base = node.value  # A[k] = …, A.x = …: the cell changes A
+            while isinstance(base, (ast.Subscript, ast.Attribute)):
+                base = base.value
+            if isinstance(base, ast.Name):
+                names.add(base.id)
+    return names
+
+
+def _assigns(code, names, name):
+    """Whether a cell (its code, and the names it binds or None) assigns ``name``."""
+    if names is not None:
+        return name in names
+    return re.search(rf"(?m)^\s*{re.escape(name)}\s*(\[.*\])?\s*[+\-*/@]?=", code) is not None
 
 
 def _first_line(text):
@@ -74,12 +88,15 @@ def _first_line(text):
     return ""
 
 
-def answer_cell(cells, name):
+def answer_cell(cells, name, bound=None):
     """Where ``name`` was last assigned, as the student sees the notebook: ``"cell 7 of 12 (after “(a) …”)"``,
-    a newline, then the cell's code (bounded); "" when no cell assigns it."""
+    a newline, then the cell's code (bounded); "" when no cell assigns it. ``bound``: each cell's bound names, as
+    :func:`describe` computes them once for every part."""
+    if bound is None:
+        bound = _bindings(cells)
     found = None
     for i, c in enumerate(cells):
-        if c.get("cell_type") == "code" and _assigns(c.get("source", ""), name):
+        if c.get("cell_type") == "code" and _assigns(c.get("source", ""), bound[i], name):
             found = i
     if found is None:
         return ""
@@ -90,6 +107,11 @@ def answer_cell(cells, name):
             break
     where = f"cell {found + 1} of {len(cells)}" + (f" (after “{heading}”)" if heading else "")
     return where + "\n" + _clip(cells[found].get("source", ""), MAX_CELL_CHARS)
+
+
+def _bindings(cells):
+    parse = sum(len(c.get("source", "")) for c in cells if c.get("cell_type") == "code") <= MAX_PARSED_CHARS
+    return [_bound(c.get("source", ""), parse) if c.get("cell_type") == "code" else None for c in cells]
 
 
 def mistake_rows(result):
@@ -112,11 +134,12 @@ def mistake_rows(result):
 def describe(grades, parts, decoded, cells):
     """Fill each grade's ``answer`` and ``cell`` (in place) from the decoded answers and the submission's cells."""
     by_name = {p.name: p for p in parts}
+    bound = _bindings(cells)
     for g in grades:
         p = by_name.get(g.part)
         if p is None:
             continue
         if p.answer in decoded:
             g.answer = shown_answer(decoded[p.answer])
-        g.cell = answer_cell(cells, p.answer)
+        g.cell = answer_cell(cells, p.answer, bound)
     return grades

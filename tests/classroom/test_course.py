@@ -245,3 +245,19 @@ def test_a_roster_file_is_checked(tmp_path):
     f.write_text("student\nana/../x\n")
     with pytest.raises(GradingError, match="row 2: the id 'ana/../x' is not a safe file name"):
         read_roster(f)
+
+
+def test_the_cell_an_answer_was_assigned_in():
+    from kinbook.classroom.answers import MAX_PARSED_CHARS, answer_cell
+
+    cells = [{"cell_type": "markdown", "source": "**(a)** Φ of joint 1, in `Phi`."},
+             {"cell_type": "code", "source": "Phi = [1]"},
+             {"cell_type": "code", "source": "for k in range(1):\n    Phi[k] = 2"},
+             {"cell_type": "markdown", "source": "**(b)**"},
+             {"cell_type": "code", "source": "p = (q := 3)\nimport numpy as np"}]
+    assert answer_cell(cells, "Phi") == "cell 3 of 5 (after “**(a)** Φ of joint 1, in `Phi`.”)\nfor k in range(1):\n" \
+                                        "    Phi[k] = 2"
+    assert answer_cell(cells, "q").startswith("cell 5 of 5 (after “**(b)**”)") and answer_cell(cells, "zz") == ""
+    big = [{"cell_type": "code", "source": "x = 1\n" * (MAX_PARSED_CHARS // 6 + 1)}, {"cell_type": "code",
+                                                                                     "source": "Phi = 2"}]
+    assert answer_cell(big, "Phi") == "cell 2 of 2\nPhi = 2"  # past the parsing budget: found by its pattern
