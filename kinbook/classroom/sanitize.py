@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 
-__all__ = ["clean", "csv_field", "clean_result", "BIDI_CONTROLS"]
+__all__ = ["clean", "clean_lines", "csv_field", "clean_result", "BIDI_CONTROLS", "MULTILINE"]
 
 #: Bidirectional formatting characters.
 BIDI_CONTROLS = frozenset("\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
@@ -61,6 +61,21 @@ def clean(text, limit=None):
     return text
 
 
+def clean_lines(text, limit=None):
+    """:func:`clean` line by line, the newlines kept: for text shown as lines in a page (a student's answer, the code
+    of their cell), never printed to a terminal nor written to a CSV field as such."""
+    text = text if isinstance(text, str) else str(text)
+    text = "\n".join(clean(line) for line in text.split("\n"))
+    if limit is not None and len(text) > limit:
+        text = text[:max(0, limit - 1)] + "…"
+    return text
+
+
+#: Fields of a result holding several lines (the student's answer and cell, the checker's own HTML): cleaned line by
+#: line, so that a feedback page shows them as lines.
+MULTILINE = frozenset({"answer", "cell", "html"})
+
+
 def csv_field(value):
     """A CSV field that no spreadsheet reads as a formula or splits into rows."""
     text = clean(value)
@@ -71,8 +86,8 @@ def clean_result(result):
     """A :class:`~kinbook.classroom.results.SubmissionResult` whose text fields (and its parts') are
     :func:`clean`."""
     def fix(obj):
-        changes = {f.name: clean(getattr(obj, f.name)) for f in dataclasses.fields(obj)
-                   if isinstance(getattr(obj, f.name), str)}
+        changes = {f.name: (clean_lines if f.name in MULTILINE else clean)(getattr(obj, f.name))
+                   for f in dataclasses.fields(obj) if isinstance(getattr(obj, f.name), str)}
         return dataclasses.replace(obj, **changes)
 
     out = fix(result)

@@ -261,3 +261,11 @@ def test_the_cell_an_answer_was_assigned_in():
     big = [{"cell_type": "code", "source": "x = 1\n" * (MAX_PARSED_CHARS // 6 + 1)}, {"cell_type": "code",
                                                                                      "source": "Phi = 2"}]
     assert answer_cell(big, "Phi") == "cell 2 of 2\nPhi = 2"  # past the parsing budget: found by its pattern
+
+
+def test_multiline_fields_keep_their_lines_and_lose_their_escapes():
+    from kinbook.classroom.sanitize import clean_result
+
+    r = clean_result(result("ana", 4, 2, answer="[x1 - x2]\n[y1 \x1b[2J- y2]\u202e"))
+    assert r.parts[0].answer == "[x1 - x2]\n[y1 \\x1b[2J- y2]\\u202e"   # one row a line; escapes made visible
+    assert clean_result(result("ana", 4, 2)).parts[0].message == "msg a"

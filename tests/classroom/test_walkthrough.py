@@ -148,7 +148,8 @@ def term(tmp_path_factory, monkeypatch_module):
                     cache[key] = expected_parts(source, values, nb)
                 expected[ex, s] = cache[key]
             z.writestr(".DS_Store", b"\x00\x00\x00\x01Bud1")
-            stranger = plant(ex, "stranger", source, student_parameters(source, STRANGER))
+            values = student_parameters(source, STRANGER)
+            stranger = plant(ex, STRANGER if values else None, source, values)
             z.writestr(f"strangerx_{STRANGER}_60000_{ex}.ipynb", json.dumps(stranger))
     out, err = run_walkthrough(course)
     assert main(["report", "-g", str(course / "graded"), "-o", str(course / "report-csv"), "--format", "csv"]) == 0
@@ -323,4 +324,5 @@ def test_feedback_is_one_folder_per_student(term):
     assert "nothing was handed in" in missing
     wrong = (course / "feedback" / "s06" / f"{EX01}.html").read_text(encoding="utf-8")
     assert "+ A2 * sp.Matrix([-1, 0])" in wrong                        # the student's own cell, as they wrote it
+    assert "<pre>[x1 - x2 - cos(phi2)]\n[y1 - y2 - sin(phi2)]</pre>" in wrong  # their answer, one row a line
     assert "COPIER" not in wrong and "identical" not in (course / "feedback" / COPIER / f"{EX11}.html").read_text()
