@@ -13,6 +13,8 @@ import pytest  # noqa: E402
 
 import kinbook  # noqa: E402
 
+from .mechanisms import cam_follower  # noqa: E402
+
 DOC = Path(__file__).resolve().parent.parent / "docs" / "extending.md"
 
 
@@ -43,34 +45,7 @@ def test_the_tutorial_runs_and_its_joint_works_everywhere(tutorial):
 def test_the_file_block_declares_the_same_joint(tutorial):
     pytest.importorskip("kinbook.core.reader", reason="functions written as text need the safe reader")
     (table,) = _blocks("toml")
-    head = """
-    [[bodies]]
-    name = "ground"
-    points = { O = [0, 0], G = [0, 1] }
-    [[bodies]]
-    name = "cam"
-    points = { O = [0, 0] }
-    [[bodies]]
-    name = "follower"
-    points = { R = [0, 0] }
-    q0 = [0, 2.5, 0]
-    [[constraints]]
-    type = "ground"
-    body = "ground"
-    [[constraints]]
-    type = "revolute"
-    i = "ground"
-    j = "cam"
-    point = "O"
-    [[constraints]]
-    type = "translational"
-    i = "ground"
-    j = "follower"
-    axis = ["O", "G"]
-    point_j = "R"
-    """
-    tail = '[[constraints]]\ntype = "driver"\nbody = "cam"\ncoordinate = "phi"\nf = "t"\n'
-    m = kinbook.loads(head.replace("\n    ", "\n") + table + tail)
+    m = kinbook.loads(cam_follower(table))
     assert isinstance(m.constraints[3], tutorial["CamFollower"])
     q = m.solve_position(0.3)
     assert np.isclose(q[7], 2 + np.sin(0.3) / 2)

@@ -17,6 +17,8 @@ import sympy as sp
 
 import kinbook
 
+from ..mechanisms import pendulum
+
 # ------------------------------------------------------------------------------------------ extra mechanisms
 GEARS = """
 [mechanism]
@@ -99,30 +101,7 @@ coordinate = "phi"
 f = "10*t"
 """
 
-PENDULUM = """
-[mechanism]
-name = "pendulum"
-[[bodies]]
-name = "ground"
-points = { O = [0, 0] }
-[[bodies]]
-name = "bar"
-q0 = [1, 0, 0]
-points = { O = [-1, 0] }
-[[constraints]]
-type = "ground"
-body = "ground"
-[[constraints]]
-type = "revolute"
-i = "ground"
-j = "bar"
-point = "O"
-[[constraints]]
-type = "driver"
-body = "bar"
-coordinate = "phi"
-f = "sin(10*t)"
-"""
+PENDULUM = pendulum(1, "sin(10*t)")
 
 _MECHS = {}
 

@@ -1,5 +1,8 @@
-"""docs/mechanism-files.md quotes what each mistake in a file gets: the quotes must be what kinbook says."""
+"""docs/mechanism-files.md quotes what each mistake in a file gets: the quotes must be what kinbook says; its two
+tables of constraint types are the registry (every type a file may name, its class and its keys)."""
 
+import inspect
+import re
 from pathlib import Path
 
 import pytest
@@ -40,3 +43,45 @@ def test_the_documented_message_is_the_real_one(old, new, quote):
     with pytest.raises(MechanismFileError) as info:
         kinbook.loads(BASE.replace(old, new, 1), source="fourbar.toml")
     assert str(info.value).startswith("fourbar.toml: ") and quote in str(info.value)
+
+
+# ------------------------------------------------------------------------------------------ the type tables
+def type_tables():
+    """docs/mechanism-files.md's two tables of constraint types (planar, then spatial): {type: (class name, keys
+    it names, rows or None)}."""
+    tables, rows = [], None
+    for line in DOC.splitlines():
+        if line.startswith("| `type` |"):
+            header = [c.strip().split()[0].strip("`") for c in line.strip("|").split("|")]
+            rows = {}
+            tables.append(rows)
+            continue
+        if rows is None or not line.startswith("|"):
+            rows = None
+            continue
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if cells[0].startswith("`"):
+            entry = dict(zip(header, cells))
+            n = entry.get("rows")
+            keys = set(re.findall(r"`(\w+)`", re.sub(r"\([^)]*\)", "", entry["keys"])))  # not the remarks' words
+            rows[entry["type"].strip("`")] = (entry["class"].strip("`"), keys, int(n) if n else None)
+    return tables
+
+
+@pytest.mark.parametrize("chapter", ["planar", "spatial"])
+def test_the_type_tables_are_the_registry(chapter):
+    from kinbook import planar, spatial  # noqa: F401  (registering their types)
+    from kinbook.core.registry import constraint_types
+
+    planar_table, spatial_table = type_tables()
+    table = {"planar": planar_table, "spatial": spatial_table}[chapter]
+    types = {name: cls for name, cls in constraint_types(chapter).items()
+             if cls.in_files and cls.__module__.startswith("kinbook.")}  # not a test's own types
+    assert sorted(table) == sorted(types)
+    for name, (class_name, keys, n_eq) in table.items():
+        cls = types[name]
+        assert class_name == cls.__name__, name
+        accepted = set(inspect.signature(cls).parameters) - {"name"}
+        implied = {k for alias in keys & set(cls.aliases) for k in cls.aliases[alias]}
+        assert keys <= accepted and accepted - keys <= implied, (name, sorted(accepted - keys - implied))
+        assert n_eq in (None, cls.n_eq), name

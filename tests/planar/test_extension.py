@@ -14,6 +14,8 @@ from kinbook import planar  # noqa: E402
 from kinbook.grading import check_gamma, check_jacobian, check_phi  # noqa: E402
 from kinbook.planar import plotting  # noqa: E402
 
+from ..mechanisms import cam_follower  # noqa: E402
+
 
 class Cam(planar.Constraint):
     """Harmonic cam and roller follower: the roller centre R (body j) stays on the pitch curve of the cam
@@ -32,33 +34,7 @@ class Cam(planar.Constraint):
         return [sp.sqrt(d.dot(d)) - self.base - self.lift * sp.cos(sp.atan2(d[1], d[0]))]
 
 
-FILE = """
-[mechanism]
-name = "cam"
-[[bodies]]
-name = "ground"
-points = { O = [0, 0], G = [0, 1] }
-[[bodies]]
-name = "cam"
-points = { O = [0, 0] }
-[[bodies]]
-name = "follower"
-points = { R = [0, 0], T = [0, 1] }
-q0 = [0, 2.5, 0]
-[[constraints]]
-type = "ground"
-body = "ground"
-[[constraints]]
-type = "revolute"
-i = "ground"
-j = "cam"
-point = "O"
-[[constraints]]
-type = "translational"
-i = "ground"
-j = "follower"
-axis = ["O", "G"]
-point_j = "R"
+FILE = cam_follower("""
 [[constraints]]
 type = "harmonic-cam"
 i = "cam"
@@ -67,12 +43,7 @@ roller = "R"
 base = 2
 lift = 0.5
 name = "cf"
-[[constraints]]
-type = "driver"
-body = "cam"
-coordinate = "phi"
-f = "t"
-"""
+""")
 BASE, LIFT = 2.0, 0.5
 
 
