@@ -4,6 +4,7 @@ over-long ids, an nbformat-4.4 notebook)."""
 
 import csv
 import os
+import re
 
 import pytest
 
@@ -148,9 +149,11 @@ def test_monkeypatching_the_checkers_in_the_notebook_changes_nothing(batch):
 def test_reading_the_source_is_refused(batch):
     p = parts(batch, "read_source")
     assert p["revolute"].status == "missing-answer"
-    assert p["revolute"].message.startswith("`Phi_OA` is not assigned: cell 4 (“import os, glob, kinbook”), under "
-                                            "“**(a)** Φ of revolute joint 1, in `Phi_OA`.” raised PermissionError: "
-                                            "kinbook sandbox: opening")
+    # refused by the audit hook (PermissionError) or not there at all: the sandbox binds only the package, so a
+    # checkout under /tmp (hidden by the sandbox's private /tmp) has no tests/ inside it
+    assert re.match(r"`Phi_OA` is not assigned: cell 4 \(“import os, glob, kinbook”\), under “\*\*\(a\)\*\* Φ of "
+                    r"revolute joint 1, in `Phi_OA`\.” raised (PermissionError: kinbook sandbox: opening|"
+                    r"FileNotFoundError: \[Errno 2\] No such file or directory)", p["revolute"].message)
 
 
 def test_nothing_outside_the_sandbox_was_touched(batch):
