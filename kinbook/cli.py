@@ -19,14 +19,12 @@ import sys
 import numpy as np
 
 from . import examples
+from .classroom.variant import STUDENT_ID  # (one definition: the library's)
 from .errors import KinbookError
 from .files import load
 
 __all__ = ["main", "build_parser", "student_id"]
 
-STUDENT_ID = re.compile(r"[A-Za-z0-9][A-Za-z0-9._@+-]{0,127}")
-"""A student identifier: letters, digits and ``. _ @ + -``, starting with a letter or digit, at most 128
-characters — so that it is always one safe file name (no ``/``, no ``..`` on its own, no hidden file)."""
 
 
 class _UsageError(Exception):
@@ -34,6 +32,12 @@ class _UsageError(Exception):
 
 
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # a value that starts with '-' and a digit is a number, not an option: `-t -1e-3` (argparse before 3.13 took
+        # only -1 and -0.5 for numbers); an expression starting with '-' is written `-t=-pi/4`
+        self._negative_number_matcher = re.compile(r"^-\.?[0-9]")
+
     def error(self, message):
         raise _UsageError(f"{self.prog}: error: {message} (see {self.prog} --help)")
 

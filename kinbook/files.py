@@ -13,6 +13,7 @@ import gc
 import importlib
 import inspect
 import os
+import stat
 from pathlib import Path
 
 try:
@@ -60,8 +61,20 @@ def load(path):
     except TypeError:
         raise MechanismFileError(f"expected the path of a mechanism file, got {type(path).__name__}") from None
     try:
-        with path.open("rb") as fh:
+        # opened without blocking and checked before reading: a FIFO would wait for a writer forever, a device
+        # (/dev/zero) never end
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            os.close(fd)
+            kind = ("a directory" if stat.S_ISDIR(mode) else "a FIFO (named pipe)" if stat.S_ISFIFO(mode)
+                    else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "a socket"
+                    if stat.S_ISSOCK(mode) else "something else")
+            raise MechanismFileError(f"{path}: cannot read the mechanism file: it is {kind}, not a regular file")
+        with os.fdopen(fd, "rb") as fh:
             raw = fh.read(MAX_FILE_BYTES + 1)
+    except MechanismFileError:
+        raise
     except OSError as exc:
         raise MechanismFileError(f"{path}: cannot read the mechanism file ({exc.strerror or exc})") from None
     except ValueError as exc:  # a path with a NUL byte

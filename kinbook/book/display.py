@@ -39,12 +39,42 @@ PRECISION = 4
 """Decimals numpy prints in a notebook (the book prints four)."""
 
 
+def _real(x, name, function):
+    """``x`` as a float, or :class:`~kinbook.errors.InputError` naming the helper and the argument."""
+    from ..errors import InputError
+
+    if not isinstance(x, (bool, str, bytes)):
+        try:
+            return float(x)
+        except (TypeError, ValueError, OverflowError):
+            pass
+    raise InputError(f"{function}: `{name}` must be a real number, got {type(x).__name__} {str(x)[:60]!r}")
+
+
+def _tolerance(tol, function):
+    value = _real(tol, "tol", function)
+    if not (math.isfinite(value) and value > 0):
+        from ..errors import InputError
+
+        raise InputError(f"{function}: `tol` must be a positive finite number, got {tol!r}")
+    return value
+
+
+def _digits(digits, function, low=0, high=17):
+    if isinstance(digits, bool) or not isinstance(digits, numbers.Integral) or not low <= digits <= high:
+        from ..errors import InputError
+
+        raise InputError(f"{function}: `digits` must be a whole number from {low} to {high}, got {digits!r}")
+    return int(digits)
+
+
 def tolerance_text(tol):
     """A tolerance as people write it: ``1e-12`` (not ``1e-12`` padded as ``1.0e-12`` or ``1e-012``).
 
     >>> tolerance_text(1e-12), tolerance_text(5e-7), tolerance_text(0.001), tolerance_text(0.5)
     ('1e-12', '5e-7', '1e-3', '0.5')
     """
+    tol = _tolerance(tol, "tolerance_text")
     if tol >= 0.01:
         return f"{tol:g}"
     mantissa, exponent = f"{tol:.0e}".split("e")
@@ -121,7 +151,8 @@ def fmt(x, digits=PRECISION, tol=TOL):
     >>> fmt(-1e-17), fmt(2 / 3), fmt(-0.00004, 4)
     ('0.0000', '0.6667', '0.0000')
     """
-    text = f"{clean(float(x), tol):.{digits}f}"
+    x, digits, tol = _real(x, "x", "fmt"), _digits(digits, "fmt"), _tolerance(tol, "fmt")
+    text = f"{clean(x, tol):.{digits}f}"
     return text[1:] if text.startswith("-") and float(text) == 0 else text
 
 
@@ -134,7 +165,7 @@ def small(x, tol=TOL, digits=2, *, relation=False):
     >>> small(-0.0451), small(float("nan")), small(0.0451, relation=True), small(1e-17, relation=True)
     ('0.045', 'nan', '= 0.045', '< 1e-12')
     """
-    x = abs(float(x))
+    x, tol, digits = abs(_real(x, "x", "small")), _tolerance(tol, "small"), _digits(digits, "small", 1)
     if math.isnan(x):
         return "= nan" if relation else "nan"
     if x < tol:
@@ -149,7 +180,7 @@ def agrees(error, tol=TOL):
     >>> agrees(3e-7, tol=1e-6)
     'agrees to within 1e-6'
     """
-    error = abs(float(error))
+    error, tol = abs(_real(error, "error", "agrees")), _tolerance(tol, "agrees")
     if error < tol:
         return f"agrees to within {tolerance_text(tol)}"
     return f"differs by {small(error, tol, 2 if error < 1 else 4)}"

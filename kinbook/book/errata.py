@@ -1050,7 +1050,9 @@ def get(erratum_id):
     for e in ERRATA:
         if e.id == erratum_id:
             return e
-    raise KeyError(erratum_id)
+    from ..errors import InputError
+
+    raise InputError(f"no erratum {str(erratum_id)[:80]!r}: the ids are {', '.join(e.id for e in ERRATA)}")
 
 
 class ErrataTable:

@@ -41,8 +41,11 @@ def as_sympy(expr):
     (untrusted text goes through :mod:`kinbook.core.reader`)."""
     if isinstance(expr, (sp.Basic, sp.MatrixBase)):
         return expr
+    from ..errors import InputError
+
     if isinstance(expr, bool) or isinstance(expr, str):
-        raise TypeError(f"expected a sympy expression, got {type(expr).__name__} {expr!r}")
+        raise InputError(f"expected a sympy expression, got {type(expr).__name__} {str(expr)[:60]!r} (text is never "
+                         "parsed here: kinbook.core.reader reads text)")
     if isinstance(expr, int):
         return sp.Integer(expr)
     if isinstance(expr, (float, np.floating)):
@@ -50,7 +53,7 @@ def as_sympy(expr):
     if isinstance(expr, (list, tuple)):
         return sp.Matrix([as_sympy(e) for e in expr]) if not any(isinstance(e, (list, tuple)) for e in expr) \
             else sp.Matrix([[as_sympy(x) for x in row] for row in expr])
-    raise TypeError(f"expected a sympy expression, got {type(expr).__name__}")
+    raise InputError(f"expected a sympy expression, got {type(expr).__name__}")
 
 def _sym(name, tex):
     """A real symbol whose LaTeX is ``tex`` (sympy prints a Symbol by its name)."""
@@ -92,7 +95,6 @@ PAIR_KINDS = {
 """The four planar joints of §13.5: kind → (the book's superscript, English name)."""
 
 
-@lru_cache(maxsize=None)
 def pair(kind):
     """The two-body mechanism of one planar joint type with symbolic local points, as §13.5–13.8 treat it.
 
@@ -110,10 +112,17 @@ def pair(kind):
     kinbook.planar.Mechanism
         Cached: do not add to it.
     """
+    if not isinstance(kind, str) or kind not in PAIR_KINDS:
+        from ..errors import InputError
+
+        raise InputError(f"`kind` must be one of {', '.join(PAIR_KINDS)}, got {str(kind)[:40]!r}")
+    return _pair(kind)
+
+
+@lru_cache(maxsize=None)
+def _pair(kind):
     from ..planar import Mechanism, Revolute, RevoluteRevolute, RevoluteTranslational, Translational
 
-    if kind not in PAIR_KINDS:
-        raise ValueError(f"`kind` must be one of {', '.join(PAIR_KINDS)}, got {kind!r}")
     points = {"i": "PQ" if kind == "t" else "P", "j": "PQ" if kind == "rt" else "P"}
     m = Mechanism(f"{PAIR_KINDS[kind][1]} pair")
     for b in "ij":
@@ -127,6 +136,10 @@ def pair(kind):
 
 def _maps(mech):
     """(read, back): kinbook symbols → book notation at φ = 0, and book notation → kinbook symbols."""
+    if not all(hasattr(mech, a) for a in ("q", "qd", "bodies", "body_symbols")):
+        from ..errors import InputError
+
+        raise InputError(f"expected a mechanism (or one of its constraints' two bodies), got {type(mech).__name__}")
     trig, read = {}, dict(zip(mech.q, S.q)) | dict(zip(mech.qd, S.qd))
     back = dict(zip(S.q, mech.q)) | dict(zip(S.qd, mech.qd))
     for body, b in zip(mech.bodies, "ij"):
@@ -445,6 +458,10 @@ def html_math(tex, display=False):
 
 def equations(rows, mech=None, first=1, label=r"\Phi"):
     """``rows`` (a sympy column) as the book writes a system: Φ_1 ≡ … = 0, one line each (a LaTeX string)."""
+    if not isinstance(rows, (list, tuple, sp.MatrixBase)):
+        from ..errors import InputError
+
+        raise InputError(f"equations: `rows` must be a sympy column or a list of expressions, got {type(rows).__name__}")
     lines = [rf"{label}_{{{k}}} &\equiv {latex(e, mech)} = 0" for k, e in enumerate(list(rows), start=first)]
     return r"\begin{aligned}" + r"\\ ".join(lines) + r"\end{aligned}"
 
@@ -454,7 +471,14 @@ def matrix(values, digits=4, row_labels=None, column_labels=None):
     (exact zeros as 0, no −0)."""
     from .display import fmt
 
-    a = np.atleast_2d(np.asarray(values, dtype=float))
+    try:
+        a = np.atleast_2d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        a = None
+    if a is None or a.ndim != 2:
+        from ..errors import InputError
+
+        raise InputError(f"matrix: `values` must be a vector or a matrix of real numbers, got {str(values)[:60]!r}")
 
     def cell(v):
         text = fmt(v, digits)
@@ -472,6 +496,10 @@ def matrix(values, digits=4, row_labels=None, column_labels=None):
 
 def Math(tex):
     """IPython's ``Math`` display object (imported lazily so the library does not need IPython)."""
+    if not isinstance(tex, str):
+        from ..errors import InputError
+
+        raise InputError(f"Math: expected LaTeX text, got {type(tex).__name__}")
     from IPython.display import Math as _Math
 
     return _Math(tex)
@@ -480,6 +508,10 @@ def Math(tex):
 def local_points(mech):
     """Every point of every body with its local coordinates (ξ, η) — the book lists them for each joint of
     its examples — as a LaTeX array (body number, body, point, ξ_i^P, η_i^P)."""
+    if not hasattr(mech, "bodies"):
+        from ..errors import InputError
+
+        raise InputError(f"local_points: expected a mechanism, got {type(mech).__name__}")
     rows = []
     for b in mech.bodies:
         for name, value in b.points.items():

@@ -588,6 +588,11 @@ def newton_table(history, tol=TOL):
     -------
     Table
     """
+    if not all(hasattr(history, a) for a in ("residual", "step", "cond", "t")):
+        from ..errors import InputError
+
+        raise InputError(f"newton_table: expected the history of solve_position(..., history=True), got "
+                         f"{type(history).__name__}")
     rows = [[str(k), small(r, tol), small(s, tol), f"{c:.3g}"]
             for k, (r, s, c) in enumerate(zip(history.residual, history.step, history.cond))]
     return Table(["k", "max |Φ|", "max |Δq|", "cond(Φ_q)"], rows,

@@ -54,7 +54,8 @@ from .sanitize import clean, clean_result
 from .serialize import DecodeError, decode
 from .variant import references, student_parameters
 
-__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "grade_submission", "grade", "NO_ISOLATION_WARNING"]
+__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "grade_submission", "grade", "check_options",
+           "NO_ISOLATION_WARNING"]
 
 #: Entries an answer may have beyond twice its reference's before it is refused unchecked (see _too_large).
 MAX_EXTRA_ENTRIES = 16
@@ -164,6 +165,25 @@ def _needs_a_real_machine():
             "kinbook's checkers (kinbook.grading.check_phi, …) still give feedback on your answers.")
 
 
+def check_options(*, timeout=None, memory=None, jobs=None, **flags):
+    """The grading options as the command line checks them, for callers of the library too: ``timeout`` and
+    ``memory`` positive finite numbers, ``jobs`` a whole number from 1 to 1024, every flag True or False (a
+    truthy text such as ``"no"`` would switch it on). Raises :class:`~kinbook.errors.GradingError` naming the
+    option."""
+    for name, value in (("timeout", timeout), ("memory", memory)):
+        if value is None:
+            continue
+        ok = not isinstance(value, (bool, np.bool_)) and isinstance(value, (int, float, np.integer, np.floating))
+        if not ok or not np.isfinite(value) or value <= 0:
+            raise GradingError(f"`{name}` must be a positive finite number, got {value!r}"[:200])
+    if jobs is not None and (isinstance(jobs, (bool, np.bool_)) or not isinstance(jobs, (int, np.integer))
+                             or not 1 <= jobs <= 1024):
+        raise GradingError(f"`jobs` must be a whole number from 1 to 1024, got {jobs!r}"[:200])
+    for name, value in flags.items():
+        if not isinstance(value, (bool, np.bool_)):
+            raise GradingError(f"`{name}` must be True or False, got {value!r}"[:200])
+
+
 def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1000, generic=False,
                      reveal_hidden=False, isolation=True, sandbox=None):
     """Grade one submitted notebook.
@@ -197,6 +217,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     -------
     SubmissionResult
     """
+    check_options(timeout=timeout, memory=memory, generic=generic, reveal_hidden=reveal_hidden, isolation=isolation)
     _needs_a_real_machine()
     check_memory(memory)
     source = load_source(source)
@@ -516,6 +537,8 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     list of SubmissionResult
         The submissions graded in this run (not the skipped ones).
     """
+    check_options(timeout=timeout, memory=memory, jobs=jobs, force=force, generic=generic,
+                  reveal_hidden=reveal_hidden, isolation=isolation, regrade=regrade)
     _needs_a_real_machine()
     check_memory(memory)
     src = load_source(source)

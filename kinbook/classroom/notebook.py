@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import GradingError
+from .parts import check_parameters
 from .results import Refused
 
 __all__ = [
@@ -110,6 +111,10 @@ def load_source(path):
         seen.add(cell["id"])
         if cell.cell_type == "code":
             _regions(cell.source, f"{path.name}, cell {i + 1}")  # validates the markers
+    try:
+        find_parameters(nb)  # validated once, here, with the file named
+    except GradingError as exc:
+        raise GradingError(f"{path.name}: {exc}") from None
     return Source(path, nb, path.stem, hashlib.sha256(data).hexdigest())
 
 
@@ -162,8 +167,11 @@ def find_parameters(nb):
             continue
         try:
             tree = ast.parse(cell.source)
-        except SyntaxError:
-            continue
+        except (SyntaxError, ValueError, RecursionError, MemoryError) as exc:
+            if _ASSIGNS_PARAMETERS.search(cell.source):  # the parameters cell itself: never copied unread
+                where = f" (line {exc.lineno}: {exc.msg})" if isinstance(exc, SyntaxError) else ""
+                raise GradingError(f"cell {i + 1}: the parameters(...) cell is not valid Python{where}") from None
+            continue  # another cell that mentions parameters( (a magic such as %matplotlib does not parse)
         for node in tree.body:
             if (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
                     and isinstance(node.value, ast.Call)
@@ -173,15 +181,22 @@ def find_parameters(nb):
                     raise GradingError("a notebook can have only one parameters(...) cell")
                 if len(tree.body) != 1:
                     raise GradingError(f"cell {i + 1}: the parameters(...) assignment must be alone in its cell")
+                if any(k.arg is None for k in node.value.keywords) or len(node.value.args) > 1:
+                    raise GradingError(f"cell {i + 1}: parameters(...) takes the defaults and keyword arguments "
+                                       "only (no ** or more positional arguments)")
                 try:
                     kw = {k.arg: ast.literal_eval(k.value) for k in node.value.keywords}
                     args = [ast.literal_eval(a) for a in node.value.args]
-                except ValueError:
+                except (ValueError, TypeError, SyntaxError, MemoryError, RecursionError):
                     raise GradingError(f"cell {i + 1}: parameters(...) takes literal values only") from None
                 defaults = args[0] if args else kw.pop("defaults", {})
                 kw.pop("defaults", None)
+                check_parameters(kw, defaults, where=f"cell {i + 1}: parameters(...)")
                 found = (i, node.targets[0].id, kw, defaults)
     return found
+
+
+_ASSIGNS_PARAMETERS = re.compile(r"(?m)^\s*[A-Za-z_]\w*\s*=\s*(?:\w+\.)?parameters\s*\(")
 
 
 def parameters_code(name, values, student=None):

@@ -26,13 +26,21 @@ the student's literal values (see :mod:`kinbook.classroom.variant`).
 from __future__ import annotations
 
 import contextlib
+import math
+import numbers
 import os
 import sys
 from dataclasses import dataclass, field
 
 from ..errors import GradingError
 
-__all__ = ["Part", "part", "parameters", "reference_calls", "CHECKS", "recording"]
+__all__ = ["Part", "part", "parameters", "reference_calls", "check_parameters", "CHECKS", "recording",
+           "MAX_POINTS"]
+
+#: The most points one part can carry.
+MAX_POINTS = 1e6
+#: Bounds of a parameters(...) declaration: parameters, values of one list, magnitude of a number.
+MAX_PARAMETERS, MAX_CHOICES, MAX_PARAMETER = 100, 10_000, 1e15
 
 #: check name → (function name in kinbook.grading, needs a target (True) or an expected value (False))
 CHECKS = {
@@ -109,9 +117,10 @@ def recording():
 
 def _validate(name, points, answer, check, target, expected):
     if not isinstance(name, str) or not name.isidentifier():
-        raise GradingError(f"part name must be an identifier, got {name!r}")
-    if not isinstance(points, (int, float)) or points < 0:
-        raise GradingError(f"part {name!r}: points must be a number ≥ 0, got {points!r}")
+        raise GradingError(f"part name must be an identifier, got {name!r}"[:300])
+    if (isinstance(points, bool) or not isinstance(points, numbers.Real) or not math.isfinite(points)
+            or not 0 <= points <= MAX_POINTS):
+        raise GradingError(f"part {name!r}: points must be a finite number from 0 to {MAX_POINTS:g}, got {points!r}"[:300])
     if not isinstance(answer, str) or not answer.isidentifier():
         raise GradingError(f"part {name!r}: answer must name a variable, got {answer!r}")
     if check not in CHECKS:
@@ -170,11 +179,56 @@ def parameters(defaults=None, **ranges):
     >>> parameters(crank=(1.5, 2.5), defaults={"crank": 2.0})
     {'crank': 2.0}
     """
-    defaults = dict(defaults or {})
-    missing = [k for k in ranges if k not in defaults]
-    if missing:
-        raise GradingError(f"parameters(): no default for {', '.join(missing)}")
-    return defaults
+    check_parameters(ranges, defaults)
+    return dict(defaults or {})
+
+
+def _parameter_value(value):
+    """Whether ``value`` can be a parameter's value: a finite real number (not a bool) or a short text — what
+    a variant writes into the student's notebook as a literal."""
+    if isinstance(value, str):
+        return len(value) <= 200
+    return (isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value)
+            and abs(value) <= MAX_PARAMETER)
+
+
+def check_parameters(ranges, defaults, where="parameters()"):
+    """Check a ``parameters(...)`` declaration; raise :class:`~kinbook.errors.GradingError` naming ``where`` and
+    the parameter.
+
+    ``ranges``: name → ``(low, high)`` (finite numbers, low ≤ high) or a non-empty list of values (numbers or
+    short texts); ``defaults``: name → value, one for every name of ``ranges``.
+    """
+    def bad(message):
+        raise GradingError(f"{where}: {message}"[:500])
+
+    if defaults is None:
+        defaults = {}
+    if not isinstance(defaults, dict):
+        bad(f"defaults must be a dict of name: value, got {type(defaults).__name__}")
+    if not isinstance(ranges, dict):
+        bad(f"the ranges must be keyword arguments, got {type(ranges).__name__}")
+    if len(ranges) + len(defaults) > MAX_PARAMETERS:
+        bad(f"more than {MAX_PARAMETERS} parameters")
+    for name, value in defaults.items():
+        if not isinstance(name, str) or not name.isidentifier():
+            bad(f"a parameter's name must be an identifier, got {name!r}")
+        if not _parameter_value(value):
+            bad(f"the default of {name} must be a finite number or a short text, got {value!r}")
+    for name, spec in ranges.items():
+        if isinstance(spec, tuple):
+            if len(spec) != 2 or not all(_parameter_value(v) and not isinstance(v, str) for v in spec):
+                bad(f"{name}=(low, high) needs two finite numbers, got {spec!r}")
+            if spec[0] > spec[1]:
+                bad(f"{name}=(low, high) has low > high: {spec!r}")
+        elif isinstance(spec, list):
+            if not 1 <= len(spec) <= MAX_CHOICES or not all(_parameter_value(v) for v in spec):
+                bad(f"{name}=[…] needs 1 to {MAX_CHOICES} values, each a finite number or a short text, got "
+                    f"{spec!r}")
+        else:
+            bad(f"{name}= must be (low, high) or a list of values, got {spec!r}")
+        if name not in defaults:
+            bad(f"no default for {name} (defaults={{'{name}': …}})")
 
 
 def reference_calls(*names):

@@ -7,6 +7,7 @@ Private to :mod:`kinbook.core`: :mod:`~kinbook.core.diagnose`, :mod:`~kinbook.co
 
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
@@ -83,7 +84,7 @@ def length_scale(mech):
         for b in mech.bodies:
             for point in b.points.values():
                 try:
-                    L = max(L, float(np.sqrt(sum(float(v) ** 2 for v in point))))
+                    L = max(L, math.hypot(*(float(v) for v in point)))  # (no overflow below 1e308)
                 except (TypeError, ValueError):  # a symbolic parameter
                     continue
         return L if np.isfinite(L) and L > 0 else 1.0

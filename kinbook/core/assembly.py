@@ -62,10 +62,19 @@ def compile(mech):
     drivers' f(t) with two derivatives and the rows to wrap with their periods."""
     if not mech.bodies:
         raise ModelError(f"mechanism '{mech.name}' has no bodies")
+    for b in mech.bodies:  # a body's symbolic point is the body's, not the first joint's that touches it
+        for point, coords in b.points.items():
+            params = {s for v in coords for s in getattr(v, "free_symbols", ())}
+            if params:
+                names = ", ".join(sorted(map(str, params)))
+                users = [c.describe() for c in mech.constraints if b.name in c.body_names and any(
+                    v == point or (isinstance(v, (tuple, list)) and point in v) for v in vars(c).values())]
+                used = f" (used by {', '.join(users[:3])})" if users else ""
+                raise ModelError(f"mechanism '{mech.name}': body '{b.name}', point '{point}' has symbolic parameters "
+                                 f"({names}){used}: substitute numbers before a numeric evaluation")
     for c in mech.constraints:
-        params = {s for b in c.bodies for p in b.points.values() for v in p
-                  for s in getattr(v, "free_symbols", ())}
-        # and the constraint's own numbers (a radius, phi0, a length given as a symbol for a derivation)
+        params = set()
+        # the constraint's own numbers (a radius, phi0, a length given as a symbol for a derivation)
         own = [getattr(c, name, None) for name in type(c).parameters]
         for v in own:
             for x in (v.values() if isinstance(v, dict) else v if isinstance(v, (tuple, list)) else (v,)):

@@ -278,6 +278,9 @@ class MechanismBase:
 
     def symbolic(self):
         """Φ, Φ_q, ν and γ as sympy matrices (a :class:`kinbook.core.symbolic.Derivation`), derived from Φ."""
+        if not self.bodies:
+            raise ModelError(f"mechanism '{self.name}' has no bodies")
+
         def build():
             Phi = (sp.Matrix.vstack(*[self.constraint_phi(c) for c in self.constraints])
                    if self.constraints else sp.zeros(0, 1))
@@ -368,6 +371,16 @@ class MechanismBase:
             raise InputError(f"`{name}` has a non-finite value in {self.coordinate_names()[k]}: {q[..., k]}")
         return q
 
+    def check_configuration(self, q, name="q", what="this analysis"):
+        """``q`` as one configuration, a float array of shape (n,): :meth:`check_q`, and a batch (N, n) refused
+        with :class:`InputError` (the analyses at one instant solve for one configuration)."""
+        q = self.check_q(q, name)
+        if q.ndim != 1:
+            raise InputError(f"`{name}` must be one configuration, shape ({self.n},), for {what} of mechanism "
+                             f"'{self.name}'; got a batch of shape {q.shape} (Phi, Phi_q and evaluate take batches; "
+                             "simulate sweeps many instants)")
+        return q
+
     def check_t(self, t, batch):
         """``t`` as floats of shape (batch,): one number broadcast, or one per instant."""
         t = real_array(t, "t", "a number or an array of numbers")
@@ -393,6 +406,9 @@ class MechanismBase:
         'nu' (…, m) and 'gamma' (…, m) (None without ``qd``). With ``reduced``, 'Phi_q' leaves out the rows
         and columns of the fixed bodies (``_reduction``), the system the solvers factor.
         """
+        for name, flag in (("jacobian", jacobian), ("sparse", sparse), ("reduced", reduced)):
+            if not isinstance(flag, (bool, np.bool_)):  # a truthy text such as "no" would switch it on
+                raise InputError(f"`{name}` must be True or False, got {flag!r}"[:200])
         return assembly.evaluate(self, q, t, qd, jacobian=jacobian, sparse=sparse, reduced=reduced)
 
     def Phi(self, q, t=0.0):
@@ -409,6 +425,9 @@ class MechanismBase:
 
     def gamma(self, q, qd, t=0.0):
         """Numeric γ, the right-hand side of the acceleration equations Φ_q q̈ = γ."""
+        if qd is None:
+            raise InputError(f"`qd` is required: γ of mechanism '{self.name}' depends on the velocities q̇ "
+                             f"(an array of {self.n} numbers)")
         return self.evaluate(q, t, qd, jacobian=False)["gamma"]
 
     def point_local(self, body, point):
@@ -476,7 +495,7 @@ class MechanismBase:
     def diagnose(self, q, t=0.0):
         """Rank of Φ_q at ``q`` and, when singular, which constraints are dependent: see
         :func:`kinbook.core.diagnose.diagnose`."""
-        return diagnose.diagnose(self, q, t)
+        return diagnose.diagnose(self, self.check_configuration(q, what="the rank analysis"), t)
 
     def __repr__(self):
         prefix = "" if self.kind == "planar" else f"{self.kind} "

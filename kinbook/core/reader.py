@@ -31,6 +31,8 @@ from __future__ import annotations
 import ast
 import cmath
 import math
+import operator
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -268,12 +270,12 @@ def read_expression(text, *, symbols, where, functions=None, limits=None):
         tree = ast.parse(reader.source, mode="eval")
     except SyntaxError as exc:
         reason = "not a valid expression"
-        detail = (exc.msg or "").split(" (")[0]
+        detail = (exc.msg or "").split(" (")[0].split(";")[0]  # (Python's advice on octal does not apply)
         if detail and detail != "invalid syntax":
             reason += f" ({detail})"
         if "decimal literal" in (exc.msg or "") or "imaginary literal" in (exc.msg or ""):
             reason += "; write products with * (2*t, not 2t)"
-        column = exc.offset + reader.offset if exc.offset and exc.lineno == 1 else None
+        column = reader.column(char=exc.offset - 1) if exc.offset and exc.lineno == 1 else None
         reader.fail(reason, reader.expected(), column=column)
     except (ValueError, RecursionError, MemoryError):  # null bytes, or nesting beyond the parser's stack
         reader.fail("not a valid expression (unreadable characters or nesting too deep)")
@@ -294,15 +296,31 @@ class _Reader:
         self.table, self.aliases = _function_table(functions)
         stripped = text.lstrip()
         self.offset = len(text) - len(stripped)  # columns in messages count in the text as given
-        self.source = stripped.rstrip().replace("^", "**")
+        body = stripped.rstrip()
+        self.source = body.replace("^", "**")
+        # a column of the parsed source -> a column of the text: each '^' became two characters, and the parser
+        # counts a node's column in UTF-8 bytes (two for π, three for ẋ)
+        self.chars = [i for i, ch in enumerate(body) for _ in range(2 if ch == "^" else 1)] + [len(body)]
+        self.encoded = self.source.encode("utf-8")
         self.value = {}  # id(node) -> float estimate of a numeric sub-expression, or None
         self.calls = {}  # id(node) -> nesting depth of function calls in the sub-expression
         self.bits = {}  # id(node) -> bound on the bits of the exact numbers sympy builds for the sub-expression
 
     def fail(self, reason, expected=None, node=None, column=None):
         if column is None and node is not None:
-            column = node.col_offset + 1 + self.offset
+            column = self.column(node=node)
         _fail(self.where, self.text, reason, expected, column=column)
+
+    def column(self, node=None, char=None):
+        """The 1-based column, in characters of the text as given, of a node (or of a character of the
+        parsed source)."""
+        if node is not None:
+            char = len(self.encoded[:node.col_offset].decode("utf-8", errors="ignore"))
+        return self.chars[max(0, min(char, len(self.chars) - 1))] + 1 + self.offset
+
+    def literal(self, node):
+        """The text of a numeric literal, as written."""
+        return self.encoded[node.col_offset:node.end_col_offset].decode("utf-8", errors="replace")
 
     def expected(self):
         symbols = self.symbols
@@ -350,8 +368,14 @@ class _Reader:
             width = (node.end_col_offset or 0) - node.col_offset if node.end_lineno == node.lineno else None
             if width is None or width > self.limits.digits:
                 self.fail(f"a number is too long (more than {self.limits.digits} characters)", node=node)
+            written = self.literal(node)
+            if not _DECIMAL.fullmatch(written):  # Python also reads 0x1f, 0o17, 0b101, 1_000
+                self.fail(f"the number {written!r} is not written in decimal digits", "a decimal number such as "
+                          "12, -0.5 or 1e-3", node)
             if isinstance(v, float) and not math.isfinite(v):
                 self.fail("a number is not finite (too large for a float)", node=node)
+            if abs(v) > self.limits.magnitude:  # before any arithmetic: 1e308 squared overflows
+                self.fail(f"a number is too large (more than {self.limits.magnitude:.0e})", node=node)
             return ()
         if isinstance(node, ast.Name):
             name = node.id
@@ -523,23 +547,46 @@ class _Reader:
                 self.fail("a part of the expression has no finite real value", "real numbers", node)
             return sp.Float(z.real, 20)
 
-    def mp(self, node, mpmath):
-        """mpmath value of a numeric sub-tree (it passed the walk: numbers, constants, + - * / ^, calls)."""
-        if isinstance(node, ast.Constant):
-            return mpmath.mpf(node.value) if isinstance(node.value, float) else mpmath.mpf(int(node.value))
-        if isinstance(node, ast.Name):
-            return +mpmath.pi if CONSTANTS[node.id] is sp.pi else +mpmath.e
+    def mp(self, root, mpmath):
+        """mpmath value of a numeric sub-tree (it passed the walk: numbers, constants, + - * / ^, calls),
+        computed iteratively: a sum of a thousand terms is a left spine a thousand nodes deep."""
+        value = {}
+        stack = [(root, False)]
+        while stack:
+            node, ready = stack.pop()
+            if isinstance(node, ast.Constant):
+                value[id(node)] = mpmath.mpf(node.value) if isinstance(node.value, float) else mpmath.mpf(int(node.value))
+            elif isinstance(node, ast.Name):
+                value[id(node)] = +mpmath.pi if CONSTANTS[node.id] is sp.pi else +mpmath.e
+            elif not ready:
+                stack.append((node, True))
+                stack.extend((c, False) for c in self.children_of(node))
+            elif isinstance(node, ast.UnaryOp):
+                v = value[id(node.operand)]
+                value[id(node)] = -v if isinstance(node.op, ast.USub) else v
+            elif isinstance(node, ast.BinOp):
+                a, b = value[id(node.left)], value[id(node.right)]
+                value[id(node)] = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
+                                   ast.Div: operator.truediv, ast.Pow: mpmath.power}[type(node.op)](a, b)
+            else:
+                name = self.aliases.get(node.func.id, node.func.id)
+                value[id(node)] = _MP_BY_NAME[name](mpmath)(*[value[id(a)] for a in node.args])
+        return value[id(root)]
+
+    @staticmethod
+    def children_of(node):
+        """The operands of a node that passed the walk."""
         if isinstance(node, ast.UnaryOp):
-            v = self.mp(node.operand, mpmath)
-            return -v if isinstance(node.op, ast.USub) else v
+            return (node.operand,)
         if isinstance(node, ast.BinOp):
-            a, b = self.mp(node.left, mpmath), self.mp(node.right, mpmath)
-            op = type(node.op)
-            return {ast.Add: lambda: a + b, ast.Sub: lambda: a - b, ast.Mult: lambda: a * b,
-                    ast.Div: lambda: a / b, ast.Pow: lambda: mpmath.power(a, b)}[op]()
-        name = self.aliases.get(node.func.id, node.func.id)
-        args = [self.mp(a, mpmath) for a in node.args]
-        return _MP_BY_NAME[name](mpmath)(*args)
+            return (node.left, node.right)
+        if isinstance(node, ast.Call):
+            return tuple(node.args)
+        return ()
+
+
+#: A numeric literal as the docs describe it: decimal digits, a decimal point, an exponent (no 0x, 0o, 0b, no _)
+_DECIMAL = re.compile(r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
 
 
 def _family(node):
@@ -618,6 +665,10 @@ def read_constant(value, *, where, symbolic=False, limits=None):
         if not math.isfinite(value):
             raise ExpressionError(f"{where}: expected a finite number, got {value!r}", where=where, text=None,
                                   reason="not finite")
+        if abs(value) > (limits or DEFAULT_LIMITS).magnitude:  # a float from a file or a caller, as a literal
+            raise ExpressionError(f"{where}: the number is too large (more than "
+                                  f"{(limits or DEFAULT_LIMITS).magnitude:.0e})", where=where, text=None,
+                                  reason="too large")
         return sp.Float(value)
     if isinstance(value, str):
         expr = read_expression(value, symbols=_Parameters() if symbolic else {}, where=where, limits=limits)

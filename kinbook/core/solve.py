@@ -7,6 +7,7 @@ use only its numeric interface (``evaluate``, ``n``, ``m``, ``constraints`` …)
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,11 +51,49 @@ def check_drivers(mech):
             f"mechanism '{mech.name}' has {m_geo} geometric constraint equations for only n = {n} coordinates: "
             f"it is overconstrained by {-dof} equation(s) before any driver (drivers: {names})"
         )
+    hints = _free_motions(mech) if k < dof else []
     raise DriverCountError(
         f"mechanism '{mech.name}' has n = {n} coordinates and {m_geo} geometric constraint equations, so "
         f"{dof} degree(s) of freedom, but {k} driver equation(s) ({names}): "
         + ("add" if k < dof else "remove") + f" {abs(dof - k)} driver(s) so that Φ has as many rows as q"
+        + "".join(f"; {h}" for h in hints)
     )
+
+
+def _free_motions(mech):
+    """Why a mechanism has more degrees of freedom than drivers, when its structure says so: bodies that no
+    constraint holds (their position columns of Φ_q are zero), and no ground (all bodies translate together
+    without changing Φ). Read from Φ_q at q0; nothing when it cannot be evaluated there."""
+    if not mech.bodies or mech.n > 2000:
+        return []
+    try:
+        with np.errstate(all="ignore"):
+            J = np.asarray(mech.evaluate(mech.q0, 0.0)["Phi_q"], dtype=float)
+    except Exception:  # noqa: BLE001 - a hint only: the count above is the error
+        return []
+    if not np.all(np.isfinite(J)):
+        return []
+    width, dim = len(mech.COORDS), mech.POINT_DIM
+    scale = max(1.0, float(np.abs(J).max()) if J.size else 1.0)
+    hints = []
+    loose = [b.name for b in mech.bodies
+             if not np.any(np.abs(J[:, width * (b.number - 1): width * (b.number - 1) + dim]) > 1e-12 * scale)]
+    if loose:
+        hints.append(f"bod{'y' if len(loose) == 1 else 'ies'} {', '.join(repr(b) for b in loose[:8])} "
+                     f"appear{'s' if len(loose) == 1 else ''} in no constraint (free to move: connect "
+                     f"{'it' if len(loose) == 1 else 'them'} with a joint)")
+    held = [b for b in mech.bodies if b.name not in loose]
+    if held:
+        for axis in range(dim):
+            v = np.zeros(mech.n)
+            for b in held:
+                v[width * (b.number - 1) + axis] = 1.0
+            if np.abs(J @ v).max(initial=0.0) > 1e-9 * scale:
+                break
+        else:  # every connected body can translate along every axis at once: nothing is fixed
+            hints.append("no body is fixed to the ground (the whole mechanism can translate freely): add a ground "
+                         "constraint for the fixed body")
+    return hints
 
 
 @dataclass(frozen=True)
@@ -151,6 +190,8 @@ def solve_position(mech, t=0.0, q0=None, tol=1e-10, max_iter=50, history=False):
     check_drivers(mech)
     t = scalar_time(t)
     tol, max_iter = check_tol(tol, max_iter)
+    if not isinstance(history, (bool, np.bool_)):  # a truthy text such as "no" would switch it on
+        raise InputError(f"`history` must be True or False, got {history!r}"[:200])
     q = mech.q0 if q0 is None else np.array(mech.check_q(q0, "q0"), dtype=float)
     if q.ndim != 1:
         raise InputError(f"`q0` must have shape ({mech.n},), got {q.shape}")
@@ -184,12 +225,54 @@ def solve_position(mech, t=0.0, q0=None, tol=1e-10, max_iter=50, history=False):
     detail = "; ".join(f"row {r + 1} = {Phi[r]:.3g} ({row_owner(mech, r).describe()})" for r in worst)
     err = ConvergenceError(
         f"Newton–Raphson did not converge for mechanism '{mech.name}' at t = {t:.6g}: after {it} iterations "
-        f"max |Φ| = {res:.3g} (tol = {tol:g}). Largest residuals: {detail}. The mechanism may not assemble "
-        f"there, or q0 is too far from a solution.",
+        f"max |Φ| = {res:.3g} (tol = {tol:g}). Largest residuals: {detail}. "
+        + _assembly_gap(mech, mech.q0 if q0 is None else np.array(q0, dtype=float), t, tol),
         iterations=it, residual=res, q=q,
     )
     err.history = _history(record, t) if history else None
     raise err
+
+
+def _assembly_gap(mech, q0, t, tol):
+    """Why Newton–Raphson failed, in words: a bounded least-squares search (min |Φ|²) from ``q0`` either reaches
+    Φ = 0 (q0 was too far from a solution) or stops at a residual that no configuration nearby removes — the
+    mechanism cannot be assembled, and the constraints left unsatisfied are named (a loop whose links cannot
+    close). Nothing is returned as a solution: only the message changes."""
+    vague = "The mechanism may not assemble there, or q0 is too far from a solution."
+    if mech.n > 500 or not np.all(np.isfinite(q0)):
+        return vague
+    from scipy.optimize import least_squares
+
+    def phi(x):
+        return mech.evaluate(x, t, jacobian=False)["Phi"]
+
+    def jac(x):
+        return np.asarray(mech.evaluate(x, t)["Phi_q"])
+
+    try:
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            fit = least_squares(phi, q0, jac=jac, method="trf", max_nfev=50 * (1 + min(mech.n, 40)))
+        Phi = phi(fit.x)
+    except Exception:  # noqa: BLE001 - words for a message only
+        return vague
+    if not np.all(np.isfinite(Phi)):
+        return vague
+    res = float(np.max(np.abs(Phi))) if Phi.size else 0.0
+    if res <= max(1e3 * tol, 1e-8):
+        return (f"A solution exists nearby (a least-squares search from q0 reaches max |Φ| = {res:.1e}): q0 is "
+                "too far from it for Newton–Raphson; start from a closer q0.")
+    owners = []
+    for r in np.argsort(-np.abs(Phi)):
+        if abs(Phi[r]) < 0.1 * res:
+            break
+        c = row_owner(mech, r)
+        if c.describe() not in owners:
+            owners.append(c.describe())
+    return (f"The mechanism cannot be assembled at t = {t:.6g}: the closest configuration a least-squares search "
+            f"from q0 finds still leaves max |Φ| = {res:.3g}, in {', '.join(owners[:4])} — these constraints "
+            "cannot all hold (a loop whose links are too short or too long to close, a point or length mistyped, "
+            "or a driver value the mechanism cannot reach).")
 
 
 def _history(record, t):
@@ -201,6 +284,7 @@ def solve_velocity(mech, q, t=0.0):
     """Solve the velocity equations Φ_q q̇ = ν (§13.7). Returns q̇, shape (n,)."""
     check_drivers(mech)
     t = scalar_time(t)
+    q = mech.check_configuration(q, what="the velocity analysis")
     ev = evaluate_jacobian(mech, q, t)
     qd = solve_linear(ev["Phi_q"], ev["nu"])
     if qd is None or scaled_rcond(mech, ev["Phi_q"]) < RCOND_MIN:
@@ -212,6 +296,11 @@ def solve_acceleration(mech, q, qd, t=0.0):
     """Solve the acceleration equations Φ_q q̈ = γ (§13.8). Returns q̈, shape (n,)."""
     check_drivers(mech)
     t = scalar_time(t)
+    q = mech.check_configuration(q, what="the acceleration analysis")
+    if qd is None:
+        raise InputError(f"`qd` is required: the acceleration analysis of mechanism '{mech.name}' needs the "
+                         f"velocities q̇ (solve_velocity gives them)")
+    qd = mech.check_configuration(qd, "qd", what="the acceleration analysis")
     ev = mech.evaluate(q, t, qd, sparse=mech.n > SPARSE_ABOVE)
     qdd = solve_linear(ev["Phi_q"], ev["gamma"])
     if qdd is None or scaled_rcond(mech, ev["Phi_q"]) < RCOND_MIN:

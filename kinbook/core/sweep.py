@@ -53,9 +53,13 @@ class SimulationResult:
         return len(self.t)
 
     def coordinate(self, name, derivative=0):
-        """Time history of one coordinate ('phi3' or (body, 'phi')) or of its first or second derivative."""
+        """Time history of one coordinate ('phi3' or (body, 'phi')) or of its first or second derivative
+        (``derivative`` 0, 1 or 2)."""
+        if isinstance(derivative, bool) or not isinstance(derivative, (int, np.integer)) or derivative not in (0, 1, 2):
+            raise InputError(f"`derivative` must be 0 (the coordinate), 1 (its velocity) or 2 (its acceleration), "
+                             f"got {derivative!r}"[:200])
         k = self.mechanism.index(name)
-        return (self.q, self.qd, self.qdd)[derivative][:, k]
+        return (self.q, self.qd, self.qdd)[int(derivative)][:, k]
 
     def position(self, body, point):
         """Global positions of a body point at every instant, shape (N, 2) (planar) or (N, 3) (spatial)."""

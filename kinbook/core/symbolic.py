@@ -18,7 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-__all__ = ["Derivation", "derive", "time_function", "time_derivatives", "lambdify_vector"]
+__all__ = ["Derivation", "derive", "time_function", "time_derivatives", "derivative_sizes", "DERIVATIVE_PARTS",
+           "lambdify_vector"]
 
 t = sp.Symbol("t", real=True)
 """The time symbol shared by every mechanism."""
@@ -97,6 +98,15 @@ def derive(Phi, q, qd, time=t):
     return Derivation(Phi=Phi, Phi_q=Phi_q, nu=nu, gamma=gamma, q=q, qd=qd, t=time)
 
 
+#: The largest second derivative of a prescribed function f(t) kinbook derives, in parts of its tree (an upper
+#: estimate, :func:`derivative_sizes`): differentiating and compiling one this size takes about a second.
+DERIVATIVE_PARTS = 10_000
+
+
+def _short(text, width=80):
+    return repr(text if len(text) <= width else text[: width - 1] + "…")
+
+
 _NOT_SMOOTH = ("Heaviside", "DiracDelta", "floor", "ceiling", "frac", "Piecewise", "Min", "Max", "sign", "Mod")
 
 
@@ -158,6 +168,12 @@ def time_function(f, where, time=t):
             f"{where}: the function of time {text!r} uses {', '.join(jumps)}, which jumps: a prescribed motion "
             "needs two continuous derivatives (for ν and γ); write a smooth function (a blend such as "
             "(1 - cos(pi*t))/2), or drive each phase in its own sweep", where=where, text=text)
+    size = derivative_sizes(expr, time)[2]
+    if size > DERIVATIVE_PARTS:  # before sympy differentiates: a few hundred bytes of text can take minutes
+        raise ExpressionError(
+            f"{where}: the function of time {_short(text)} is too involved to differentiate: its second derivative "
+            f"would have up to {size:,} parts (at most {DERIVATIVE_PARTS:,}); expected a prescribed motion of a "
+            "few terms (a driver of the book has a few dozen parts)", where=where, text=text)
     for k in (1, 2):
         d = sp.diff(expr, time, k)
         if d.has(sp.Derivative, sp.Subs):
@@ -180,6 +196,68 @@ def time_function(f, where, time=t):
 
 
 _VALID = {}  # (text or expression, time symbol) -> the validated expression
+
+
+def derivative_sizes(expr, time=t):
+    """Sizes of ``expr`` and upper estimates of the sizes of its first and second derivatives in ``time``.
+
+    Counted without differentiating — one pass over the tree, each distinct sub-expression once — by the
+    rules of differentiation (the product rule of n factors gives n terms of n factors; the chain rule copies
+    the argument): ``sin`` nested 99 deep has a second derivative of about 10⁵ parts, a product of 30 factors
+    4·10⁴, where a driver of the book has a few dozen. Sizes are tree sizes, as sympy prints (not simplified).
+
+    Returns
+    -------
+    (int, int, int)
+    """
+    memo = {}
+    stack = [(expr, False)]
+    while stack:
+        node, ready = stack.pop()
+        if node in memo:
+            continue
+        args = node.args
+        if not args or isinstance(node, (sp.Number, sp.NumberSymbol)):
+            memo[node] = (node == time, 1, 1, 1)
+            continue
+        if not ready:
+            stack.append((node, True))
+            stack.extend((a, False) for a in args if a not in memo)
+            continue
+        sub = [memo[a] for a in args]
+        dep = [x for x in sub if x[0]]
+        s0 = 1 + sum(x[1] for x in sub)
+        if not dep:
+            memo[node] = (False, s0, 1, 1)
+            continue
+        if isinstance(node, sp.Add):
+            s1 = 1 + sum(x[2] for x in dep)
+            s2 = 1 + sum(x[3] for x in dep)
+        elif isinstance(node, sp.Mul):
+            S, m = s0 - 1, len(dep)
+            D0, D1, D2 = (sum(x[k] for x in dep) for k in (1, 2, 3))
+            s1 = 1 + m + D1 + m * S - D0
+            pairs = m * (m - 1) // 2
+            s2 = 1 + m + D2 + m * S - D0 + 2 * pairs + (m - 1) * D1 + pairs * S - (m - 1) * D0
+        elif isinstance(node, sp.Pow) and not sub[1][0]:
+            (_, a0, a1, a2), (_, b0, _, _) = sub
+            s1 = a0 + b0 + 5 + a1
+            s2 = 3 * (a0 + b0) + 15 + 2 * a1 + a2
+        elif isinstance(node, sp.Pow):
+            (_, a0, a1, a2), (_, b0, b1, b2) = sub
+            s1 = s0 + a0 + b0 + a1 + b1 + a0 + 8
+            s2 = 2 * s1 + a2 + b2 + 2 * (a1 + b1) + 3 * (a0 + b0) + 16
+        elif len(args) == 1:
+            (_, a0, a1, a2), = sub
+            g1, g2 = a0 + 8, 2 * a0 + 12
+            s1 = 1 + g1 + a1
+            s2 = 3 + g2 + 2 * a1 + g1 + a2
+        else:
+            P = 2 * (s0 - 1) + 10
+            s1 = 1 + sum(1 + P + x[2] for x in dep)
+            s2 = 1 + sum(2 + 2 * P + x[2] + y[2] for x in dep for y in dep) + sum(1 + P + x[3] for x in dep)
+        memo[node] = (True, s0, s1, s2)
+    return memo[expr][1:]
 
 
 def time_derivatives(expr, time=t, where="the prescribed function f(t)"):

@@ -14,6 +14,7 @@ name) empties that cache, so no stale target can be reached.
 
 from __future__ import annotations
 
+import unicodedata
 import weakref
 
 import numpy as np
@@ -267,6 +268,10 @@ def _spellings(name, velocity=False):
         out |= {f"d{b}", f"{b}_dot", f"{b}dot"}
     for s in stems:
         out |= {f"{s}dot{num}", f"{s}_dot_{num}", f"d{s}_{num}"}
+        # the dot above as the book writes it: ẋ1, ẋ_1, φ̇2 (a combining dot; the parser reads names in NFKC,
+        # which composes x + ◌̇ into ẋ)
+        dotted = unicodedata.normalize("NFKC", f"{s}\u0307")
+        out |= {f"{dotted}{num}", f"{dotted}_{num}"}
     return sorted(out)
 
 

@@ -10,6 +10,7 @@ import sympy as sp
 import kinbook
 from kinbook.book import notation as N
 from kinbook.book import verify
+from kinbook.errors import InputError
 from kinbook.spatial import A_from_euler, Cylindrical, Mechanism, Revolute, Spherical, Translational, p_from_A
 
 A_I = A_from_euler(20, 25, 0, degrees=True)
@@ -46,7 +47,7 @@ def test_tidy_writes_float_noise_as_a_person_would():
     x = sp.Symbol("x")
     assert str(N.tidy(2.0 * x + 1.2000000000000002 * x**2 - 0.5)) == "1.2*x**2 + 2*x - 0.5"
     assert "2.0" not in N.latex(2.0 * x) and N.latex(2.0 * x) == "2 x"
-    with pytest.raises(TypeError):
+    with pytest.raises(InputError, match="expected a sympy expression, got str"):
         N.tidy("2.0*x")  # text is never parsed here (kinbook.core.reader reads text)
 
 

@@ -1037,10 +1037,335 @@ def checker_cases():
     return [Case(f"checker-{lbl}", "checkers", fn, "ok", check=lambda passed: passed is False) for lbl, fn in rows]
 
 
+# ------------------------------------------------------------------------------------------ issue 23's classes
+def _driver_file(f):
+    """ch13_example1 with the crank's driver f(t) replaced."""
+    text = _example_file("ch13_example1")
+    assert 'f = "3*pi/4 + 100*t"' in text
+    return text.replace('f = "3*pi/4 + 100*t"', f'f = "{f}"')
+
+
+def derivative_cases():
+    """Drivers within every reader limit whose derivatives sympy would take minutes to write: refused by the
+    estimate of their size before any differentiation (kinbook.core.symbolic.derivative_sizes)."""
+    import kinbook
+    from kinbook.planar import Driver
+
+    texts = {
+        "sin-99": "sin(" * 99 + "t" + ")" * 99,
+        "exp-60": "exp(" * 60 + "t/100" + ")" * 60,
+        "tower-40": "^".join(["t"] * 40),
+        "product-30": "*".join(f"(t + {k})" for k in range(1, 31)),
+        "product-of-powers": "*".join(f"(t + {k})^(t + {k})" for k in range(1, 13)),
+        "atan-chain": "atan(" * 50 + "t" + ")" * 50,
+    }
+    out = []
+    for label, f in texts.items():
+        out.append(Case(f"derivative-file-{label}", "derivatives", lambda f=f: kinbook.loads(_driver_file(f), source="d.toml"),
+                        "MechanismFileError", ("d.toml", "constraints[5]", "too involved to differentiate"), timeout=20))
+        out.append(Case(f"derivative-api-{label}", "derivatives", lambda f=f: Driver("crank", "phi", f),
+                        "ExpressionError", ("driver on body 'crank', f", "second derivative would have up to"),
+                        timeout=20))
+    # a driver of the book's size, and a longer legitimate one, load and solve
+    for label, f in (("book", "3*pi/4 + 100*t"), ("blend", "3*pi/4 + 100*t + 0.1*(1 - cos(pi*t))/2*sin(3*t)*exp(-t)")):
+        out.append(Case(f"derivative-ok-{label}", "derivatives",
+                        lambda f=f: kinbook.loads(_driver_file(f), source="d.toml").solve_velocity(
+                            kinbook.loads(_driver_file(f), source="d.toml").solve_position(0.0))[5],
+                        "ok", check=lambda v: abs(v - 100.0) < 1e-6, timeout=20))
+    return out
+
+
+def literal_cases():
+    """Float literals past the magnitude bound, integer/float forms the docs do not describe (hex, octal, binary,
+    underscores), sums deep enough to have exhausted Python's recursion, and columns after non-ASCII text."""
+    import kinbook
+    from kinbook.core.reader import read_expression, read_number
+
+    t = sp.Symbol("t", real=True)
+    ex1 = _example_file("ch13_example1")
+    deep = "sin(" * 50 + "+".join(["1"] * 900) + ")" * 50
+    rows = [
+        ("number-1e308", lambda: read_number("1e308", where="w"), "ExpressionError", ("w", "too large")),
+        ("number-neg-1e308", lambda: read_number("-1e308", where="w"), "ExpressionError", ("w", "too large")),
+        ("point-1e308", lambda: kinbook.loads(ex1.replace("OA = [-1, 0]", "OA = [-1e308, 0]"), source="p.toml"),
+         "MechanismFileError", ("p.toml", "bodies[1]", "too large")),
+        ("q0-1e308", lambda: kinbook.loads(ex1.replace('q0 = [-0.7, 0.7, "3*pi/4"]', 'q0 = [1e308, 0.7, "3*pi/4"]'),
+                                           source="q.toml"), "MechanismFileError", ("q.toml", "too large")),
+        ("point-1e300-solve", lambda: kinbook.loads(ex1.replace("OA = [-1, 0]", "OA = [-1e300, 0]"),
+                                                    source="p.toml").solve_position(0.0),
+         "ConvergenceError", ("ch13_example1", "revolute joint '1'")),
+        ("hex", lambda: read_number("0x10", where="w"), "ExpressionError", ("w", "'0x10'", "decimal")),
+        ("octal", lambda: read_number("0o17", where="w"), "ExpressionError", ("w", "'0o17'", "decimal")),
+        ("binary", lambda: read_expression("0b101*t", symbols={"t": t}, where="w"), "ExpressionError",
+         ("'0b101'", "decimal")),
+        ("underscore", lambda: read_number("1_000", where="w"), "ExpressionError", ("'1_000'", "decimal")),
+        ("leading-zero", lambda: read_number("007", where="w"), "ExpressionError", ("w", "not a valid")),
+        ("column-after-pi", lambda: read_number("ππ + foo", where="w"), "ExpressionError", ("at column 6",)),
+        ("column-after-dot", lambda: read_expression("  ẋ1 ^ 2 + foo", symbols={"ẋ1": t}, where="w"),
+         "ExpressionError", ("at column 12",)),
+        ("column-after-caret", lambda: read_expression("t^2^t + t^3 + zz", symbols={"t": t}, where="w"),
+         "ExpressionError", ("unknown name 'zz' at column 15",)),
+        ("deep-sum-driver", lambda: kinbook.loads(_driver_file("sin(" * 30 + "+".join(["t"] * 960) + ")" * 30),
+                                                  source="d.toml"), "MechanismFileError", ("d.toml", "too involved")),
+    ]
+    out = [Case(f"literal-{lbl}", "literals and recursion", fn, expect, words, timeout=20)
+           for lbl, fn, expect, words in rows]
+    # 900 terms inside 50 calls: evaluated without recursion (mpmath at fixed precision)
+    out.append(Case("literal-deep-sum-number", "literals and recursion", lambda: read_number(deep, where="w"), "ok",
+                    check=lambda v: abs(v - _nested_sin(900.0, 50)) < 1e-9))
+    out.append(Case("literal-deep-sum-cli", "literals and recursion", lambda: _cli(["solve", "ch13_example2", "-t", deep]),
+                    "ok", check=lambda r: r[0] == 0, timeout=20))
+    out.append(Case("literal-decimals-ok", "literals and recursion", lambda: read_number(".5e3 + 5. + 1e-3", where="w"),
+                    "ok", check=lambda v: abs(v - 505.001) < 1e-12))
+    return out
+
+
+def _nested_sin(x, depth):
+    for _ in range(depth):
+        x = math.sin(x)
+    return x
+
+
+def file_kind_cases():
+    """kinbook.load on what is not a regular file: refused without opening it for a blocking read."""
+    import os
+
+    import kinbook
+
+    def fifo():
+        if os.path.exists("m-fifo.toml"):
+            os.remove("m-fifo.toml")
+        os.mkfifo("m-fifo.toml")
+        return kinbook.load("m-fifo.toml")
+
+    rows = [("fifo", fifo, ("m-fifo.toml", "FIFO", "not a regular file")),
+            ("dev-zero", lambda: kinbook.load("/dev/zero"), ("/dev/zero", "device")),
+            ("dev-null", lambda: kinbook.load("/dev/null"), ("/dev/null", "device")),
+            ("directory", lambda: kinbook.load("/tmp"), ("/tmp", "directory"))]
+    return [Case(f"file-kind-{lbl}", "non-regular files", fn, "MechanismFileError", words, timeout=10)
+            for lbl, fn, words in rows]
+
+
+def _exercise_variant(name, label, cell_match, edit):
+    """A copy of a shipped exercise, in the worker's directory, with one cell edited: ``edit(source)``."""
+    import json
+
+    from kinbook import exercises
+
+    with exercises.path(name).open(encoding="utf-8") as f:
+        nb = json.load(f)
+    index = next(i for i, c in enumerate(nb["cells"]) if c["cell_type"] == "code" and cell_match in "".join(c["source"]))
+    nb["cells"][index]["source"] = edit("".join(nb["cells"][index]["source"]))
+    path = f"{label}.ipynb"
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(nb, f)
+    return path, index + 1
+
+
+def declaration_cases():
+    """Exercise declarations an instructor can get wrong, refused at release with the file and the cell named,
+    and student ids that are not one safe file name, refused by the library as by the command line."""
+    import re
+
+    from kinbook.classroom import release, write_variant
+
+    def released(name, label, cell_match, edit):
+        path, cell = _exercise_variant(name, label, cell_match, edit)
+        try:
+            release(path, "released")
+        except Exception as exc:
+            if f"cell {cell}" not in str(exc):
+                raise AssertionError(f"cell {cell} is not named: {exc}") from None
+            raise
+
+    points = lambda value: lambda src: re.sub(r"points=\d+", f"points={value}", src, count=1)  # noqa: E731
+    ranges = lambda new: lambda src: re.sub(r"omega=\([^)]*\)", new, src, count=1)  # noqa: E731
+    rows = [
+        ("points-nan", "ex01", "part(", points('float("nan")'), ("points", "nan")),
+        ("points-inf", "ex01", "part(", points("1e400"), ("points", "inf")),
+        ("points-negative", "ex01", "part(", points("-3"), ("points", "-3")),
+        ("points-bool", "ex01", "part(", points("True"), ("points", "True")),
+        ("points-text", "ex01", "part(", points('"3"'), ("points", "'3'")),
+        ("range-reversed", "ex09", "parameters(", ranges("omega=(140.0, 60.0)"), ("omega", "low > high")),
+        ("range-text", "ex09", "parameters(", ranges("omega=(60.0, 'x')"), ("omega", "two finite numbers")),
+        ("range-huge", "ex09", "parameters(", ranges("omega=(-1e308, 1e308)"), ("omega", "two finite numbers")),
+        ("range-three", "ex09", "parameters(", ranges("omega=(1.0, 2.0, 3.0)"), ("omega", "two finite numbers")),
+        ("range-empty-list", "ex09", "parameters(", ranges("omega=[]"), ("omega", "1 to")),
+        ("range-dict", "ex09", "parameters(", ranges("omega={'a': 1}"), ("omega", "(low, high) or a list")),
+        ("range-no-default", "ex09", "parameters(", ranges("omega=(60.0, 140.0), zeta=(1.0, 2.0)"),
+         ("no default for zeta",)),
+        ("default-none", "ex09", "parameters(", lambda src: src.replace("defaults={", "defaults={'w': None, ", 1),
+         ("default of w",)),
+        ("not-python", "ex09", "parameters(", lambda src: src.replace(")", ",,)", 1), ("not valid Python",)),
+        ("not-literal", "ex09", "parameters(", ranges("omega=(60.0, abs(-140.0))"), ("literal values",)),
+        ("double-star", "ex09", "parameters(", lambda src: src.replace("parameters(", "parameters(**{'a': 1}, ", 1),
+         ("keyword arguments only",)),
+    ]
+    out = [Case(f"declaration-{lbl}", "exercise declarations",
+                lambda name=name, lbl=lbl, match=match, edit=edit: released(name, lbl, match, edit),
+                "GradingError", (lbl, *words), timeout=60)
+           for lbl, name, match, edit, words in rows]
+
+    def variant_for(student):
+        from kinbook import exercises
+
+        return write_variant(exercises.path("ex09"), student, "variants")
+
+    for lbl, student in (("traversal", "x/../../escaped"), ("dotdot", ".."), ("hidden", ".bashrc"),
+                         ("absolute", "/root"), ("nul", "a\x00b"), ("long", "a" * 200), ("empty", ""), ("none", None),
+                         ("int", 7)):
+        out.append(Case(f"declaration-student-{lbl}", "exercise declarations",
+                        lambda student=student: variant_for(student), "GradingError", ("student id",), timeout=60))
+    return out
+
+
+def method_cases():
+    """Mechanism methods given a batch where one configuration is solved, a missing q̇, a derivative order that
+    is no order, an empty mechanism, truthy texts for flags."""
+    import kinbook
+    from kinbook.classroom import grade
+    from kinbook.planar import Mechanism
+
+    loaded = {}
+
+    def ex():
+        if "m" not in loaded:
+            loaded["m"] = kinbook.examples.load("ch13_example1")
+        return loaded["m"]
+
+    def sweep():
+        if "s" not in loaded:
+            loaded["s"] = ex().simulate(np.linspace(0, 0.01, 3))
+        return loaded["s"]
+
+    batch = lambda: np.tile(ex().q0, (2, 1))  # noqa: E731
+    rows = [
+        ("solve_velocity-batch", lambda: ex().solve_velocity(batch()), "InputError", ("`q`", "one configuration")),
+        ("solve_acceleration-batch", lambda: ex().solve_acceleration(batch(), batch()), "InputError",
+         ("`q`", "one configuration")),
+        ("diagnose-batch", lambda: ex().diagnose(batch()), "InputError", ("`q`", "one configuration")),
+        ("gamma-qd-none", lambda: ex().gamma(ex().q0, None), "InputError", ("`qd`", "required")),
+        ("solve_acceleration-qd-none", lambda: ex().solve_acceleration(ex().q0, None), "InputError",
+         ("`qd`", "required")),
+        ("solve_acceleration-qd-batch", lambda: ex().solve_acceleration(ex().q0, batch()), "InputError",
+         ("`qd`", "one configuration")),
+        ("empty-symbolic", lambda: Mechanism("empty").symbolic(), "ModelError", ("'empty'", "no bodies")),
+        ("empty-solve", lambda: Mechanism("empty").solve_position(0.0), "ModelError", ("'empty'", "no bodies")),
+        ("history-text", lambda: ex().solve_position(0.0, history="no"), "InputError", ("`history`", "'no'")),
+        ("evaluate-sparse-text", lambda: ex().evaluate(ex().q0, sparse="no"), "InputError", ("`sparse`",)),
+        ("grade-force-text", lambda: grade("/etc/hostname", ["/tmp"], "g", force="no"), "GradingError",
+         ("`force`", "'no'")),
+        ("grade-isolation-text", lambda: grade("/etc/hostname", ["/tmp"], "g", isolation="false"), "GradingError",
+         ("`isolation`",)),
+        ("grade-timeout-text", lambda: grade("/etc/hostname", ["/tmp"], "g", timeout="5"), "GradingError",
+         ("`timeout`",)),
+        ("grade-jobs-zero", lambda: grade("/etc/hostname", ["/tmp"], "g", jobs=0), "GradingError", ("`jobs`",)),
+    ]
+    for d in (-1 / 3, 3, -1, 1.5, True, "1", None):
+        rows.append((f"derivative-{d!r}", lambda d=d: sweep().coordinate("phi2", derivative=d), "InputError",
+                     ("`derivative`",)))
+    return [Case(f"method-{lbl}", "mechanism methods", fn, expect, words, timeout=30)
+            for lbl, fn, expect, words in rows]
+
+
+def structure_cases():
+    """Structural mistakes whose diagnosis names the culprit: no ground, a body in no constraint, a loop that
+    cannot close, a symbolic point blamed on its body (not on the first joint that touches the body)."""
+    import re
+
+    import kinbook
+
+    ex1 = _example_file("ch13_example1")
+    no_ground = re.sub(r'\[\[constraints\]\]\ntype = "ground"\n[^\[]*', "", ex1, count=1)
+    loose = ex1 + '\n[[bodies]]\nname = "loose"\nq0 = [1, 1, 0]\n'
+    short = ex1.replace("B = [-1.5, 0], OB = [1.5, 0]", "B = [-0.2, 0], OB = [0.2, 0]")
+    spatial = _example_file("spatial_fourbar")
+    spatial_loose = spatial + '\n[[bodies]]\nname = "loose"\nq0 = [1, 1, 1, 1, 0, 0, 0]\n'
+    rows = [
+        ("no-ground", lambda: kinbook.loads(no_ground, source="ng.toml").solve_position(0.0), "DriverCountError",
+         ("ch13_example1", "no body is fixed to the ground")),
+        ("loose-body", lambda: kinbook.loads(loose, source="l.toml").solve_position(0.0), "DriverCountError",
+         ("body 'loose' appears in no constraint",)),
+        ("loose-body-spatial", lambda: kinbook.loads(spatial_loose, source="l.toml").solve_position(0.0),
+         "DriverCountError", ("body 'loose' appears in no constraint",)),
+        ("loop-cannot-close", lambda: kinbook.loads(short, source="s.toml").solve_position(0.0), "ConvergenceError",
+         ("cannot be assembled", "revolute joint '4'", "revolute joint '2'")),
+    ]
+    out = [Case(f"structure-{lbl}", "structural diagnoses", fn, expect, words, timeout=30)
+           for lbl, fn, expect, words in rows]
+    good = _zoo_data(PLANAR_ZOO)
+    out.append(Case("structure-symbolic-point-body", "structural diagnoses",
+                    lambda: _build(_mutated(good, ("bodies", 1, "points", "M"), ["xi", 0]), "zoo.toml").Phi(
+                        _build(good, "zoo.toml").q0),
+                    "ModelError", ("body '", "point 'M'", "symbolic parameters (xi)")))
+    return out
+
+
+def helper_cases():
+    """The book's and the notebooks' helpers given what they do not take: a named InputError, not a bare
+    TypeError / KeyError / ValueError from inside."""
+    import sympy as sp
+
+    from kinbook.book import display, errata, notation, verify
+
+    rows = [
+        ("errata-get-unknown", lambda: errata.get("nope"), ("no erratum 'nope'",)),
+        ("errata-get-int", lambda: errata.get(3), ("no erratum '3'",)),
+        ("errata-get-list", lambda: errata.get(["a"]), ("no erratum",)),
+        ("notation-pair-list", lambda: notation.pair(["r"]), ("`kind`",)),
+        ("notation-pair-unknown", lambda: notation.pair("q"), ("`kind`", "'q'")),
+        ("notation-latex-text", lambda: notation.latex("x + 1"), ("sympy expression", "str")),
+        ("notation-latex-dict", lambda: notation.latex({"a": 1}), ("sympy expression", "dict")),
+        ("notation-tidy-text", lambda: notation.tidy("2.0*x"), ("sympy expression",)),
+        ("notation-equations-none", lambda: notation.equations(None), ("`rows`",)),
+        ("notation-matrix-text", lambda: notation.matrix("a"), ("`values`",)),
+        ("notation-matrix-dict", lambda: notation.matrix({"a": 1}), ("`values`",)),
+        ("notation-local_points-text", lambda: notation.local_points("ch13_example1"), ("expected a mechanism",)),
+        ("notation-to_book-text", lambda: notation.to_book(sp.Symbol("x"), "ch13_example1"), ("expected a mechanism",)),
+        ("notation-Math-int", lambda: notation.Math(3), ("LaTeX text",)),
+    ]
+    for fname in ("fmt", "small", "agrees"):
+        for lbl, value in (("text", "a"), ("none", None), ("list", [1, 2]), ("complex", 1j), ("symbol", sp.Symbol("x"))):
+            rows.append((f"display-{fname}-{lbl}", lambda f=fname, v=value: getattr(display, f)(v), (f"{fname}:",)))
+    rows += [
+        ("display-fmt-digits", lambda: display.fmt(1.0, digits=-1), ("`digits`",)),
+        ("display-small-tol", lambda: display.small(1.0, tol=float("nan")), ("`tol`",)),
+        ("display-tolerance_text-text", lambda: display.tolerance_text("a"), ("`tol`",)),
+        ("display-tolerance_text-nan", lambda: display.tolerance_text(float("nan")), ("`tol`",)),
+        ("display-newton_table-list", lambda: verify.newton_table([1, 2]), ("solve_position",)),
+    ]
+    return [Case(f"helper-{lbl}", "book helpers", fn, "InputError", words) for lbl, fn, words in rows]
+
+
+def drift_cases():
+    """Smaller drift: the documented spellings accepted, the tolerances of a checker finite, a negative time
+    on the command line read as a number."""
+    import kinbook
+    from kinbook.grading import check_gamma, check_rotation
+
+    def dotted():
+        m = kinbook.examples.load("ch13_example1")
+        return check_gamma(["ẋ1 - ẋ_1", "φ̇2 - phi2_dot"], m.constraint("1"))
+
+    return [
+        Case("drift-dotted-names", "drift", dotted, "ok", check=lambda r: r is not None and "unknown" not in str(r)),
+        Case("drift-check_rotation-rtol-nan", "drift", lambda: check_rotation(2 * np.eye(3), np.eye(3), rtol=math.nan),
+             "InputError", ("`rtol`",)),
+        Case("drift-check_rotation-atol-nan", "drift", lambda: check_rotation(2 * np.eye(3), np.eye(3), atol=math.nan),
+             "InputError", ("`atol`",)),
+        Case("drift-cli-negative-time", "drift", lambda: _cli(["solve", "ch13_example2", "-t", "-1e-3"]), "ok",
+             check=lambda r: r[0] == 0, timeout=20),
+        Case("drift-cli-negative-expression", "drift", lambda: _cli(["solve", "ch13_example2", "-t=-pi/400"]), "ok",
+             check=lambda r: r[0] == 0, timeout=20),
+    ]
+
+
 def cases():
     """All cases, in a fixed order with unique ids."""
     out = (reader_cases() + driver_cases() + file_cases() + file_structure_cases() + api_cases()
-           + function_cases() + singular_cases() + cli_cases() + checker_cases())
+           + function_cases() + singular_cases() + cli_cases() + checker_cases() + derivative_cases()
+           + literal_cases() + file_kind_cases() + declaration_cases() + method_cases() + structure_cases()
+           + helper_cases() + drift_cases())
     ids = [c.id for c in out]
     dup = {i for i in ids if ids.count(i) > 1}
     assert not dup, f"duplicate case ids: {sorted(dup)[:5]}"

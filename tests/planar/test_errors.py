@@ -78,7 +78,15 @@ def test_symbolic_parameters_are_refused_numerically():
     m.add_body("j", points={"P": (0, 0)})
     m.add(Revolute("i", "j", point="P"))
     assert {str(s) for s in m.symbolic().Phi.free_symbols} >= {"xi", "eta", "phi1"}
-    with pytest.raises(ModelError, match=r"revolute joint '1' .* symbolic parameters \(eta, xi\)"):
+    # named where the symbols are (the body's point) and who uses it; a point no joint uses is the body's alone
+    with pytest.raises(ModelError, match=r"body 'i', point 'P' has symbolic parameters \(eta, xi\) \(used by "
+                                         r"revolute joint '1'"):
+        m.Phi(np.zeros(6))
+    m = Mechanism("sym")
+    m.add_body("i", points={"P": (1, 0)})
+    m.add_body("j", points={"P": (0, 0), "M": ("l", 0)})
+    m.add(Revolute("i", "j", point="P"))
+    with pytest.raises(ModelError, match=r"body 'j', point 'M' has symbolic parameters \(l\): substitute"):
         m.Phi(np.zeros(6))
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 from ...errors import GradingError
 from ..files import PUBLIC_DIR, PUBLIC_FILE, atomic_write
 from ..notebook import load_source, locked_checksums, student_notebook
-from ..variant import references, student_parameters
+from ..variant import check_student_id, references, student_parameters
 
 __all__ = ["release", "write_variant", "write_variants", "write_notebook"]
 
@@ -59,7 +59,9 @@ def release(sources, outdir="release"):
 
 
 def write_variant(source, student, outdir="."):
-    """Write ``student``'s own version of ``source`` as ``outdir/<exercise>-<student>.ipynb``."""
+    """Write ``student``'s own version of ``source`` as ``outdir/<exercise>-<student>.ipynb``; ``student`` must be
+    a safe file name (:func:`~kinbook.classroom.variant.check_student_id`)."""
+    check_student_id(student)
     source = load_source(source)
     values = student_parameters(source, student)
     return write_notebook(student_notebook(source, values, student), Path(outdir) / f"{source.exercise}-{student}.ipynb")

@@ -17,8 +17,10 @@ student, :func:`variant`).
 from __future__ import annotations
 
 import contextlib
+import decimal
 import hashlib
 import io
+import re
 import warnings
 
 import numpy as np
@@ -27,9 +29,23 @@ from ...errors import GradingError, KinbookError
 from ..notebook import find_parameters, grader_code, load_source, student_notebook
 from ..parts import parameters, part, recording
 
-__all__ = ["student_parameters", "variant", "references", "seed_from", "draw", "MAX_DRAWS"]
+__all__ = ["student_parameters", "variant", "references", "seed_from", "draw", "check_student_id", "STUDENT_ID",
+           "MAX_DRAWS"]
 
 MAX_DRAWS = 25
+
+STUDENT_ID = re.compile(r"[A-Za-z0-9][A-Za-z0-9._@+-]{0,127}")
+"""A student identifier a variant is written for: letters, digits and ``. _ @ + -``, starting with a letter or
+digit, at most 128 characters — so that it is always one safe file name (no ``/``, no ``..`` on its own, no
+hidden file)."""
+
+
+def check_student_id(student):
+    """Return ``student`` if it matches :data:`STUDENT_ID`, else raise :class:`~kinbook.errors.GradingError`."""
+    if not isinstance(student, str) or not STUDENT_ID.fullmatch(student):
+        raise GradingError(f"a student id must be letters, digits and . _ @ + - (starting with a letter or digit, at "
+                           f"most 128 characters), got {str(student)[:80]!r}")
+    return student
 
 
 def seed_from(text):
@@ -52,8 +68,9 @@ def _draw(ranges, defaults, rng):
     for name, spec in sorted(ranges.items()):
         if isinstance(spec, tuple) and len(spec) == 2:
             lo, hi = spec
-            text = repr(float(lo))
-            digits = max(2, len(text.split(".")[1]) if "." in text else 0)
+            # the decimals of low (1e-05 has 5, 0.125 three), at least 2, at most 15
+            exponent = decimal.Decimal(repr(float(lo))).as_tuple().exponent
+            digits = min(15, max(2, -exponent if isinstance(exponent, int) else 0))
             out[name] = round(float(rng.uniform(lo, hi)), digits)
         elif isinstance(spec, list) and spec:
             out[name] = spec[int(rng.integers(len(spec)))]
@@ -83,6 +100,7 @@ def student_parameters(source, student):
 
 def variant(source, student):
     """The student's own notebook (solutions removed, their parameters written in)."""
+    check_student_id(student)
     source = load_source(source)
     return student_notebook(source, student_parameters(source, student), student)
 
@@ -125,10 +143,10 @@ def references(source, values=None):
                     exec(compiled, ns)  # the instructor's own code (trusted), never the student's
                 except NameError:
                     pass  # a cell that uses the student's answers: nothing to build from it
+                except GradingError as exc:  # a declaration the instructor must fix (part(points=nan) …)
+                    raise GradingError(f"{source.exercise}: cell {index + 1}: {exc}") from exc
                 except KinbookError as exc:
                     raise _VariantFails(f"cell {index + 1}: {type(exc).__name__}: {exc}") from exc
-                except GradingError:
-                    raise
                 except Exception as exc:
                     raise GradingError(f"{source.exercise}: cell {index + 1} fails in the grader: "
                                        f"{type(exc).__name__}: {exc}") from exc
