@@ -36,13 +36,14 @@ lab: $(STAMP)
 # -n auto: one pytest worker per core (pytest-xdist); --dist loadfile keeps each notebook's cells in order on
 # one worker (they share its kernel). JOBS=1 runs everything in this one process. -rs lists skipped tests with
 # their reason (the grading sandbox's tests are skipped where bubblewrap cannot run).
-# A notebook cell taking longer than CELL_TIMEOUT seconds fails as a hang: far beyond what any cell takes on a
-# loaded machine (seconds on a quiet one), so that a slow machine is never a failed test.
+# A notebook cell (or a notebook's kernel start) taking longer than CELL_TIMEOUT seconds fails as a hang: far beyond
+# what any takes on a loaded machine (seconds on a quiet one; nbval's default of 60 s for a kernel start failed
+# 13-4 once at load 15), so that a slow machine is never a failed test.
 JOBS ?= auto
 CELL_TIMEOUT ?= 600
 test: $(STAMP)
 	$(BIN)/ruff check .
-	$(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=$(CELL_TIMEOUT) -rs \
+	$(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=$(CELL_TIMEOUT) --nbval-kernel-startup-timeout=$(CELL_TIMEOUT) -rs \
 		$(if $(filter 1,$(JOBS)),,-n $(JOBS) --dist loadfile)
 
 # Static analysis alone (make test runs it first): pyflakes, import order and bugbear, configured in pyproject.toml.
@@ -64,7 +65,7 @@ translations: $(STAMP)
 # differently; a notebook that prints round-off fails here even on the machine that stored it.
 CPU_PROFILE := OPENBLAS_CORETYPE=Prescott NPY_DISABLE_CPU_FEATURES="X86_V3 X86_V4 AVX512_ICL AVX512_SPR"
 test-cpu: $(STAMP)
-	$(CPU_PROFILE) $(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=$(CELL_TIMEOUT) chapters exercises \
+	$(CPU_PROFILE) $(BIN)/python -m pytest --nbval --nbval-current-env --nbval-cell-timeout=$(CELL_TIMEOUT) --nbval-kernel-startup-timeout=$(CELL_TIMEOUT) chapters exercises \
 		$(if $(filter 1,$(JOBS)),,-n $(JOBS) --dist loadfile)
 
 # nbgrader 0.9.6 and otter-grader 7 pin jupyter packages on their own schedule: they get their own venv, pinned

@@ -11,7 +11,11 @@ import sys
 import time
 
 import sympy as sp
-import tomllib
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
+    import tomli as tomllib
 
 from kinbook.core.reader import ExpressionError, read_expression
 from kinbook.files import _no_gc, build

@@ -12,7 +12,7 @@ import sys
 
 try:
     import tomllib
-except ImportError:  # Python 3.10
+except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
     import tomli as tomllib
 
 import pytest
@@ -197,3 +197,19 @@ def test_ruff_lints_the_notebooks_code():
     for folder in ("chapters", "exercises"):
         notebooks = {os.path.join(folder, f) for f in os.listdir(os.path.join(ROOT, folder)) if f.endswith(".ipynb")}
         assert notebooks and notebooks <= linted, notebooks - linted
+
+
+def test_the_package_imports_on_python_3_10():
+    """tomllib is new in 3.11: every import of it in kinbook falls back to tomli (a dependency below 3.11), so that
+    the lowest Python the metadata names can import every module (tryits/ch13.py could not)."""
+    bare = []
+    for info in pkgutil.walk_packages(kinbook.__path__, "kinbook."):
+        path = importlib.util.find_spec(info.name).origin
+        tree = ast.parse(open(path, encoding="utf-8").read())
+        guarded = {id(n) for t in ast.walk(tree) if isinstance(t, ast.Try) and any(
+            isinstance(h.type, ast.Name) and h.type.id in ("ImportError", "ModuleNotFoundError") for h in t.handlers)
+            for n in ast.walk(t) if t.body and n in [x for b in t.body for x in ast.walk(b)]}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import) and any(a.name == "tomllib" for a in node.names) and id(node) not in guarded:
+                bare.append(f"{os.path.relpath(path, ROOT)}:{node.lineno}")
+    assert bare == []

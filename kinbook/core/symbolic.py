@@ -168,12 +168,7 @@ def time_function(f, where, time=t):
             f"{where}: the function of time {text!r} uses {', '.join(jumps)}, which jumps: a prescribed motion "
             "needs two continuous derivatives (for ν and γ); write a smooth function (a blend such as "
             "(1 - cos(pi*t))/2), or drive each phase in its own sweep", where=where, text=text)
-    size = derivative_sizes(expr, time)[2]
-    if size > DERIVATIVE_PARTS:  # before sympy differentiates: a few hundred bytes of text can take minutes
-        raise ExpressionError(
-            f"{where}: the function of time {_short(text)} is too involved to differentiate: its second derivative "
-            f"would have up to {size:,} parts (at most {DERIVATIVE_PARTS:,}); expected a prescribed motion of a "
-            "few terms (a driver of the book has a few dozen parts)", where=where, text=text)
+    _check_derivative_size(expr, time, where, text)
     for k in (1, 2):
         d = sp.diff(expr, time, k)
         if d.has(sp.Derivative, sp.Subs):
@@ -196,6 +191,19 @@ def time_function(f, where, time=t):
 
 
 _VALID = {}  # (text or expression, time symbol) -> the validated expression
+
+
+def _check_derivative_size(expr, time, where, text):
+    """Refuse, before sympy differentiates, a function whose second derivative would exceed
+    :data:`DERIVATIVE_PARTS` (a few hundred bytes of text can take sympy minutes)."""
+    from ..errors import ExpressionError
+
+    size = derivative_sizes(expr, time)[2]
+    if size > DERIVATIVE_PARTS:
+        raise ExpressionError(
+            f"{where}: the function of time {_short(text)} is too involved to differentiate: its second derivative "
+            f"would have up to {size:,} parts (at most {DERIVATIVE_PARTS:,}); expected a prescribed motion of a "
+            "few terms (a driver of the book has a few dozen parts)", where=where, text=text)
 
 
 def derivative_sizes(expr, time=t):

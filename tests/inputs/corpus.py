@@ -122,7 +122,10 @@ def _cli(argv):
 
 @functools.lru_cache(maxsize=None)
 def _example_data(name):  # callers deep-copy before mutating
-    import tomllib
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
+        import tomli as tomllib
 
     from kinbook import examples
 
@@ -327,7 +330,10 @@ f = "2 + t"
 
 @functools.lru_cache(maxsize=None)
 def _zoo_data(text):  # callers deep-copy before mutating
-    import tomllib
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
+        import tomli as tomllib
 
     return tomllib.loads(text)
 

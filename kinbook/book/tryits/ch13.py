@@ -14,7 +14,11 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
-import tomllib
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
+    import tomli as tomllib
 
 from ... import examples
 from ...files import build
