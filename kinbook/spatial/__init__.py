@@ -71,5 +71,5 @@ __all__ = [
     "ConstraintTable",
     *transforms.__all__,
     *constraints.__all__,
-    *(name for name in rotations.__all__ if name != "P_TOL"),
+    *rotations.__all__,
 ]

@@ -21,6 +21,7 @@ from ..core.mechanism import ConstraintTable, MechanismBase
 from ..core.reader import read_constant
 from ..errors import InputError, ModelError
 from . import rotations, transforms
+from .arrays import P_TOL, shapes, vec3
 from .constraints import NCOORD, Constraint, Normalization
 
 __all__ = ["Body", "Mechanism", "ConstraintTable"]
@@ -159,7 +160,7 @@ class Mechanism(MechanismBase):
         qb = self._body_q(self.check_q(q, name), body)
         if unit:
             norm = np.linalg.norm(qb[..., 3:], axis=-1)
-            if np.any(np.abs(norm - 1) > rotations.P_TOL):
+            if np.any(np.abs(norm - 1) > P_TOL):
                 raise InputError(f"`{name}`: the Euler parameters of body '{body}' do not have unit norm "
                                  f"(|p| = {float(np.ravel(norm)[0]):.9g}); solve the position first")
         return qb
@@ -216,31 +217,31 @@ class Mechanism(MechanismBase):
         k = NCOORD * (b.number - 1)
         turn = rotations.p_from_axis_angle(axis, angle)
         r, p = q[k : k + 3], q[k + 3 : k + 7]
-        centre = r if about is None else rotations._vec3(about, "about")
+        centre = r if about is None else vec3(about, "about")
         R = rotations.A_from_p(turn)
         out = q.copy()
         if np.ndim(shift) == 0 and shift == 0:
             shift = (0.0, 0.0, 0.0)
-        out[k : k + 3] = centre + R @ (r - centre) + rotations._vec3(shift, "shift")
+        out[k : k + 3] = centre + R @ (r - centre) + vec3(shift, "shift")
         t0, t = turn[0], turn[1:]
         e0, e = p[0], p[1:]
         out[k + 3] = t0 * e0 - t @ e  # Euler parameters compose like quaternions: A(p_turn ⊗ p) = A(p_turn) A(p)
         out[k + 4 : k + 7] = t0 * e + e0 * t + np.cross(t, e)
         return out
 
-    @rotations._shapes
+    @shapes
     def point_position(self, q, body, point):
         """Global position r^P = r + A s'^P of a body point, shape (3,) or (N, 3)."""
         qb = self._pq(q, body)
         return transforms.point_position(qb[..., :3], qb[..., 3:], self.point_local(body, point))
 
-    @rotations._shapes
+    @shapes
     def point_velocity(self, q, qd, body, point):
         """Global velocity ṙ^P = ṙ + ∂(A s'^P)/∂p ṗ (= ṙ + ω × A s'^P) of a body point."""
         qb, vb = self._pq(q, body), self._pq(qd, body, "qd", unit=False)
         return transforms.point_velocity(vb[..., :3], qb[..., 3:], vb[..., 3:], self.point_local(body, point))
 
-    @rotations._shapes
+    @shapes
     def point_acceleration(self, q, qd, qdd, body, point):
         """Global acceleration r̈^P = r̈ + ∂(A s')/∂p p̈ + ∂(A s')/∂p|_ṗ ṗ (= r̈ + α × s + ω × (ω × s))."""
         qb, vb = self._pq(q, body), self._pq(qd, body, "qd", unit=False)
@@ -248,13 +249,13 @@ class Mechanism(MechanismBase):
         return transforms.point_acceleration(ab[..., :3], qb[..., 3:], vb[..., 3:], ab[..., 3:],
                                              self.point_local(body, point))
 
-    @rotations._shapes
+    @shapes
     def angular_velocity(self, q, qd, body, frame="global"):
         """Angular velocity of a body: ω = 2 E ṗ (global) or ω' = 2 G ṗ (body components), shape (…, 3)."""
         qb, vb = self._pq(q, body), self._pq(qd, body, "qd", unit=False)
         return rotations.omega_from_p_dot(qb[..., 3:], vb[..., 3:], frame)
 
-    @rotations._shapes
+    @shapes
     def angular_acceleration(self, q, qdd, body, frame="global"):
         """Angular acceleration of a body: α = 2 E p̈ (global) or α' = 2 G p̈ (body), shape (…, 3)."""
         qb, ab = self._pq(q, body), self._pq(qdd, body, "qdd", unit=False)

@@ -20,17 +20,15 @@ identities that hold for any p (Ep = 0, ∂(Aa)/∂p …) are available off the 
 
 from __future__ import annotations
 
-import functools
 import warnings
 
 import numpy as np
 import sympy as sp
 
-from ..core.arrays import no_overflow, real_array, symbolic_leaves
-from ..errors import InputError, KinbookError, SingularityWarning
+from ..errors import InputError, SingularityWarning
+from .arrays import array, mm, mv, parts, shapes, show, stack_rows, symbolic, transpose, unit_p, vec3
 
 __all__ = [
-    "P_TOL",
     "skew",
     "check_rotation",
     "A_from_axes",
@@ -55,9 +53,6 @@ __all__ = [
     "dAa_dp",
 ]
 
-P_TOL = 1e-6
-"""Tolerance on | |p| − 1 | accepted by functions that need unit Euler parameters."""
-
 ROTATION_TOL = 1e-6
 """Tolerance on max |AᵀA − I| and |det A − 1| accepted by :func:`check_rotation`."""
 
@@ -66,57 +61,6 @@ SINGULAR_TOL = 1e-9
 
 
 # ----------------------------------------------------------------------------------------------- validation
-def _symbolic(*values):
-    return symbolic_leaves(*values)
-
-
-def _array(v, name, last=None):
-    a = real_array(v, name)
-    if last is not None and (a.ndim < len(last) or a.shape[a.ndim - len(last):] != tuple(last)):
-        raise InputError(f"`{name}` must have shape (..., {', '.join(map(str, last))}), got {a.shape}")
-    return a
-
-
-def _show(a):
-    return np.array2string(np.asarray(a), precision=6, threshold=20)
-
-
-def _p(p, name="p", check=True):
-    p = _array(p, name, (4,))
-    if check:
-        with np.errstate(over="ignore"):  # |p| of p = 1e300 is inf: not unit, refused below
-            norm = np.linalg.norm(p, axis=-1)
-        bad = np.abs(norm - 1.0) > P_TOL
-        if np.any(bad):
-            worst = float(np.ravel(norm)[np.argmax(np.ravel(np.abs(norm - 1.0)))])
-            raise InputError(
-                f"`{name}` must be unit Euler parameters (e0² + e1² + e2² + e3² = 1), got |{name}| = {worst:.9g}; "
-                f"normalize it on purpose with kinbook.spatial.normalize_p"
-            )
-    return p
-
-
-def _vec3(v, name):
-    return _array(v, name, (3,))
-
-
-def _shapes(func):
-    """Turn numpy's broadcasting errors (arguments of incompatible shapes) into InputError."""
-
-    @functools.wraps(func)
-    @no_overflow
-    def wrapper(*args, **kwargs):
-        try:
-            return func(*args, **kwargs)
-        except KinbookError:
-            raise
-        except ValueError as exc:
-            shapes = ", ".join(str(np.shape(a)) for a in args if isinstance(a, (np.ndarray, list, tuple, float, int)))
-            raise InputError(f"{func.__name__}: arguments of incompatible shapes {shapes} ({exc})") from None
-
-    return wrapper
-
-
 # ----------------------------------------------------------------------------------------------- basics
 def skew(v):
     """Skew-symmetric matrix ṽ with ṽ w = v × w (textbook §14.4, "parallel vectors").
@@ -134,10 +78,10 @@ def skew(v):
     >>> skew([1.0, 2.0, 3.0]) @ [4.0, 5.0, 6.0]
     array([-3.,  6., -3.])
     """
-    if _symbolic(v):
+    if symbolic(v):
         x, y, z = v
         return sp.Matrix([[0, -z, y], [z, 0, -x], [-y, x, 0]])
-    v = _vec3(v, "v")
+    v = vec3(v, "v")
     x, y, z = v[..., 0], v[..., 1], v[..., 2]
     o = np.zeros_like(x)
     return np.stack([np.stack([o, -z, y], -1), np.stack([z, o, -x], -1), np.stack([-y, x, o], -1)], -2)
@@ -167,11 +111,11 @@ def check_rotation(A, name="A", tol=ROTATION_TOL):
     -----
     Textbook §14.1, eqs. 8 and 10. See docs/conventions.md.
     """
-    A = _array(A, name, (3, 3))
+    A = array(A, name, (3, 3))
     err = np.abs(np.swapaxes(A, -1, -2) @ A - np.eye(3)).max(axis=(-1, -2)) if A.size else np.zeros(0)
     if np.any(err > tol):
         raise InputError(f"`{name}` is not a rotation matrix: max |{name}ᵀ{name} − I| = {float(np.max(err)):.3g} "
-                         f"(its columns must be orthonormal unit vectors), got {_show(A)}")
+                         f"(its columns must be orthonormal unit vectors), got {show(A)}")
     det = np.linalg.det(A)
     if np.any(np.abs(det - 1.0) > tol):
         raise InputError(f"`{name}` is not a rotation matrix: det {name} = {float(np.ravel(det)[0]):.6g}, expected +1 "
@@ -202,7 +146,7 @@ def A_from_axes(u_xi, u_eta, u_zeta):
     >>> A_from_axes([0, 1, 0], [-1, 0, 0], [0, 0, 1]) @ [1.0, 0.0, 0.0]
     array([0., 1., 0.])
     """
-    cols = [_vec3(u, n) for u, n in ((u_xi, "u_xi"), (u_eta, "u_eta"), (u_zeta, "u_zeta"))]
+    cols = [vec3(u, n) for u, n in ((u_xi, "u_xi"), (u_eta, "u_eta"), (u_zeta, "u_zeta"))]
     try:
         A = np.stack(np.broadcast_arrays(*cols), -1)
     except ValueError:
@@ -212,11 +156,11 @@ def A_from_axes(u_xi, u_eta, u_zeta):
 
 # ----------------------------------------------------------------------------------------------- Euler angles
 def _angle(v, name, degrees):
-    a = _array(v, name)
+    a = array(v, name)
     return np.deg2rad(a) if degrees else a
 
 
-@_shapes
+@shapes
 def A_from_euler(psi, theta, phi, degrees=False):
     """Rotation matrix from the book's z-x-z Euler angles (textbook §14.2).
 
@@ -333,12 +277,12 @@ def _frame(frame):
 
 
 def _euler_args(angles, name, degrees):
-    a = _array(angles, name, (3,))
+    a = array(angles, name, (3,))
     a = np.deg2rad(a) if degrees else a
     return a[..., 0], a[..., 1], a[..., 2]
 
 
-@_shapes
+@shapes
 def omega_from_euler_rates(angles, rates, frame="global", degrees=False):
     """Angular velocity from z-x-z Euler angles and their rates (textbook §14.2).
 
@@ -364,11 +308,11 @@ def omega_from_euler_rates(angles, rates, frame="global", degrees=False):
     """
     frame = _frame(frame)
     psi, theta, phi = _euler_args(angles, "angles", degrees)
-    rates = _array(rates, "rates", (3,))
+    rates = array(rates, "rates", (3,))
     return np.einsum("...ij,...j->...i", _euler_matrix(psi, theta, phi, frame), rates)
 
 
-@_shapes
+@shapes
 def euler_rates_from_omega(angles, omega, frame="global", degrees=False):
     """z-x-z Euler angle rates (ψ̇, θ̇, φ̇) from the angular velocity (textbook §14.2).
 
@@ -391,7 +335,7 @@ def euler_rates_from_omega(angles, omega, frame="global", degrees=False):
     """
     frame = _frame(frame)
     psi, theta, phi = _euler_args(angles, "angles", degrees)
-    omega = _array(omega, "omega", (3,))
+    omega = array(omega, "omega", (3,))
     st = np.sin(theta)
     if np.any(np.abs(st) < SINGULAR_TOL):
         th = float(np.ravel(theta)[np.argmin(np.ravel(np.abs(st)))])
@@ -412,7 +356,7 @@ def euler_rates_from_omega(angles, omega, frame="global", degrees=False):
 
 
 # ----------------------------------------------------------------------------------------------- Euler parameters
-@_shapes
+@shapes
 def p_from_axis_angle(axis, angle, degrees=False):
     """Euler parameters of a rotation by ``angle`` about ``axis`` (textbook §14.3).
 
@@ -434,10 +378,10 @@ def p_from_axis_angle(axis, angle, degrees=False):
     >>> p_from_axis_angle([0, 0, 1], 180, degrees=True).round(12)
     array([0., 0., 0., 1.])
     """
-    axis = _vec3(axis, "axis")
+    axis = vec3(axis, "axis")
     n = np.linalg.norm(axis, axis=-1)
     if np.any(n < 1e-12):
-        raise InputError(f"`axis` must be a nonzero vector, got {_show(axis)}")
+        raise InputError(f"`axis` must be a nonzero vector, got {show(axis)}")
     u = axis / n[..., None]
     a = _angle(angle, "angle", degrees)
     c, s = np.cos(a / 2), np.sin(a / 2)
@@ -457,7 +401,7 @@ def axis_angle_from_p(p):
         Unit vector; [1, 0, 0] by convention for the identity (α = 0).
     angle : ndarray, shape (...)
     """
-    p = _p(p)
+    p = unit_p(p)
     p = np.where(p[..., :1] < 0, -p, p)  # p and −p are the same rotation
     s = np.linalg.norm(p[..., 1:], axis=-1)
     angle = 2 * np.arctan2(s, p[..., 0])
@@ -467,7 +411,7 @@ def axis_angle_from_p(p):
 
 def normalize_p(p):
     """Euler parameters divided by their norm, shape (..., 4). Raises InputError for p = 0."""
-    p = _p(p, check=False)
+    p = unit_p(p, check=False)
     big = np.max(np.abs(p), axis=-1, keepdims=True)  # divide by it first: |p|² of p = 1e300 overflows
     unit = p / np.where(big > 0, big, 1.0)
     n = np.linalg.norm(unit, axis=-1, keepdims=True)
@@ -478,19 +422,11 @@ def normalize_p(p):
 
 def normalization(p):
     """The normalization constraint pᵀp − 1 (zero for valid Euler parameters), shape (...)."""
-    if _symbolic(p):
+    if symbolic(p):
         p = sp.Matrix(p)
         return (p.T * p)[0] - 1
-    p = _p(p, check=False)
+    p = unit_p(p, check=False)
     return np.einsum("...i,...i->...", p, p) - 1.0
-
-
-def _parts(p):
-    return p[..., 0], p[..., 1], p[..., 2], p[..., 3]
-
-
-def _stack(rows):
-    return np.stack([np.stack(r, -1) for r in rows], -2)
 
 
 def E(p, check=True):
@@ -509,11 +445,11 @@ def E(p, check=True):
     -------
     ndarray, shape (..., 3, 4), or sympy.Matrix
     """
-    if _symbolic(p):
+    if symbolic(p):
         e0, e1, e2, e3 = p
         return sp.Matrix([[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]])
-    e0, e1, e2, e3 = _parts(_p(p, check=check))
-    return _stack([[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]])
+    e0, e1, e2, e3 = parts(unit_p(p, check=check))
+    return stack_rows([[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]])
 
 
 def G(p, check=True):
@@ -526,11 +462,11 @@ def G(p, check=True):
     The book prints the second row as [−e2, e3, e0, e1]; it is [−e2, −e3, e0, e1] (with the printed row,
     Gp = [0, 2 e1 e3, 0] ≠ 0). Same parameters as :func:`E`.
     """
-    if _symbolic(p):
+    if symbolic(p):
         e0, e1, e2, e3 = p
         return sp.Matrix([[-e1, e0, e3, -e2], [-e2, -e3, e0, e1], [-e3, e2, -e1, e0]])
-    e0, e1, e2, e3 = _parts(_p(p, check=check))
-    return _stack([[-e1, e0, e3, -e2], [-e2, -e3, e0, e1], [-e3, e2, -e1, e0]])
+    e0, e1, e2, e3 = parts(unit_p(p, check=check))
+    return stack_rows([[-e1, e0, e3, -e2], [-e2, -e3, e0, e1], [-e3, e2, -e1, e0]])
 
 
 def A_from_p(p, check=True):
@@ -559,12 +495,12 @@ def A_from_p(p, check=True):
     >>> A_from_p([np.cos(np.pi / 4), 0, 0, np.sin(np.pi / 4)]).round(12) @ [1.0, 0.0, 0.0]
     array([0., 1., 0.])
     """
-    if _symbolic(p):
+    if symbolic(p):
         e0, e1, e2, e3 = p
         e = sp.Matrix([e1, e2, e3])
         return 2 * ((e0**2 - sp.Rational(1, 2)) * sp.eye(3) + e * e.T + e0 * skew(e))
-    e0, e1, e2, e3 = _parts(_p(p, check=check))
-    return 2 * _stack([
+    e0, e1, e2, e3 = parts(unit_p(p, check=check))
+    return 2 * stack_rows([
         [e0 * e0 + e1 * e1 - 0.5, e1 * e2 - e0 * e3, e1 * e3 + e0 * e2],
         [e1 * e2 + e0 * e3, e0 * e0 + e2 * e2 - 0.5, e2 * e3 - e0 * e1],
         [e1 * e3 - e0 * e2, e2 * e3 + e0 * e1, e0 * e0 + e3 * e3 - 0.5],
@@ -625,34 +561,16 @@ def a_bar(a):
     The book's block form [[0, −aᵀ], [a, −ã]] is right; its element-by-element matrix printed next to it
     has +ã in the lower-right block (row 2 printed as [a1, 0, −a3, a2], correct [a1, 0, a3, −a2]).
     """
-    if _symbolic(a):
+    if symbolic(a):
         a1, a2, a3 = a
         return sp.Matrix([[0, -a1, -a2, -a3], [a1, 0, a3, -a2], [a2, -a3, 0, a1], [a3, a2, -a1, 0]])
-    a = _vec3(a, "a")
+    a = vec3(a, "a")
     a1, a2, a3 = a[..., 0], a[..., 1], a[..., 2]
     o = np.zeros_like(a1)
-    return _stack([[o, -a1, -a2, -a3], [a1, o, a3, -a2], [a2, -a3, o, a1], [a3, a2, -a1, o]])
+    return stack_rows([[o, -a1, -a2, -a3], [a1, o, a3, -a2], [a2, -a3, o, a1], [a3, a2, -a1, o]])
 
 
-def _mm(X, Y):
-    return np.einsum("...ij,...jk->...ik", X, Y)
-
-
-def _mv(M, v):
-    """Batched matrix-vector product (…, m, n) @ (…, n) -> (…, m), for small n: n broadcast multiply-adds
-    (numpy's stacked matmul on tiny matrices costs more per matrix than the arithmetic). Shared by
-    :mod:`~kinbook.spatial.transforms` and the constraint kernels."""
-    out = M[..., 0] * v[..., None, 0]
-    for c in range(1, v.shape[-1]):
-        out = out + M[..., c] * v[..., None, c]
-    return out
-
-
-def _T(X):
-    return np.swapaxes(X, -1, -2)
-
-
-@_shapes
+@shapes
 def A_dot(p, p_dot):
     """Time derivative of A: Ȧ = 2 E Ġᵀ = 2 Ė Gᵀ (textbook §14.3), shape (..., 3, 3).
 
@@ -663,36 +581,36 @@ def A_dot(p, p_dot):
     p_dot : array_like, shape (..., 4)
         ṗ; it must satisfy pᵀṗ = 0 (the derivative of the normalization) for the identity to hold.
     """
-    p = _p(p)
-    pd = _p(p_dot, "p_dot", check=False)
+    p = unit_p(p)
+    pd = unit_p(p_dot, "p_dot", check=False)
     _tangent(p, pd)
-    return 2 * _mm(E(p), _T(G(pd, check=False)))
+    return 2 * mm(E(p), transpose(G(pd, check=False)))
 
 
-@_shapes
+@shapes
 def A_ddot(p, p_dot, p_ddot):
     """Second time derivative of A: Ä = 2 Ė Ġᵀ + 2 E G̈ᵀ (textbook §14.3), shape (..., 3, 3).
 
     Applied to a vector: Ä a = 2 Ė Ġᵀ a + 2 E ā p̈. ṗ must satisfy pᵀṗ = 0 and p̈ must satisfy
     pᵀp̈ = −ṗᵀṗ (the first and second derivatives of the normalization).
     """
-    p = _p(p)
-    pd = _p(p_dot, "p_dot", check=False)
-    pdd = _p(p_ddot, "p_ddot", check=False)
+    p = unit_p(p)
+    pd = unit_p(p_dot, "p_dot", check=False)
+    pdd = unit_p(p_ddot, "p_ddot", check=False)
     _tangent(p, pd)
     r = np.einsum("...i,...i->...", p, pdd) + np.einsum("...i,...i->...", pd, pd)
     if np.any(np.abs(r) > 1e-6 * (1 + np.einsum("...i,...i->...", pd, pd))):
-        raise InputError(f"`p_ddot` must satisfy pᵀp̈ + ṗᵀṗ = 0 (second derivative of pᵀp = 1), got {_show(r)}")
-    return 2 * _mm(E(pd, check=False), _T(G(pd, check=False))) + 2 * _mm(E(p), _T(G(pdd, check=False)))
+        raise InputError(f"`p_ddot` must satisfy pᵀp̈ + ṗᵀṗ = 0 (second derivative of pᵀp = 1), got {show(r)}")
+    return 2 * mm(E(pd, check=False), transpose(G(pd, check=False))) + 2 * mm(E(p), transpose(G(pdd, check=False)))
 
 
 def _tangent(p, pd):
     r = np.einsum("...i,...i->...", p, pd)
     if np.any(np.abs(r) > 1e-6 * (1 + np.linalg.norm(pd, axis=-1))):
-        raise InputError(f"`p_dot` must satisfy pᵀṗ = 0 (derivative of the normalization pᵀp = 1), got pᵀṗ = {_show(r)}")
+        raise InputError(f"`p_dot` must satisfy pᵀṗ = 0 (derivative of the normalization pᵀp = 1), got pᵀṗ = {show(r)}")
 
 
-@_shapes
+@shapes
 def omega_from_p_dot(p, p_dot, frame="global"):
     """Angular velocity from Euler parameter rates: ω = 2 E ṗ, ω' = 2 G ṗ (textbook §14.3).
 
@@ -706,27 +624,27 @@ def omega_from_p_dot(p, p_dot, frame="global"):
     omega : ndarray, shape (..., 3)
     """
     frame = _frame(frame)
-    p = _p(p)
-    pd = _p(p_dot, "p_dot", check=False)
+    p = unit_p(p)
+    pd = unit_p(p_dot, "p_dot", check=False)
     _tangent(p, pd)
     M = E(p) if frame == "global" else G(p)
-    return 2 * _mv(M, pd)
+    return 2 * mv(M, pd)
 
 
-@_shapes
+@shapes
 def p_dot_from_omega(p, omega, frame="global"):
     """Euler parameter rates from the angular velocity: ṗ = ½ Eᵀ ω = ½ Gᵀ ω' (textbook §14.3).
 
     Returns ṗ, shape (..., 4), which satisfies pᵀṗ = 0.
     """
     frame = _frame(frame)
-    p = _p(p)
-    w = _vec3(omega, "omega")
+    p = unit_p(p)
+    w = vec3(omega, "omega")
     M = E(p) if frame == "global" else G(p)
-    return 0.5 * _mv(_T(M), w)
+    return 0.5 * mv(transpose(M), w)
 
 
-@_shapes
+@shapes
 def alpha_from_p(p, p_ddot, frame="global"):
     """Angular acceleration from Euler parameters: α = 2 E p̈, α' = 2 G p̈ (Ė ṗ = Ġ ṗ = 0).
 
@@ -735,13 +653,13 @@ def alpha_from_p(p, p_ddot, frame="global"):
     alpha : ndarray, shape (..., 3)
     """
     frame = _frame(frame)
-    p = _p(p)
-    pdd = _p(p_ddot, "p_ddot", check=False)
+    p = unit_p(p)
+    pdd = unit_p(p_ddot, "p_ddot", check=False)
     M = E(p) if frame == "global" else G(p)
-    return 2 * _mv(M, pdd)
+    return 2 * mv(M, pdd)
 
 
-@_shapes
+@shapes
 def dAa_dp(p, a, form="A"):
     """Partial derivative ∂(A a)/∂p of a rotated constant vector a with respect to p (textbook §14.3).
 
@@ -763,9 +681,9 @@ def dAa_dp(p, a, form="A"):
     """
     if form not in ("A", "EG"):
         raise InputError(f"`form` must be 'A' or 'EG', got {form!r}")
-    p = _p(p, check=False)
-    a = _vec3(a, "a")
-    out = 2 * _mm(E(p, check=False), a_bar(a))
+    p = unit_p(p, check=False)
+    a = vec3(a, "a")
+    out = 2 * mm(E(p, check=False), a_bar(a))
     if form == "A":
         out = out + 2 * a[..., :, None] * p[..., None, :]
     return out

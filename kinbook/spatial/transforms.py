@@ -13,12 +13,13 @@ the motion of a rigid body. Arrays broadcast over leading dimensions.
 
 from __future__ import annotations
 
-from .rotations import A_from_p, _array, _mv, _p, _shapes, _vec3, dAa_dp
+from .arrays import array, mv, shapes, unit_p, vec3
+from .rotations import A_from_p, dAa_dp
 
 __all__ = ["point_position", "point_velocity", "point_acceleration"]
 
 
-@_shapes
+@shapes
 def point_position(r, p, s_local):
     """Global position of a body point: r^P = r + A s'ᴾ (§14.1).
 
@@ -42,20 +43,20 @@ def point_position(r, p, s_local):
     >>> point_position([1.0, 0, 0], p_from_axis_angle([0, 0, 1], np.pi / 2), [2.0, 0, 0]).round(12)
     array([1., 2., 0.])
     """
-    return _vec3(r, "r") + _mv(A_from_p(_p(p)), _vec3(s_local, "s_local"))
+    return vec3(r, "r") + mv(A_from_p(unit_p(p)), vec3(s_local, "s_local"))
 
 
-@_shapes
+@shapes
 def point_velocity(r_dot, p, p_dot, s_local):
     """Global velocity of a body point: ṙ^P = ṙ + 2(E s̄'ᴾ + s'ᴾ pᵀ) ṗ (= ṙ + ω × A s'ᴾ), shape (..., 3)."""
-    s = _vec3(s_local, "s_local")
-    return _vec3(r_dot, "r_dot") + _mv(dAa_dp(_p(p), s), _array(p_dot, "p_dot", (4,)))
+    s = vec3(s_local, "s_local")
+    return vec3(r_dot, "r_dot") + mv(dAa_dp(unit_p(p), s), array(p_dot, "p_dot", (4,)))
 
 
-@_shapes
+@shapes
 def point_acceleration(r_ddot, p, p_dot, p_ddot, s_local):
     """Global acceleration of a body point: r̈^P = r̈ + ∂(A s')/∂p p̈ + ∂(A s')/∂p|_ṗ ṗ, shape (..., 3)."""
-    s = _vec3(s_local, "s_local")
-    pd = _array(p_dot, "p_dot", (4,))
-    return (_vec3(r_ddot, "r_ddot") + _mv(dAa_dp(_p(p), s), _array(p_ddot, "p_ddot", (4,)))
-            + _mv(dAa_dp(pd, s), pd))
+    s = vec3(s_local, "s_local")
+    pd = array(p_dot, "p_dot", (4,))
+    return (vec3(r_ddot, "r_ddot") + mv(dAa_dp(unit_p(p), s), array(p_ddot, "p_ddot", (4,)))
+            + mv(dAa_dp(pd, s), pd))
