@@ -44,7 +44,6 @@ LARGE = {
     "kinbook/core/reader.py": "H24: split in a following commit (issue 24)",
     "kinbook/core/sweep.py:simulate": "H24: split in a following commit (issue 24)",
     "kinbook/core/sweep.py:_batch_solve": "H24: split in a following commit (issue 24)",
-    "kinbook/spatial/plotting.py:draw_frame": "H24: the spatial plotting package, a following commit (issue 24)",
     "kinbook/classroom/grade.py:_grade_bytes": "H20's grading of one submission (issue 20)",
     "kinbook/classroom/grade.py:grade": "the CLI's keyword-only entry (H20/H21, issues 20-21)",
     "kinbook/classroom/reference_use.py:statement": "H20's reference-use analysis (issue 20)",

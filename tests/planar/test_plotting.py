@@ -344,7 +344,7 @@ def test_a_drawing_registered_for_a_class_draws_it_and_its_subclasses():
     calls = []
 
     @plotting.drawing_for(_Slot)
-    class SlotDrawing(plotting.Drawing):
+    class SlotDrawing(plotting.JointDrawing):
         def __init__(self, ax, c, scene):
             calls.append(type(c))
             (line,) = ax.plot([], [], ":")

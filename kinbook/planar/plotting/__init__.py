@@ -36,7 +36,7 @@ under nbval, whose stored output would then be a widget model; a notebook checke
 from . import animation, explore, joints, plots, scene
 from .animation import MAX_FRAMES, animate, animation_png
 from .explore import explorer
-from .joints import Drawing, drawing_for
+from .joints import JointDrawing, drawing_for
 from .plots import plot_history, plot_trajectories
 from .scene import draw, draw_frame, draw_point_vectors
 
@@ -49,7 +49,7 @@ __all__ = [
     "animate",
     "animation_png",
     "explorer",
-    "Drawing",
+    "JointDrawing",
     "drawing_for",
     "MAX_FRAMES",
 ]

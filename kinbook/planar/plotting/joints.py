@@ -5,7 +5,7 @@ A drawing is registered for a class with :func:`drawing_for` and found by :func:
 class hierarchy, so a subclass is drawn like its base unless it registers a drawing of its own::
 
     @drawing_for(CamFollower)
-    class CamDrawing(Drawing):
+    class CamDrawing(JointDrawing):
         ...
 
 Besides its artists, a drawing tells the scene which points of the constraint it marks: ``pins`` (drawn as
@@ -23,7 +23,7 @@ from .. import constraints as planar
 from ._artists import _Glyph, _PinGlyph
 from ._common import _GROUND, _RHO, _SUBSCRIPTS, _all_points, _body_q, _pt, _rotate, _unit
 
-__all__ = ["Drawing", "drawing_for", "drawing_class", "drawing_size", "driver_symbol", "symbol_for"]
+__all__ = ["JointDrawing", "drawing_for", "drawing_class", "drawing_size", "driver_symbol", "symbol_for"]
 
 _DRAWINGS = {}
 _SYMBOLS = {}
@@ -47,7 +47,7 @@ def drawing_class(constraint):
     return PointsDrawing
 
 
-class Drawing(_Glyph):
+class JointDrawing(_Glyph):
     """How one constraint is drawn: artists created in ``__init__(ax, constraint, scene)`` (the scene gives
     ``mech``, the size ``L``, the bodies' ``colours`` and the ``fixed`` bodies) and moved by ``update(q)``."""
 
@@ -76,12 +76,12 @@ class Drawing(_Glyph):
 
 
 @drawing_for(planar.Simple, planar.Ground, planar.Driver, planar.RelativeAngleDriver)
-class NoDrawing(Drawing):
+class NoDrawing(JointDrawing):
     """Constraints that are not drawn: the ground is drawn as supports, drivers by the motion they give."""
 
 
 @drawing_for(planar.DistanceDriver)
-class AxisDriverDrawing(Drawing):
+class AxisDriverDrawing(JointDrawing):
     """A distance driver is not drawn; its points lie on the translational joint it drives."""
 
     @classmethod
@@ -90,7 +90,7 @@ class AxisDriverDrawing(Drawing):
 
 
 @drawing_for(planar.Revolute)
-class RevoluteDrawing(Drawing):
+class RevoluteDrawing(JointDrawing):
     """A small white circle at the joint point."""
 
     @classmethod
@@ -133,7 +133,7 @@ class _Guide:
 
 
 @drawing_for(planar.Translational)
-class TranslationalDrawing(Drawing):
+class TranslationalDrawing(JointDrawing):
     """Slider box of body j on the guide line P_i Q_i of body i (hatched when body i is the ground)."""
 
     @classmethod
@@ -181,7 +181,7 @@ class TranslationalDrawing(Drawing):
 
 
 @drawing_for(planar.RevoluteTranslational)
-class RevoluteTranslationalDrawing(Drawing):
+class RevoluteTranslationalDrawing(JointDrawing):
     """Pin P_i of body i in a slot along the line P_j Q_j of body j."""
 
     @classmethod
@@ -217,7 +217,7 @@ class RevoluteTranslationalDrawing(Drawing):
         self.pin.update(q)
 
 
-class PointsDrawing(Drawing):
+class PointsDrawing(JointDrawing):
     """The drawing of a type with no drawing of its own: the points it names (its declared ``points``), joined
     by a line, each with a pin."""
 
@@ -277,7 +277,7 @@ class _WheelGlyph(_Glyph):
 
 
 @drawing_for(planar.Gear)
-class GearDrawing(Drawing):
+class GearDrawing(JointDrawing):
     """Gears i and j: their dashed pitch circles, each with a spoke that shows its rotation."""
 
     @classmethod
@@ -298,7 +298,7 @@ class GearDrawing(Drawing):
 
 
 @drawing_for(planar.RackPinion)
-class RackDrawing(Drawing):
+class RackDrawing(JointDrawing):
     """Pinion i (pitch circle) on rack j: the rack's pitch line at y_i − ρ, with teeth marks that move with x_j."""
 
     @classmethod
