@@ -357,6 +357,7 @@ add_texts({
     "d.multiplied_by": N_("multiplied by {c}, {what}"),
     "d.row_of": N_("this is the row that belongs to {other}; the row of {row} goes here (each row is derived from its "
                    "own row of Φ)"),
+    "d.or_sign_of_term": N_("the same expression as the sign of the term {term} slipped: check both"),
     "d.jacobian_of": N_("the Jacobian of {c}·{ref}: the derivative of {ref} keeps all its factors (the 2 of ∂(dᵀd)/∂q = "
                         "2dᵀ∂d/∂q, of A(p) = 2[…]); pass your own Φ as phi= if you scaled it"),
     "d.degrees_value": N_("{got} is {expected} rad in degrees"),

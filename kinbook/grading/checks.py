@@ -197,7 +197,11 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
     if constant:  # numbers without a configuration: right only as constants valid everywhere (ν = 0 of a joint)
         if all(r.status == "ok" for r in m.rows) and not m.missing and not data.transposed:
             return report.derived_result(target, quantity, m, data, rtol, notes=notes)
-        return _refused(quantity, Refused("malformed", "needs_configuration"))
+        R = np.asarray(data.R, float)
+        if quantity == "Phi_q" or R.size == 0 or np.ptp(R, axis=0).max() > rtol * max(np.abs(R).max(), 1.0):
+            return _refused(quantity, Refused("malformed", "needs_configuration"))
+        # ν or γ constant (a constant-speed driver): the numbers are an answer, diagnosed as one
+        # (a wrong ν = [0 … 0, −100] was called "malformed … give at=" while the right numbers passed; issue 25)
     diagnose.derived(target, quantity, A, data, m, rtol, own)
     if quantity == "Phi_q" and own is None:
         _factored_rows(target, m)

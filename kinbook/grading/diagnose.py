@@ -179,6 +179,25 @@ def _structural_phi(target, data, wrong, free, rtol):
             for j, r in hits.items():
                 r.ref, r.code, r.detail, r.erratum = j, v.code, v.detail, v.erratum
                 free.remove(j)
+                if v.code == "A_transposed" and len(hits) == 1:
+                    _also_a_sign(target, data, r, j, rtol)
+
+
+def _also_a_sign(target, data, r, j, rtol):
+    """Aᵀ for A that changes one row only can be the same expression as one term's sign slipped (a translational
+    joint's cross product written with + for −): both readings are given, not only Aᵀ (issue 25)."""
+    import sympy as sp
+
+    G = target.samples("generic")
+    row = target.symbolic_phi()[j]
+    terms = sp.Add.make_args(row)  # the row as written (a cross product's two products), then expanded
+    cands = [(row - 2 * t, t) for t in terms if len(terms) > 1]
+    cands += [(e, t) for code, e, t in term_variants(row) if code == "sign_flip" and t is not None]
+    for expr, term in cands:
+        vals = target.tape([expr])(G.Q, G.QD, G.T)["value"][:, 0]
+        if scale_match(data.S_G[:, r.k], vals, rtol) is not None:
+            r.detail = Msg("d.or_sign_of_term", term=_term_detail("sign_flip", term).fields["term"])
+            return
 
 
 def _phi_equal(a, b, rtol):

@@ -395,6 +395,9 @@ def _exercises():
                      "A_for_B")]))
     T.append(TryIt("ex08/nu", check_nu, ex1, ["0"] * 11 + ["100"], [(["0"] * 11 + ["-100"], "nu_sign"),
                                                                    (["0"] * 12, "nu_missing")]))
+    # numbers for a ν that is constant: an answer, diagnosed as one (not "malformed: give at=")
+    T.append(TryIt("ex08/nu-as-numbers", check_nu, ex1, [0] * 11 + [100.0], [
+        ([0] * 11 + [-100.0], "nu_sign"), ([0] * 12, "nu_missing"), ([0] * 11 + [100 * DEG], "degrees")]))
     T.append(TryIt("ex08/gamma_joint", check_gamma, lambda: ex1().constraint("3"),
                    ["cos(phi2)*dphi2**2 + 3*cos(phi3)*dphi3**2", "sin(phi2)*dphi2**2 + 3*sin(phi3)*dphi3**2"], [
         (["-cos(phi2)*dphi2**2 - 3*cos(phi3)*dphi3**2", "-sin(phi2)*dphi2**2 - 3*sin(phi3)*dphi3**2"], "gamma_sign"),
