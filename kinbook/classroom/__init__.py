@@ -3,10 +3,16 @@
 * :func:`part` and :func:`parameters` — what an exercise notebook declares (:mod:`.parts`);
 * :func:`release` — students' versions of source notebooks (:mod:`.release`);
 * :func:`variant` — one student's version with their own parameters (:mod:`.variant`);
-* :func:`grade` — run submissions in the sandbox (:mod:`.sandbox`: bubblewrap), grade their answers, record
-  them in the gradebook (:mod:`.gradebook`, SQLite) and export grades.csv, totals.csv and feedback pages.
+* :func:`grade` — account for every file of ``collected/`` (:mod:`.intake`, :mod:`.files`, :mod:`.naming`,
+  :mod:`.roster`), run submissions in the sandbox (:mod:`.sandbox`: bubblewrap), grade their answers, record every
+  attempt in the gradebook (:mod:`.gradebook`, SQLite) and export grades.csv, totals.csv, collection.csv and the
+  feedback pages;
+* the course, one subpackage per command: :mod:`.override` (``override``, ``due``, ``extend``, applied by
+  :mod:`.scores`), :mod:`.export` (Canvas, Moodle, CSV), :mod:`.report` (the class report), :mod:`.feedback`
+  (a folder per student), :mod:`.validate` (an exercise through the real grader). They are imported where used,
+  so that a student's kernel that imports ``part`` stays light.
 
-See docs/instructors.md and the README's "For instructors" section.
+See docs/instructors.md (a term, step by step) and the README's "For instructors" section.
 """
 
 import sys as _sys

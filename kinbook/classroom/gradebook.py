@@ -452,8 +452,14 @@ class Gradebook:
         points = self.points(exercise)
         order = [s.student for s in roster] if roster is not None else []
         order += sorted(set(results) - set(order))
-        return [final(s, exercise, results.get(s), rule, exts.get(s, ""), overrides.get((exercise, s)), points)
-                for s in order]
+        counts = dict(self.db.execute("SELECT student, COUNT(*) FROM attempts WHERE exercise = ? GROUP BY student",
+                                      (exercise,)).fetchall())
+        out = []
+        for s in order:
+            f = final(s, exercise, results.get(s), rule, exts.get(s, ""), overrides.get((exercise, s)), points)
+            f.attempts, f.policy = counts.get(s, 0), rule.policy
+            out.append(f)
+        return out
 
     def notes(self):
         """{(exercise, student): note} for results that need the instructor's attention."""

@@ -104,6 +104,12 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
     if plan.skipped:
         say(f"skipped {plan.skipped} file(s) graded before (the same file with the same source; --force grades them "
             "again)")
+    outcomes = {}
+    for e in entries:
+        outcomes[e.status or "gradable"] = outcomes.get(e.status or "gradable", 0) + 1
+    say(f"{len(entries)} entr{'y' if len(entries) == 1 else 'ies'} found: "
+        + ", ".join(f"{n} {what}" for what, n in sorted(outcomes.items(), key=lambda kv: -kv[1]))
+        + f" — {len(plan.todo)} to grade now (every entry and what became of it: collection.csv)")
     if plan.off_roster:
         say(f"not on the roster ({len(plan.off_roster)}): {', '.join(plan.off_roster[:20])}"
             + (" …" if len(plan.off_roster) > 20 else "") + " — graded, and listed in the report")

@@ -111,6 +111,8 @@ class Final:
         ``raw − penalty``, never below 0.
     due : str
         The due date that applied (the student's extension, or the exercise's).
+    attempts : int
+        How many files the student handed in (set by the gradebook), of which ``policy`` chose the counting one.
     """
 
     student: str
@@ -125,6 +127,8 @@ class Final:
     submitted: str = ""
     due: str = ""
     attempt: int | None = None
+    attempts: int = 0
+    policy: str = "latest"
 
 
 def final(student, exercise, result, rule=None, extension="", overrides=None, points=None):

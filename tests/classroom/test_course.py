@@ -80,6 +80,10 @@ def test_attempts_latest_or_best(course):
     assert book.results(student="ana")[0].score == 6
     history = book.attempts(EX, "ana")
     assert [(h[7], h[9]) for h in history] == [(6.0, 1), (1.0, 0)]      # both kept; the best counts
+    (ana,) = [f for f in book.finals(EX) if f.student == "ana"]
+    assert (ana.attempts, ana.policy, ana.score) == (2, "best", 6.0)
+    write_pages(book, tmp / "fb", ["ana"])
+    assert "You handed in 2 files; the best counts." in (tmp / "fb" / "ana" / f"{EX}.html").read_text()
 
 
 # -------------------------------------------------------------------------------------------------- overrides

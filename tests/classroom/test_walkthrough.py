@@ -241,6 +241,7 @@ def test_every_student_is_graded_and_every_file_listed(term):
         graded = {s for (s,) in db.execute("SELECT student FROM submissions WHERE exercise = ?", (ex,))}
         assert graded == handed | {STRANGER}
     assert "not on the roster (1): 9999" in term["out"]
+    assert re.search(r"\d+ entries found: \d+ gradable, 2 ignored, 1 superseded — \d+ to grade now", term["out"])
 
 
 def test_canvas_file_cell_by_cell(term):
@@ -320,6 +321,8 @@ def test_feedback_is_one_folder_per_student(term):
     assert sorted(os.listdir(course / "feedback" / "s11")) == [f"{EX01}.html", f"{EX11}.html", "index.html"]
     late = (course / "feedback" / "s11" / f"{EX01}.html").read_text(encoding="utf-8")
     assert "1 day(s) after the due date" in late and "−1.1 point(s)" in late
+    again = (course / "feedback" / RESUBMITTED[EX01] / f"{EX01}.html").read_text(encoding="utf-8")
+    assert "You handed in 2 files; the latest counts." in again
     missing = (course / "feedback" / "s40" / f"{EX11}.html").read_text(encoding="utf-8")
     assert "nothing was handed in" in missing
     wrong = (course / "feedback" / "s06" / f"{EX01}.html").read_text(encoding="utf-8")

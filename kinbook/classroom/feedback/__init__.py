@@ -74,6 +74,9 @@ def page(final, result, *, name="", graded=""):
     if final.status != "ok":
         out.append(f"<p class='note'><b>{_e(final.status)}</b>: {_e(STATUS_WORDS.get(final.status, ''))}"
                    + (f" — {_e(result.message)}" if result is not None and result.message else "") + "</p>")
+    if final.attempts > 1:
+        which = "the latest" if final.policy == "latest" else "the best"
+        out.append(f"<p class='meta'>You handed in {final.attempts} files; {which} counts.</p>")
     if final.late_days:
         out.append(f"<p class='note'>Handed in {final.late_days} day(s) after the due date ({_e(final.due)}): "
                    f"−{final.penalty:g} point(s), from {final.raw:g}.</p>")

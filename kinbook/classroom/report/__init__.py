@@ -133,9 +133,9 @@ def _exercise_page(exercise, t):
             "<h2>Not on the roster</h2>", f"<p>{_e(', '.join(t['off_roster'])) or 'none'}</p>",
             "<h2>Every student</h2>",
             _table(t["scores"], [("student", "student"), ("status", "status"), ("score", "score"),
-                                 ("max_score", "of"), ("late_days", "days late"), ("penalty", "penalty"),
-                                 ("overridden", "overridden parts")],
-                   numeric={"score", "max_score", "late_days", "penalty"})]
+                                 ("max_score", "of"), ("attempts", "files handed in"), ("late_days", "days late"),
+                                 ("penalty", "penalty"), ("overridden", "overridden parts")],
+                   numeric={"score", "max_score", "attempts", "late_days", "penalty"})]
     return _page(f"kinbook report: {exercise}", "".join(out))
 
 

@@ -18,7 +18,7 @@ RARE = 0.05
 def scores(book, exercise, roster=None):
     """One row per student: final score, status, late days, penalty, overridden parts."""
     return [{"student": f.student, "status": f.status, "score": f.score, "max_score": f.max_score, "raw": f.raw,
-             "late_days": f.late_days, "penalty": f.penalty,
+             "late_days": f.late_days, "penalty": f.penalty, "attempts": f.attempts,
              "overridden": ", ".join(p for p, _, _, o in f.parts if o)} for f in book.finals(exercise, roster)]
 
 
