@@ -229,9 +229,6 @@ def _two(points_1, points_2, joint):
 
 
 # ================================================================================================ chapter 14
-GLOBAL_ROWS = []
-"""Answers the equivalence rule still passes (H22's per-constraint matching, issue 22 items 1-2): the book's global
-rows 1-2 of s̃_i s_j for a revolute joint's parallel axes, which lose rank where s_i lies in the global x-y plane."""
 AXES = ([0, 0.6, 0.8], [0, -0.8, 0.6], [1, 0, 0])
 ANG = np.radians([40.0, 25.0, -60.0])
 A_GIVEN = np.array([[2.0, -1.0, 2.0], [2.0, 2.0, -1.0], [-1.0, 2.0, 2.0]]) / 3
@@ -339,7 +336,7 @@ def _ch14():
         (ball_rows.col_join(cross_local), "extra_row"), ((sp.Matrix(qi[:3]) + sp.Matrix([sp.Rational(6, 5), 0, 0]) - sp.Matrix(qj[:3])).col_join(h_rows), "local_vector"),
         ((sp.Matrix(qi[:3]) + Ai.T * sp.Matrix([sp.Rational(6, 5), 0, 0]) - sp.Matrix(qj[:3])).col_join(h_rows),
          "A_transposed")]))
-    GLOBAL_ROWS.append(("14-4/try-3", ball_rows.col_join(cross_global[:2, :])))
+    T[-1].wrong.append((ball_rows.col_join(cross_global[:2, :]), "book_misprint"))   # the book's global rows 1-2
     four = example("spatial_fourbar")[0]
     t5 = 0.15
     q5 = four.solve_position(t5)
@@ -363,7 +360,7 @@ def _ch14():
     T.append(Notebook("14-5/try-3", -(2 * R.E(pd2, check=False) * R.a_bar(sp.Matrix([1, 0, 0])) * pd2
                                       + 2 * sp.Matrix([1, 0, 0]) * (pd2.T * pd2)), [
         (-gA, "gamma_sign"), (gA / 2, "scaled"),
-        (-2 * R.E(pd2, check=False) * R.a_bar(sp.Matrix([1, 0, 0])) * pd2, "wrong_value")]))  # H22: book's 2ĖĠᵀa
+        (-2 * R.E(pd2, check=False) * R.a_bar(sp.Matrix([1, 0, 0])) * pd2, "missing_term")]))  # the book's 2ĖĠᵀa
     return T
 
 

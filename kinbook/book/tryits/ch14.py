@@ -6,6 +6,8 @@ import numpy as np
 
 from ...grading import check_euler_parameters, check_gamma, check_jacobian, check_phi, check_rotation, check_value
 from ...grading import expected as X
+from ...grading._i18n import add_texts
+from ...i18n import N_
 from ...spatial import A_from_p
 from ...spatial import rotations as R
 from .registry import register
@@ -278,7 +280,21 @@ def _t14_4_3(P_hinge):
                                Revolute("i", "j", point="P", axis_i=["P", "Q"], axis_j=["T", "U"], name="r"))
 
 
-register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3, data={"P_hinge": [1.2, 0, 0]},
+def _w14_4_3(P_hinge):
+    """The book's way (§14.4, erratum 14.4-p1-two-rows): rows 1-2 of s̃_i s_j in global components."""
+    import sympy as sp
+
+    from ...spatial import skew
+
+    sym_i, sym_j = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True), sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)
+    rot_1, rot_2 = A_from_p(list(sym_i[3:])), A_from_p(list(sym_j[3:]))
+    s_i, s_j = rot_1 * sp.Matrix([0, 0, sp.Rational(4, 5)]), rot_2 * sp.Matrix([0, 0, sp.Rational(1, 2)])
+    ball = sp.Matrix(sym_i[:3]) + rot_1 * sp.Matrix(P_hinge) - sp.Matrix(sym_j[:3])
+    return [(list(ball) + list((skew(list(s_i)) * s_j)[:2, :]), "book_misprint", _msg("x.global_rows"),
+             "14.4-p1-two-rows")]
+
+
+register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3, wrong_forms=_w14_4_3, data={"P_hinge": [1.2, 0, 0]},
          ranges={"P_hinge": [[1.2, 0, 0], [0.5, 0.5, 0], [1, 0, 0.3], [0, 1.5, 0], [0.8, -0.4, 0.2]]},
          statement="P at {P_hinge} on body i (s'_i, s'_j along ζ as above)",
          explanation={"en": "the checker accepts the two rows although they are not kinbook's h_1ᵀs_j, h_2ᵀs_j letter "
@@ -367,8 +383,28 @@ def _s14_5_3(mech):
     return my_gamma_A
 
 
+def _w14_5_3():
+    """The book's 2ĖĠᵀa for the crank's b (the 2a ṗᵀṗ of B(ṗ)ṗ dropped)."""
+    import sympy as sp
+
+    from ...spatial import E, a_bar
+
+    mech = _fourbar()
+    k_2 = mech.index("e02")
+    pdot_2 = sp.Matrix(mech.qd[k_2:k_2 + 4, 0])
+    return [(list(-2 * E(pdot_2, check=False) * a_bar(sp.Matrix([1, 0, 0])) * pdot_2), "missing_term",
+             _msg("x.eg_gamma"), None)]
+
+
+add_texts({
+    "x.global_rows": N_("rows 1-2 of s̃_i s_j in global components, the book's choice: they lose rank wherever s_i lies in "
+                        "the global x-y plane (the singular values above); take the two rows in body i's frame"),
+    "x.eg_gamma": N_("the book's 2ĖĠᵀa alone: it lacks 2a ṗᵀṗ, the part of B(ṗ)ṗ = 2E(ṗ)āṗ + 2a ṗᵀṗ along a"),
+})
+
+
 register("14-5/try-3", "my_gamma_A", check_gamma, lambda: _fourbar().constraint("A"), _s14_5_3,
-         context=lambda: {"mech": _fourbar()},
+         context=lambda: {"mech": _fourbar()}, wrong_forms=_w14_5_3,
          explanation={"en": "B(ṗ)ṗ = 2E(ṗ)āṗ + 2a(ṗᵀṗ) and 2ĖĠᵀa = 2E(ṗ)āṗ (because Gᵀa = āp), so the book's form lacks "
                             "2a ṗᵀṗ — a vector along a. For the coupler a = s'^A_3 = 0 and nothing is lost; for the "
                             "crank a = s'^A_2 = (1, 0, 0), so only the x row, Φ_16, changes: the checker rejects that "

@@ -52,7 +52,12 @@ class TryIt:
         ``{"en": …, "es": …}``: why the worked answer is what it is, shown by :func:`reveal` after the code.
     lookalikes : callable or None
         ``lookalikes(**data)`` → [(value, Msg)]: numbers the notebook prints nearby that a student may copy
-        (named ``wrong_data``).
+        (named ``wrong_data``); for a symbolic try-it, [(target, Msg)]: other constraints the answer may be right
+        for (the joint printed above).
+    wrong_forms : callable or None
+        ``wrong_forms(**data)`` → [(rows, code, detail, erratum)]: wrong formulations the equivalence rule cannot
+        tell from the reference on its samples (the book's global rows 1–2 of s̃_i s_j, which lose rank where s_i
+        lies in the x-y plane): an answer whose rows are these, up to order and factor, is named, never passed.
     """
 
     id: str
@@ -67,6 +72,7 @@ class TryIt:
     statement: Any = None
     explanation: Any = None
     lookalikes: Any = None
+    wrong_forms: Any = None
 
     def _data(self, data):
         return dict(self.data) if data is None else dict(data)
@@ -82,10 +88,54 @@ class TryIt:
             target = self._with_lookalikes(target, data)
             return self.checker(answer, target, **options)
         result = self.checker(answer, target, **options)
+        if self.wrong_forms is not None and (result.passed or result.mistakes == ["wrong_value"]):
+            named = self._wrong_form(answer, target, data, result)
+            if named is not None:
+                return named
         if result.passed or result.mistakes not in (["wrong_value"], ["malformed"]):
             return result
         copied = self._copied(answer, data, options, result._quantity)
         return result if copied is None else copied
+
+    def _wrong_form(self, answer, target, data, result):
+        """The answer's rows are one of ``wrong_forms`` (up to their order and a factor each): a failed result
+        naming it, or None — a result that failed keeps its rows and score (which rows are wrong is the lesson),
+        its generic name replaced. The answer is read by the checkers' own reader, evaluated on their samples."""
+        quantity = result._quantity
+        from ...grading.match import scale_match
+        from ...grading.read import Refused, read
+        from ...grading.report import hints
+        from ...grading.result import CheckResult
+        from ...grading.target import target_for
+
+        t = target_for(target)
+        q_name = {"Φ": "Phi", "Φ_q": "Phi_q", "ν": "nu", "γ": "gamma"}.get(str(quantity), "Phi")
+        try:
+            A = read(answer, t, q_name)
+        except Refused:
+            return None
+        if A.kind != "symbolic" or A.matrix.shape[1] != 1:
+            return None
+        s = t.samples("generic")
+        S = t.tape(list(A.matrix), aliases=True)(s.Q, s.QD, s.T)["value"]
+        for rows, code, detail, erratum in self.wrong_forms(**data):
+            W = t.tape(list(rows))(s.Q, s.QD, s.T)["value"]
+            if S.shape[1] != W.shape[1]:
+                continue
+            left = list(range(W.shape[1]))
+            for k in range(S.shape[1]):
+                hit = next((j for j in left if scale_match(S[:, k], W[:, j], 1e-6) is not None), None)
+                if hit is None:
+                    break
+                left.remove(hit)
+            if not left:
+                notes = [detail] + ([_msg("book_misprint", id=erratum)] if erratum else [])
+                if result.passed:
+                    return CheckResult(False, 0.0, notes + hints([code], {}), [code], (), quantity)
+                kept = list(result.notes[:-1])  # without the generic hint, the last note
+                return CheckResult(False, result.score, kept[:1] + notes + kept[1:] + hints([code], {}), [code],
+                                   result.rows, quantity, result.columns)
+        return None
 
     def _copied(self, answer, data, options, quantity):
         """A symbolic answer that is right for other data — the joint printed above, the notebook's data when a
@@ -204,12 +254,12 @@ def table_text(key, lang, **fields):
 
 
 def register(id, answer, checker, target, solution, options=None, context=None, *, data=None, ranges=None,
-             statement=None, explanation=None, lookalikes=None):
+             statement=None, explanation=None, lookalikes=None, wrong_forms=None):
     """Add a :class:`TryIt` to :data:`TRY_ITS` (used by the chapter modules); returns it."""
     if id in TRY_ITS:
         raise ValueError(f"try-it {id!r} is registered twice")
     item = TryIt(id, answer, checker, target, solution, dict(options or {}), context or dict, dict(data or {}),
-                 dict(ranges or {}), statement, explanation, lookalikes)
+                 dict(ranges or {}), statement, explanation, lookalikes, wrong_forms)
     TRY_ITS[id] = item
     return item
 
