@@ -514,6 +514,9 @@ def main(argv=None):
     except KeyboardInterrupt:
         print("kinbook: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # `kinbook exercises list | head`: the reader left; say nothing, as `ls` would
+        _silence_stdout()
+        return 128 + 13  # the status a shell gives a command SIGPIPE stopped
     except (KinbookError, OSError, UnicodeError) as exc:
         if debug:
             raise
@@ -532,6 +535,16 @@ def main(argv=None):
               "traceback, and please report it)", file=sys.stderr)
         return 1
     return 0
+
+
+def _silence_stdout():
+    """Point stdout at /dev/null so the interpreter's final flush does not fail a second time (the recipe in
+    the ``signal`` module's documentation)."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
 
 
 def _one_line(exc):
