@@ -261,6 +261,10 @@ _ENTRIES += [
        N_("iteration not converged"),
        N_("stop Newton–Raphson only when the residual |Φ(q)| and the step |Δq| are both tiny (1e-10, say): an earlier "
           "iterate is not yet a solution")),
+    _m("lever_arm",
+       N_("lever arm from the wrong point"),
+       N_("∂(A s')/∂φ = B s': the lever arm s' runs from the body's own origin (a rocker's O_3, its midpoint in the "
+          "book's examples) to the point, not from the pivot it turns about")),
     _m("newton_step",
        N_("not a Newton–Raphson step"),
        N_("each step solves Φ_q(q_k) Δq = −Φ(q_k) at the current iterate, then q_{k+1} = q_k + Δq: mind the minus "

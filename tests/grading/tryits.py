@@ -172,7 +172,9 @@ def _ch13():
     zeros = [list(j8[0])]
     zeros[0][2] = zeros[0][5] = "0"
     half = [[f"0.5*({e})" for e in j8[0]]]
-    T.append(Notebook("13-5/try-2", j8, [
+    j8_other = [[e.replace("(x2 + cos(phi2) - x3 + 1.5*cos(phi3))", "(cos(phi2) + x2 + 1.5*cos(phi3) - x3)")
+                 for e in j8[0]]]                                 # the same row with x^A − x^B written otherwise
+    T.append(Notebook("13-5/try-2", j8_other, [
         (zeros, "book_misprint"), ([[e if k < 3 else f"-({e})" for k, e in enumerate(j8[0])]], None),
         (half, "scaled")]))
     tJ = 0.004
@@ -182,6 +184,7 @@ def _ch13():
     J88 = -2 * d @ np.array([-arm[1], arm[0]])
     T.append(Notebook("13-5/try-3", 2 * d @ np.array([arm[1], -arm[0]]), [
         (0.0, "book_misprint"), (-J88, "sign_flip"), (J88 / 2, "scaled"), (-2 * d @ arm, "A_for_B"),
+        (2 * d @ np.array([rB[1] - 0.0, -(rB[0] - 3.0)]), "lever_arm"),
         (example("ch13_example3")[0].Phi_q(example("ch13_example3")[1], 0.0)[7, 8], "wrong_data")]))
     T.append(Notebook("13-6/try-1", ["0"] * 8 + ["100 + 500*t"], [
         (["0"] * 8 + ["-100 - 500*t"], "nu_sign"), (["0"] * 9, "nu_missing"),

@@ -398,6 +398,8 @@ def _t13_5_3(t_J):
     arm = rB - q[6:8]                                             # A_3 s'_3^B
     out = X.rr_jacobian_phi(rA - rB, np.array([-arm[1], arm[0]]))  # B_3 s'_3^B: the arm turned by 90°
     out.value = np.asarray(m.Phi_q(q, t_J)[7, 8])
+    pivot = rB - m.point_position(q, "ground", "OB")              # the arm measured from O_B, not from O_3
+    out.add("lever_arm", -2 * (rA - rB) @ np.array([-pivot[1], pivot[0]]))
     return out
 
 
