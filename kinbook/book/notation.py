@@ -180,7 +180,8 @@ _POINTS = [(getattr(S, f"x{p}_{b}"), getattr(S, f"y{p}_{b}")) for p in "PQ" for 
 _RANK = {s: k for k, pt in enumerate(_POINTS) for s in pt}
 _P = {(p, b): (getattr(S, f"x{p}_{b}"), getattr(S, f"y{p}_{b}")) for p in "PQ" for b in "ij"}
 _BOOK_VECTORS = {"t": [(_P["P", "i"], _P["Q", "i"]), (_P["P", "j"], _P["P", "i"])],
-                 "rr": [(_P["P", "i"], _P["P", "j"])],
+                 # r-r: the joint vector, then the lever arms O_iP_i, O_jP_j (∂/∂φ entries read as Table 13.5's)
+                 "rr": [(_P["P", "i"], _P["P", "j"]), (_P["P", "i"], (S.x_i, S.y_i)), (_P["P", "j"], (S.x_j, S.y_j))],
                  "rt": [(_P["P", "i"], _P["Q", "j"]), (_P["P", "j"], _P["Q", "j"])]}
 
 
@@ -562,9 +563,9 @@ _SPATIAL_FORMS = {
                                                           ("l", "l")]),
 }
 
-SPATIAL_DEFINITIONS = (r"\mathbf s_k = \mathbf A_k\mathbf s'_k,\quad \mathbf h_k = \mathbf A_i\mathbf h'_k\ "
-                       r"(\perp \mathbf s_i),\quad \mathbf d = \mathbf r_j + \mathbf A_j\mathbf s'^P_j - \mathbf r_i - "
-                       r"\mathbf A_i\mathbf s'^P_i,\quad \mathbf A_k = \mathbf A(\mathbf p_k)\ \text{(§14.3)}")
+SPATIAL_DEFINITIONS = (r"\mathbf s_k = \mathbf A_k\mathbf s'_k,\ \ \mathbf h_k = \mathbf A_i\mathbf h'_k \perp \mathbf s_i,\ \ "
+                       r"\mathbf A_k = \mathbf A(\mathbf p_k)\ \text{(§14.3)}",
+                       r"\mathbf d = \mathbf r_j + \mathbf A_j\mathbf s'^P_j - \mathbf r_i - \mathbf A_i\mathbf s'^P_i")
 """What the symbols of :func:`spatial_form` stand for (§14.4)."""
 
 
@@ -601,9 +602,11 @@ def spatial_form(constraint, definitions=False):
         if type(leaf).__name__ == "Normal1" and type(getattr(leaf, "owner", None)).__name__ == "Translational":
             form = _TRANSLATIONAL_N1
         tex, data = form
-        values = r",\quad ".join(f"{sym} = {_local(getattr(leaf, attr))}" for sym, attr in data)
-        rows.append(rf"\Phi^{{({leaf.label})}} &= {tex}, & {values}")
+        values = [f"{sym} = {_local(getattr(leaf, attr))}" for sym, attr in data]
+        rows.append(rf"\Phi^{{({leaf.label})}} &= {tex},")
+        # the local data under the formula, two to a line: the block stays narrow enough for a book page
+        rows += [r"&\qquad " + r",\quad ".join(values[k:k + 2]) for k in range(0, len(values), 2)]
     body = r"\\ ".join(rows)
     if definitions:
-        body += r"\\[2pt] & \text{with } & " + SPATIAL_DEFINITIONS
+        body += r"\\[3pt] &\text{with } " + SPATIAL_DEFINITIONS[0] + r",\\ &\phantom{\text{with }}" + SPATIAL_DEFINITIONS[1]
     return r"\begin{aligned}" + body + r"\end{aligned}"

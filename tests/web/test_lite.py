@@ -148,6 +148,8 @@ def test_a_student_runs_the_live_notebook(profile, site, offline, screenshots):
     page.wait_for_function("([i, old]) => i.src !== old", arg=[image.element_handle(), before_image],
                            timeout=120_000)
     print(f"explorer: {before_status!r} -> {status.inner_text()!r}")
+    # the first cell read matplotlib's fonts quietly: no "building the font cache" box under a plot
+    assert "font cache" not in page.locator(".jp-Notebook").inner_text()
     out.scroll_into_view_if_needed()
     page.screenshot(path=str(screenshots / "live-slider.png"))
     page.close()
