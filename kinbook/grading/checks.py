@@ -16,11 +16,13 @@ as well as against the reference, so that one early mistake costs once.
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
 from . import diagnose, evaluate, match, report, sample
 from ._i18n import Msg
-from .read import Refused, read
+from .read import Refused, as_numbers, read
 from .target import NotATarget, target_for
 
 __all__ = ["check_phi", "check_jacobian", "check_nu", "check_gamma"]
@@ -35,6 +37,35 @@ def _target(mechanism, quantity):
 
 def _refused(quantity, exc):
     return report.failed(quantity, Msg(exc.key, **exc.fields), exc.code)
+
+
+def _options(quantity, target, rtol, at, symbolic):
+    """A failed result naming the first checker option that is not what it must be (None when all are)."""
+    def bad(name, expected, got):
+        text = repr(got)
+        text = text if len(text) <= 60 else text[:59] + "…"
+        return report.failed(quantity, Msg("bad_option", name=name, expected=expected, got=text), "malformed")
+
+    if rtol is not None:
+        ok = isinstance(rtol, (numbers.Real, np.floating, np.integer)) and not isinstance(rtol, (bool, np.bool_))
+        if not ok or not np.isfinite(float(rtol)) or not 0 < float(rtol) < 1:
+            return bad("rtol", Msg("opt_rtol"), rtol)
+    if not isinstance(symbolic, (bool, np.bool_)):
+        return bad("symbolic", Msg("opt_bool"), symbolic)
+    if at is not None:
+        expected = Msg("opt_at", n=target.n)
+        if not isinstance(at, dict) or set(at) - {"q", "qd", "t"}:
+            return bad("at", expected, at)
+        for key, size in (("q", target.n), ("qd", target.n), ("t", None)):
+            if key not in at:
+                continue
+            try:
+                v = np.asarray(at[key], dtype=float)
+            except (TypeError, ValueError):
+                return bad(f"at['{key}']", expected, at[key])
+            if (v.shape != (size,) if size else v.shape != ()) or not np.all(np.isfinite(v)):
+                return bad(f"at['{key}']", expected, at[key])
+    return None
 
 
 def _order(order, quantity, default):
@@ -84,8 +115,12 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
     order, bad = _order(order, "Phi", "any")
     if bad is not None:
         return bad
+    bad = _options("Phi", target, rtol, at, symbolic)
+    if bad is not None:
+        return bad
     try:
         A = read(answer, target, "Phi")
+        A = as_numbers(A) if at is not None else A
         if A.kind == "numbers":
             return _numbers("Phi", A, target, at, rtol, order)
         rtol = match.RTOL if rtol is None else rtol
@@ -156,9 +191,13 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
     order, bad = _order(order, quantity, "book")
     if bad is not None:
         return bad
+    bad = _options(quantity, target, rtol, at, symbolic)
+    if bad is not None:
+        return bad
     notes = []
     try:
         A = read(answer, target, quantity)
+        A = as_numbers(A) if at is not None else A
         if A.kind == "numbers" and at is not None:
             return _numbers(quantity, A, target, at, rtol, order)
         constant = A.kind == "numbers"

@@ -31,7 +31,7 @@ import numpy as np
 
 from ._i18n import Msg
 
-__all__ = ["Answer", "Refused", "read"]
+__all__ = ["Answer", "Refused", "read", "as_numbers"]
 
 MAX_OUTPUT = 100_000
 """The most numbers a student's function may return per call (a guard, not a time limit)."""
@@ -62,6 +62,14 @@ class Refused(Exception):
     def __init__(self, code, key, **fields):
         super().__init__(key)
         self.code, self.key, self.fields = code, key, fields
+
+
+def as_numbers(A):
+    """A symbolic answer without symbols (["0.5", "-1.2"], typed as text) as the numbers it writes: graded at
+    ``at=`` like numbers; any other answer as it is."""
+    if A.kind != "symbolic" or any(e.free_symbols for e in A.matrix):
+        return A
+    return Answer("numbers", array=_as_numbers(A.matrix, "answer"))
 
 
 class Answer:
@@ -129,7 +137,7 @@ class Answer:
             rows, cols = self.matrix.shape
             v = self.tape(target)(s.Q, s.QD, s.T)["value"]
             return v.reshape(s.N, rows, cols)
-        return np.stack([self._call(s.Q[k], s.QD[k], s.T[k], target) for k in range(s.N)])
+        return _same_shapes([self._call(s.Q[k], s.QD[k], s.T[k], target) for k in range(s.N)])
 
     def derived(self, target, s):
         """Φ, Φ_q (all n columns), ν and γ of this answer read as Φ(q, t), at the instants of ``s``.
@@ -162,7 +170,7 @@ class Answer:
         return self.derived(target, s)["Phi_q"]
 
     def _batch(self, Q, T, target):
-        return np.stack([self._call(Q[k], np.zeros_like(Q[k]), T[k], target)[:, 0] for k in range(len(Q))])
+        return _same_shapes([self._call(Q[k], np.zeros_like(Q[k]), T[k], target) for k in range(len(Q))])[:, :, 0]
 
     def _call(self, q, qd, t, target):
         f, nargs = self.function, self.nargs
@@ -193,6 +201,16 @@ def tree_size(expr):
     ex = _reader()
     huge = ex.Limits(length=10**9, nodes=10**9, depth=10**9, tree=10**30)
     return ex.check_expression(expr, where="", limits=huge)[1]
+
+
+def _same_shapes(outputs):
+    """A student function's outputs at the sample instants, stacked — refused, saying so, when their shape
+    changes from one call to the next (a row that appears only for some q …)."""
+    first = outputs[0].shape
+    for out in outputs[1:]:
+        if out.shape != first:
+            raise Refused("wrong_shape", "shape_changes", first=first, then=out.shape)
+    return np.stack(outputs)
 
 
 # ================================================================================================ reading
@@ -263,7 +281,7 @@ def _plain_numbers(a):
     if _is_number(a):
         return True
     if isinstance(a, np.ndarray) and a.dtype != object:
-        return a.size > 0
+        return a.size > 0 and a.dtype.kind not in "USV"  # an array of text is read as text
     if isinstance(a, (list, tuple, np.ndarray)):
         items = list(_flat(a))
         return bool(items) and all(_is_number(x) for x in items)
@@ -290,7 +308,7 @@ def _as_numbers(value, what, **fields):
         try:
             arr = arr.astype(complex)
         except (TypeError, ValueError):
-            raise Refused("malformed", "not_numbers", what=what, **fields) from None
+            raise Refused("malformed", "not_numbers", what=what, got=describe(value), **fields) from None
     if arr.dtype.kind == "b":
         raise Refused("malformed", "bool_answer")
     if arr.dtype.kind == "c":
@@ -298,7 +316,7 @@ def _as_numbers(value, what, **fields):
             raise Refused("malformed", "complex_answer")
         arr = arr.real
     if arr.dtype.kind not in "iuf":
-        raise Refused("malformed", "not_numbers", what=what, **fields)
+        raise Refused("malformed", "not_numbers", what=what, got=describe(value), **fields)
     if arr.size > MAX_OUTPUT:
         raise Refused("malformed", "too_many_numbers", n=arr.size, limit=MAX_OUTPUT)
     if arr.ndim > 2:
@@ -312,6 +330,15 @@ def _as_numbers(value, what, **fields):
     elif arr.ndim == 1:
         arr = arr.reshape(-1, 1)
     return arr
+
+
+def describe(value, width=40):
+    """What was received, for a message: its type (an array's dtype and shape) and the start of its repr."""
+    text = repr(value)
+    text = text if len(text) <= width else text[: width - 1] + "…"
+    if isinstance(value, np.ndarray):
+        return f"{type(value).__name__} of dtype {value.dtype}, shape {value.shape}: {text}"
+    return f"{type(value).__name__} {text}"
 
 
 def _sympy_number(e):
