@@ -5,6 +5,7 @@ for validate and the variants, which use the real grader and the shipped exercis
 import csv
 import io
 import json
+import re
 
 import pytest
 
@@ -107,15 +108,21 @@ def test_overrides_are_checked_shown_and_kept(course, capsys):
 
 
 # -------------------------------------------------------------------------------------------------- exports
-# Canvas's documented gradebook import format (Canvas Instructor Guide, "How do I import grades in the Gradebook?",
-# and a gradebook export as downloaded): the identifying columns, one "<assignment> (<id>)" column per assignment,
-# and the "Points Possible" row under the header.
+# The formats as their LMS writes them (an import takes its own export's layout), checked against the sources
+# (2026-11-26):
+# - Canvas: lib/gradebook_exporter.rb in instructure/canvas-lms writes the header `Student, ID, [SIS User ID,]
+#   SIS Login ID, [Integration ID, Root Account,] Section`, then one `Assignment#title_with_id` column per assignment
+#   ("<title> (<id>)"; the importer matches an assignment by that id), then a second row whose first cell is
+#   "    Points Possible" (four spaces) with the assignments' points; its spec fixture
+#   spec/fixtures/gradebooks/basic_course_with_sis_login_id.csv imports the same layout without SIS User ID.
+# - Moodle: grade/export/lib.php's `format_column_name` names a column "<module name>: <item name> (<display
+#   type>)" — "Assignment: Essay 1 (Real)" — after the user fields `First name, Last name, ID number, Institution,
+#   Department, Email address`, the header Moodle's own CSV import test reads (grade/import/csv/tests/
+#   load_data_test.php); its import maps one identifying column (ID number, e-mail …) to the user.
 CANVAS_EXAMPLE = """Student,ID,SIS User ID,SIS Login ID,Section,Assignment 1 (12345)
     Points Possible,,,,,10
 "Lastname, Firstname",1234,SIS123,login123,Section 1,9
 """
-# Moodle's documented grade import format is its export format (MoodleDocs, "Grade import": "The import file format
-# is the same as the corresponding export format"); a CSV grade export as downloaded:
 MOODLE_EXAMPLE = """First name,Last name,ID number,Institution,Department,Email address,Assignment: Essay 1 (Real)
 Firstname,Lastname,SIS123,,,student@example.com,9.00
 """
@@ -135,6 +142,7 @@ def test_canvas_export_has_the_documented_layout_cell_by_cell(course):
     assert got[0][:5] == doc[0][:5] == CANVAS_IDS
     assert got[1][0] == doc[1][0] and got[1][1:5] == doc[1][1:5] == [""] * 4      # "    Points Possible"
     assert got[0][5] == "Exercise 1 (4242)"
+    assert all(re.fullmatch(r".+ \((\d+)\)", h) for h in (doc[0][5], got[0][5]))         # "<title> (<id>)"
     assert got[1:] == [["    Points Possible", "", "", "", "", "6"],
                        ["García, Ana", "1001", "S1", "ana.garcia", "A", "5.2"],    # 4 + 1.25 overridden, rounded
                        ["Okafor, Ben", "1002", "S2", "ben.okafor", "B", "1.8"],    # 3, two days late: − 1.2
@@ -152,6 +160,7 @@ def test_moodle_export_has_the_documented_layout_cell_by_cell(course):
     doc = list(csv.reader(io.StringIO(MOODLE_EXAMPLE)))
     got = rows_of(path)
     assert got[0][:6] == doc[0][:6] == MOODLE_IDS
+    assert all(re.fullmatch(r"Assignment: .+ \(Real\)", h) for h in (doc[0][6], got[0][6]))
     assert got == [MOODLE_IDS + [f"Assignment: {EX} (Real)"],
                    ["Ana", "García", "S1", "", "", "ana@uni.example", "6"],
                    ["Ben", "Okafor", "S2", "", "", "ben@uni.example", "3"],
@@ -206,9 +215,15 @@ def test_report_pages_and_csv(course):
     page = (tmp / "report" / f"{EX}.html").read_text()
     assert page.count("data:image/png;base64,") == 1 and "http" not in page.replace("https://", "")  # self-contained
     assert "sign_flip" in page and "Nobody got full marks" not in page
+    assert "<p>2 of 3 students handed in, 1 missing; 1 more not on the roster.</p>" in page   # zoe is not on it
+    assert "<td class='n'>4.00</td>" in page                      # ben's 3.5 + 0.5: scores with two decimals
+    book.record(result("abe", 1, 2, mistakes=[("sign_flip", "Φ_4")], answer="\n".join(f"[x{k}]" for k in range(12))))
+    report(tmp / "graded", tmp / "report")
+    page = (tmp / "report" / f"{EX}.html").read_text()            # abe's 12 rows: the example now
+    assert "<pre>[x0]\n[x1]\n[x2]\n[x3]\n[x4]\n[x5]</pre><div class='muted'>… 12 rows in all</div>" in page
     report(tmp / "graded", tmp / "rcsv", "csv")
     mistakes = list(csv.DictReader(open(tmp / "rcsv" / f"{EX}-mistakes.csv")))
-    assert [(m["code"], m["students"]) for m in mistakes] == [("sign_flip", "2"), ("transposed", "1")]
+    assert [(m["code"], m["students"]) for m in mistakes] == [("sign_flip", "3"), ("transposed", "1")]
 
 
 # -------------------------------------------------------------------------------------------------- variants, validate

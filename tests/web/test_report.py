@@ -24,7 +24,8 @@ MAKE_REPORT = textwrap.dedent("""
         mistakes = ([] if k % 4 else [("sign_flip", "Φ_4")]) + ([("transposed", "")] if k % 5 == 0 else [])
         book.record(SubmissionResult(f"s{k:02d}", "ex01", f"s{k:02d}.ipynb", f"{k:064x}", "ok", "", [
             PartGrade("revolute_OA", 4.0 if k % 3 else 2.0, 4.0, "ok", "", answer=f"[x1 - x2 + {k % 3}]"),
-            PartGrade("revolute_B", 3.0 if k % 4 else 1.0, 3.0, "ok", "", answer="[x3 - x4]", mistakes=mistakes),
+            PartGrade("revolute_B", 3.0 if k % 4 else 1.0, 3.0, "ok", "", mistakes=mistakes,
+                      answer="\\n".join(f"[x{j} - x{j + 1} + 3*cos(phi{j}) - 1.5*cos(phi{j + 1})]" for j in range(12))),
             PartGrade("whole_phi", 0.0, 4.0, "ok", "", answer="[0]")], 1.0, "none"))
     book.close()
     report(out + "/graded", out + "/report")
@@ -52,6 +53,12 @@ def test_the_report_reads_in_a_browser(browser, offline, screenshots, pages, nam
         assert "sign_flip" in first and "8" in first
         flagged = page.locator("tr.flag").first.evaluate("r => getComputedStyle(r).backgroundColor")
         assert flagged == "rgb(248, 215, 218)"                                 # the part nobody got right
+        assert "30 of 30 students handed in, 0 missing." in page.inner_text("body")
+        answer = page.locator("table").nth(1).locator("tr").nth(1).locator("pre")
+        assert answer.inner_text().count("\n") == 5                          # six of the twelve rows, each whole:
+        assert answer.evaluate("p => p.scrollWidth <= p.clientWidth + 1")      # no row wrapped or cut off
+        assert answer.evaluate("p => p.getBoundingClientRect().right") <= 1200  # and inside the window
+        assert "12 rows in all" in page.locator("table").nth(1).locator("tr").nth(1).inner_text()
     else:
         assert "ex01" in page.locator("table").first.inner_text()
     page.close()

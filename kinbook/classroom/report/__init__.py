@@ -39,7 +39,7 @@ border-bottom:1px solid #ccd;padding-bottom:.2rem}table{border-collapse:collapse
 td,th{border:1px solid #ccd;padding:.3rem .6rem;text-align:left;vertical-align:top}th{background:#f1f3f6}
 td.n{text-align:right;font-variant-numeric:tabular-nums}.flag{background:#f8d7da;color:#721c24;font-weight:600}
 .muted{color:#666}img{max-width:100%;height:auto;border:1px solid #eee}code,pre{font-size:.85rem}
-pre{margin:0;white-space:pre-wrap;max-width:28rem}nav a{margin-right:1rem}
+pre{margin:0;white-space:pre}td.nowrap{white-space:nowrap}nav a{margin-right:1rem}
 """
 
 
@@ -47,7 +47,25 @@ def _e(value):
     return html.escape(str(value))
 
 
-def _table(rows, columns, numeric=(), flag=None):
+#: The lines of a student's answer the mistake table shows (a whole Φ has a dozen rows: the rest is counted).
+ANSWER_LINES = 6
+
+
+def _number(v):
+    """A count as it is; a score with two decimals (10.33, 11.00), so that a column reads at a glance."""
+    return str(v) if isinstance(v, int) else f"{v:.2f}"
+
+
+def _answer(text):
+    """A student's answer as the mistake table shows it: its first :data:`ANSWER_LINES` lines, whole, and how many
+    more there are."""
+    lines = str(text).splitlines() or [""]
+    shown = "\n".join(lines[:ANSWER_LINES])
+    more = f"<div class='muted'>… {len(lines)} rows in all</div>" if len(lines) > ANSWER_LINES else ""
+    return f"<pre>{_e(shown)}</pre>{more}"
+
+
+def _table(rows, columns, numeric=(), flag=None, nowrap=()):
     """An HTML table of ``rows`` (dicts) with ``columns`` [(key, heading)]."""
     if not rows:
         return "<p class='muted'>none</p>"
@@ -61,9 +79,11 @@ def _table(rows, columns, numeric=(), flag=None):
             if k.endswith("share"):
                 v = f"{100 * v:.0f} %"
             if k == "example_answer":
-                cells.append(f"<td><pre>{_e(v)}</pre></td>")
+                cells.append(f"<td>{_answer(v)}</td>")
+            elif k in numeric:
+                cells.append(f"<td class='n'>{_e(_number(v))}</td>")
             else:
-                cells.append(f"<td class='n'>{_e(v)}</td>" if k in numeric else f"<td>{_e(v)}</td>")
+                cells.append(f"<td class='nowrap'>{_e(v)}</td>" if k in nowrap else f"<td>{_e(v)}</td>")
         body.append(f"<tr{cls}>{''.join(cells)}</tr>")
     return f"<table><tr>{head}</tr>{''.join(body)}</table>"
 
@@ -74,12 +94,21 @@ def _histogram(values, top, title, xlabel):
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import numpy as np
 
-    fig, ax = plt.subplots(figsize=(7, 3), dpi=100)
+    fig, ax = plt.subplots(figsize=(8, 3.2), dpi=100)
     try:
         top = max(float(top), max(values, default=0.0), 1.0)
-        bins = min(20, max(5, int(round(top)) + 1))
-        ax.hist(values, bins=bins, range=(0, top), color="#4a78b5", edgecolor="white")
+        # one bar per whole point, centred on it (up to 25 points; wider bins beyond), so that a bar reads "about
+        # 7 points"; a dashed line marks full marks
+        width = max(1, int(np.ceil(top / 25)))
+        edges = np.arange(-width / 2, top + width, width)
+        ax.hist(values, bins=edges, color="#4a78b5", edgecolor="white")
+        ax.axvline(top, color="#555", linestyle="--", linewidth=1)
+        ax.annotate("full marks", (top, 1), xycoords=("data", "axes fraction"), xytext=(0, 3),
+                    textcoords="offset points", ha="center", va="bottom", fontsize=9, color="#555")
+        ax.set_xlim(edges[0], edges[-1])
+        ax.xaxis.get_major_locator().set_params(integer=True)
         ax.set_xlabel(xlabel)
         ax.set_ylabel("students")
         ax.set_title(title)
@@ -108,8 +137,11 @@ def _exercise_tables(book, exercise, roster):
 def _exercise_page(exercise, t):
     handed = [r for r in t["scores"] if r["status"] != "missing"]
     top = max((r["max_score"] for r in t["scores"]), default=0)
-    out = [f"<nav><a href='index.html'>← the course</a></nav><h1>{_e(exercise)}</h1>",
-           f"<p>{len(handed)} handed in, {len(t['missing'])} missing, out of {len(t['scores'])} students.</p>",
+    enrolled = len(t["scores"]) - len(t["off_roster"])
+    line = f"{enrolled - len(t['missing'])} of {enrolled} students handed in, {len(t['missing'])} missing"
+    if t["off_roster"]:
+        line += f"; {len(t['off_roster'])} more not on the roster"
+    out = [f"<nav><a href='index.html'>← the course</a></nav><h1>{_e(exercise)}</h1>", f"<p>{_e(line)}.</p>",
            _histogram([r["score"] for r in handed], top, f"{exercise}: scores", "score"),
            "<h2>Parts</h2>",
            _table(t["parts"], [("part", "part"), ("graded", "graded"), ("max_score", "points"), ("mean", "mean"),
@@ -124,7 +156,8 @@ def _exercise_page(exercise, t):
             _table(t["mistakes"], [("part", "part"), ("code", "mistake"), ("title", "what it is"),
                                    ("students", "students"), ("share", "share of the part's submissions"),
                                    ("example_student", "for example"), ("example_row", "row"),
-                                   ("example_answer", "their answer")], numeric={"students"}),
+                                   ("example_answer", "their answer")], numeric={"students"},
+                   nowrap={"part", "code", "title", "example_row"}),
             "<h2>Answers computed with kinbook's reference</h2>",
             _table(t["reference"], [("student", "student"), ("part", "part"), ("how", "how")]),
             "<h2>Copying signals</h2><p class='muted'>What is identical, as found; not a verdict.</p>",
@@ -135,7 +168,7 @@ def _exercise_page(exercise, t):
             _table(t["scores"], [("student", "student"), ("status", "status"), ("score", "score"),
                                  ("max_score", "of"), ("attempts", "files handed in"), ("late_days", "days late"),
                                  ("penalty", "penalty"), ("overridden", "overridden parts")],
-                   numeric={"score", "max_score", "attempts", "late_days", "penalty"})]
+                   numeric={"score", "max_score", "attempts", "late_days", "penalty"}, nowrap={"student"})]
     return _page(f"kinbook report: {exercise}", "".join(out))
 
 

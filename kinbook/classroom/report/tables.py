@@ -62,8 +62,16 @@ def mistakes(book, exercise, top=5):
             title = explain(code)[0] if code in MISTAKES else code
             out.append({"part": part, "code": code, "title": title, "students": n,
                         "share": round(n / graded[part], 3) if graded.get(part) else 0.0, "example_student": first,
-                        "example_row": row, "example_answer": answer[:300]})
+                        "example_row": row, "example_answer": _whole_lines(answer, 2000)})
     return out
+
+
+def _whole_lines(text, limit):
+    """``text`` cut to at most ``limit`` characters at the end of a line (a matrix keeps whole rows)."""
+    if len(text) <= limit:
+        return text
+    head = text[:limit]
+    return (head.rsplit("\n", 1)[0] if "\n" in head else head) + "\n…"
 
 
 def reference(book, exercise):
