@@ -261,7 +261,9 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
         e.submitted_from = "file"
     e._order = (name.attempt, (name.time or _dt.datetime.min).isoformat(), e.mtime, e.path)
     if name.raw is None:
-        e.status, e.message, e.result = "ignored", f"no student: the path {name.why}", False
+        # a link, a device or a hard link (the instructor's source unpacked into collected/) says so, named or not
+        e.status, e.message = problem if problem is not None else ("ignored", f"no student: the path {name.why}")
+        e.result = False
         return e
     known = roster.find(name.raw, name.key) if roster is not None else None
     if known is not None:
