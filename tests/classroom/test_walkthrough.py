@@ -281,13 +281,26 @@ def test_the_report_shows_the_mistakes_planted(term):
             by_part.setdefault(part, []).append((-counts[part, code], code))
         want = [(part, code, str(-n)) for part in by_part for n, code in sorted(by_part[part])[:5]]
         assert sorted((r["part"], r["code"], r["students"]) for r in rows) == sorted(want)
-    planted = {(r["part"], r["code"]): r for r in csv.DictReader(open(course / "report-csv" / f"{EX01}-mistakes.csv"))}
-    assert int(planted["revolute_OA", "sign_flip"]["students"]) == len(WRONG_OA)
-    assert planted["revolute_OA", "sign_flip"]["example_student"] == WRONG_OA[0]
-    a = {(r["part"], r["code"]): r for r in csv.DictReader(open(course / "report-csv" / f"{EX11}-mistakes.csv"))}
-    assert int(a["A", "transposed"]["students"]) == len(WRONG_A)
-    page = (course / "report" / f"{EX01}.html").read_text(encoding="utf-8")
-    assert "sign_flip" in page and "data:image/png;base64," in page
+    # the mistakes as planted, by hand: who made which, in which part (the sign of a term is a sign error wherever
+    # the row is checked; A transposed; s16's answers are right for another student's angles, so plain wrong values)
+    planted = {(EX01, "revolute_OA", "sign_flip"): WRONG_OA, (EX01, "revolute_B", "sign_flip"): COPIED_01,
+               (EX01, "revolute_B_order", "sign_flip"): COPIED_01,
+               (EX01, "whole_phi", "sign_flip"): sorted(WRONG_OA + COPIED_01),
+               (EX11, "A", "transposed"): WRONG_A, (EX11, "A", "wrong_value"): [COPIER]}
+    for (ex, part, code), students in planted.items():
+        rows = {(r["part"], r["code"]): r for r in csv.DictReader(open(course / "report-csv" / f"{ex}-mistakes.csv"))}
+        row = rows[part, code]
+        assert (int(row["students"]), row["example_student"]) == (len(students), students[0]), (ex, part, code)
+        assert row["example_answer"] and row["title"] != code                  # an example, and the mistake's name
+    for ex in (EX01, EX11):                                                    # the page shows the same table
+        page = (course / "report" / f"{ex}.html").read_text(encoding="utf-8")
+        assert "data:image/png;base64," in page
+        section = page.split("<h2>Most common mistakes, per part</h2>", 1)[1].split("<h2>", 1)[0]
+        shown = [[re.sub(r"<[^>]+>", "", c) for c in re.findall(r"<td[^>]*>(.*?)</td>", tr, flags=re.S)]
+                 for tr in re.findall(r"<tr>(.*?)</tr>", section, flags=re.S)[1:]]
+        rows = list(csv.DictReader(open(course / "report-csv" / f"{ex}-mistakes.csv", encoding="utf-8")))
+        assert [(c[0], c[1], c[3], c[5]) for c in shown] == [(r["part"], r["code"], r["students"],
+                                                               r["example_student"]) for r in rows]
 
 
 def test_copying_signals_say_what_is_identical(term):

@@ -49,6 +49,11 @@ pre{background:#f6f8fa;border:1px solid #dde;padding:.5rem;overflow-x:auto;font-
 """
 
 
+
+def _pts(x):
+    """Points as a student reads them: at most two decimals (7.33, 9.9, 11)."""
+    return f"{round(float(x), 2):g}"
+
 def part_words(score, max_score, status):
     """A part's status in words, for the student."""
     if status == "ok":
@@ -70,7 +75,7 @@ def page(final, result, *, name="", graded=""):
            f"<p class='meta'>Feedback for <b>{_e(who)}</b> ({_e(final.student)})"
            + (f" · handed in {_e(final.submitted)}" if final.submitted else "")
            + (f" · graded {_e(graded)}" if graded else "") + "</p>",
-           f"<p class='total'>Total: {final.score:g} / {final.max_score:g}</p>"]
+           f"<p class='total'>Total: {_pts(final.score)} / {_pts(final.max_score)}</p>"]
     if final.status != "ok":
         out.append(f"<p class='note'><b>{_e(final.status)}</b>: {_e(STATUS_WORDS.get(final.status, ''))}"
                    + (f" — {_e(result.message)}" if result is not None and result.message else "") + "</p>")
@@ -79,24 +84,24 @@ def page(final, result, *, name="", graded=""):
         out.append(f"<p class='meta'>You handed in {final.attempts} files; {which} counts.</p>")
     if final.late_days:
         out.append(f"<p class='note'>Handed in {final.late_days} day(s) after the due date ({_e(final.due)}): "
-                   f"−{final.penalty:g} point(s), from {final.raw:g}.</p>")
+                   f"−{_pts(final.penalty)} point(s), from {_pts(final.raw)}.</p>")
     overrides = [(p, o) for p, _, _, o in final.parts if o]
     for p, (score, why) in overrides:
-        out.append(f"<p class='note'>Part <b>{_e(p)}</b>: your instructor set the score to {score:g}"
+        out.append(f"<p class='note'>Part <b>{_e(p)}</b>: your instructor set the score to {_pts(score)}"
                    + (f" — {_e(why)}" if why else "") + ".</p>")
     out.append("<table><tr><th>part</th><th>score</th><th>status</th></tr>")
     grades = {p.part: p for p in (result.parts if result is not None else [])}
     for p, score, mx, o in final.parts:
         shown = o[0] if o else score
         words, cls = part_words(shown, mx, grades[p].status if p in grades else "missing")
-        out.append(f"<tr><td>{_e(p)}</td><td>{shown:g} / {mx:g}{' (set by your instructor)' if o else ''}</td>"
+        out.append(f"<tr><td>{_e(p)}</td><td>{_pts(shown)} / {_pts(mx)}{' (set by your instructor)' if o else ''}</td>"
                    f"<td class='{cls}'>{_e(words)}</td></tr>")
     out.append("</table>")
     for p, score, mx, o in final.parts:
         g = grades.get(p)
         if g is None:
             continue
-        out.append(f"<h2>{_e(p)}: {(o[0] if o else score):g} / {mx:g}</h2>")
+        out.append(f"<h2>{_e(p)}: {_pts(o[0] if o else score)} / {_pts(mx)}</h2>")
         if g.reference:
             out.append(f"<p><i>This answer was computed with kinbook's own reference: {_e(g.reference)}.</i></p>")
         message = g.html if g.html else f"<p>{_e(g.message)}</p>"  # g.html is rendered (escaped) by CheckResult
@@ -112,12 +117,12 @@ def page(final, result, *, name="", graded=""):
 
 
 def _index(student, name, finals):
-    rows = "".join(f"<tr><td><a href='{_e(f.exercise)}.html'>{_e(f.exercise)}</a></td><td>{f.score:g} / "
-                   f"{f.max_score:g}</td><td>{_e(STATUS_WORDS.get(f.status, f.status))}</td></tr>" for f in finals)
+    rows = "".join(f"<tr><td><a href='{_e(f.exercise)}.html'>{_e(f.exercise)}</a></td><td>{_pts(f.score)} / "
+                   f"{_pts(f.max_score)}</td><td>{_e(STATUS_WORDS.get(f.status, f.status))}</td></tr>" for f in finals)
     total = sum(f.score for f in finals)
     mx = sum(f.max_score for f in finals)
     return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{_e(name or student)}</title>"
-            f"<style>{_CSS}</style></head><body><h1>{_e(name or student)}</h1><p class='total'>{total:g} / {mx:g}"
+            f"<style>{_CSS}</style></head><body><h1>{_e(name or student)}</h1><p class='total'>{_pts(total)} / {_pts(mx)}"
             f"</p><table><tr><th>exercise</th><th>score</th><th>status</th></tr>{rows}</table></body></html>")
 
 
