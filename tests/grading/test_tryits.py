@@ -59,39 +59,61 @@ def _reference_strings(value):
     return {s for s in out if len(s.lstrip("-")) >= 5}
 
 
+def _shown(result):
+    """Everything a student sees of a result: the notebook's HTML (tags stripped, entities read), the terminal's
+    text, and the messages and per-entry rows."""
+    import html
+    import re
+
+    page = html.unescape(re.sub(r"<[^>]+>", " ", result._repr_html_()))
+    return "\n".join([page, str(result)] + result.messages + [row.message for row in result.rows])
+
+
 def test_a_wrong_number_never_shows_the_reference():
     """A try-it's feedback on a wrong number says which entries are off and how, never the value itself (in English
-    and in Spanish, headline, notes and per-entry rows)."""
+    and in Spanish, in the HTML the notebook shows and in the text, headline, notes and per-entry rows), for the
+    typed wrong answers and the generated ones."""
     from kinbook.grading import set_language
 
     numeric = [(t, a, c) for t, a, c in WRONG if t.id[0].isdigit() and getattr(t, "item", None) is not None
                and "reveal" in __import__("inspect").signature(t.item.checker).parameters]
-    assert len(numeric) >= 60
+    by_id = {t.id: t for t, _, _ in numeric}
+    generated = [(p, a, c) for p in tryit_parts(TRY_ITS) if p.id in by_id and p.options.get("reveal") is False
+                 for a, c in wrong_answers(p)]
+    assert len(numeric) >= 60 and len(generated) >= 100, (len(numeric), len(generated))
     leaks = []
     try:
         for lang in ("en", "es"):
             set_language(lang)
-            for t, answer, _ in numeric:
-                r = t.check(answer)
-                text = "\n".join(r.messages + [row.message for row in r.rows])
-                ref = t.item.target(**t.item.data)
-                if t.id == "13-3/try-2":  # the solution of the Newton problem
+            answers = [(t.id, t.check, a) for t, a, _ in numeric]
+            answers += [(p.id, lambda a, p=p: p.checker(a, p.target, **p.options), a) for p, a, _ in generated]
+            for id_, check, answer in answers:
+                r = check(answer)
+                assert not r.passed, (id_, answer)
+                item = by_id[id_].item
+                ref = item.target(**item.data)
+                if id_ == "13-3/try-2":  # the solution of the Newton problem
                     ref = ref.solution()
+                text = _shown(r)
                 shown = [s for s in _reference_strings(ref) if s in text]
                 if shown:
-                    leaks.append((t.id, lang, shown, text[:200]))
+                    leaks.append((id_, lang, shown, text[:200]))
     finally:
         set_language("en")
+    print(f"\n{len(numeric)} typed and {len(generated)} generated wrong numbers over {len(by_id)} numeric try-its, "
+          f"in English and Spanish: {len(leaks)} show the reference")
     assert not leaks, leaks
 
 
 def test_every_exercise_part_and_try_it_with_generated_wrong_answers_is_named():
     parts = tryit_parts(TRY_ITS) + exercise_parts()
     assert {p.id.split("/")[0] for p in parts} >= {f"ex{k:02d}" for k in range(1, 13)}
-    total, generic, accepted, by_part = 0, 0, [], {}
+    total, generic, accepted, by_part, per_tryit = 0, 0, [], {}, {}
     for p in parts:
         wrong = wrong_answers(p)
         assert wrong, f"{p.id}: no wrong answer generated"
+        if p.id[0].isdigit():
+            per_tryit[p.id] = len(wrong)
         for answer, code in wrong:
             r = p.checker(answer, p.target, **p.options)
             total += 1
@@ -101,7 +123,9 @@ def test_every_exercise_part_and_try_it_with_generated_wrong_answers_is_named():
                 generic += 1
                 by_part.setdefault(p.id, []).append(code)
     print(f"\n{len(parts)} parts (try-its and exercise parts), {total} generated wrong answers, "
-          f"{generic} with only the generic 'wrong value' ({generic / total:.1%}): {by_part}")
+          f"{generic} with only the generic 'wrong value' ({generic / total:.1%}): {by_part}; "
+          f"{len(per_tryit)} chapter try-its get {min(per_tryit.values())}–{max(per_tryit.values())} each")
     assert not accepted, accepted
+    assert min(per_tryit.values()) >= 3, per_tryit
     assert total >= 400
     assert generic / total <= 0.1, by_part
