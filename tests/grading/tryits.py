@@ -186,7 +186,7 @@ def _ch13():
         (0.0, "book_misprint"), (-J88, "sign_flip"), (J88 / 2, "scaled"), (-2 * d @ arm, "A_for_B"),
         (2 * d @ np.array([rB[1] - 0.0, -(rB[0] - 3.0)]), "lever_arm"),
         (example("ch13_example3")[0].Phi_q(example("ch13_example3")[1], 0.0)[7, 8], "wrong_data")]))
-    T.append(Notebook("13-6/try-1", ["0"] * 8 + ["100 + 500*t"], [
+    T.append(Notebook("13-6/try-1", ["0"] * 8 + ["5*(20 + 100*t)"], [
         (["0"] * 8 + ["-100 - 500*t"], "nu_sign"), (["0"] * 9, "nu_missing"),
         (["0"] * 8 + [f"{100 * DEG} + {500 * DEG}*t"], "degrees"), (["0"] * 8 + ["100"], "missing_term")]))
     m3, q3, qd3, qdd3 = example("ch13_example3")
