@@ -30,6 +30,15 @@ print("mistakes:", result.mistakes)"""
 # the answer is the revolute joint's Φ with the sign of one term flipped (the right one has + cos(phi2))
 MISTAKE = "sign_flip"
 
+TRY_IT = """\
+# [live test] a try-it
+import kinbook as kb
+kb.try_it("13-1/try-2", [1.5 + 0.8, -0.5 + 0.3])"""
+# 13-1's Try it 2 answered with the local vector s' added to r (no A): the mistake is named, the reference
+# r + A s' = [1.85355, 0.27782] is never shown (a try-it's value comes only through kb.reveal)
+TRY_IT_MISTAKE = "local instead of global vector"
+TRY_IT_REFERENCE = ("1.85", "0.277", "0.278")
+
 EXPLORER = """\
 # [live test] explorer
 from kinbook.planar import plotting
@@ -129,6 +138,14 @@ def test_a_student_runs_the_live_notebook(profile, site, offline, screenshots):
     feedback.scroll_into_view_if_needed()
     page.screenshot(path=str(screenshots / "live-checker.png"))
 
+    last = add_cell_below(page, last, TRY_IT)
+    feedback = last.locator(".jp-OutputArea")
+    text = feedback.inner_text()
+    assert TRY_IT_MISTAKE in text and "wrong" in text, text
+    assert not [x for x in TRY_IT_REFERENCE if x in text], text
+    feedback.scroll_into_view_if_needed()
+    page.screenshot(path=str(screenshots / "live-try-it.png"))
+
     last = add_cell_below(page, last, EXPLORER)
     out = last.locator(".jp-OutputArea")
     status = out.locator(".widget-html-content").first
@@ -202,6 +219,9 @@ def test_without_python_the_page_says_so(browser, proxy, screenshots):
         banner.wait_for(timeout=120_000)
         text = banner.inner_text()
         assert "Python could not be downloaded" in text and "cdn.jsdelivr.net" in text, text
+        # the banner says the notebook and its stored outputs are there to read: they are, under it
+        page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=120_000)
+        page.locator(".jp-Notebook .jp-MarkdownOutput h1").first.wait_for(timeout=120_000)
         page.screenshot(path=str(screenshots / "live-no-python.png"))
         page.close()
     finally:
