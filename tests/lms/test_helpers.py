@@ -61,7 +61,11 @@ def test_assert_passed_raises_with_the_messages():
     assert all(m in str(info.value) for m in WRONG.messages) and "sign_flip" in str(info.value)
 
 
-def test_nbgrader_score_outside_a_kernel_says_so():
+def test_nbgrader_score_outside_a_kernel_says_so(monkeypatch):
+    import IPython
+
+    # outside a kernel there is no shell — also when an earlier test of this process made one (`make test JOBS=1`)
+    monkeypatch.setattr(IPython, "get_ipython", lambda: None)
     with pytest.raises(RuntimeError, match="runs only in a Jupyter kernel"):
         nbgrader_score(RIGHT, 4)
 
