@@ -84,7 +84,7 @@ class InputError(KinbookError, ValueError):
 
 class ExpressionError(InputError):
     """Text (from a mechanism file, a student or the command line) that is not an allowed expression, or
-    exceeds a bound of :class:`kinbook.core.reader.Limits`.
+    exceeds a bound of :class:`kinbook.core.bounds.Limits`.
 
     Attributes
     ----------

@@ -201,7 +201,7 @@ def _entry(t, budget, where):
     names = set()
     pieces = []
     _text(t, 0, budget, names, pieces)
-    from ..core import reader
+    from ..core import bounds, reader
     from ..errors import KinbookError
 
     reserved = set(reader.FUNCTIONS) | set(reader.ALIASES) | set(reader.CONSTANTS)
@@ -210,7 +210,7 @@ def _entry(t, budget, where):
         raise DecodeError(f"{where}: a symbol is named like a function or constant ({clash[0]!r})")
     import sympy as sp
 
-    limits = dataclasses.replace(reader.DEFAULT_LIMITS, length=40 * MAX_NODES, nodes=MAX_NODES, digits=MAX_DIGITS + 1,
+    limits = dataclasses.replace(bounds.DEFAULT_LIMITS, length=40 * MAX_NODES, nodes=MAX_NODES, digits=MAX_DIGITS + 1,
                                  depth=2 * MAX_DEPTH + 10)
     try:
         return reader.read_expression("".join(pieces), symbols={n: sp.Symbol(n) for n in names}, where=where,

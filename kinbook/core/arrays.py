@@ -64,7 +64,7 @@ def symbolic_leaves(*values):
     """True when any of ``values`` (or an entry of a list, tuple, matrix or array of them) is a sympy object —
     the caller then takes its symbolic path — after checking that no entry is text: sympy's Matrix, cos …
     would evaluate text as Python (``sp.Matrix([x, "__import__('os')…"])`` runs it). Sympy entries get the
-    bounds of :func:`kinbook.core.reader.check_expression`."""
+    bounds of :func:`kinbook.core.bounds.check_expression`."""
     import sympy as sp
 
     leaves, stack = [], list(values)
@@ -80,7 +80,7 @@ def symbolic_leaves(*values):
             leaves.append(v)
     if not any(isinstance(v, sp.Basic) for v in leaves):
         return False
-    from .reader import check_expression
+    from .bounds import check_expression
 
     for v in leaves:
         if isinstance(v, (str, bytes)):

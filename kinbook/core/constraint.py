@@ -15,7 +15,8 @@ import sympy as sp
 
 from ..errors import ModelError, UnknownPointError
 from . import kernels, registry
-from .reader import check_expression, read_constant, read_expression, read_number
+from .bounds import check_expression
+from .reader import read_constant, read_expression, read_number
 from .symbolic import t as t_symbol
 from .symbolic import time_function as read_time_function
 

@@ -19,81 +19,27 @@ What an expression may contain
 Nothing else: no attribute access (``x.real``), no subscripts, no other calls, no keywords, comparisons,
 conditionals, strings, lambdas or names outside the context; products need their ``*`` (``2*t``, not ``2t``).
 
-Bounds (:class:`Limits`; checked on the text and the tree, before sympy sees anything): text length, number of
-tree nodes, nesting depth, characters in one numeric literal, the size of a numeric exponent (``x**100000`` is
-refused: no kinematic expression needs it) and the magnitude of every sub-expression made of numbers only
-(estimated in floating point from the tree; ``10**10**10``, ``9**9**9**9``, ``exp(1000)`` are refused).
+Bounds (:mod:`kinbook.core.bounds`), checked on the text and the tree before sympy sees anything: length, tree
+nodes, nesting depth, digits of a literal, a numeric exponent's size (``x**100000``: no kinematic expression
+needs it), the magnitude of every all-number sub-expression (``10**10**10``, ``exp(1000)`` are refused).
 The built expression must be finite: ``1/0`` is refused.
 """
 
 from __future__ import annotations
 
 import ast
-import cmath
 import math
 import operator
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 import sympy as sp
 
 from ..errors import ExpressionError
+from ._mpvalue import COMPLEX, MP_BY_NAME, mp_value
+from .bounds import DEFAULT_LIMITS, check_expression
 
-__all__ = [
-    "read_expression",
-    "read_number",
-    "read_constant",
-    "check_expression",
-    "Limits",
-    "DEFAULT_LIMITS",
-    "FUNCTIONS",
-    "ALIASES",
-    "CONSTANTS",
-    "ExpressionError",
-]
-
-
-@dataclass(frozen=True)
-class Limits:
-    """Bounds on an expression; every one is checked before any arithmetic.
-
-    Attributes
-    ----------
-    length : int
-        Characters of the text.
-    nodes : int
-        Nodes of the syntax tree (for :func:`check_expression`: *distinct* sub-expressions of a sympy object,
-        each counted once however often it is shared).
-    depth : int
-        Nesting depth of the tree (the longest path, for a sympy object).
-    tree : int
-        For :func:`check_expression`: the size the sympy object would have written out as a tree (shared parts
-        counted each time they occur) — computed from the distinct ones, so an enormous tree of few distinct
-        parts is refused at once.
-    digits : int
-        Characters of one numeric literal.
-    exponent : float
-        Largest |n| of a numeric exponent in a power ``a^n``.
-    magnitude : float
-        Largest absolute value of any sub-expression made of numbers only (and of any number in a sympy tree).
-    bits : int
-        Bound on the total size of the exact numbers sympy would build (the literals' sizes, added, and
-        multiplied by integer exponents): keeps exact rational arithmetic cheap.
-    """
-
-    length: int = 5000
-    nodes: int = 2000
-    depth: int = 100
-    tree: int = 200_000
-    digits: int = 40
-    exponent: float = 100
-    magnitude: float = 1e300
-    bits: int = 20000
-
-
-DEFAULT_LIMITS = Limits()
-"""The limits used when a caller gives none: generous for any kinematic expression of the book."""
+__all__ = ["read_expression", "read_number", "read_constant", "FUNCTIONS", "ALIASES", "CONSTANTS", "ExpressionError"]
 
 FUNCTIONS = {
     "sin": (sp.sin, (1,)),
@@ -453,9 +399,9 @@ class _Reader:
         elif isinstance(node, ast.Call):
             args = [value[id(a)] for a in node.args]
             name = self.aliases.get(node.func.id, node.func.id)
-            if any(a is None for a in args) or name not in _COMPLEX or self.table.get(name) is not FUNCTIONS.get(name):
+            if any(a is None for a in args) or name not in COMPLEX or self.table.get(name) is not FUNCTIONS.get(name):
                 return None
-            compute = lambda: _COMPLEX[name](*args)  # noqa: E731
+            compute = lambda: COMPLEX[name](*args)  # noqa: E731
         else:
             return None
         try:
@@ -570,7 +516,7 @@ class _Reader:
                                    ast.Div: operator.truediv, ast.Pow: mpmath.power}[type(node.op)](a, b)
             else:
                 name = self.aliases.get(node.func.id, node.func.id)
-                value[id(node)] = _MP_BY_NAME[name](mpmath)(*[value[id(a)] for a in node.args])
+                value[id(node)] = MP_BY_NAME[name](mpmath)(*[value[id(a)] for a in node.args])
         return value[id(root)]
 
     @staticmethod
@@ -592,20 +538,6 @@ _DECIMAL = re.compile(r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
 def _family(node):
     op = type(getattr(node, "op", None))
     return "add" if op in (ast.Add, ast.Sub) else "mul" if op in (ast.Mult, ast.Div) else None
-
-
-def _real(z):
-    if z.imag != 0:
-        raise ValueError("complex argument")
-    return z.real
-
-
-_COMPLEX = {
-    "sin": cmath.sin, "cos": cmath.cos, "tan": cmath.tan, "asin": cmath.asin, "acos": cmath.acos,
-    "atan": cmath.atan, "atan2": lambda y, x: math.atan2(_real(y), _real(x)), "sqrt": cmath.sqrt,
-    "exp": cmath.exp, "log": lambda x, b=math.e: cmath.log(x, b), "Abs": abs,
-    "sign": lambda x: float((_real(x) > 0) - (_real(x) < 0)),
-}
 
 
 # ------------------------------------------------------------------------------------------------ numbers
@@ -706,7 +638,7 @@ def _real_value(expr, value, where):
 
     with mpmath.workdps(30):
         try:
-            z = _mp(expr, mpmath)
+            z = mp_value(expr, mpmath)
         except (ValueError, ZeroDivisionError, OverflowError, TypeError):
             z = mpmath.nan
         z = mpmath.mpc(z)
@@ -716,58 +648,6 @@ def _real_value(expr, value, where):
             raise ExpressionError(f"{where}: expected a finite real number, got {_short(value)} ({got})",
                                   where=where, text=value if isinstance(value, str) else None, reason="not real")
         return float(z.real)
-
-
-def _mp(e, mpmath):
-    """mpmath value of a sympy tree of numbers, constants and the functions of :data:`FUNCTIONS`."""
-    if isinstance(e, sp.Integer):
-        return mpmath.mpf(int(e))
-    if isinstance(e, sp.Rational):
-        return mpmath.mpf(int(e.p)) / int(e.q)
-    if isinstance(e, sp.Float):
-        return mpmath.mpf(e._mpf_)
-    if e is sp.pi:
-        return +mpmath.pi
-    if e is sp.E:
-        return +mpmath.e
-    if e is sp.I:
-        return mpmath.mpc(0, 1)
-    args = [_mp(a, mpmath) for a in e.args]
-    if isinstance(e, sp.Add):
-        return mpmath.fsum(args)
-    if isinstance(e, sp.Mul):
-        return mpmath.fprod(args)
-    if isinstance(e, sp.Pow):
-        return mpmath.power(args[0], args[1])
-    if isinstance(e, sp.exp):
-        return mpmath.exp(args[0])
-    f = _MP_FUNCTIONS.get(type(e))
-    if f is None:  # a sympy object from Python with other functions: sympy's own evaluation
-        return mpmath.mpmathify(complex(e.evalf(20)))
-    return f(mpmath)(*args)
-
-
-_MP_FUNCTIONS = {
-    sp.sin: lambda m: m.sin, sp.cos: lambda m: m.cos, sp.tan: lambda m: m.tan, sp.asin: lambda m: m.asin,
-    sp.acos: lambda m: m.acos, sp.atan: lambda m: m.atan, sp.log: lambda m: m.log, sp.Abs: lambda m: abs,
-    sp.atan2: lambda m: lambda y, x: m.atan2(_mp_real(y), _mp_real(x)),
-    sp.sign: lambda m: lambda x: m.sign(_mp_real(x)),
-}
-
-
-_MP_BY_NAME = {
-    "sin": lambda m: m.sin, "cos": lambda m: m.cos, "tan": lambda m: m.tan, "asin": lambda m: m.asin,
-    "acos": lambda m: m.acos, "atan": lambda m: m.atan, "exp": lambda m: m.exp, "sqrt": lambda m: m.sqrt,
-    "log": lambda m: lambda x, b=None: m.log(x) if b is None else m.log(x) / m.log(b), "Abs": lambda m: abs,
-    "atan2": lambda m: lambda y, x: m.atan2(_mp_real(y), _mp_real(x)),
-    "sign": lambda m: lambda x: m.sign(_mp_real(x)),
-}
-
-
-def _mp_real(x):
-    if getattr(x, "imag", 0) != 0:
-        raise ValueError("complex argument")
-    return getattr(x, "real", x)
 
 
 def read_number(value, *, where, limits=None):
@@ -794,89 +674,6 @@ def read_number(value, *, where, limits=None):
 
 
 # ------------------------------------------------------------------------------------------------ sympy trees
-def check_expression(expr, *, where, limits=None):
-    """The bounds of :class:`Limits` on an already-built sympy object (an expression or a matrix), without
-    evaluating it: distinct sub-expressions, the size written out as a tree, depth, the magnitude of every
-    number, numeric exponents.
-
-    For sympy objects handed over from Python (a student's expression, data decoded by the grader). The object
-    is walked as the graph it is — each distinct sub-expression once —, so a long expression that sympy built
-    with shared parts (a γ of √(dᵀd) − l: 10⁵ tree nodes, a few hundred distinct) is read in time linear in
-    its distinct parts, and one whose tree would be astronomical is refused as soon as its size is known.
-
-    Returns
-    -------
-    (distinct, tree, depth) : tuple of int
-
-    Raises
-    ------
-    ExpressionError
-        Naming ``where`` and the bound exceeded.
-    """
-    limits = DEFAULT_LIMITS if limits is None else limits
-    if isinstance(expr, (int, float)) and not isinstance(expr, bool):
-        if not math.isfinite(expr) or abs(expr) > limits.magnitude:
-            raise ExpressionError(f"{where}: expected a finite number of at most {limits.magnitude:.0e} in size, "
-                                  f"got {expr!r}", where=where, text=None, reason="not finite")
-        return 1, 1, 1
-    if isinstance(expr, sp.MatrixBase):
-        roots = list(expr)
-    elif isinstance(expr, sp.Basic):
-        roots = [expr]
-    else:
-        raise ExpressionError(f"{where}: expected a sympy expression, got {type(expr).__name__}", where=where,
-                              text=None, reason="not a sympy expression")
-    big_bits = math.log2(limits.magnitude)
-    done = {}  # sub-expression -> (tree size, depth), once all its parts are done
-    entered = set()
-    stack = [(r, False) for r in roots]
-    tree = depth = 0
-    while stack:
-        node, ready = stack.pop()
-        if node in done:
-            continue
-        if ready:
-            parts = [done[a] for a in node.args]
-            size = 1 + sum(p[0] for p in parts)
-            level = 1 + max((p[1] for p in parts), default=0)
-            if size > limits.tree:
-                raise ExpressionError(f"{where}: the expression is too large (more than {limits.tree} nodes "
-                                      f"written out)", where=where, text=None, reason="too many nodes")
-            if level > limits.depth:
-                raise ExpressionError(f"{where}: the expression is nested too deeply (more than {limits.depth} "
-                                      f"levels)", where=where, text=None, reason="too deep")
-            done[node] = (size, level)
-            continue
-        if node in entered:
-            continue
-        if not isinstance(node, sp.Basic):
-            raise ExpressionError(f"{where}: a part of the expression is not a sympy object "
-                                  f"({type(node).__name__})", where=where, text=None, reason="not sympy")
-        entered.add(node)
-        if len(entered) > limits.nodes:
-            raise ExpressionError(f"{where}: the expression is too large (more than {limits.nodes} distinct parts)",
-                                  where=where, text=None, reason="too many nodes")
-        if isinstance(node, sp.Number) or node in _INFINITIES:
-            _check_number(node, where, big_bits, limits)
-        elif isinstance(node, sp.Pow):
-            e = node.args[1]
-            if isinstance(e, sp.Number) and e.is_finite and abs(e) > limits.exponent:
-                raise ExpressionError(f"{where}: the exponent {e} is too large (at most {limits.exponent:g} in size)",
-                                      where=where, text=None, reason="exponent too large")
-        stack.append((node, True))
-        stack.extend((a, False) for a in node.args if a not in done)
-    for r in roots:
-        size, level = done[r]
-        tree, depth = tree + size, max(depth, level)
-    if tree > limits.tree:
-        raise ExpressionError(f"{where}: the expression is too large (more than {limits.tree} nodes written out)",
-                              where=where, text=None, reason="too many nodes")
-    return len(entered), tree, depth
-
-
-_INFINITIES = (sp.zoo, sp.oo, -sp.oo, sp.nan)
-
-
 def _check_number(node, where, big_bits, limits):
     if isinstance(node, sp.Integer):
         bits = int(node).bit_length()

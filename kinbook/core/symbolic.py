@@ -136,7 +136,8 @@ def time_function(f, where, time=t):
         :class:`~kinbook.errors.DriverValueError`, only at an instant an analysis asks f'' there.
     """
     from ..errors import ExpressionError
-    from .reader import check_expression, read_constant, read_expression
+    from .bounds import check_expression
+    from .reader import read_constant, read_expression
 
     key = (f if isinstance(f, (str, sp.Basic)) else None, time)
     if key[0] is not None and key in _VALID:  # a mechanism of many bodies repeats the same few functions

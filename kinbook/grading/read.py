@@ -9,7 +9,7 @@ code and a message saying what was expected — which the checker turns into a f
   numbers, + − × ÷ ^ and the reader's functions; bounds on size checked before any arithmetic. Never
   ``sympify``, ``eval`` or ``exec``.
 * **sympy objects** a student built in Python are checked against the same bounds
-  (:func:`kinbook.core.reader.check_expression`) and their symbols are matched *by name*: a student who
+  (:func:`kinbook.core.bounds.check_expression`) and their symbols are matched *by name*: a student who
   writes ``sp.symbols("x1 phi2")`` (without ``real=True``) gets the mechanism's x1 and phi2.
 * **A function** ``f(q, t)`` (``f(q, qd, t)`` for γ, or ``f(q)``) is called once per sample instant with
   copies of the coordinates; what it returns must be real numbers of a bounded size. It runs as it is (in a
@@ -43,11 +43,17 @@ def _reader():
     return reader
 
 
+def _bounds():
+    from ..core import bounds  # the reader's bounds, for sympy answers too
+
+    return bounds
+
+
 def _limits():
     """The bounds on one entry of an answer: text up to 20 000 characters; a sympy object up to 20 000 distinct
     sub-expressions, 2 000 000 nodes written out as a tree, 400 deep (a γ entry of a spatial joint that sympy
     derived has some 10⁵ tree nodes and a few hundred distinct ones: it is walked as the graph it is)."""
-    return _reader().Limits(length=20_000, nodes=20_000, tree=2_000_000, depth=400)
+    return _bounds().Limits(length=20_000, nodes=20_000, tree=2_000_000, depth=400)
 
 
 SYMPY_WORK = 5_000
@@ -198,9 +204,9 @@ class Answer:
 
 def tree_size(expr):
     """Nodes of a sympy object written out as a tree, computed over its distinct parts (never a tree walk)."""
-    ex = _reader()
-    huge = ex.Limits(length=10**9, nodes=10**9, depth=10**9, tree=10**30)
-    return ex.check_expression(expr, where="", limits=huge)[1]
+    bounds = _bounds()
+    huge = bounds.Limits(length=10**9, nodes=10**9, depth=10**9, tree=10**30)
+    return bounds.check_expression(expr, where="", limits=huge)[1]
 
 
 def _same_shapes(outputs):
@@ -344,7 +350,7 @@ def describe(value, width=40):
 def _sympy_number(e):
     ex = _reader()
     try:  # bounded before sympy walks it (is_number, free_symbols and evaluation walk the tree)
-        ex.check_expression(e, where=Msg("callable_result"), limits=_limits())
+        _bounds().check_expression(e, where=Msg("callable_result"), limits=_limits())
     except ex.ExpressionError as err:
         raise Refused("malformed", "reader", message=str(err)) from None
     if getattr(e, "is_number", False) and not e.free_symbols:
@@ -395,7 +401,7 @@ def _sympy_matrix(M):
                 raise Refused("malformed", "not_an_expression", where=where, type=type(e).__name__)
     limits = _limits()
     try:
-        ex.check_expression(M, where="the answer", limits=type(limits)(
+        _bounds().check_expression(M, where="the answer", limits=type(limits)(
             length=limits.length, nodes=limits.nodes * max(1, min(len(M), 50)), depth=limits.depth,
             tree=limits.tree * max(1, min(len(M), 50))))
     except ex.ExpressionError as err:
@@ -458,7 +464,7 @@ def _entry(e, symbols, where):
     if not isinstance(e, sp.Expr) or isinstance(e, sp.MatrixBase):
         raise Refused("malformed", "not_an_expression", where=where, type=type(e).__name__)
     try:
-        ex.check_expression(e, where=where, limits=_limits())
+        _bounds().check_expression(e, where=where, limits=_limits())
     except ex.ExpressionError as err:
         code = "not_finite" if "not a finite number" in str(err) else "malformed"
         raise Refused(code, "reader", message=str(err)) from None

@@ -8,15 +8,8 @@ import time
 import pytest
 import sympy as sp
 
-from kinbook.core.reader import (
-    ALIASES,
-    FUNCTIONS,
-    Limits,
-    check_expression,
-    read_constant,
-    read_expression,
-    read_number,
-)
+from kinbook.core.bounds import Limits, check_expression
+from kinbook.core.reader import ALIASES, FUNCTIONS, read_constant, read_expression, read_number
 from kinbook.errors import ExpressionError, InputError, KinbookError
 
 t = sp.Symbol("t", real=True)

@@ -360,7 +360,8 @@ _DELETE = object()
 
 
 def reader_cases():
-    from kinbook.core.reader import check_expression, read_expression, read_number
+    from kinbook.core.bounds import check_expression
+    from kinbook.core.reader import read_expression, read_number
 
     t = sp.Symbol("t", real=True)
     out = []
