@@ -41,8 +41,6 @@ PENDING_CIRCLES = {
 
 LARGE = {
     "kinbook/book/errata.py": "the errata list and its evidence (H25b's errata work, issue 25)",
-    "kinbook/core/sweep.py:simulate": "H24: split in a following commit (issue 24)",
-    "kinbook/core/sweep.py:_batch_solve": "H24: split in a following commit (issue 24)",
     "kinbook/classroom/grade.py:_grade_bytes": "H20's grading of one submission (issue 20)",
     "kinbook/classroom/grade.py:grade": "the CLI's keyword-only entry (H20/H21, issues 20-21)",
     "kinbook/classroom/reference_use.py:statement": "H20's reference-use analysis (issue 20)",

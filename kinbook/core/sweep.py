@@ -103,88 +103,103 @@ def _batch_solve(mech, guess, T, tol, max_iter=8):
     Returns (q, qd, qdd, converged); rows that did not converge hold garbage.
     """
     q = guess.copy()
-    Bn, n = q.shape
     red = mech._reduction
-    rows, cols = red if red is not None else (np.arange(mech.m), np.arange(n))  # ``reduced=True`` Φ_q's
+    rows, cols = red if red is not None else (np.arange(mech.m), np.arange(q.shape[1]))  # ``reduced=True`` Φ_q's
+    with np.errstate(all="ignore"):
+        J, nu, P, conv = _batch_newton(mech, q, T, tol, max_iter, rows, cols)
+        qd, qdd = _batch_rates(mech, q, T, J, nu, P, conv, rows, cols)
+    return q, qd, qdd, conv
+
+
+def _batch_newton(mech, q, T, tol, max_iter, rows, cols):
+    """Newton–Raphson on every instant of the batch at once, ``q`` updated in place. Returns, at each converged
+    iterate, the reduced Φ_q, ν and Φ (garbage elsewhere), and which instants converged."""
+    Bn = q.shape[0]
     J = np.empty((Bn, len(rows), len(cols)))
     nu = np.empty((Bn, mech.m))
     P = np.empty((Bn, mech.m))  # Φ at the converged iterate, for the step test
     conv = np.zeros(Bn, dtype=bool)
     act = np.arange(Bn)
-    with np.errstate(all="ignore"):
-        for _ in range(max_iter + 1):
-            whole = act.size == Bn
-            ev = mech.evaluate(q if whole else q[act], T if whole else T[act], reduced=True)
-            Phi, Jr = ev["Phi"], ev["Phi_q"]
-            res = np.max(np.abs(Phi), axis=1)
-            done = res <= tol
-            if whole and done.all():  # the usual last iteration: no copies
-                conv[:], J, nu, P = True, Jr, ev["nu"], Phi
-                break
-            k = act[done]
-            conv[k] = True
-            J[k] = Jr[done]
-            nu[k] = ev["nu"][done]
-            P[k] = Phi[done]
-            keep = ~done & np.isfinite(res)
-            act, Phi = act[keep], Phi[keep]
-            if act.size == 0:
-                break
-            Ja = Jr[keep]
-            try:
-                step = np.linalg.solve(Ja, Phi[:, rows, None])[..., 0]
-            except np.linalg.LinAlgError:  # some Φ_q is singular: solve the others one at a time
-                step = np.full((len(act), len(cols)), np.nan)
-                for i in range(len(act)):
-                    try:
-                        step[i] = np.linalg.solve(Ja[i], Phi[i, rows])
-                    except np.linalg.LinAlgError:
-                        pass
-            q[act[:, None], cols] -= step
-            ok = np.all(np.isfinite(q[act]), axis=1)
-            q[act[~ok]] = 0.0
-            act = act[ok]
-            if act.size == 0:
-                break
-        qd, qdd = np.zeros_like(q), np.zeros_like(q)
-        k = np.nonzero(conv)[0]
-        if k.size:
-            Jk = J if k.size == Bn else J[k]
-
-            def solve(b):
+    for _ in range(max_iter + 1):
+        whole = act.size == Bn
+        ev = mech.evaluate(q if whole else q[act], T if whole else T[act], reduced=True)
+        Phi, Jr = ev["Phi"], ev["Phi_q"]
+        res = np.max(np.abs(Phi), axis=1)
+        done = res <= tol
+        if whole and done.all():  # the usual last iteration: no copies
+            conv[:], J, nu, P = True, Jr, ev["nu"], Phi
+            break
+        k = act[done]
+        conv[k] = True
+        J[k] = Jr[done]
+        nu[k] = ev["nu"][done]
+        P[k] = Phi[done]
+        keep = ~done & np.isfinite(res)
+        act, Phi = act[keep], Phi[keep]
+        if act.size == 0:
+            break
+        Ja = Jr[keep]
+        try:
+            step = np.linalg.solve(Ja, Phi[:, rows, None])[..., 0]
+        except np.linalg.LinAlgError:  # some Φ_q is singular: solve the others one at a time
+            step = np.full((len(act), len(cols)), np.nan)
+            for i in range(len(act)):
                 try:
-                    x = np.linalg.solve(Jk, b[:, rows, None])[..., 0]
+                    step[i] = np.linalg.solve(Ja[i], Phi[i, rows])
                 except np.linalg.LinAlgError:
-                    return np.full((len(k), n), np.nan)
-                full = np.zeros((len(k), n))  # a fixed body's rows have ν = γ = 0: its q̇ and q̈ are zero
-                full[:, cols] = x
-                return full
+                    pass
+        q[act[:, None], cols] -= step
+        ok = np.all(np.isfinite(q[act]), axis=1)
+        q[act[~ok]] = 0.0
+        act = act[ok]
+        if act.size == 0:
+            break
+    return J, nu, P, conv
 
-            whole = k.size == Bn
-            # one factorization, three right-hand sides: ν gives q̇; Φ gives the Newton step from the iterate
-            # (its distance to the solution: at most STEP_TOL, as in solve_position); a seeded random vector b
-            # gives ‖J̃⁻¹ b‖ ≳ 1/(√n σ_min) of the scaled Φ_q — instants that may be near a singular configuration
-            # are left unsolved, for solve_position's exact test
-            scale = column_scale(mech)[cols]
-            rn = np.sqrt(np.einsum("bij,bij,j->bi", Jk, Jk, scale * scale))
-            probe = np.random.default_rng(0).standard_normal(len(rows))
-            rhs = np.stack([(nu if whole else nu[k])[:, rows], (P if whole else P[k])[:, rows],
-                            probe * rn], -1)
-            try:
-                X = np.linalg.solve(Jk, rhs)
-            except np.linalg.LinAlgError:
-                X = np.full(rhs.shape, np.nan)
-            v = np.zeros((len(k), n))  # a fixed body's rows have ν = γ = 0: its q̇ and q̈ are zero
-            v[:, cols] = X[..., 0]
-            step = np.max(np.abs(X[..., 1] / scale), axis=1)
-            grow = np.linalg.norm(X[..., 2] / scale, axis=1) / np.linalg.norm(probe)
-            # flagged when the estimate puts σ_min/σ_max within a factor 100 of RCOND_MIN (σ_max ≤ √n)
-            sound = (step <= STEP_TOL) & (grow * 1e2 * RCOND_MIN * len(cols) < 1)
-            v_ok = np.where(np.isfinite(v), v, 0.0)
-            a = solve(mech.evaluate(q if whole else q[k], T if whole else T[k], v_ok, jacobian=False)["gamma"])
-            qd[k], qdd[k] = v, a
-            conv[k] = np.all(np.isfinite(v), axis=1) & np.all(np.isfinite(a), axis=1) & sound
-    return q, qd, qdd, conv
+
+def _batch_rates(mech, q, T, J, nu, P, conv, rows, cols):
+    """q̇ and q̈ at the converged instants of the batch (one factorization of Φ_q for ν, Φ and a probe of its
+    conditioning, then γ); ``conv`` loses the instants whose step or conditioning is not sound."""
+    Bn, n = q.shape
+    qd, qdd = np.zeros_like(q), np.zeros_like(q)
+    k = np.nonzero(conv)[0]
+    if not k.size:
+        return qd, qdd
+    Jk = J if k.size == Bn else J[k]
+
+    def solve(b):
+        try:
+            x = np.linalg.solve(Jk, b[:, rows, None])[..., 0]
+        except np.linalg.LinAlgError:
+            return np.full((len(k), n), np.nan)
+        full = np.zeros((len(k), n))  # a fixed body's rows have ν = γ = 0: its q̇ and q̈ are zero
+        full[:, cols] = x
+        return full
+
+    whole = k.size == Bn
+    # one factorization, three right-hand sides: ν gives q̇; Φ gives the Newton step from the iterate
+    # (its distance to the solution: at most STEP_TOL, as in solve_position); a seeded random vector b
+    # gives ‖J̃⁻¹ b‖ ≳ 1/(√n σ_min) of the scaled Φ_q — instants that may be near a singular configuration
+    # are left unsolved, for solve_position's exact test
+    scale = column_scale(mech)[cols]
+    rn = np.sqrt(np.einsum("bij,bij,j->bi", Jk, Jk, scale * scale))
+    probe = np.random.default_rng(0).standard_normal(len(rows))
+    rhs = np.stack([(nu if whole else nu[k])[:, rows], (P if whole else P[k])[:, rows], probe * rn], -1)
+    try:
+        X = np.linalg.solve(Jk, rhs)
+    except np.linalg.LinAlgError:
+        X = np.full(rhs.shape, np.nan)
+    v = np.zeros((len(k), n))  # a fixed body's rows have ν = γ = 0: its q̇ and q̈ are zero
+    v[:, cols] = X[..., 0]
+    step = np.max(np.abs(X[..., 1] / scale), axis=1)
+    grow = np.linalg.norm(X[..., 2] / scale, axis=1) / np.linalg.norm(probe)
+    # flagged when the estimate puts σ_min/σ_max within a factor 100 of RCOND_MIN (σ_max ≤ √n)
+    sound = (step <= STEP_TOL) & (grow * 1e2 * RCOND_MIN * len(cols) < 1)
+    v_ok = np.where(np.isfinite(v), v, 0.0)
+    a = solve(mech.evaluate(q if whole else q[k], T if whole else T[k], v_ok, jacobian=False)["gamma"])
+    qd[k], qdd[k] = v, a
+    conv[k] = np.all(np.isfinite(v), axis=1) & np.all(np.isfinite(a), axis=1) & sound
+    return qd, qdd
 
 
 def _hermite5(t, t0, t1, start, end):
@@ -246,6 +261,12 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=5
     -------
     SimulationResult
     """
+    T, tol = _sweep_args(mech, times, tol, on_failure, anchor_every)
+    return _Sweep(mech, T, tol, on_failure).run(q0, anchor_every)
+
+
+def _sweep_args(mech, times, tol, on_failure, anchor_every):
+    """:func:`simulate`'s arguments checked: (the instants as floats, the tolerance)."""
     if on_failure not in ("raise", "truncate"):
         raise InputError(f"`on_failure` must be 'raise' or 'truncate', got {on_failure!r}")
     check_drivers(mech)
@@ -266,37 +287,108 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=5
     if not np.all(np.isfinite(T)):
         k = int(np.flatnonzero(~np.isfinite(T))[0])
         raise InputError(f"`times` must be finite, got times[{k}] = {T[k]}")
-    N, n = len(T), mech.n
-    Q, QD, QDD = np.zeros((N, n)), np.zeros((N, n)), np.zeros((N, n))
-    solved = np.zeros(N, dtype=bool)
+    return T, tol
 
-    def solve_one(k, guesses):
+
+class _Sweep:
+    """One sweep (:func:`simulate`): its instants, the solutions found so far and which instants they solve."""
+
+    def __init__(self, mech, T, tol, on_failure):
+        self.mech, self.T, self.tol, self.on_failure = mech, T, tol, on_failure
+        N, n = len(T), mech.n
+        self.Q, self.QD, self.QDD = np.zeros((N, n)), np.zeros((N, n)), np.zeros((N, n))
+        self.solved = np.zeros(N, dtype=bool)
+
+    def run(self, q0, anchor_every):
+        """1. anchors, in sequence, spaced so that the predicted motion between two stays small; 2. everything
+        between anchors, in batches."""
+        mech, T = self.mech, self.T
+        if q0 is None and T[0] != 0.0:
+            # the bodies' q0 is a guess for t = 0: follow the motion from there to times[0], so that the sweep
+            # starts on the assembly branch the guess describes (a direct solve far from t = 0 may land on the
+            # other branch)
+            try:
+                lead = simulate(mech, np.linspace(0.0, T[0], 257), q0=mech.q0, tol=self.tol,
+                                anchor_every=anchor_every)
+                q0 = lead.q[-1]
+            except (AssemblyError, DriverValueError):  # f(t) may be undefined between 0 and times[0]
+                q0 = None
+        err = self.solve_one(0, [None if q0 is None else np.asarray(q0, dtype=float)])
+        if err is not None:
+            return self.fail(0, err)
+        stopped = self.anchors(max(1, int(anchor_every)))
+        if stopped is None:
+            stopped = self.fill(len(T))
+        if stopped is not None:
+            return stopped
+        return SimulationResult(mech, T.copy(), self.Q, self.QD, self.QDD)
+
+    def anchors(self, limit):
+        """Solve anchor after anchor up to the last instant; a failed result when the mechanism stops."""
+        mech, T, Q, QD, QDD, solved = self.mech, self.T, self.Q, self.QD, self.QDD, self.solved
+        N, p = len(T), 0
+        while p < N - 1:
+            speed = np.max(np.abs(QD[p])) + 1e-300
+            scale = 1.0 + np.max(np.abs(Q[p]))
+            reach = np.searchsorted(T, T[p] + 0.1 * scale / speed, side="right") - 1 if np.all(np.diff(T) > 0) \
+                else p + 1
+            a = int(min(N - 1, p + limit, max(p + 1, reach)))
+            guess = self.predict(p, a)
+            # the batched solver on this one instant: three evaluations of Φ (solve_one makes five), and
+            # solve_one's diagnosis only when it fails
+            q, qd, qdd, conv = _batch_solve(mech, guess[None], T[a : a + 1], self.tol)
+            if conv[0] and (a == p + 1 or self.plausible(q[0], guess, Q[p])):
+                Q[a], QD[a], QDD[a], solved[a] = q[0], qd[0], qdd[0], True
+                p = a
+                continue
+            if self.solve_one(a, [guess]) is None and (a == p + 1 or self.plausible(Q[a], guess, Q[p])):
+                p = a
+                continue
+            solved[a] = False
+            stopped = self.fill(p + 1)
+            if stopped is not None:
+                return stopped
+            for k in range(p + 1, a + 1):  # step one instant at a time to the next anchor
+                e = self.solve_one(k, [self.predict(k - 1, k), Q[k - 1]])
+                if e is not None:
+                    stopped = self.fill(k)
+                    return stopped if stopped is not None else self.fail(k, e)
+            p = a
+        return None
+
+    def solve_one(self, k, guesses):
+        """Solve instant k from the first guess that converges; the last error when none does."""
+        mech, T = self.mech, self.T
         last = None
         for g in guesses:
             try:
-                q = solve_position(mech, T[k], q0=g, tol=tol, max_iter=25)
+                q = solve_position(mech, T[k], q0=g, tol=self.tol, max_iter=25)
                 qd = solve_velocity(mech, q, T[k])
                 qdd = solve_acceleration(mech, q, qd, T[k])
             except (ConvergenceError, DeadPointError, RedundantConstraintsError) as exc:
                 last = exc
                 continue
-            Q[k], QD[k], QDD[k] = q, qd, qdd
-            solved[k] = True
+            self.Q[k], self.QD[k], self.QDD[k] = q, qd, qdd
+            self.solved[k] = True
             return None
         return last
 
-    def predict(j, k):
-        dt = T[k] - T[j]
-        return Q[j] + QD[j] * dt + 0.5 * QDD[j] * dt * dt
+    def predict(self, j, k):
+        """Taylor's prediction of instant k from the solved instant j."""
+        dt = self.T[k] - self.T[j]
+        return self.Q[j] + self.QD[j] * dt + 0.5 * self.QDD[j] * dt * dt
 
+    @staticmethod
     def plausible(q, guess, base):
         """The solution is where the Taylor prediction put it, relative to the motion from the base."""
         err = np.max(np.abs(q - guess), axis=-1)
         step = np.max(np.abs(q - base), axis=-1)
         return err <= 0.1 * step + 1e-7 * (1 + np.max(np.abs(q), axis=-1))
 
-    def fail(k, cause):
-        partial = SimulationResult(mech, T[:k].copy(), Q[:k].copy(), QD[:k].copy(), QDD[:k].copy())
+    def fail(self, k, cause):
+        """The sweep stops at instant k: an AssemblyError raised, or the instants before it returned."""
+        mech, T, Q = self.mech, self.T, self.Q
+        partial = SimulationResult(mech, T[:k].copy(), Q[:k].copy(), self.QD[:k].copy(), self.QDD[:k].copy())
         drivers = _driver_values(mech, T[k])
         dv = ", ".join(_driver_text(mech, name, v) for name, v in drivers.items())
         text = f"mechanism '{mech.name}' cannot be assembled at t = {T[k]:.6g} ({dv})"
@@ -312,15 +404,16 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=5
                 text += (f" (it was {first.cond:.3g} at t = {T[0]:.6g}): the driver has reached a dead point, a "
                          "limit position beyond which the mechanism does not assemble")
         err = AssemblyError(text, t=float(T[k]), drivers=drivers, partial=partial, cause=cause)
-        if on_failure == "raise":
+        if self.on_failure == "raise":
             raise err
         partial.failure = err
         return partial
 
-    def batch(indices):
+    def batch(self, indices):
         """Solve the given unsolved instants at once. The guess interpolates between the solved instants on
         either side (quintic Hermite through q, q̇, q̈ at both: good enough that most instants of the last
         batch need no Newton step at all), or extrapolates from the one before (Taylor)."""
+        T, Q, QD, QDD, solved = self.T, self.Q, self.QD, self.QDD, self.solved
         indices = indices[~solved[indices]]
         if indices.size == 0:
             return
@@ -335,70 +428,23 @@ def simulate(mech, times, q0=None, tol=1e-10, on_failure="raise", anchor_every=5
         if between.any():
             k, k0, k1 = indices[between], base[between], done[pos[between] + 1]
             guess[between] = _hermite5(T[k], T[k0], T[k1], (Q[k0], QD[k0], QDD[k0]), (Q[k1], QD[k1], QDD[k1]))
-        q, qd, qdd, conv = _batch_solve(mech, guess, T[indices], tol)
-        conv &= plausible(q, guess, Q[base])
+        q, qd, qdd, conv = _batch_solve(self.mech, guess, T[indices], self.tol)
+        conv &= self.plausible(q, guess, Q[base])
         good = indices[conv]
         Q[good], QD[good], QDD[good] = q[conv], qd[conv], qdd[conv]
         solved[good] = True
 
-    def fill(upto):
+    def fill(self, upto):
         """Solve every instant before ``upto``: batches of decreasing stride, then stragglers in sequence."""
         for stride in (64, 8, 1):
             idx = np.arange(0, upto, stride)
             if idx.size:
-                batch(idx)
-        for k in np.nonzero(~solved[:upto])[0]:
-            e = solve_one(k, [predict(k - 1, k), Q[k - 1]])
+                self.batch(idx)
+        for k in np.nonzero(~self.solved[:upto])[0]:
+            e = self.solve_one(k, [self.predict(k - 1, k), self.Q[k - 1]])
             if e is not None:
-                return fail(k, e)
+                return self.fail(k, e)
         return None
-
-    # 1. anchors, in sequence, spaced so that the predicted motion between two stays small
-    if q0 is None and T[0] != 0.0:
-        # the bodies' q0 is a guess for t = 0: follow the motion from there to times[0], so that the sweep
-        # starts on the assembly branch the guess describes (a direct solve far from t = 0 may land on the
-        # other branch)
-        try:
-            lead = simulate(mech, np.linspace(0.0, T[0], 257), q0=mech.q0, tol=tol, anchor_every=anchor_every)
-            q0 = lead.q[-1]
-        except (AssemblyError, DriverValueError):  # f(t) may be undefined between 0 and times[0]
-            q0 = None
-    err = solve_one(0, [None if q0 is None else np.asarray(q0, dtype=float)])
-    if err is not None:
-        return fail(0, err)
-    p = 0
-    limit = max(1, int(anchor_every))
-    while p < N - 1:
-        speed = np.max(np.abs(QD[p])) + 1e-300
-        scale = 1.0 + np.max(np.abs(Q[p]))
-        reach = np.searchsorted(T, T[p] + 0.1 * scale / speed, side="right") - 1 if np.all(np.diff(T) > 0) else p + 1
-        a = int(min(N - 1, p + limit, max(p + 1, reach)))
-        guess = predict(p, a)
-        # the batched solver on this one instant: three evaluations of Φ (solve_one makes five), and
-        # solve_one's diagnosis only when it fails
-        q, qd, qdd, conv = _batch_solve(mech, guess[None], T[a : a + 1], tol)
-        if conv[0] and (a == p + 1 or plausible(q[0], guess, Q[p])):
-            Q[a], QD[a], QDD[a], solved[a] = q[0], qd[0], qdd[0], True
-            p = a
-            continue
-        if solve_one(a, [guess]) is None and (a == p + 1 or plausible(Q[a], guess, Q[p])):
-            p = a
-            continue
-        solved[a] = False
-        stopped = fill(p + 1)
-        if stopped is not None:
-            return stopped
-        for k in range(p + 1, a + 1):  # step one instant at a time to the next anchor
-            e = solve_one(k, [predict(k - 1, k), Q[k - 1]])
-            if e is not None:
-                stopped = fill(k)
-                return stopped if stopped is not None else fail(k, e)
-        p = a
-    # 2. everything between anchors, in batches
-    stopped = fill(N)
-    if stopped is not None:
-        return stopped
-    return SimulationResult(mech, T.copy(), Q, QD, QDD)
 
 
 @dataclass(frozen=True)
