@@ -40,7 +40,6 @@ PENDING_CIRCLES = {
 """Circles known and being removed in another open branch; the test fails when one of them is gone (strike it)."""
 
 LARGE = {
-    "kinbook/book/errata.py": "the errata list and its evidence (H25b's errata work, issue 25)",
     "kinbook/classroom/grade.py:_grade_bytes": "H20's grading of one submission (issue 20)",
     "kinbook/classroom/grade.py:grade": "the CLI's keyword-only entry (H20/H21, issues 20-21)",
     "kinbook/classroom/reference_use.py:statement": "H20's reference-use analysis (issue 20)",

@@ -1,0 +1,512 @@
+"""Chapter 14's errata (§14.2-14.5, space), each with its evidence computed from kinbook's rotations,
+constraints and derivations."""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from ...grading.misprints import book_A_of_p, book_n1_acceleration
+from ...spatial import (
+    A_ddot,
+    A_from_euler,
+    A_from_p,
+    E,
+    G,
+    Mechanism,
+    Normal1,
+    Normal2,
+    Parallel1,
+    Revolute,
+    Universal,
+    a_bar,
+    euler_rates_from_omega,
+    omega_from_euler_rates,
+    p_from_A,
+    p_from_axis_angle,
+    random_p,
+    skew,
+)
+from ..display import agrees
+from .erratum import Erratum, Evidence, below, compare
+
+__all__ = ["ERRATA"]
+
+
+# ------------------------------------------------------------------------------------ chapter 14 evidence
+def _unit_ps(count=20, seed=14):
+    return random_p(count, rng=seed)
+
+
+def _ev_elementary_rotation():
+    rows = []
+    for psi in np.linspace(0.1, 3.0, 12):
+        c, s_ = np.cos(psi), np.sin(psi)
+        printed = np.array([[c, s_, 0], [s_, c, 0], [0, 0, 1]])
+        corrected = np.array([[c, s_, 0], [-s_, c, 0], [0, 0, 1]])
+        reference = A_from_euler(psi, 0, 0).T  # the book's passive A^ψ
+        rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
+    e_p, e_c = compare(rows)
+    return Evidence(f"The printed A^ψ has det = cos 2ψ (0.5 at ψ = 30°), so it is no rotation; it differs from the "
+                    f"transpose of kinbook's A(ψ, 0, 0) by up to {e_p:.3f}; with −sin ψ in row 2 it "
+                    f"{agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_a21_row3():
+    rng = np.random.default_rng(2)
+    rows = []
+    for psi, th, ph in rng.uniform(-3, 3, (20, 3)):
+        ref = A_from_euler(psi, th, ph).T[2]
+        printed = np.array([np.sin(psi) * np.sin(ph), -np.cos(psi) * np.sin(ph), np.cos(th)])
+        corrected = np.array([np.sin(psi) * np.sin(th), -np.cos(psi) * np.sin(th), np.cos(th)])
+        rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
+    e_p, e_c = compare(rows)
+    return Evidence(f"Row 3 of the product A^φ A^θ A^ψ (the transpose of kinbook's A_from_euler) at 20 random "
+                    f"angles: the printed row is off by up to {e_p:.3f}; with sin θ for sin φ it {agrees(e_c)}.",
+                    e_p, e_c)
+
+
+def _ev_A_of_p():
+    rows = []
+    for p in _unit_ps():
+        e0, e1, e2, e3 = p
+        printed = book_A_of_p(p)
+        corrected = 2 * printed
+        corrected[0, 2] += 4 * e0 * e2
+        corrected[1, 0] += 4 * e0 * e3
+        corrected[2, 1] += 4 * e0 * e1
+        ref = A_from_p(p)
+        rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
+    e_p, e_c = compare(rows)
+    return Evidence(f"At 20 random unit p the printed matrix differs from A(p) by up to {e_p:.3f} (it is symmetric, "
+                    f"so it cannot be a rotation in general); twice it, with + e0 terms at a13, a21, a32, "
+                    f"{agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_G_row2():
+    rows = []
+    for p in _unit_ps():
+        e0, e1, e2, e3 = p
+        printed = G(p).copy()
+        printed[1] = [-e2, e3, e0, e1]
+        rows.append((np.abs(printed @ p).max(), np.abs(G(p) @ p).max(), 0.0))
+    e_p, e_c = compare(rows)
+    return Evidence(f"With the printed row 2, G p = [0, 2 e1 e3, 0] reaches {e_p:.3f} at random unit p instead of "
+                    f"0; kinbook's G gives |G p| {below(e_c)}.", e_p, e_c)
+
+
+def _matrices_vs(reference, samples):
+    """(printed error, corrected error): ``reference(sample)`` returns (printed, corrected, kinbook's) arrays."""
+    rows = []
+    for sample in samples:
+        printed, corrected, ref = reference(*sample)
+        rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
+    return compare(rows)
+
+
+def _ev_A_theta_second():
+    def matrices(psi, th):
+        c, s = np.cos(th), np.sin(th)
+        return (np.array([[1, 0, 0], [0, np.cos(psi), -s], [0, s, c]]), np.array([[1, 0, 0], [0, c, s], [0, -s, c]]),
+                A_from_euler(0.0, th, 0.0).T)  # the nutation alone, passive like the printed A^ψ and A^φ
+
+    e_p, e_c = _matrices_vs(matrices, np.random.default_rng(21).uniform(-3, 3, (20, 2)))
+    return Evidence(f"At 20 random (ψ, θ) the printed A^θ differs from the passive nutation matrix (the transpose of "
+                    f"kinbook's A(0, θ, 0), as the printed A^ψ and A^φ are passive) by up to {e_p:.3f} — it is no "
+                    f"rotation (det = cψ cθ + sθ²); with cos θ in row 2 and + sin θ above the diagonal it "
+                    f"{agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_omega_matrix():
+    printed = sp.Matrix(3, 4, sp.symbols("m0:12"))
+    try:  # as printed: a 3×4 array times the three rates
+        printed * sp.Matrix(sp.symbols("r0:3"))
+        shape_error = 0.0
+    except sp.ShapeError:
+        shape_error = float("inf")
+    rows = []
+    for (psi, th, ph), rates in zip(np.random.default_rng(24).uniform(-3, 3, (20, 3)),
+                                     np.random.default_rng(25).uniform(-2, 2, (20, 3))):
+        sth, cth, sph, cph = np.sin(th), np.cos(th), np.sin(ph), np.cos(ph)
+        M = np.array([[sth * sph, cph, 0], [sth * cph, -sph, 0], [cth, 0, 1]])
+        rows.append(float(np.abs(M @ rates - omega_from_euler_rates((psi, th, ph), rates, frame="body")).max()))
+    e_c = max(rows)
+    return Evidence(f"As printed, a 3×4 array multiplies the three rates (ψ̇, θ̇, φ̇): the product is not defined "
+                    f"(sympy raises ShapeError). The 3×3 matrix with sθ sφ and sθ cφ in column 1 gives kinbook's ω' "
+                    f"(omega_from_euler_rates, frame='body') at 20 random angles and rates: the difference "
+                    f"{below(e_c)}.", shape_error, e_c)
+
+
+def _ev_rates_inverse_first():
+    rows = []
+    for (psi, th, ph), w in zip(np.random.default_rng(26).uniform(0.2, 2.9, (20, 3)),
+                                np.random.default_rng(27).uniform(-2, 2, (20, 3))):
+        sth, cth, sph, cph = np.sin(th), np.cos(th), np.sin(ph), np.cos(ph)
+        top, bottom = [sph / sth, cph / sth, 0], [-sph * cth / sth, -cph * cth / sth, 1]
+        printed = np.array([top, [cph, sph, 0], bottom])
+        corrected = np.array([top, [cph, -sph, 0], bottom])
+        ref = euler_rates_from_omega((psi, th, ph), w, frame="body")
+        rows.append((np.abs(printed @ w - ref).max(), np.abs(corrected @ w - ref).max(), 0.0))
+    e_p, e_c = compare(rows)
+    return Evidence(f"At 20 random angles (sin θ ≠ 0) and body angular velocities ω', the first printed inverse gives "
+                    f"rates off by up to {e_p:.3f} from kinbook's euler_rates_from_omega(frame='body'); with −sin φ in "
+                    f"row 2 (as the second version prints it) it {agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_A21_row2_first():
+    def rows(psi, th, ph):
+        cps, sps, cth, sth, cph, sph = np.cos(psi), np.sin(psi), np.cos(th), np.sin(th), np.cos(ph), np.sin(ph)
+        return (np.array([cps * sph - sps * cth * cph, sps * sph + cps * cth * cph, sth * cph]),
+                np.array([-cps * sph - sps * cth * cph, -sps * sph + cps * cth * cph, sth * cph]),
+                A_from_euler(psi, th, ph).T[1])
+
+    e_p, e_c = _matrices_vs(rows, np.random.default_rng(22).uniform(-3, 3, (20, 3)))
+    return Evidence(f"Row 2 of A^φ A^θ A^ψ at 20 random angles: the first printed version is off by up to {e_p:.3f}; "
+                    f"with −cψ sφ and −sψ sφ (as the second version prints it) it {agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_p_from_A_recipe():
+    rows = []
+    for p in _unit_ps(seed=31):
+        A = A_from_p(p)
+        t = np.trace(A)
+        squares = np.array([(t + 1) / 4, *((1 + 2 * np.diag(A) - t) / 4)])
+        rows.append(float(np.abs(squares - p**2).max()))
+    e_c = max(rows)
+    return Evidence(f"e_0² = (p + 1)/4 has a p defined nowhere, and t = 2(3e_0² + e_1² + e_2² + e_3²) − 3 needs the "
+                    f"parameters being sought: as printed the recipe cannot be evaluated from A. With t = tr A, the four "
+                    f"squares match those of the Euler parameters of 20 random rotations (the difference "
+                    f"{below(e_c)}).", float("inf"), e_c)
+
+
+def _ev_A_ddot_a():
+    rows = []
+    rng = np.random.default_rng(32)
+    for p, a in zip(_unit_ps(seed=32), rng.uniform(-1, 1, (20, 3))):
+        pd = rng.normal(size=4)
+        pd -= p * (p @ pd)                           # on a motion: pᵀṗ = 0 ...
+        pdd = rng.normal(size=4)
+        pdd -= p * (p @ pdd + pd @ pd)               # ... and pᵀp̈ = −ṗᵀṗ
+        EGt = 2 * E(pd, check=False) @ G(pd, check=False).T @ a
+        ref = A_ddot(p, pd, pdd) @ a
+        rows.append((np.abs(EGt - ref).max(), np.abs(EGt + 2 * E(p) @ a_bar(a) @ pdd - ref).max(), 0.0))
+    e_p, e_c = compare(rows)
+    return Evidence(f"At 20 random states of a motion (unit p, pᵀṗ = 0, pᵀp̈ = −ṗᵀṗ) and vectors a: with ä = 0 (a is "
+                    f"constant) the printed right-hand side is 2ĖĠᵀa, off from kinbook's Ä a by up to {e_p:.3f}; "
+                    f"2ĖĠᵀa + 2Eā p̈ {agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_a_bar_explicit():
+    rows = []
+    for p, a in zip(_unit_ps(seed=23), np.random.default_rng(23).uniform(-1, 1, (20, 3))):
+        a1, a2, a3 = a
+        printed = np.array([[0, -a1, -a2, -a3], [a1, 0, -a3, a2], [a2, a3, 0, -a1], [a3, -a2, a1, 0]])
+        rows.append((np.abs(printed @ p - G(p).T @ a).max(), np.abs(a_bar(a) @ p - G(p).T @ a).max(), 0.0))
+    e_p, e_c = compare(rows)
+    return Evidence(f"ā p against Gᵀa at 20 random unit p and vectors a: the printed element-by-element ā is off by up "
+                    f"to {e_p:.3f}; the block form [0, −aᵀ; a, −ã] {agrees(e_c)}.", e_p, e_c)
+
+
+ERRATA = [
+    Erratum("14.2-elementary-rotations", "§14.2, the three elementary rotations (first set)",
+            r"A^\psi = \begin{bmatrix}\cos\psi & \sin\psi & 0\\ \sin\psi & \cos\psi & 0\\ 0&0&1\end{bmatrix}",
+            r"A^\psi = \begin{bmatrix}\cos\psi & \sin\psi & 0\\ -\sin\psi & \cos\psi & 0\\ 0&0&1\end{bmatrix}",
+            "sign", _ev_elementary_rotation, "The same slip is in A^θ and A^φ; the book's A^ψ, A^θ, A^φ are passive "
+            "(global → local), the transposes of kinbook's active matrices (docs/conventions.md)."),
+    Erratum("14.2-A21-row3", "§14.2, the composed matrix A²¹ (both versions), row 3",
+            r"[\sin\psi\sin\phi,\ -\cos\psi\sin\phi,\ \cos\theta]",
+            r"[\sin\psi\sin\theta,\ -\cos\psi\sin\theta,\ \cos\theta]", "formula", _ev_a21_row3),
+    Erratum("14.2-A-theta-second", "§14.2, the second (corrected) set of elementary matrices: A^θ",
+            r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\psi&-\operatorname{sen}\theta\\ 0&\operatorname{sen}\theta&\cos\theta\end{bmatrix}",
+            r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\theta&\operatorname{sen}\theta\\ 0&-\operatorname{sen}\theta&\cos\theta"
+            r"\end{bmatrix}\ \text{(passive, like the printed } A^\psi, A^\phi\text{)}",
+            "formula", _ev_A_theta_second, "Two slips: cos ψ stands for cos θ, and the signs of sin θ are those of the "
+            "active turn while the printed A^ψ and A^φ are passive; with cos θ restored but those signs kept, the "
+            "product A^φ A^θ A^ψ would be the passive matrix of the opposite nutation −θ (notebook 14-2). The second "
+            "A²¹ printed just below is the product of the passive matrices."),
+    Erratum("14.2-A21-row2-first", "§14.2, the first A²¹ (printed, before the corrected second set), row 2",
+            r"[\,c\psi s\phi - s\psi c\theta c\phi,\ s\psi s\phi + c\psi c\theta c\phi,\ s\theta c\phi\,]",
+            r"[\,-c\psi s\phi - s\psi c\theta c\phi,\ -s\psi s\phi + c\psi c\theta c\phi,\ s\theta c\phi\,]",
+            "sign", _ev_A21_row2_first, "The second version prints this row right. (Only a repeated copy of the "
+            "first elementary matrices is struck through in the book; this A²¹ is printed.)"),
+    Erratum("14.2-omega-matrix", "§14.2, the matrix relating ω to the angle rates (both versions)",
+            r"\begin{bmatrix}s\theta & s\phi & c\phi & 0\\ s\theta & c\phi & -s\phi & 0\\ c\theta & 0 & 1 & 1\end{bmatrix}"
+            r"\ \text{(a } 3\times 4 \text{ array; the first version has } +s\phi \text{ in row 2 and } c\theta, 0, 0, 1 "
+            r"\text{ in row 3)}",
+            r"\omega' = \begin{bmatrix}s\theta s\phi & c\phi & 0\\ s\theta c\phi & -s\phi & 0\\ c\theta & 0 & 1\end{bmatrix}\begin{bmatrix}\dot\psi\\ \dot\theta\\ \dot\phi\end{bmatrix}",
+            "formula", _ev_omega_matrix, "sin θ is split from sin φ and cos φ into a column of its own; the first version "
+            "also prints +sin φ where −sin φ belongs in row 2, and 0, 0 for 0, 1 in row 3. "
+            "kinbook.spatial.omega_from_euler_rates(frame='body') is the corrected relation."),
+    Erratum("14.2-rates-inverse-first", "§14.2, the first inverse relation (angle rates from ω'), row 2",
+            r"\dot\theta = \cos\phi\,\omega_1 + \operatorname{sen}\phi\,\omega_2",
+            r"\dot\theta = \cos\phi\,\omega_1 - \operatorname{sen}\phi\,\omega_2", "sign", _ev_rates_inverse_first,
+            "The second version prints it right; kinbook.spatial.euler_rates_from_omega(frame='body')."),
+    Erratum("14.3-A-of-p", "§14.3, A in terms of the Euler parameters",
+            r"\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3-e_0e_2\\ e_1e_2-e_0e_3 & e_0^2+e_2^2-\tfrac12 & "
+            r"e_2e_3-e_0e_1\\ e_1e_3-e_0e_2 & e_2e_3-e_0e_1 & e_0^2+e_3^2-\tfrac12\end{bmatrix}",
+            r"2\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3+e_0e_2\\ e_1e_2+e_0e_3 & e_0^2+e_2^2-\tfrac12 & e_2e_3-e_0e_1\\ e_1e_3-e_0e_2 & e_2e_3+e_0e_1 & e_0^2+e_3^2-\tfrac12\end{bmatrix}",
+            "formula", _ev_A_of_p, "Two kinds of slip: the factor 2 is missing, and three signs — a13, a21 and a32 "
+            "need + e_0 terms (the printed matrix is symmetric, which a rotation is not in general)."),
+    Erratum("14.3-p-from-A", "§14.3, Definición…, the Euler parameters from the direction cosines",
+            r"t = 2(3e_0^2 + e_1^2 + e_2^2 + e_3^2) - 3,\quad e_0^2 = \frac{p+1}{4}",
+            r"t = \operatorname{tr}\mathbf A = a_{11} + a_{22} + a_{33},\quad e_0^2 = \frac{t+1}{4}",
+            "formula", _ev_p_from_A_recipe,
+            "Two slips in the recipe: e_0² is printed with a p (undefined there) for t, and t is defined through the "
+            "parameters being sought; it is the same number as tr A, which is what the recipe must compute from the "
+            "known matrix. With e_0 ≠ 0, the condition the book states, its division by 4e_0 is right; kinbook's "
+            "p_from_A also covers e_0 = 0 (every half turn) by starting from the largest of e_0², …, e_3²."),
+    Erratum("14.3-p-dot", "§14.3, Derivadas…, first lines",
+            r"\mathbf p^T\mathbf p = e_0^2 + e_1^2 + e_2^2 + e_3^2 \ \Rightarrow\ \mathbf p^T\dot{\mathbf p} = 0",
+            r"\mathbf p^T\mathbf p = 1 \ \Rightarrow\ (\text{differentiating})\ \mathbf p^T\dot{\mathbf p} = 0",
+            "wording", None, "The conclusion is stated before the derivative that gives it."),
+    Erratum("14.3-A-ddot-a", "§14.3, Derivadas…, the last formula (Ä applied to a vector)",
+            r"\ddot A\bar a = 2\dot E\dot G^T a + 2E\ddot a", r"\ddot A a = 2\dot E\dot G^T a + 2E\bar a\,\ddot{\mathbf p}",
+            "formula", _ev_A_ddot_a, "The vector on the left is a, not ā, and ä (the second derivative of a constant vector: zero) "
+            "stands for ā p̈; the next paragraph's “sea ā un vector arbitrario” means a."),
+    Erratum("14.3-a-bar", "§14.3, Derivadas…, ā written element by element",
+            r"\bar a = \begin{bmatrix}0&-a_1&-a_2&-a_3\\ a_1&0&-a_3&a_2\\ a_2&a_3&0&-a_1\\ a_3&-a_2&a_1&0\end{bmatrix}",
+            r"\bar a = \begin{bmatrix}0&-\mathbf a^T\\ \mathbf a&-\tilde{\mathbf a}\end{bmatrix} = \begin{bmatrix}0&-a_1&-a_2&-a_3\\ "
+            r"a_1&0&a_3&-a_2\\ a_2&-a_3&0&a_1\\ a_3&a_2&-a_1&0\end{bmatrix}",
+            "sign", _ev_a_bar_explicit, "The block form next to it is printed right (with a stray b̄ for ã); "
+            "the element-by-element matrix has +ã in the lower right."),
+    Erratum("14.3-G-row2", "§14.3, the matrix G, row 2", r"[-e_2,\ e_3,\ e_0,\ e_1]", r"[-e_2,\ -e_3,\ e_0,\ e_1]",
+            "sign", _ev_G_row2),
+    Erratum("14.3-euler-theorem", "§14.3, Definición…, the paragraph that introduces the Euler parameters",
+            r"\text{“están basados en que el movimiento instantáneo de un sólido con un punto fijo puede definirse por "
+            r"medio de una rotación instantánea alrededor de un eje”}",
+            r"\text{Euler's theorem: any orientation of a body with a fixed point is reached by one finite rotation, by "
+            r"an angle } \alpha \text{ about an axis } \vec u",
+            "wording", None, "The Euler parameters describe that finite rotation (e_0 = cos α/2, [e_1, e_2, e_3] = u sin α/2), "
+            "as the next paragraphs say — an orientation, not the instantaneous motion. The instantaneous rotation "
+            "axis is the direction of ω, which the parameters' rates give (ω' = 2Gṗ)."),
+    Erratum("14.3-Ep-Gp", "§14.3, Propiedades…, the identities Ep = Gp = 0",
+            r"\frac{Ep}{Gp} = 0,\quad Ep = -e_1e_0 + e_0e_1 - e_3e_2 + e_2e_3 = 0",
+            r"\mathbf E\mathbf p = \mathbf 0,\ \mathbf G\mathbf p = \mathbf 0\ (3\text{-vectors; the printed sum is row 1 of } "
+            r"\mathbf E\mathbf p)", "wording", None, "A fraction bar stands for “and”, and the check computes one row of "
+            "the three as if it were all of Ep."),
+]
+
+
+# ------------------------------------------------------------------------------------------- §14.4 evidence
+def _ev_14_4_pair(joint, points, vectors, seed, count=20):
+    """A two-body spatial mechanism with one §14.4 constraint ``joint`` (bodies "i", "j") and ``count`` seeded
+    random configurations (random r, unit p; not assembled) as (q, r_i, A_i, r_j, A_j)."""
+    m = Mechanism("§14.4 evidence")
+    for b in ("i", "j"):
+        m.add_body(b, points=points.get(b), vectors=vectors.get(b))
+    m.add(joint)
+    rng = np.random.default_rng(seed)
+    states = []
+    for _ in range(count):
+        q = rng.uniform(-2, 2, 14)
+        for k in (3, 10):
+            q[k : k + 4] /= np.linalg.norm(q[k : k + 4])
+        states.append((q, q[:3], A_from_p(q[3:7]), q[7:10], A_from_p(q[10:14])))
+    return m, states
+
+
+def _ev_14_4_n2_primes():
+    s_i, B_i, B_j = np.array([0.3, -0.8, 0.5]), np.array([1.2, 0.4, -0.3]), np.array([-0.6, 0.9, 0.7])
+    c = Normal2("i", "j", vector_i=tuple(s_i), point_i="B", point_j="B")
+    m, states = _ev_14_4_pair(c, {"i": {"B": B_i}, "j": {"B": B_j}}, {}, 144)
+    rows = []
+    for q, r_i, A_i, r_j, A_j in states:
+        # printed: s_iᵀ A_iᵀ (r_j + A_j s_j^B − r_i − A_i s_i^B), unprimed vectors having global components
+        printed = (A_i @ s_i) @ A_i.T @ (r_j + A_j @ (A_j @ B_j) - r_i - A_i @ (A_i @ B_i))
+        corrected = s_i @ A_i.T @ (r_j + A_j @ B_j - r_i - A_i @ B_i)
+        rows.append((printed, corrected, m.Phi(q)[c.rows][0]))
+    e_p, e_c = compare(rows)
+    return Evidence(f"At 20 random configurations the printed Φ^(n2,1), read with global s_i, s_i^B, s_j^B "
+                    f"(s = A s'), differs from kinbook's normal-2 row by up to {e_p:.3f}; with the local s'_i, "
+                    f"s'_i^B, s'_j^B it {agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_14_4_p1_transpose():
+    s_i, s_j = np.array([0.3, -0.8, 0.5]), np.array([-0.6, 0.9, 0.7])
+    ps = _unit_ps(40, seed=144)
+    rows = []
+    for p_i, p_j in zip(ps[:20], ps[20:]):
+        A_i, A_j = A_from_p(p_i), A_from_p(p_j)
+        reference = skew(A_i @ s_i) @ (A_j @ s_j)  # s̃_i s_j in global components
+        printed = A_i @ skew(s_i).T @ A_i.T @ A_j @ s_j  # primes restored, the transpose kept
+        corrected = A_i @ skew(s_i) @ A_i.T @ A_j @ s_j
+        rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
+    e_p, e_c = compare(rows)
+    return Evidence(f"At 20 random pairs of orientations A_i s̃'_iᵀ A_iᵀ A_j s'_j differs from s̃_i s_j by up to "
+                    f"{e_p:.3f} (it equals −s̃_i s_j, because s̃ᵀ = −s̃); A_i s̃'_i A_iᵀ A_j s'_j {agrees(e_c)}.",
+                    e_p, e_c)
+
+
+def _ev_14_4_p1_two_rows():
+    c = Parallel1("i", "j", vector_i=(1, 0, 0), vector_j=(1, 0, 0))
+    m, _ = _ev_14_4_pair(c, {}, {}, 0, count=0)
+    rows = []
+    for angle in np.radians(np.arange(10, 171, 20)):  # s_i along X, s_j turned in the XY plane: not parallel
+        q = np.r_[0, 0, 0, 1, 0, 0, 0, 1, 0, 0, p_from_axis_angle([0, 0, 1], angle)]
+        s_i, s_j = m.A(q, "i")[:, 0], m.A(q, "j")[:, 0]
+        cross = np.linalg.norm(skew(s_i) @ s_j)
+        printed = np.linalg.norm((skew(s_i) @ s_j)[:2])  # "the third row is a combination of the first two"
+        corrected = np.linalg.norm(m.Phi(q)[c.rows])  # kinbook's h_1ᵀ s_j, h_2ᵀ s_j
+        rows.append((printed, corrected, cross))
+    e_p, e_c = compare(rows)
+    return Evidence(f"With s_i along X and s_j turned 10°…170° about Z, rows 1-2 of s̃_i s_j are both 0 although "
+                    f"|s_i × s_j| reaches {e_p:.3f}: they miss the whole misalignment. The norm of kinbook's two rows "
+                    f"h_1ᵀ s_j, h_2ᵀ s_j equals |s_i × s_j|: it {agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_14_4_universal_primes():
+    P_i, P_j = np.array([1.5, -0.2, 0.4]), np.array([-0.7, 0.3, 1.1])
+    c = Universal("i", "j", vector_i=(0, 1, 0), vector_j=(1, 0, 0), point="P")
+    m, states = _ev_14_4_pair(c, {"i": {"P": P_i}, "j": {"P": P_j}}, {}, 146)
+    rows = []
+    for q, r_i, A_i, r_j, A_j in states:
+        reference = m.Phi(q)[c.rows][:3]
+        printed = r_i + A_i @ (A_i @ P_i) - A_j @ (A_j @ P_j) - r_j  # s_i^P, s_j^P global: s^P = A s'^P
+        corrected = r_i + A_i @ P_i - A_j @ P_j - r_j
+        rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
+    e_p, e_c = compare(rows)
+    return Evidence(f"At 20 random configurations the printed Φ^(s,3) of the universal joint, read with global "
+                    f"s_i^P, s_j^P as the spherical-joint section defines them, differs from kinbook's first three "
+                    f"rows by up to {e_p:.3f}; with s'^P_i, s'^P_j it {agrees(e_c)}.", e_p, e_c)
+
+
+def _ev_14_4_revolute_tilde():
+    s_i, s_j, P_i, P_j = (0, 0, 1), (0, 0, 1), np.array([1.0, 0.0, 0.5]), np.array([0.0, 0.0, -0.4])
+    c = Revolute("i", "j", point="P", axis_i=s_i, axis_j=s_j)
+    m, _ = _ev_14_4_pair(c, {"i": {"P": P_i}, "j": {"P": P_j}}, {}, 0, count=0)
+    # an assembled joint: body j turned 0.9 rad about body i's axis, its P on body i's P
+    p_i = p_from_axis_angle([1, 2, -1], 0.7)
+    A_i = A_from_p(p_i)
+    A_j = A_i @ A_from_p(p_from_axis_angle(s_i, 0.9))
+    r_i = np.array([0.3, -0.2, 0.5])
+    r_j = r_i + A_i @ P_i - A_j @ P_j
+    q = np.r_[r_i, p_i, r_j, p_from_A(A_j)]
+    joint = float(np.abs(m.Phi(q)[c.rows]).max())
+    try:  # as printed: A_i s'_i A_iᵀ A_j s'_j, a 3×1 column times a 3×3 matrix
+        sp.Matrix(A_i) * sp.Matrix(s_i) * sp.Matrix(A_i.T) * sp.Matrix(A_j) * sp.Matrix(s_j)
+        printed = 0.0
+    except sp.ShapeError:
+        printed = np.inf
+    corrected = float(np.abs(A_i @ skew(s_i) @ A_i.T @ A_j @ np.array(s_j, float)).max())
+    return Evidence(f"As printed, A_i s'_i A_iᵀ A_j s'_j multiplies a 3×1 column by a 3×3 matrix: it is not defined "
+                    f"(sympy raises ShapeError). At an assembled revolute joint (kinbook's five rows: max |Φ| "
+                    f"{below(joint)}), the form with the tilde, A_i s̃'_i A_iᵀ A_j s'_j, has max |·| {below(corrected)}.",
+                    printed, max(corrected, joint))
+
+
+# §14.4, constraints between two bodies (chapters/14-4-spatial-constraints.ipynb)
+ERRATA += [
+    Erratum("14.4-n2-primes", "§14.4, Vectores perpendiculares: Φ^(n2,1) in local components",
+            r"\Phi^{(n2,1)} = s_i^T A_i^T (r_j + A_j s_j^B - r_i - A_i s_i^B)",
+            r"\Phi^{(n2,1)} = s_i'^T A_i^T (r_j + A_j s_j'^B - r_i - A_i s_i'^B)",
+            "formula", _ev_14_4_n2_primes, "The primes of the three local vectors are missing; the n1 formula just "
+            "above (s_i'^T A_i^T A_j s_j') has them."),
+    Erratum("14.4-p1-local-form", "§14.4, Vectores paralelos: Φ^(p1,2) in local components",
+            r"\tilde s_i s_j = A_i \tilde s_i^T A_i^T A_j s_j^B",
+            r"\tilde s_i s_j = A_i \tilde s_i' A_i^T A_j s_j'", "formula", _ev_14_4_p1_transpose,
+            "The tilde is transposed (s̃ᵀ = −s̃), the primes are missing and a stray superscript B appears. Set to "
+            "zero, −s̃_i s_j = 0 is the same constraint, but the identity is wrong. Φ^(p2,2) below is printed right."),
+    Erratum("14.4-p1-two-rows", "§14.4, Vectores paralelos: which two rows of s̃_i s_j = 0",
+            r"\text{the third row is a linear combination of the first two}",
+            r"s_{ix}(\tilde s_i s_j)_1 + s_{iy}(\tilde s_i s_j)_2 + s_{iz}(\tilde s_i s_j)_3 = 0:\ "
+            r"\text{row 3 follows from rows 1-2 only if } s_{iz} \neq 0",
+            "formula", _ev_14_4_p1_two_rows, "Which row is redundant depends on the orientation of s_i, and it changes "
+            "as the mechanism moves. kinbook writes p1 and p2 as h_1ᵀs_j = h_2ᵀs_j = 0 with h_1, h_2 ⊥ s'_i fixed in "
+            "body i (docs/conventions.md), two rows that stay independent in every orientation."),
+    Erratum("14.4-universal-primes", "§14.4, Junta universal: Φ^(s,3)",
+            r"r_i + A_i s_i^P - A_j s_j^P - r_j", r"r_i + A_i s_i'^P - A_j s_j'^P - r_j",
+            "formula", _ev_14_4_universal_primes, "The spherical-joint section just before prints it with the primes."),
+    Erratum("14.4-revolute-tilde", "§14.4, Junta de revolución: Φ^(p1,2) in local components",
+            r"A_i s_i' A_i^T A_j s_j' = 0", r"A_i \tilde s_i' A_i^T A_j s_j' = 0",
+            "formula", _ev_14_4_revolute_tilde, "Without the tilde the product is undefined (3×1 times 3×3)."),
+]
+
+# ------------------------------------------------------------------------------------------- §14.5 evidence
+
+
+def _ev_14_5_n1_states(seed, tangent):
+    """A pair of free bodies with one normal-1 constraint (random local vectors a_i, a_j) and 20 random states
+    (q with unit p, q̇, q̈), each with the book's quantities. ``tangent``: ṗ ⊥ p and pᵀp̈ = −ṗᵀṗ, as on a
+    motion."""
+    rng = np.random.default_rng(seed)
+    a_i, a_j = rng.uniform(-1, 1, 3).round(3), rng.uniform(-1, 1, 3).round(3)
+    m = Mechanism("n1 pair")
+    m.add_body("i")
+    m.add_body("j")
+    m.add(Normal1("i", "j", vector_i=tuple(a_i), vector_j=tuple(a_j)))
+    row = m.constraint("1").rows.start
+    out = []
+    for _ in range(20):
+        q, qd, qdd = rng.uniform(-2, 2, (3, 14))
+        for k in (3, 10):
+            q[k : k + 4] /= np.linalg.norm(q[k : k + 4])
+            if tangent:
+                p = q[k : k + 4]
+                qd[k : k + 4] -= p * (p @ qd[k : k + 4])
+                qdd[k : k + 4] -= p * (p @ qdd[k : k + 4] + qd[k : k + 4] @ qd[k : k + 4])
+        ev = m.evaluate(q, 0.0, qd)
+        b = {"phi_dd": ev["Phi_q"][row] @ qdd - ev["gamma"][row], "gamma": ev["gamma"][row]}
+        (p_i, p_j), (pd_i, pd_j), (pdd_i, pdd_j) = ((v[3:7], v[10:14]) for v in (q, qd, qdd))
+        L_i, L_j, rhs, extra = book_n1_acceleration(a_i, p_i, pd_i, a_j, p_j, pd_j)
+        b.update(printed=L_i @ pd_i + L_j @ pd_j - rhs, corrected=L_i @ pdd_i + L_j @ pdd_j + rhs, rhs=rhs,
+                 extra=extra)
+        out.append(b)
+    return out
+
+
+def _ev_14_5_gamma_n1():
+    rows = [(b["printed"], b["corrected"], b["phi_dd"]) for b in _ev_14_5_n1_states(1451, tangent=True)]
+    e_p, e_c = compare(rows)
+    return Evidence(f"At 20 random states on the unit sphere (pᵀṗ = 0, pᵀp̈ = −ṗᵀṗ) the printed relation, "
+                    f"2s_jᵀE_i s̄'_i ṗ_i + 2s_iᵀE_j s̄'_j ṗ_j − 2(s_jᵀĖ_iĠ_iᵀs'_i + s_iᵀĖ_jĠ_jᵀs'_j + "
+                    f"ṡ_iᵀṡ_j) (Ġ read as Ġᵀ: Ġ s' is undefined), differs from Φ̈ = Φ_q q̈ − γ by up to "
+                    f"{e_p:.3f}; with p̈ for ṗ and the right-hand side's sign changed it {agrees(e_c)}.",
+                    e_p, e_c)
+
+
+def _ev_14_5_gamma_n1_table():
+    rows = [(-b["rhs"], -b["rhs"] - b["extra"], b["gamma"]) for b in _ev_14_5_n1_states(1452, tangent=False)]
+    e_p, e_c = compare(rows)
+    return Evidence(f"At 20 random states the book's right-hand side, −2(s_jᵀĖ_iĠ_iᵀs'_i + s_iᵀĖ_jĠ_jᵀs'_j + "
+                    f"ṡ_iᵀṡ_j) (misprints of §14.5's n1 equation corrected), differs from kinbook's γ — the one "
+                    f"that goes with Table 14.1's Φ_p = 2s_jᵀ(E_i s̄'_i + s'_i p_iᵀ) — by up to {e_p:.3f}; "
+                    f"adding −2(s_jᵀs'_i)ṗ_iᵀṗ_i − 2(s_iᵀs'_j)ṗ_jᵀṗ_j it {agrees(e_c)}.", e_p, e_c)
+
+
+# §14.5, spatial kinematic analysis (chapters/14-5-spatial-analysis.ipynb)
+ERRATA += [
+    Erratum("14.5-cross-references", "§14.5, opening paragraph, the Φ_p derivation and the γ paragraph",
+            r"\text{“apartado 211.5” (twice), “apartado 3.3” (once)}",
+            r"\text{chapter 13 (§13.5–13.8) for the planar analysis; §14.3 for } \partial(Aa)/\partial p "
+            r"\text{ and } \ddot A a", "wording", None,
+            "The book has no §211.5 or §3.3 (numbers left from another edition): the planar analysis is chapter 13, "
+            "the Euler-parameter formulas are in §14.3. (A second “apartado 3.3”, before Ä a, is in a passage the "
+            "book strikes through.)"),
+    Erratum("14.5-n1-rj", "§14.5, Jacobian of Φ^(n1,1), the sentence before Φ_{r_j} and Φ_{p_j}",
+            r"\text{“respecto a } r_i \text{ y } p_j\text{”}", r"\text{with respect to } r_j \text{ and } p_j",
+            "wording"),
+    Erratum("14.5-A-ddot-a", "§14.5, Ä a recalled from §14.3 for γ of Φ^(n1,1): the displayed formula",
+            r"\ddot A a = 2\dot E\dot G^T a + 2E\ddot a\,\ddot p", r"\ddot A a = 2\dot E\dot G^T a + 2E\bar a\,\ddot p",
+            "formula", _ev_A_ddot_a, "ä (the second derivative of a constant vector: zero) stands for ā; the §14.3 "
+            "version also drops p̈ (notebook 14-3). The sentences that introduce the formula are struck through in "
+            "the book; the formula itself is printed."),
+    Erratum("14.5-gamma-n1", "§14.5, the acceleration equation of Φ^(n1,1)",
+            r"[2s_j^TE_i\bar s'_i,\ 2s_i^TE_j\bar s'_j]\begin{bmatrix}\dot p_i\\ \dot p_j\end{bmatrix} = "
+            r"2(s_j^T\dot E_i\dot G_i s'_i + s_i^T\dot E_j\dot G_j s'_j + \dot s_i^T\dot s_j)",
+            r"[2s_j^TE_i\bar s'_i,\ 2s_i^TE_j\bar s'_j]\begin{bmatrix}\ddot p_i\\ \ddot p_j\end{bmatrix} = "
+            r"-2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)",
+            "formula", _ev_14_5_gamma_n1,
+            "Three slips: ṗ for p̈, Ġ for Ġᵀ (Ġ s' is undefined) and the sign of the right-hand side (the book's "
+            "own line before, s_jᵀÄ_is'_i + s_iᵀÄ_js'_j + 2ṡ_iᵀṡ_j = 0, gives the minus)."),
+    Erratum("14.5-gamma-n1-table", "§14.5, “es necesario obtener el vector γ. Veamos como serían los pasos para su "
+            "obtención … normal tipo 1”: the γ those steps end with",
+            r"\gamma^{(n1,1)} = -2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)"
+            r"\ \text{(misprints of 14.5-gamma-n1 corrected)}",
+            r"\gamma^{(n1,1)} = -2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)"
+            r" - 2(s_j^Ts'_i)\,\dot p_i^T\dot p_i - 2(s_i^Ts'_j)\,\dot p_j^T\dot p_j",
+            "formula", _ev_14_5_gamma_n1_table,
+            "The equation's row 2s_jᵀE_i s̄'_i is the derivative of E Gᵀ s'_i, not Table 14.1's Φ_p_i = "
+            "2s_jᵀ(E_i s̄'_i + s'_i p_iᵀ), the derivative of the A the constraint uses. With Table 14.1's Φ_q the "
+            "normalization rows force pᵀp̈ = −ṗᵀṗ, so Φ_q q̈ = γ needs the ṗᵀṗ terms; without them the "
+            "accelerations are wrong whenever s_jᵀs'_i or s_iᵀs'_j ≠ 0."),
+]

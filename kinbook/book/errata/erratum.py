@@ -1,0 +1,71 @@
+"""An erratum and the evidence that kinbook computes for it, and the small measures the evidence functions share."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from ..display import small, tolerance_text
+
+__all__ = ["Erratum", "Evidence", "KINDS", "below", "compare"]
+
+
+@dataclass(frozen=True)
+class Evidence:
+    """What an evidence function measured.
+
+    Attributes
+    ----------
+    text : str
+        One or two sentences with the numbers.
+    printed_error : float
+        Size of the discrepancy of the book's version (0 would mean the book is right).
+    corrected_error : float
+        Size of the discrepancy of the corrected version (should be at rounding level).
+    tolerance : float
+        What "agrees" means for the corrected version: rounding level for a formula, the printed digits (1e-4)
+        where the book's own numbers are part of the comparison.
+    """
+
+    text: str
+    printed_error: float
+    corrected_error: float = 0.0
+    tolerance: float = 1e-9
+
+
+KINDS = ("number", "formula", "sign", "wording")
+"""What an erratum is: a wrong printed number; a wrong formula (a wrong term, symbol, factor, point or shape); a
+sign slip alone (in a formula or a number); wrong words (a reference, a label, a claim in prose, notation)."""
+
+
+@dataclass(frozen=True)
+class Erratum:
+    """One place where the book differs from what kinbook derives or computes.
+
+    Only what the book prints counts: a passage it strikes through is not printed (a struck-through formula is
+    never an erratum, nor is a struck-through sentence the anchor of one)."""
+
+    id: str
+    where: str
+    printed: str
+    correct: str
+    kind: str  # one of KINDS
+    evidence: Callable[[], Evidence] | None = field(default=None, repr=False)
+    note: str = ""
+
+    def check(self):
+        """Run the evidence function (``None`` for wording errata)."""
+        return None if self.evidence is None else self.evidence()
+
+
+def below(err, tol=1e-12):
+    """"< 1e-12" for a residual at round-off level, else its value."""
+    return f"< {tolerance_text(tol)}" if abs(err) < tol else f"= {small(err)}"
+
+
+def compare(samples):
+    """max |printed − reference| and max |corrected − reference| over (printed, corrected, reference) rows."""
+    a = np.array(samples, dtype=float)
+    return float(np.max(np.abs(a[:, 0] - a[:, 2]))), float(np.max(np.abs(a[:, 1] - a[:, 2])))
