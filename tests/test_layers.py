@@ -42,7 +42,6 @@ PENDING_CIRCLES = {
 LARGE = {
     "kinbook/classroom/grade.py:_grade_bytes": "H20's grading of one submission (issue 20)",
     "kinbook/classroom/grade.py:grade": "the CLI's keyword-only entry (H20/H21, issues 20-21)",
-    "kinbook/classroom/reference_use.py:statement": "H20's reference-use analysis (issue 20)",
     "kinbook/classroom/sandbox/kernel.py:_make_hook": "every name the audit hook uses is a closure cell (H20)",
     "kinbook/classroom/sandbox/kernel.py:hook": "the audit hook itself, one closure (H20)",
     "kinbook/planar/plotting/animation.py:animate": "H25b's animation storage (issue 25)",

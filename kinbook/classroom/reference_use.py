@@ -322,124 +322,134 @@ class _Flow:
                 self._bind(sub.target.id, sub.value, self.origin(sub.value, cell))
         self.effects(stmt, cell)
         if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
-            # its body, default values, decorators and bases: whatever it returns or sets may be the reference
-            found = None
-            if isinstance(stmt, ast.ClassDef):
-                self.own_methods |= {f.name for f in stmt.body if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))}
-            for part in (stmt.body + stmt.decorator_list
-                         + (stmt.bases + [k.value for k in stmt.keywords] if isinstance(stmt, ast.ClassDef)
-                            else stmt.args.defaults + [d for d in stmt.args.kw_defaults if d is not None])):
-                found = found or self.origin(part, cell)
-            self._bind(stmt.name, None, None)
-            self.defined.add(stmt.name)
-            glob = [n for sub in ast.walk(stmt) if isinstance(sub, (ast.Global, ast.Nonlocal)) for n in sub.names]
-            if found:
-                self.functions[stmt.name] = found
-                for name in glob:  # `global Phi` in it: Phi may be set from the reference when it runs
-                    self.tainted[name] = found
-            if not isinstance(stmt, ast.ClassDef):
-                params = {a.arg for a in stmt.args.args + stmt.args.posonlyargs + stmt.args.kwonlyargs}
-                mutates = any(
-                    isinstance(sub, ast.Call) and isinstance(sub.func, ast.Attribute) and sub.func.attr in _MUTATORS
-                    and isinstance(sub.func.value, ast.Name) and sub.func.value.id in params
-                    or isinstance(sub, (ast.Assign, ast.AugAssign)) and any(
-                        isinstance(t, (ast.Subscript, ast.Attribute)) and isinstance(t.value, ast.Name)
-                        and t.value.id in params for t in (sub.targets if isinstance(sub, ast.Assign) else [sub.target]))
-                    for sub in ast.walk(stmt))
-                if glob or mutates:
-                    self.setters[stmt.name] = (glob, mutates)
-            return
-        if isinstance(stmt, (ast.Import, ast.ImportFrom)):
-            module = getattr(stmt, "module", None) or ""
-            for alias in stmt.names:
-                if alias.name == "*":
-                    self.star = self.star or module.split(".")[0] == "kinbook"
-                    continue
-                name = alias.asname or alias.name.split(".")[0]
-                self._bind(name, None, None)
-                if isinstance(stmt, ast.Import):
-                    qual = alias.name if alias.asname else alias.name.split(".")[0]
-                else:
-                    qual = f"{module}.{alias.name}"
-                if qual.split(".")[0] == "kinbook":
-                    self.kb[name] = qual
-                    if alias.name in self.calls.functions and not qual.startswith(_NOT_REFERENCE) \
-                            and not self.cell_locked:
-                        self.functions[name] = f"{module}.{alias.name} (cell {cell})"
-                if qual in ("operator.methodcaller", "operator.attrgetter", "functools.partial") \
-                        or alias.name in ("operator", "functools", "sys"):
-                    self.helpers[name] = alias.name.rsplit(".", 1)[-1]
-                if qual == "sys.modules":
-                    self.helpers[name] = "sys.modules"
-            return
-        if isinstance(stmt, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
-            value = stmt.value
-            targets = stmt.targets if isinstance(stmt, ast.Assign) else [stmt.target]
-            found = self.origin(value, cell) if value is not None else None
-            for target in targets:
-                bound, changed = target_names(target)
-                if isinstance(stmt, ast.AugAssign):
-                    changed, bound = changed + bound, []
-                for name in bound:
-                    self._bind(name, value if len(bound) == 1 and isinstance(target, ast.Name) else
-                               (value if value is not None and self.from_kinbook(value) else None), found)
-                for name in changed:
-                    if found:
-                        self.tainted.setdefault(name, found)
-            self._part_expected(value, cell)
-            return
-        if isinstance(stmt, (ast.For, ast.AsyncFor)):
+            self._definition(stmt, cell)
+        elif isinstance(stmt, (ast.Import, ast.ImportFrom)):
+            self._import(stmt, cell)
+        elif isinstance(stmt, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
+            self._assignment(stmt, cell)
+        elif isinstance(stmt, (ast.For, ast.AsyncFor)):
             found = self.origin(stmt.iter, cell)
             for name in target_names(stmt.target)[0]:
                 self._bind(name, stmt.iter if self.from_kinbook(stmt.iter) else None, found)
             self.block(stmt.body + stmt.orelse, cell)
-            return
-        if isinstance(stmt, (ast.With, ast.AsyncWith)):
-            for item in stmt.items:
-                found = self.origin(item.context_expr, cell)
-                if item.optional_vars is not None:
-                    for name in target_names(item.optional_vars)[0]:
-                        self._bind(name, None, found)
-            self.block(stmt.body, cell)
-            return
-        if isinstance(stmt, (ast.If, ast.While)):
+        elif isinstance(stmt, (ast.With, ast.AsyncWith)):
+            self._with(stmt, cell)
+        elif isinstance(stmt, (ast.If, ast.While)):
             self.block(stmt.body + stmt.orelse, cell)
-            return
-        if isinstance(stmt, ast.Match):
+        elif isinstance(stmt, ast.Match):
             self.block([s for case in stmt.cases for s in case.body], cell)
+        elif isinstance(stmt, (ast.Try, getattr(ast, "TryStar", ast.Try))):
+            self._try(stmt, cell)
+        elif isinstance(stmt, ast.Expr):
+            self._expression(stmt.value, cell)
+
+    def _definition(self, stmt, cell):
+        """A function or class: its body, default values, decorators and bases — whatever it returns or sets may be
+        the reference."""
+        found = None
+        if isinstance(stmt, ast.ClassDef):
+            self.own_methods |= {f.name for f in stmt.body if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))}
+        for part in (stmt.body + stmt.decorator_list
+                     + (stmt.bases + [k.value for k in stmt.keywords] if isinstance(stmt, ast.ClassDef)
+                        else stmt.args.defaults + [d for d in stmt.args.kw_defaults if d is not None])):
+            found = found or self.origin(part, cell)
+        self._bind(stmt.name, None, None)
+        self.defined.add(stmt.name)
+        glob = [n for sub in ast.walk(stmt) if isinstance(sub, (ast.Global, ast.Nonlocal)) for n in sub.names]
+        if found:
+            self.functions[stmt.name] = found
+            for name in glob:  # `global Phi` in it: Phi may be set from the reference when it runs
+                self.tainted[name] = found
+        if not isinstance(stmt, ast.ClassDef):
+            params = {a.arg for a in stmt.args.args + stmt.args.posonlyargs + stmt.args.kwonlyargs}
+            mutates = any(
+                isinstance(sub, ast.Call) and isinstance(sub.func, ast.Attribute) and sub.func.attr in _MUTATORS
+                and isinstance(sub.func.value, ast.Name) and sub.func.value.id in params
+                or isinstance(sub, (ast.Assign, ast.AugAssign)) and any(
+                    isinstance(t, (ast.Subscript, ast.Attribute)) and isinstance(t.value, ast.Name)
+                    and t.value.id in params for t in (sub.targets if isinstance(sub, ast.Assign) else [sub.target]))
+                for sub in ast.walk(stmt))
+            if glob or mutates:
+                self.setters[stmt.name] = (glob, mutates)
+
+    def _import(self, stmt, cell):
+        module = getattr(stmt, "module", None) or ""
+        for alias in stmt.names:
+            if alias.name == "*":
+                self.star = self.star or module.split(".")[0] == "kinbook"
+                continue
+            name = alias.asname or alias.name.split(".")[0]
+            self._bind(name, None, None)
+            if isinstance(stmt, ast.Import):
+                qual = alias.name if alias.asname else alias.name.split(".")[0]
+            else:
+                qual = f"{module}.{alias.name}"
+            if qual.split(".")[0] == "kinbook":
+                self.kb[name] = qual
+                if alias.name in self.calls.functions and not qual.startswith(_NOT_REFERENCE) \
+                        and not self.cell_locked:
+                    self.functions[name] = f"{module}.{alias.name} (cell {cell})"
+            if qual in ("operator.methodcaller", "operator.attrgetter", "functools.partial") \
+                    or alias.name in ("operator", "functools", "sys"):
+                self.helpers[name] = alias.name.rsplit(".", 1)[-1]
+            if qual == "sys.modules":
+                self.helpers[name] = "sys.modules"
+
+    def _assignment(self, stmt, cell):
+        value = stmt.value
+        targets = stmt.targets if isinstance(stmt, ast.Assign) else [stmt.target]
+        found = self.origin(value, cell) if value is not None else None
+        for target in targets:
+            bound, changed = target_names(target)
+            if isinstance(stmt, ast.AugAssign):
+                changed, bound = changed + bound, []
+            for name in bound:
+                self._bind(name, value if len(bound) == 1 and isinstance(target, ast.Name) else
+                           (value if value is not None and self.from_kinbook(value) else None), found)
+            for name in changed:
+                if found:
+                    self.tainted.setdefault(name, found)
+        self._part_expected(value, cell)
+
+    def _with(self, stmt, cell):
+        for item in stmt.items:
+            found = self.origin(item.context_expr, cell)
+            if item.optional_vars is not None:
+                for name in target_names(item.optional_vars)[0]:
+                    self._bind(name, None, found)
+        self.block(stmt.body, cell)
+
+    def _try(self, stmt, cell):
+        self.block(stmt.body, cell)
+        raised = None  # a reference value carried by an exception raised in the body: its handler's name
+        for sub in ast.walk(ast.Module(body=stmt.body, type_ignores=[])):
+            if isinstance(sub, ast.Raise) and sub.exc is not None:
+                raised = raised or self.origin(sub.exc, cell)
+        for h in stmt.handlers:
+            if h.name:
+                self._bind(h.name, None, raised)
+            self.block(h.body, cell)
+        self.block(stmt.orelse + stmt.finalbody, cell)
+
+    def _expression(self, value, cell):
+        code = literal_code(value) if isinstance(value, ast.Call) else None
+        if code is not None:  # exec("…"), %time …, %%capture
+            if isinstance(code, list):
+                self.block(code, cell)
+            else:
+                self.statement(ast.Expr(code), cell)
             return
-        if isinstance(stmt, (ast.Try, getattr(ast, "TryStar", ast.Try))):
-            self.block(stmt.body, cell)
-            raised = None  # a reference value carried by an exception raised in the body: its handler's name
-            for sub in ast.walk(ast.Module(body=stmt.body, type_ignores=[])):
-                if isinstance(sub, ast.Raise) and sub.exc is not None:
-                    raised = raised or self.origin(sub.exc, cell)
-            for h in stmt.handlers:
-                if h.name:
-                    self._bind(h.name, None, raised)
-                self.block(h.body, cell)
-            self.block(stmt.orelse + stmt.finalbody, cell)
-            return
-        if isinstance(stmt, ast.Expr):
-            value = stmt.value
-            code = literal_code(value) if isinstance(value, ast.Call) else None
-            if code is not None:  # exec("…"), %time …, %%capture
-                if isinstance(code, list):
-                    self.block(code, cell)
-                else:
-                    self.statement(ast.Expr(code), cell)
-                return
-            self._part_expected(value, cell)
-            # an in-place change: answer.extend(ref), answer.append(ref), answer.__setitem__ …
-            if isinstance(value, ast.Call) and isinstance(value.func, ast.Attribute):
-                base = value.func.value
-                while isinstance(base, (ast.Attribute, ast.Subscript)):
-                    base = base.value
-                found = None
-                for arg in list(value.args) + [k.value for k in value.keywords]:
-                    found = found or self.origin(arg, cell)
-                if found and isinstance(base, ast.Name):
-                    self.tainted.setdefault(base.id, found)
+        self._part_expected(value, cell)
+        # an in-place change: answer.extend(ref), answer.append(ref), answer.__setitem__ …
+        if isinstance(value, ast.Call) and isinstance(value.func, ast.Attribute):
+            base = value.func.value
+            while isinstance(base, (ast.Attribute, ast.Subscript)):
+                base = base.value
+            found = None
+            for arg in list(value.args) + [k.value for k in value.keywords]:
+                found = found or self.origin(arg, cell)
+            if found and isinstance(base, ast.Name):
+                self.tainted.setdefault(base.id, found)
 
     def _part_expected(self, node, cell):
         """``part(..., expected=X)``: the variable X (or X[…], X.attr) holds the reference value of that part."""
