@@ -44,7 +44,6 @@ LARGE = {
     "kinbook/classroom/grade.py:grade": "the CLI's keyword-only entry (H20/H21, issues 20-21)",
     "kinbook/classroom/sandbox/kernel.py:_make_hook": "every name the audit hook uses is a closure cell (H20)",
     "kinbook/classroom/sandbox/kernel.py:hook": "the audit hook itself, one closure (H20)",
-    "kinbook/planar/plotting/animation.py:animate": "H25b's animation storage (issue 25)",
     "kinbook/grading/jets.py:__call__": "the tape interpreter's one dispatch (H22, issue 22)",
     "kinbook/grading/match.py": "H22 is rewriting the matcher (issue 22)",
     "kinbook/grading/match.py:match_phi": "H22 is rewriting the matcher (issue 22)",

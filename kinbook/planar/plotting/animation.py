@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import sympy as sp
 
 from ...core._animation import Animation
 from ...errors import InputError
@@ -61,25 +62,11 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
     fig, ax = _plt().subplots(figsize=figsize, dpi=dpi)
     qs = result.q[idx]
     scene = _Scene(ax, mech, qs[0], frames=frames, labels=labels, size=drawing_size(mech, qs))
-    traces = []
-    for k, (body, point) in enumerate(trace or []):
-        xy = result.position(body, point)[idx]
-        ax.plot(xy[:, 0], xy[:, 1], ":", color="#888888", lw=1.0, zorder=1)
-        (line,) = ax.plot([], [], "-", color=_TRACES[k % len(_TRACES)], lw=1.5, zorder=1)
-        traces.append((line, xy))
+    traces = _traces(ax, result, trace, idx)
     box = scene.observe(qs)
     scene.set_limits(box)
     _style_axes(ax, getattr(mech, "title", None))
-    driver = mech.drivers[0] if mech.drivers else None
-    sym = driver_symbol(mech, driver, unicode=True) if driver is not None else None
-    values, unit = None, ""
-    if driver is not None:
-        import sympy as sp
-
-        f = sp.lambdify(mech.t, driver.f, "numpy")
-        values = np.broadcast_to(np.asarray(f(result.t[idx]), dtype=float), idx.shape)
-        if (driver.measures or (None,))[-1] == "angle":  # an angle is read in degrees, as the text gives it
-            values, unit = np.degrees(values), "°"
+    sym, values, unit = _driver_values(result, idx)
     clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, zorder=10,
                     bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="#bbbbbb", alpha=0.9))
 
@@ -100,6 +87,31 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
                          blit=True, repeat=True)
     anim.kinbook_indices = idx
     return anim
+
+
+def _traces(ax, result, trace, idx):
+    """(line, path) of each traced point: its whole path drawn faintly, and the line that follows it."""
+    traces = []
+    for k, (body, point) in enumerate(trace or []):
+        xy = result.position(body, point)[idx]
+        ax.plot(xy[:, 0], xy[:, 1], ":", color="#888888", lw=1.0, zorder=1)
+        (line,) = ax.plot([], [], "-", color=_TRACES[k % len(_TRACES)], lw=1.5, zorder=1)
+        traces.append((line, xy))
+    return traces
+
+
+def _driver_values(result, idx):
+    """(symbol, values at the instants ``idx``, unit) of the first driver; (None, None, "") without one."""
+    mech = result.mechanism
+    driver = mech.drivers[0] if mech.drivers else None
+    sym = driver_symbol(mech, driver, unicode=True) if driver is not None else None
+    values, unit = None, ""
+    if driver is not None:
+        f = sp.lambdify(mech.t, driver.f, "numpy")
+        values = np.broadcast_to(np.asarray(f(result.t[idx]), dtype=float), idx.shape)
+        if (driver.measures or (None,))[-1] == "angle":  # an angle is read in degrees, as the text gives it
+            values, unit = np.degrees(values), "°"
+    return sym, values, unit
 
 
 def animation_png(result, colors=256, **kwargs):
