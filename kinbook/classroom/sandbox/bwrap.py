@@ -57,8 +57,9 @@ ENV = {
     "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "MPLBACKEND": "Agg",
     "MPLCONFIGDIR": ISOLATED.tmp + "/.matplotlib", "PYDEVD_DISABLE_FILE_VALIDATION": "1",
 }
-#: Where the grader looks for ``bwrap`` and ``setpriv``, and the only ``PATH`` it gives them: never the PATH it
-#: was started with (a directory early in it could hold a program of that name).
+#: The only ``PATH`` bubblewrap (and ``setpriv``) are started with: never the grader's own, which its processes
+#: would otherwise carry, readable in the sandbox's ``/proc``. (``bwrap`` itself is found on the grader's PATH,
+#: as a shell would find it.)
 SYSTEM_PATH = "/usr/sbin:/usr/bin:/sbin:/bin"
 _TOP_LINKS = ("/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32")
 DENIED_SYSCALLS = (
@@ -122,7 +123,7 @@ def readonly_dirs():
 
 
 def _which(name):
-    return shutil.which(name, path=SYSTEM_PATH)
+    return shutil.which(name)
 
 
 def _traversable(st, uid):

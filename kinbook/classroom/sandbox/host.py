@@ -486,7 +486,7 @@ class Sandbox:
         if oom is not None and ex.status in ("ok", "error"):
             # a process of the notebook was killed at the memory limit: the kernel itself (the answers read
             # before it are kept), or a child it forked (the run went on, without what the child held)
-            ex.status, ex.message = "memory", oom.message + (" (it was stopped at that cell)" if ex.cell else "")
+            ex.status, ex.message = "memory", oom.message
         return ex
 
     def _out_of_memory(self, before):
