@@ -337,8 +337,10 @@ def _grader(out, subs, jobs):
     cmd = [sys.executable, "-m", "kinbook.cli", "grade", SOURCE, *subs, "-o", str(out),
            "--timeout", str(KILL_TEST_TIMEOUT),
            "--memory", "400", "--jobs", str(jobs), *([] if BWRAP else ["--no-isolation"])]
+    # Ctrl-C's default restored in the grader: a test run started in the background of a script inherits SIGINT
+    # ignored (POSIX), and a grader that ignores it, as it should then, is not what this test kills
     return subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                            start_new_session=True)
+                            start_new_session=True, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
 
 
 def _running_kernels(family):
