@@ -671,23 +671,3 @@ def read_number(value, *, where, limits=None):
         return value
     expr = read_constant(value, where=where, limits=limits)
     return _real_value(expr, value, where)
-
-
-# ------------------------------------------------------------------------------------------------ sympy trees
-def _check_number(node, where, big_bits, limits):
-    if isinstance(node, sp.Integer):
-        bits = int(node).bit_length()
-    elif isinstance(node, sp.Rational):
-        bits = max(int(node.p).bit_length(), int(node.q).bit_length())
-    elif isinstance(node, sp.Float):
-        _, man, exp, bc = node._mpf_
-        bits = exp + bc if man else 0
-        if node._prec > 4096:
-            raise ExpressionError(f"{where}: a number has too many digits ({node._prec} bits)", where=where,
-                                  text=None, reason="too precise")
-    else:  # zoo, oo, nan
-        raise ExpressionError(f"{where}: the expression contains {node}, which is not a finite number",
-                              where=where, text=None, reason="not finite")
-    if bits > big_bits:
-        raise ExpressionError(f"{where}: a number is too large (more than {limits.magnitude:.0e})", where=where,
-                              text=None, reason="too large")
