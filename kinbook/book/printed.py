@@ -18,7 +18,7 @@ from ..grading.misprints import EX4_PHI8
 from .notation import S
 
 __all__ = ["EQ", "EX1", "EX2", "EX3", "EX4", "EX5", "EX6", "q_book", "TABLES", "TABLE_13_1_TEXT",
-           "EX5_RR_ROW", "TABLE_13_5_JACOBIAN", "TABLE_13_5_GAMMA", "REVOLUTE_STEPS", "ex2_translational_general"]
+           "EX5_RR_ROW", "ex5_ground_point_y", "TABLE_13_5_JACOBIAN", "TABLE_13_5_GAMMA", "REVOLUTE_STEPS", "ex2_translational_general"]
 
 
 def q_book(values):
@@ -35,6 +35,12 @@ EX1 = {
     "B": np.array([4.5697, 2.5566]),
 }
 """Example 1 (four-bar, four bodies): the printed solution at t = 0 and the points A, B."""
+
+EX1["q_13_6"] = sp.Matrix(sp.symbols("x1 y1 phi1 x2 y2 phi2 x3 y3 phi3", real=True))
+"""§13.6's coordinate vector "for the example cited" (example 1), as printed: nine coordinates."""
+EX1["Phi11_13_6"] = (sp.Symbol("y3", real=True) + 3 * sp.sin(sp.Symbol("phi3", real=True)) - sp.Symbol("y4", real=True)
+                     + sp.Rational(3, 2) * sp.sin(sp.Symbol("phi4", real=True)))
+"""Example 1's Φ_11 as §13.6 prints it a few lines below that vector."""
 
 EX2 = {
     "q": q_book([0, 0, 0, 0.7071, 0.7071, 45, 4.3297, 0.7071, 346.37, 7.2452, 0, 0]),
@@ -98,6 +104,12 @@ EX5 = {
     "rr_arms": np.array([-0.7071, 0.7071, 0.7849, 1.2783]),
 }
 """Example 5: the global Jacobian at example 3's printed configuration, ν, the velocities and v_A, v_B."""
+
+
+def ex5_ground_point_y(y1, phi1, xi, eta):
+    """Example 5's y^{O_A}, y^{O_B} as printed for a point (ξ, η) of the ground, body 1: y_1 + η sen φ_1 (the
+    simplified transformation, η = 0, with η written where ξ belongs)."""
+    return y1 + eta * np.sin(phi1)
 
 # ------------------------------------------------------------------------------------ §13.8, example 6
 EX6 = {

@@ -21,6 +21,7 @@ from ..printed import (
     TABLE_13_5_GAMMA,
     TABLES,
     ex2_translational_general,
+    ex5_ground_point_y,
 )
 from .erratum import Erratum, Evidence, below, compare
 
@@ -143,6 +144,38 @@ def _ev_ex5_joint3_working():
                     f"the numbers written after them by up to {e_p:.4f}; the lever arms x^A − x_2, y^A − y_2, "
                     f"x^B − x_3, y^B − y_3 give those numbers to their printed digits ({small(e_c, 2e-4, relation=True)}).",
                     e_p, e_c, tolerance=2e-4)
+
+
+def _ev_q_13_6():
+    m = example("ch13_example1")
+    printed_q = {str(v) for v in EX1["q_13_6"]}
+    own = [str(v) for v in m.q]
+    missing = [c for c in own if c not in printed_q]
+    phi11 = EX1["Phi11_13_6"]
+    outside = [str(v) for v in phi11.free_symbols if str(v) not in own]   # none: the corrected q holds them all
+    f = sp.lambdify(list(m.q), phi11.subs({s: m.q[m.index(str(s)), 0] for s in phi11.free_symbols}), "numpy")
+    err = max(abs(float(f(*q)) - m.Phi(q, 0.0)[10]) for q in np.random.default_rng(6).uniform(-2, 2, (20, m.n)))
+    needs = sorted(str(v) for v in phi11.free_symbols if str(v) not in printed_q)
+    names = ", ".join(missing).replace("phi", "φ")
+    return Evidence(f"Example 1 has four bodies, ground included: kinbook's q has {m.n} coordinates, the printed one "
+                    f"{len(printed_q)}, without {names}. The Φ_11 printed a few lines below holds "
+                    f"{', '.join(needs).replace('phi', 'φ')} and is kinbook's Φ_11 with all twelve (at 20 random "
+                    f"configurations the difference {below(err)}).", float(len(missing)), float(len(outside) + err))
+
+
+def _ev_ex5_ground_points():
+    m = example("ch13_example3")
+    rows = []
+    for q in np.random.default_rng(7).uniform(-2, 2, (20, m.n)):
+        for point in ("OA", "OB"):
+            xi, eta = m.body("ground").points[point]
+            y = m.point_position(q, "ground", point)[1]
+            rows.append((ex5_ground_point_y(q[1], q[2], xi, eta), q[1] + xi * np.sin(q[2]) + eta * np.cos(q[2]), y))
+    e_p, e_c = compare(rows)
+    return Evidence(f"For the ground's points O_A = (0, 0) and O_B = (3, 0) at 20 random ground positions, the printed "
+                    f"y_1 + η_1^P sen φ_1 differs from kinbook's y^P by up to {e_p:.4f}; y_1 + ξ_1^P sen φ_1 + "
+                    f"η_1^P cos φ_1 agrees (difference {below(e_c)}). At t = 0 (y_1 = φ_1 = 0) both give 0, so the "
+                    f"example's numbers hide the slip.", e_p, e_c)
 
 
 def _printed_vs_kinbook(kind, quantity, printed_matrix, corrected_matrix, entry, equal=(), up_to_sign=True):
@@ -361,6 +394,21 @@ ERRATA = [
             r"\Phi^{(i,2)},\ \Phi^{(r,1)},\ \text{apartado 4.3 / 4.5},\ \text{“as in example 3”}",
             r"\Phi^{(t,2)},\ \Phi^{(r\text{-}t,1)},\ \text{the translational / r-t subsections of §13.5},\ \text{example 2}",
             "wording"),
+    Erratum("13.6-q-example1", "§13.6, the coordinate vector q “for the example cited” (example 1)",
+            r"\mathbf q = [x_1, y_1, \varphi_1, x_2, y_2, \varphi_2, x_3, y_3, \varphi_3]^T",
+            r"\mathbf q = [x_1, y_1, \varphi_1, \dots, x_4, y_4, \varphi_4]^T\ (n = 12)", "formula", _ev_q_13_6,
+            "Example 1's four-bar has four bodies, the ground included (Φ_1–Φ_3 fix it), so n = 12 and m = 11; the "
+            "section itself then lists Φ_4 … Φ_11 with y_4 and φ_4. (Nine coordinates fit three moving bars with "
+            "the ground left out, which is not how example 1 is set up.)"),
+    Erratum("13.7-ex5-ground-points", "§13.7, example 5: global coordinates of O_A and O_B at t = 0",
+            r"y^{O_A} = y_1 + \eta_1^{O_A}\,\text{sen}\,\varphi_1,\quad y^{O_B} = y_1 + \eta_1^{O_B}\,\text{sen}\,\varphi_1",
+            r"y^{P} = y_1 + \xi_1^{P}\sin\varphi_1\ \ (\eta_1^P = 0)", "formula", _ev_ex5_ground_points,
+            "The simplified transformation just printed, y_i^P = y_i + ξ_i^P sen φ_i, has ξ; the x rows have ξ too."),
+    Erratum("13.7-ex5-reference", "§13.7, example 5, the sentence after the statement",
+            r"\text{“el mismo del ejemplo 3 del capítulo 3”}",
+            r"\text{the mechanism of example 3, §13.5 (this chapter)}", "wording", None,
+            "There is no chapter 3 in these chapters: example 3 (the four-bar with a revolute–revolute joint) is in "
+            "§13.5, where its constraint equations and its solution at t = 0 are obtained."),
     Erratum("13.6-table-13.1-text", "§13.6, the derivation under Table 13.1",
             r"\partial\Phi_1/\partial\varphi_i = -(y_i^P - y_j^P),\ \ldots",
             r"-(y_i^P - y_i),\ (y_j^P - y_j),\ (x_i^P - x_i),\ -(x_j^P - x_j)", "formula", _ev_table_13_1_text,
