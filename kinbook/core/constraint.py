@@ -84,6 +84,12 @@ class ConstraintBase(abc.ABC):
         takes a list of two points (vectors) and binds them to ``a`` and ``b`` (the two points of an axis).
     numbers : tuple or dict
         File keys of numeric parameters (a dict gives defaults); bound to sympy numbers.
+    constants : tuple
+        File keys of parameters kept exact (``"3*pi/4"`` stays π·3/4) that may also be symbolic (a sympy symbol,
+        or text naming one: ``"l/2"``) for a symbolic derivation; read when the constraint is made
+        (:func:`kinbook.core.reader.read_constant`), so a bad value is refused there. One whose ``quantities``
+        entry is ``"length"`` must be positive. A key in ``defaults`` with None may be left out (None, for
+        :meth:`_complete` to fill in).
     functions : dict
         ``{key: variable}``: file keys of functions of one variable, written as expressions in it
         (``"2 + cos(psi)"``); bound to a sympy Lambda, called in :meth:`phi` as ``self.profile(ψ)``.
@@ -127,6 +133,7 @@ class ConstraintBase(abc.ABC):
     points = {}
     vectors = {}
     numbers = ()
+    constants = ()
     functions = {}
     aliases = {}
     defaults = {}
@@ -208,7 +215,20 @@ class ConstraintBase(abc.ABC):
                                          f"({_COUNT.get(k.count, k.count)} {k.kind}s of '{body}')")
             if k.attrs != (k.key,) and k.key in given:
                 setattr(self, k.key, given[k.key])
+            if k.kind == "constant":
+                setattr(self, k.key, self._read_constant(given.get(k.key), k.key))
         self.specs = given
+
+    def _read_constant(self, value, key):
+        """A declared constant as given: exact, possibly symbolic; None when it may be left out."""
+        cls = type(self)
+        if value is None and key in cls.defaults and cls.defaults[key] is None:
+            return None
+        where = f"{self._where()}, {key}"  # read as it is given: a symbol for a symbolic derivation, too
+        value = read_constant(value, where=where, symbolic=True)
+        if cls.quantities.get(key) == "length" and value.is_positive is False:  # ≤ 0, or a symbol known not > 0
+            raise ModelError(f"{where} must be a positive number, got {value}")
+        return value
 
     def _where(self):
         """The constraint named by its bodies, before it has a name or rows: "revolute joint between 'a' and
@@ -224,6 +244,8 @@ class ConstraintBase(abc.ABC):
         functions to sympy), then :meth:`_complete` the rest."""
         specs = getattr(self, "specs", None) or {}
         for k in type(self)._keys if specs else ():
+            if k.kind == "constant":  # read when the constraint was made
+                continue
             value = specs.get(k.key)
             if value is None and k.key in type(self).defaults and type(self).defaults[k.key] is None:
                 for attr in k.attrs:

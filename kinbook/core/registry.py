@@ -1,5 +1,5 @@
 """The registry of constraint types, per chapter, and what a type declares: its keys (``points``, ``vectors``,
-``numbers``, ``functions``, with ``aliases`` and ``defaults``), the constructor generated from them, and the
+``numbers``, ``constants``, ``functions``, with ``aliases`` and ``defaults``), the constructor generated from them, and the
 composites declared by their ``parts``. :class:`~kinbook.core.constraint.ConstraintBase` calls these when a
 subclass is defined; docs/extending.md shows the declarations at work.
 """
@@ -30,7 +30,7 @@ pitch radius, an angle in radians."""
 
 _REGISTRY = {}
 
-_DECLARATIONS = ("points", "vectors", "numbers", "functions")
+_DECLARATIONS = ("points", "vectors", "numbers", "constants", "functions")
 
 
 def constraint_types(chapter):
@@ -69,7 +69,7 @@ def constraint_class(chapter, type_name, where=None, files=False):
 class Key(NamedTuple):
     """One declared key of a constraint type.
 
-    ``kind`` is "point", "vector", "number" or "function"; ``role`` the body role of a point or vector (None
+    ``kind`` is "point", "vector", "number", "constant" or "function"; ``role`` the body role of a point or vector (None
     otherwise); ``attrs`` the attributes its value binds to (the key itself unless the declaration names
     them; several for a key that takes a list of points, such as the two points of an axis); ``var`` the
     variable of a function.
@@ -96,15 +96,15 @@ def _geometry(key, kind, spec):
 
 def declared_keys(cls):
     """The keys ``cls`` declares, in the order of its constructor: the declarations it inherits first (points,
-    vectors, numbers, functions), then its own in the order the class body writes them."""
+    vectors, numbers, constants, functions), then its own in the order the class body writes them."""
     own = [n for n in cls.__dict__ if n in _DECLARATIONS]
     keys = []
     for name in [n for n in _DECLARATIONS if n not in own] + own:
         value = getattr(cls, name)
         if name in ("points", "vectors"):
             keys += [_geometry(k, name[:-1], spec) for k, spec in value.items()]
-        elif name == "numbers":
-            keys += [Key(k, "number", None, (k,)) for k in value]
+        elif name in ("numbers", "constants"):
+            keys += [Key(k, name[:-1], None, (k,)) for k in value]
         else:
             keys += [Key(k, "function", None, (k,), var) for k, var in value.items()]
     return tuple(keys)
@@ -121,7 +121,7 @@ def key_defaults(cls):
 
 def default_parameters(cls):
     """The attributes a type's :meth:`phi` reads when it does not say (``parameters``): everything its points,
-    vectors and numbers bind (functions stay in the compiled Φ); for a composite, its parts' parameters under
+    vectors, numbers and constants bind (functions stay in the compiled Φ); for a composite, its parts' parameters under
     the composite's names."""
     if cls.parts:
         out = []

@@ -468,15 +468,11 @@ class Translational(Constraint):
     title = {"en": "translational joint", "es": "par de traslación"}
     measures = ("length^2", "angle")
     points = {"axis": ("i", ("s_Pi", "s_Qi")), "point_j": ("j", "s_Pj")}
+    constants = ("phi0",)
+    defaults = {"phi0": None}
     quantities = {"phi0": "angle"}
     parameters = ("s_Pi", "s_Qi", "s_Pj", "phi0")
     kernel = staticmethod(_translational_kernel)
-
-    def __init__(self, i, j, axis, point_j, phi0=None, name=None):
-        super().__init__((i, j), name=name)
-        self._take_keys({"axis": axis, "point_j": point_j})
-        where = f"{self._where()}, phi0"  # read as it is given: a symbol for a symbolic derivation, too
-        self.phi0 = None if phi0 is None else read_constant(phi0, where=where, symbolic=True)
 
     def _complete(self):
         if self.s_Pi == self.s_Qi:
@@ -526,17 +522,10 @@ class RevoluteRevolute(Constraint):
     title = {"en": "revolute-revolute joint", "es": "par revolución-revolución"}
     measures = ("length^2",)
     points = {"point_i": ("i", "s_i"), "point_j": ("j", "s_j")}
+    constants = ("length",)
     quantities = {"length": "length"}
     parameters = ("s_i", "s_j", "length")
     kernel = staticmethod(_rr_kernel)
-
-    def __init__(self, i, j, point_i, point_j, length, name=None):
-        super().__init__((i, j), name=name)
-        self._take_keys({"point_i": point_i, "point_j": point_j})
-        where = f"{self._where()}, length"  # read as it is given: a symbol for a symbolic derivation, too
-        self.length = read_constant(length, where=where, symbolic=True)
-        if self.length.is_positive is False:  # a number ≤ 0, or a symbol known not to be positive
-            raise ModelError(f"{where} must be a positive number, got {self.length}")
 
     def phi(self, Q, t=t_symbol):
         d = self._r(Q[0], self.s_i) - self._r(Q[1], self.s_j)
