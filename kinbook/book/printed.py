@@ -18,7 +18,7 @@ from ..grading.misprints import EX4_PHI8
 from .notation import S
 
 __all__ = ["EQ", "EX1", "EX2", "EX3", "EX4", "EX5", "EX6", "q_book", "TABLES", "TABLE_13_1_TEXT",
-           "EX5_RR_ROW", "ex5_ground_point_y", "TABLE_13_5_JACOBIAN", "TABLE_13_5_GAMMA", "REVOLUTE_STEPS", "ex2_translational_general"]
+           "EX5_RR_ROW", "ex5_ground_point_y", "ex6_point_acceleration", "TABLE_13_5_JACOBIAN", "TABLE_13_5_GAMMA", "REVOLUTE_STEPS", "ex2_translational_general"]
 
 
 def q_book(values):
@@ -119,8 +119,17 @@ EX6 = {
     "qdd": np.array([0, 0, 0, 7071, -7071, 0, 2042.03, -11056, -5016.7]),
     "aA": np.array([14142.068, -14142.068]),
     "aB": np.array([4084.136, -22111.679]),
+    "A": np.array([1.4142, 1.4142]),  # "(x^A, y^A)" in the list of the joints' global points
 }
-"""Example 6: γ (printed three ways for γ_8), the accelerations q̈ and a_A, a_B."""
+"""Example 6: γ (printed three ways for γ_8), the accelerations q̈ and a_A, a_B, and the point A it lists."""
+
+
+def ex6_point_acceleration(r_ddot, phi, phi_dot, phi_ddot, xi, eta):
+    """Example 6's acceleration of a point (ξ, η) of a body, as printed component by component:
+    ẍ^P = ẍ + φ̈ (−ξ sen φ − η cos φ) φ̇² − (ξ cos φ − η sen φ), ÿ^P = ÿ + φ̈ (ξ cos φ − η sen φ) φ̇² − (ξ sen φ + η cos φ)."""
+    s, c = np.sin(phi), np.cos(phi)
+    return np.array([r_ddot[0] + phi_ddot * (-xi * s - eta * c) * phi_dot**2 - (xi * c - eta * s),
+                     r_ddot[1] + phi_ddot * (xi * c - eta * s) * phi_dot**2 - (xi * s + eta * c)])
 
 # ------------------------------------------------------------------------- §13.5, the joints' equations
 def _A(phi):

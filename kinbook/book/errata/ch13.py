@@ -16,12 +16,14 @@ from ..printed import (
     EX3,
     EX4,
     EX5,
+    EX6,
     REVOLUTE_STEPS,
     TABLE_13_1_TEXT,
     TABLE_13_5_GAMMA,
     TABLES,
     ex2_translational_general,
     ex5_ground_point_y,
+    ex6_point_acceleration,
 )
 from .erratum import Erratum, Evidence, below, compare
 
@@ -176,6 +178,34 @@ def _ev_ex5_ground_points():
                     f"y_1 + η_1^P sen φ_1 differs from kinbook's y^P by up to {e_p:.4f}; y_1 + ξ_1^P sen φ_1 + "
                     f"η_1^P cos φ_1 agrees (difference {below(e_c)}). At t = 0 (y_1 = φ_1 = 0) both give 0, so the "
                     f"example's numbers hide the slip.", e_p, e_c)
+
+
+def _ev_ex6_point_A():
+    m = example("ch13_example3")
+    A = m.point_position(EX5["q"], "crank", "A")     # the book's configuration (x_2 = −0.7071, φ_2 = 135°)
+    printed_A, corrected = EX6["A"], EX6["A"] * np.array([-1.0, 1.0])
+    e_p, e_c = float(np.abs(printed_A - A).max()), float(np.abs(corrected - A).max())
+    return Evidence(f"At the book's own configuration (x_2 = −0.7071, φ_2 = 135°, ξ_2^A = 1) kinbook's A is "
+                    f"({A[0]:.4f}, {A[1]:.4f}): the listed x^A is off by {e_p:.4f}, −1.4142 agrees to the printed "
+                    f"digits ({small(e_c, 2e-4, relation=True)}). Example 5 and example 6's own joint-3 data print "
+                    f"−1.4142.", e_p, e_c, tolerance=2e-4)
+
+
+def _ev_ex6_point_acceleration():
+    rows = []
+    for r in np.random.default_rng(8).uniform(-2, 2, (20, 7)):
+        rdd, phi, w, al, xi, eta = r[0:2], r[2], r[3], r[4], r[5], r[6]
+        s, c = np.sin(phi), np.cos(phi)
+        corrected = rdd + np.array([-xi * s - eta * c, xi * c - eta * s]) * al - np.array([xi * c - eta * s,
+                                                                                         xi * s + eta * c]) * w**2
+        ref = planar.point_acceleration(rdd, phi, w, al, [xi, eta])
+        printed_a = ex6_point_acceleration(rdd, phi, w, al, xi, eta)
+        rows += [(printed_a[k], corrected[k], ref[k]) for k in range(2)]
+    e_p, e_c = compare(rows)
+    return Evidence(f"At 20 random states (r̈, φ, φ̇, φ̈, ξ, η) the printed rows differ from kinbook's "
+                    f"point_acceleration (eq. 13) by up to {e_p:.3f}; with φ̈ on the B s' bracket and φ̇² on the A s' "
+                    f"one they agree (difference {below(e_c)}). With η = 0 the simplified rows the example uses next "
+                    f"are right.", e_p, e_c)
 
 
 def _printed_vs_kinbook(kind, quantity, printed_matrix, corrected_matrix, entry, equal=(), up_to_sign=True):
@@ -460,6 +490,25 @@ ERRATA = [
             r"\dot x_2 = \dot y_2 = -70.71,\ \dot q_3 = (-96.22, 53.78, 73.49),\ v_B = (-192.44, 107.56),\ |v_B| = 220.46",
             "number", _ev_ex5_velocity, "The signs of ẋ_2, ẏ_2, ẋ_3 contradict the book's own equations; the "
             "other differences come from the wrong configuration of example 1/3."),
+    Erratum("13.8-ex6-point-A", "§13.8, example 6: the global points of the joints at t = 0",
+            r"(x^A, y^A) = (1.4142,\ 1.4142)", r"(x^A, y^A) = (-1.4142,\ 1.4142)", "sign", _ev_ex6_point_A,
+            "The same example's joint-3 data, a few lines below, use (−1.4142, 1.4142)."),
+    Erratum("13.8-ex6-point-acceleration", "§13.8, example 6: the acceleration of a point, component by component",
+            r"\ddot x_i^P = \ddot x_i + \ddot\varphi_i(-\xi_i^P\,\text{sen}\,\varphi_i - \eta_i^P\cos\varphi_i)\,"
+            r"\dot\varphi_i^2 - (\xi_i^P\cos\varphi_i - \eta_i^P\,\text{sen}\,\varphi_i),\ \ldots",
+            r"\ddot x_i^P = \ddot x_i + (-\xi_i^P\sin\varphi_i - \eta_i^P\cos\varphi_i)\,\ddot\varphi_i"
+            r" - (\xi_i^P\cos\varphi_i - \eta_i^P\sin\varphi_i)\,\dot\varphi_i^2,\ \ldots", "formula",
+            _ev_ex6_point_acceleration,
+            "Eq. 13 written out with φ̈_i and φ̇_i² on the wrong brackets (the ÿ row likewise); eq. 12 of §13.5 is "
+            "right (notebook 13-1)."),
+    Erratum("13.8-ex6-joint-label", "§13.8, example 6: the heading of the joint at O_B (rows 6–7)",
+            r"\text{“Junta n.º 3”}", r"\text{joint 2 (the r-r joint between bodies 2 and 3, headed next, is joint 3)}",
+            "wording"),
+    Erratum("13.8-driver-second-derivative", "§13.8, the second derivative of the driving constraints",
+            r"\frac{d^2\Phi_q^{(d)}}{dt^2} = \frac{d}{dt}(\Phi_q^{(d)}\dot q + \Phi_t^{(d)})",
+            r"\frac{d^2\Phi^{(d)}}{dt^2} = \frac{d}{dt}(\Phi_q^{(d)}\dot q + \Phi_t^{(d)})", "wording", None,
+            "What is differentiated twice is the driving constraint Φ^(d) itself; Φ_q^(d) is its Jacobian. The "
+            "result that follows is right."),
     Erratum("13.8-ex6-accelerations", "§13.8, example 6: γ, the solution and a_B",
             r"\gamma_6 = 4370.82,\ \gamma_7 = 7118.39,\ \gamma_8 = \pm 1539.6,\ a_B = (4084.1, -22111.7)",
             r"\gamma_6 = 3952.10,\ \gamma_7 = 7071.08,\ \gamma_8 = 396.38,\ a_B = (4582.90, -21121.33)",
