@@ -76,5 +76,7 @@ def test_stored_animations_play_untrusted(browser, lab, offline, screenshots):
             out = cells.nth(k).locator(".jp-OutputArea-output")
             img = out.locator("img")
             assert img.count() == 1 and plays(page, img), f"animation {k + 1} of {chapter} does not play"
+        # no toast asking about "official Jupyter news" over the notebook (and no request to the news feed)
+        assert page.locator(".Toastify__toast", has_text="Jupyter news").count() == 0
         page.screenshot(path=str(screenshots / f"lab-untrusted-{chapter}-animation.png"))
         page.close()
