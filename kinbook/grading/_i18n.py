@@ -170,8 +170,8 @@ _TEXT = {
     "row_depends_repeat": N_("row {k} depends on row {j}: it repeats it{times}, so it adds no equation"),
     "times": N_(" multiplied by {c}"),
     "row_depends_function": N_("row {k} depends on {rows}: it vanishes together with its gradient where the "
-                               "mechanism is assembled (a power or product of those rows), so it adds no independent "
-                               "equation"),
+                               "mechanism is assembled (a function of those rows: a power, a product, a sum of squares), so it "
+                               "adds no independent equation"),
     "row_depends_combination": N_("row {k} depends on rows {rows}: it is a constant combination of them, so it adds "
                                   "no equation"),
     "row_depends_redundant": Np_("row {k} is redundant: {owner} has {n} independent equation, and your rows {rows} "

@@ -100,6 +100,11 @@ _ENTRIES = [
        N_("a factor that vanishes"),
        N_("a row multiplied by a function of q (cos φ2, e0, x1 …) vanishes wherever that factor does, even where the "
           "joint is broken: its zero set is larger than the constraint's. Multiply a row by a nonzero constant only")),
+    _m("only_at_samples",
+       N_("right only where it was sampled"),
+       N_("the row equals the constraint's at the configurations the checker samples, not at others: each row must be "
+          "the constraint's equation at every configuration (the checker compares again at configurations drawn from "
+          "the answer itself)")),
     _m("row_order",
        N_("rows not in the book's order"),
        N_("the exercise asks for the book's order: constraints in the order of the joint table, drivers last")),
@@ -373,5 +378,6 @@ add_texts({
                       "not"),
     "d.vanishing_jacobian": N_("your row is f(q) × {ref}'s row, and f goes from {lo} to {hi} over the "
                                "configurations compared: it vanishes in between"),
+    "d.only_at_samples": N_("equal to {ref} at the sampled configurations, but not at {where}"),
     "d.vanishing_at": N_("your row vanishes at {where}, where {ref} = {value} does not"),
 })

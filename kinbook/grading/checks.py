@@ -20,7 +20,7 @@ import numbers
 
 import numpy as np
 
-from . import diagnose, evaluate, match, report, sample
+from . import diagnose, evaluate, match, report, sample, witness
 from ._i18n import Msg
 from .read import Refused, as_numbers, read
 from .target import NotATarget, target_for
@@ -130,6 +130,7 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
     m = match.match_phi(data, rtol, order, target.wrap)
     m.searched = match.vanishing(m, data, rtol)
     diagnose.phi(target, A, data, m, rtol)
+    witness.phi(target, A, m, rtol)
     result = report.phi_result(target, m, order)
     if symbolic and A.kind == "symbolic":
         result = _confirm(result, target, A, m)
@@ -203,6 +204,9 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
         constant = A.kind == "numbers"
         rtol = match.RTOL if rtol is None else rtol
         s = target.samples("assembled")
+        w = witness.samples(target, A)
+        if w is not None:
+            A.prefetch(target, [s, w])
         data = evaluate.derived_data(target, A, quantity, s, target.reference("assembled"), rtol)
     except Refused as exc:
         return _refused(quantity, exc)
@@ -246,6 +250,7 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
         _factored_rows(target, m)
     if own is None and quantity in ("nu", "gamma"):
         _exchanged_rows(target, m, quantity)
+    witness.derived(target, quantity, A, data, m, rtol, w)
     result = report.derived_result(target, quantity, m, data, rtol, notes=notes,
                                    extra_codes=["transposed"] if data.transposed else [])
     if symbolic and A.kind == "symbolic":

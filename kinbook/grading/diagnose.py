@@ -82,6 +82,7 @@ def _where(target, Q, names):
     out = []
     for name in names:
         v = float(Q[idx[name]])
+        v = 0.0 if abs(v) < 1e-12 else v  # round-off is zero (x1 = 0, never 3.3e-19)
         text = f"{_book_name(name)} = {v:.6g}"
         if name.startswith("phi"):
             text += f" ({np.degrees(v):.4g}°)"
@@ -112,6 +113,7 @@ def _vanishing_detail(target, answer, r):
     mech = target.mech
     if factor is not None:
         names = [str(x) for x in mech.q if x in factor.free_symbols]
+        factor = factor.xreplace({f: sp.Float(f, 6) for f in factor.atoms(sp.Float)})  # 0.509, not 0.509000229762094
         text = sp.sstr(factor).replace("**", "^")
         return Msg("d.vanishing", factor=_book_name(text), where=_where(target, Q, names), ref=target.label(j),
                    value=f"{value:.3g}")

@@ -25,7 +25,7 @@ Everything here works on arrays (samples × rows × columns); nothing reads answ
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -37,6 +37,14 @@ RTOL = 1e-6
 RTOL_NUMBERS = 2e-3
 """Relative tolerance for numbers typed from a calculator (the book prints 4-6 significant digits)."""
 _NICE = (1.0, -1.0, 2.0, -2.0, 0.5, -0.5, 3.0, -3.0)
+
+
+def zero_tol(rtol):
+    """Relative size below which a row (or a gradient's residual) is zero where a constraint holds. The samples
+    are solved to rounding, so a right row is there ~1e-15 of its size: ``rtol``, and never above 1e-6 whatever
+    ``rtol`` the caller chose — a length off by 1 in 10⁴ (1.4999 for 1.5) is not a zero (it was 1e3·rtol, so
+    1.49 for 1.5 "held" where the mechanism is assembled and was named a masked row or a vanishing factor)."""
+    return min(float(rtol), 1e-6)
 
 
 def nice(c):
@@ -345,11 +353,11 @@ def _equivalents(data, rest, blocks, owner_of, taken, rtol):
 def _whole(data, k, magnitude, gscale, rtol):
     """Answer row k vanishes where the whole mechanism is assembled, with its gradient (if not zero) in the span
     of all the reference rows' there: the least a row of any one constraint must do (checked first: cheap)."""
-    if scale_of(data.S_M[:, k]) > 1e3 * rtol * magnitude:
+    if scale_of(data.S_M[:, k]) > zero_tol(rtol) * magnitude:
         return False
     g = data.grads("assembled")[:, k, :]
     gnorm = np.linalg.norm(g, axis=1)
-    if np.all(gnorm <= 1e3 * rtol * max(gscale, float(np.max(gnorm)))):
+    if np.all(gnorm <= zero_tol(rtol) * max(gscale, float(np.max(gnorm)))):
         return True
     basis = np.concatenate([data.gR_M, data.F_M], axis=1) if data.F_M is not None and data.F_M.size else data.gR_M
     return _in_span(g, basis, rtol)[1]
@@ -360,19 +368,22 @@ def _judge(B, k, magnitude, gscale, S_G, R_G, rtol):
     if not B.on_manifold:
         return None
     S = B.S[:, k]
-    if not np.all(np.isfinite(S)) or scale_of(S) > 1e3 * rtol * magnitude:
+    if not np.all(np.isfinite(S)) or scale_of(S) > zero_tol(rtol) * magnitude:
         return None  # not zero where the constraint holds: wrong (diagnosed later)
     g = B.gS[:, k, :]
     gnorm = np.linalg.norm(g, axis=1)
     gscale = max(gscale, float(np.max(gnorm)))
-    if np.all(gnorm <= 1e3 * rtol * gscale):
-        return "function", _function_of(S_G[:, k], R_G[:, B.refs], rtol, B.refs)
+    if np.all(gnorm <= zero_tol(rtol) * gscale):
+        # a power or product of its rows, or else some other function of them (a sum of squares): its rows
+        return "function", (_function_of(S_G[:, k], R_G[:, B.refs], rtol, B.refs)
+                            or [("ref", j) for j in B.refs])
     basis = np.concatenate([B.gR, B.F], axis=1) if B.F is not None and B.F.size else B.gR
     alpha, inspan = _in_span(g, basis, rtol)
     if not inspan:
         return None
     contrib = np.abs(alpha[:, : len(B.refs)]) * np.linalg.norm(B.gR, axis=2)
-    covers = [j for i, j in enumerate(B.refs) if np.any(contrib[:, i] > 1e-3 * gnorm)]
+    regular = _regular_samples(gnorm)  # where the gradient is at rounding level its coefficients are noise
+    covers = [j for i, j in enumerate(B.refs) if np.any(contrib[regular, i] > 1e-3 * gnorm[regular])]
     if not covers:  # a combination of the always-true rows only (a normalization row, given again)
         return "free", []
     return "equivalent", covers
@@ -382,11 +393,11 @@ def _masked(data, r, blocks, owner_of, cands, magnitude, gscale, rtol):
     """A row true where the whole mechanism is assembled but not where its own constraint alone holds: which
     constraint it was meant for (``owner``) and which others make it true (``masked``)."""
     k = r.k
-    if scale_of(data.S_M[:, k]) > 1e3 * rtol * magnitude:
+    if scale_of(data.S_M[:, k]) > zero_tol(rtol) * magnitude:
         return
     g = data.grads("assembled")[:, k, :]
     gnorm = np.linalg.norm(g, axis=1)
-    if np.all(gnorm <= 1e3 * rtol * max(gscale, float(np.max(gnorm)))):
+    if np.all(gnorm <= zero_tol(rtol) * max(gscale, float(np.max(gnorm)))):
         return
     basis = np.concatenate([data.gR_M, data.F_M], axis=1) if data.F_M is not None and data.F_M.size else data.gR_M
     alpha, inspan = _in_span(g, basis, rtol)
@@ -409,7 +420,7 @@ def _masked(data, r, blocks, owner_of, cands, magnitude, gscale, rtol):
         near = [b for b in range(len(blocks)) if b != r.owner and np.any(cols[b] & cols[r.owner])]
         for b in near:
             S = data.together(sorted([r.owner, b]))
-            if S is not None and np.all(np.isfinite(S[:, k])) and scale_of(S[:, k]) <= 1e3 * rtol * magnitude:
+            if S is not None and np.all(np.isfinite(S[:, k])) and scale_of(S[:, k]) <= zero_tol(rtol) * magnitude:
                 r.masked.append(b)
     r.masked = r.masked or [None]
 
@@ -418,6 +429,10 @@ def _still_missing(B, refs, lack, multiples, eq, rtol):
     """Reference rows of one constraint that the accepted rows do not span where it holds; as many as the rank
     lacks (one cross-product row for two h-rows lacks one)."""
     pos = {j: i for i, j in enumerate(refs)}
+    # the samples where no accepted row's gradient is at rounding level (a factor of it vanishing there)
+    keep = np.all([_regular_samples(np.linalg.norm(B.gS[:, k, :], axis=1)) for k in eq], axis=0)
+    if keep.any() and not keep.all():
+        B = replace(B, gR=B.gR[keep], gS=B.gS[keep], F=None if B.F is None else B.F[keep])
     parts = [B.gR[:, [pos[j] for j in multiples], :], B.gS[:, eq, :]]
     if B.F is not None and B.F.size:
         parts.append(B.F)
@@ -504,11 +519,16 @@ def _singular_combinations(matching, S, R, touched, rtol, F, book):
             continue
         for r in eq:
             coef = M[:, mine.index(r), :]
-            if np.ptp(coef / np.where(np.abs(coef[:1]) > 0, coef[:1], 1.0), axis=0).max() > 1e3 * rtol:
+            if np.ptp(coef / np.where(np.abs(coef[:1]) > 0, coef[:1], 1.0), axis=0).max() > zero_tol(rtol):
                 a = int(np.argmax(np.abs(coef).max(axis=0)))
                 r.status, r.code, r.how = "wrong", "vanishing_factor", "multiple"
                 r.ref, r.factor = block[a], None
                 r.where = ("ratio", float(coef[:, a].min()), float(coef[:, a].max()))
+
+
+def _regular_samples(gn):
+    """The samples where a gradient's norm ``gn`` (N,) is not at rounding level (≥ 10⁻³ of its largest)."""
+    return gn >= 1e-3 * max(float(np.max(gn, initial=0.0)), 1e-300)
 
 
 def _in_span(g, basis, rtol):
@@ -518,7 +538,10 @@ def _in_span(g, basis, rtol):
         return np.zeros((g.shape[0], 0)), bool(np.all(np.linalg.norm(g, axis=1) == 0))
     alpha = np.einsum("nbi,ni->nb", np.linalg.pinv(np.swapaxes(basis, 1, 2), rcond=1e-10), g)
     res = np.linalg.norm(np.einsum("nbi,nb->ni", basis, alpha) - g, axis=1)
-    ok = bool(np.all(res <= 1e3 * rtol * np.maximum(np.linalg.norm(g, axis=1), 1e-300)))
+    gn = np.linalg.norm(g, axis=1)
+    # a gradient at rounding level at one sample (a factor of the row vanishes there) is in every span
+    floor = max(1e-3 * float(np.max(gn, initial=0.0)), 1e-300)
+    ok = bool(np.all(res <= zero_tol(rtol) * np.maximum(gn, floor)))
     return alpha, ok
 
 

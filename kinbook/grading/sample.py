@@ -183,13 +183,13 @@ def _perturbed(target, rng, base, size):
     return Q
 
 
-def _project(target, Q, T):
+def _project(target, Q, T, steps=_NEWTON_STEPS):
     """Minimum-norm Newton steps onto the manifold rows, in (q, t) when they depend on time."""
     Q, T = Q.copy(), T.copy()
     with_t = target.time_dependent
     ok = np.zeros(len(Q), bool)
     active = np.arange(len(Q))
-    for _ in range(_NEWTON_STEPS):
+    for _ in range(steps):
         F, J = target.manifold(Q[active], T[active])
         if not with_t:
             J = J[:, :, :-1]

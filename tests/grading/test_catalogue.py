@@ -6,7 +6,7 @@ from pathlib import Path
 from kinbook import grading
 from kinbook.grading import MISTAKES, explain
 
-from . import corpus3
+from . import corpus3, corpus4
 from .corpus import CASES
 
 DOC = Path(__file__).resolve().parents[2] / "docs" / "mistakes.md"
@@ -23,7 +23,7 @@ def test_every_code_is_documented_and_bilingual():
 
 
 def test_corpus_codes_are_catalogued_and_cover_the_planar_catalogue():
-    seen = {code for case in CASES + corpus3.cases() for code in case.mistakes}
+    seen = {code for case in CASES + corpus3.cases() + corpus4.cases() for code in case.mistakes}
     assert seen <= set(MISTAKES)
     # covered elsewhere: test_checks (missing_qt_term, wrong_value), test_spatial (missing_normalization),
     # test_values (scaled, not_orthogonal, not_normalized, swapped_entries)

@@ -8,7 +8,7 @@ import sympy as sp
 from kinbook import grading
 from kinbook.core.symbolic import derive
 
-from . import corpus, corpus2, corpus3
+from . import corpus, corpus2, corpus3, corpus4
 
 CHECKS = {
     "phi": grading.check_phi,
@@ -19,7 +19,8 @@ CHECKS = {
 
 CASES = ([(case, corpus.target) for case in corpus.CASES] + [(case, corpus2.target) for case in corpus2.cases()]
          + [(case, corpus3.target) for case in corpus3.cases() + corpus3.long_cases()
-                                                  + corpus3.spatial_gap_cases() + corpus3.driver_gap_cases()])
+                                                  + corpus3.spatial_gap_cases() + corpus3.driver_gap_cases()]
+         + [(case, corpus4.target) for case in corpus4.cases()])
 
 
 def _run(case, target):

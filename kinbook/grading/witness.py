@@ -1,0 +1,142 @@
+"""Rows checked again where no one could have looked (after the diagnosis): configurations drawn from the
+answer's own digest.
+
+The samples of :mod:`~kinbook.grading.sample` are seeded with a constant — a verdict must not depend on the
+run — and the seed is in the source, so a student who reads it can write a row that equals the reference at
+exactly those configurations and nowhere else (Φ_4 + 10⁻⁶·∏(y1 − y1ₖ) over the sampled y1ₖ; γ + c·∏(t − tₖ)).
+Every row accepted as the reference's row (a constant multiple of it) is compared once more at a few
+configurations whose seed is a digest of the answer itself: the same answer meets the same configurations on
+every run and every machine, and no answer can be written to agree at configurations chosen from its own text.
+A row that fails there is right only at the samples (``only_at_samples``): wrong, and its row and joint named.
+
+Answers given as a function ``f(q, t)`` are not witnessed: a function can compute the reference itself (it runs
+in the sandbox, as any student code), and has no text to take a digest of.
+"""
+
+from __future__ import annotations
+
+import hashlib
+
+import numpy as np
+
+from . import mistakes as M
+from . import sample
+from ._i18n import Msg
+from .match import scale_match
+
+__all__ = ["phi", "derived", "samples", "N_WITNESS"]
+
+N_WITNESS = 4
+"""Configurations drawn from the answer's digest."""
+
+
+def _seed(answer, target):
+    """A 64-bit seed from the answer's evaluation tape (its distinct operations, in order): the answer's text."""
+    tape = answer.tape(target)
+    text = repr((answer.shape, tape.ops)).encode()
+    return int.from_bytes(hashlib.sha256(text).digest()[:8], "little")
+
+
+def _generic(target, seed):
+    rng = np.random.default_rng(seed)
+    Q = sample._spread(target, rng, N_WITNESS)
+    return sample.Samples(Q, rng.normal(0.0, 2.0, Q.shape), rng.uniform(0.0, 1.0, N_WITNESS))
+
+
+def _assembled(target, seed):
+    """A few configurations where the target's rows hold, near its assembled samples (None when too few)."""
+    base = target.samples("assembled")
+    if not base.on_manifold:
+        return None
+    rng = np.random.default_rng(seed)
+    idx = rng.integers(0, base.N, 2 * N_WITNESS)
+    starts = sample._perturbed(target, rng, base.Q[idx], 0.05)
+    T = rng.uniform(0.0, 2.0, len(idx))  # the projection moves t too where the rows depend on it (a driver)
+    Q, T, ok = sample._project(target, starts, T, steps=10)
+    Q, T = sample._regular(target, Q[ok], T[ok])
+    if len(Q) < 2:
+        return None
+    Q, T = Q[:N_WITNESS], T[:N_WITNESS]
+    return sample.Samples(Q, sample._velocities(target, Q, T, rng), T, on_manifold=True)
+
+
+def _where(target, s, i, names):
+    from .diagnose import _where as where
+
+    text = where(target, s.Q[i], names)
+    if target.time_dependent or names == []:
+        text = f"{text}, t = {s.T[i]:.6g}" if text else f"t = {s.T[i]:.6g}"
+    return text
+
+
+def _names_of(target, k):
+    c = target.owner(k)
+    ncoord = len(target.mech.COORDS)
+    return [target.names[ncoord * (b.number - 1) + i] for b in c.bodies for i in range(ncoord)]
+
+
+def _reject(target, r, s, i, quantity):
+    r.status, r.code, r.score, r.how = "wrong", "only_at_samples", 0.0, "multiple"
+    r.detail = Msg("d.only_at_samples", ref=target.label(r.ref), where=_where(target, s, i, _names_of(target, r.ref)))
+    r.context = M.contexts_of(target.owner(r.ref), quantity) if quantity != "Phi" else \
+        M.contexts_of(target.owner(r.ref))
+
+
+def phi(target, answer, matching, rtol):
+    """Φ rows accepted as a multiple of a reference row, compared again at configurations drawn from the answer's
+    digest (generic ones, as the match compared them)."""
+    rows = [r for r in matching.rows if r.status == "ok" and r.how == "multiple" and r.ref is not None
+            and r.factor is not None]
+    if answer.kind != "symbolic" or not rows:
+        return
+    s = _generic(target, _seed(answer, target))
+    S = answer.values(target, s)[:, :, 0]
+    R = target.evaluate(s)["Phi"]
+    R_G = target.reference("generic")["Phi"]
+    for r in rows:
+        a, b = S[:, r.k], r.factor * R[:, r.ref]
+        if not np.all(np.isfinite(a)):
+            continue  # the row is not defined there (a square root of a negative): its match stands
+        # rounding is zero: a row zero at every sample (pᵀp − 1 on unit p) is ~1e-16 here, its answer too
+        atol = rtol * max(abs(r.factor) * float(np.abs(R_G[:, r.ref]).max()), 1e-9)
+        if scale_match(a, b, rtol, free=False, period=target.wrap.get(r.ref), atol=atol, zeros=True) is None:
+            i = int(np.argmax(np.abs(a - b)))
+            _reject(target, r, s, i, "Phi")
+
+
+def samples(target, answer):
+    """Where a Φ_q, ν or γ answer is compared again: assembled configurations drawn from its digest (velocities
+    consistent, as at the samples), or None (a function, numbers, a target with no assembled samples)."""
+    if answer.kind != "symbolic":
+        return None
+    return _assembled(target, _seed(answer, target))
+
+
+def derived(target, quantity, answer, data, matching, rtol, s):
+    """Φ_q, ν or γ rows accepted as the reference's, compared again at the configurations ``s`` of
+    :func:`samples`."""
+    rows = [r for r in matching.rows if r.status == "ok" and r.how == "multiple" and r.ref is not None
+            and not isinstance(r.ref, tuple)]
+    if s is None or not rows:
+        return
+    V = answer.values(target, s)
+    ref = target.evaluate(s)
+    if quantity == "Phi_q":
+        if data.transposed:
+            V = np.swapaxes(V, 1, 2)
+        S, R = V, ref["Phi_q"][:, :, data.cols]
+    else:
+        S = V[:, :, 0] if V.shape[2] == 1 else V[:, 0, :]
+        R = ref[quantity]
+    scale = max(float(np.abs(data.R).max()), 1e-9)
+    for r in rows:
+        c = 1.0 if r.factor is None else r.factor
+        a, b = S[:, r.k], c * R[:, r.ref]
+        if not np.all(np.isfinite(a)):
+            continue
+        if np.max(np.abs(a - b)) > rtol * max(float(np.abs(a).max()), float(np.abs(b).max())) + rtol * scale:
+            i = int(np.argmax(np.abs(a - b).reshape(len(a), -1).max(axis=1)))
+            _reject(target, r, s, i, quantity)
+            if quantity == "Phi_q":
+                r.entries = tuple("ok" if np.allclose(a[:, j], b[:, j], rtol=rtol, atol=rtol * scale) else
+                                  "only_at_samples" for j in range(a.shape[1]))
