@@ -305,7 +305,8 @@ def _course_parsers(sub):
     p.add_argument("source", type=existing_file, help="instructor source notebook")
     roster(p)
     p.add_argument("--timeout", type=positive, default=_default(validate, "timeout"),
-                   help="wall-clock seconds per notebook (default: %(default)s)")
+                   help="CPU seconds per notebook's kernel; one that waits instead of computing is "
+                   "stopped at 4 times that plus a minute of wall-clock time (default: %(default)s)")
     p.add_argument("--memory", type=positive, default=_default(validate, "memory"),
                    help="megabytes a notebook may allocate (default: %(default)s)")
     p.add_argument("--no-isolation", action="store_true", help="run without the bubblewrap sandbox (audit hook only)")
@@ -360,12 +361,14 @@ def _course_parsers(sub):
 
 def _cmd_grade(args):
     from .classroom import grade
+    from .classroom.results import UNGRADED
 
     def progress(item):
         if isinstance(item, str):
             print(item)
         else:
-            print(f"{item.student:20} {item.status:16} {item.score:g}/{item.max_score:g}  ({item.seconds:.1f} s)"
+            score = "-" if item.status in UNGRADED else f"{item.score:g}"  # not graded: no score, not a 0
+            print(f"{item.student:20} {item.status:16} {score}/{item.max_score:g}  ({item.seconds:.1f} s)"
                   + (f"  {item.message[:100]}" if item.status != "ok" else ""))
 
     results = grade(args.source, args.submissions, args.output, timeout=args.timeout, memory=args.memory,
@@ -478,7 +481,8 @@ def build_parser():
     p.add_argument("-o", "--output", type=output_dir, default=_default(grade, "outdir"),
                    help="output directory (default: %(default)s)")
     p.add_argument("--timeout", type=positive, default=_default(grade, "timeout"),
-                   help="wall-clock seconds per notebook (default: %(default)s)")
+                   help="CPU seconds per notebook's kernel; one that waits instead of computing is "
+                   "stopped at 4 times that plus a minute of wall-clock time (default: %(default)s)")
     p.add_argument("--memory", type=positive, default=_default(grade, "memory"),
                    help="megabytes a notebook may allocate (default: %(default)s)")
     p.add_argument("--jobs", type=count, default=_default(grade, "jobs"),

@@ -50,7 +50,7 @@ from .notebook import (
 from .options import check_options
 from .parts import CHECKS
 from .reference_use import exercise_calls, reference_use
-from .results import STATUSES, PartGrade, Refused, SubmissionResult, worst
+from .results import STATUSES, UNGRADED, PartGrade, Refused, SubmissionResult, worst
 from .sanitize import clean, clean_result
 from .serialize import DecodeError, decode
 from .variant import references, student_parameters
@@ -179,7 +179,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
         Default: from the path (``<student>/<exercise>.ipynb``, ``<exercise>-<student>.ipynb`` or
         ``<student>.ipynb``).
     timeout : float
-        Wall-clock seconds for running the notebook.
+        CPU seconds for running the notebook (the kernel's; a wall-clock backstop stops one that waits).
     memory : float
         Megabytes the notebook may allocate.
     generic : bool
@@ -483,7 +483,8 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     outdir : path
         Receives ``gradebook.sqlite`` and its exports ``grades.csv``, ``totals.csv``, ``feedback/<student>.html``.
     timeout, memory :
-        Per submission: wall-clock seconds and megabytes.
+        Per submission: CPU seconds of the notebook's kernel (a notebook that waits instead of computing is
+        stopped by a wall-clock backstop, :func:`kinbook.classroom.sandbox.protocol.wall_seconds`) and megabytes.
     jobs : int
         Submissions graded in parallel (a process pool). Each grading process keeps one sandbox, whose zygote
         forks a fresh worker and kernel for every submission and resets everything after it.
@@ -588,6 +589,11 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
             write_pages(book, book.outdir / "feedback", touched)
         finally:
             book.close()
+    ungraded = [r.student for r in results if r.status in UNGRADED]
+    if ungraded and progress:
+        progress(f"not graded, through a failure of the grader's, not theirs ({len(ungraded)}; no score recorded): "
+                 + ", ".join(ungraded[:20]) + (" …" if len(ungraded) > 20 else "")
+                 + " — run the same command again to grade them")
     if plan.stale and progress:
         progress(f"graded with the earlier source and not regraded ({len(plan.stale)}; their files were not given): "
                  + ", ".join(plan.stale[:20]) + (" …" if len(plan.stale) > 20 else ""))

@@ -46,7 +46,7 @@ import time
 from pathlib import Path
 
 from .files import atomic_write
-from .results import PartGrade, SubmissionResult
+from .results import UNGRADED, PartGrade, SubmissionResult
 from .sanitize import csv_field
 from .scores import Final, Rule, final
 
@@ -132,6 +132,12 @@ def _utf8(value):
 
 def _now():
     return time.strftime("%Y-%m-%dT%H:%M:%S%z")
+
+
+def _score(row):
+    """A score for the exports: blank for a part or submission the grader could not grade (never a 0 the student
+    did not earn)."""
+    return "" if row.status in UNGRADED else f"{row.score:g}"
 
 
 def write_csv(path, header, rows):
@@ -479,10 +485,10 @@ class Gradebook:
         results = self.results()
         notes = self.notes()
         write_csv(self.outdir / "grades.csv", COLUMNS,
-                  [[r.student, r.exercise, p.part, f"{p.score:g}", f"{p.max_score:g}", p.status, p.message,
+                  [[r.student, r.exercise, p.part, _score(p), f"{p.max_score:g}", p.status, p.message,
                     p.reference] for r in results for p in r.parts])
         write_csv(self.outdir / "totals.csv", TOTALS,
-                  [[r.student, r.exercise, f"{r.score:g}", f"{r.max_score:g}", r.status, r.isolation or "", r.sha256,
+                  [[r.student, r.exercise, _score(r), f"{r.max_score:g}", r.status, r.isolation or "", r.sha256,
                     notes.get((r.exercise, r.student), "")] for r in results])
         last = {e: run for e, run in self.db.execute("SELECT exercise, MAX(run) FROM files GROUP BY exercise")}
         rows = []

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from ..errors import GradingError
 from .files import collect, read_entry
-from .results import Refused, SubmissionResult
+from .results import UNGRADED, Refused, SubmissionResult
 
 __all__ = ["intake", "Intake", "SourceChanged"]
 
@@ -155,7 +155,8 @@ def _decide(book, run, src, e, plan, force, say):
         e.replace = previous[0] if previous is not None else None
         plan.refused.append(e)
         book.record_file(run, ex, e, e.status, e.message, digest)
-    elif previous is not None and previous[1] == src.sha256 and previous[2] != "superseded" and not force:
+    elif (previous is not None and previous[1] == src.sha256 and previous[2] not in ("superseded", *UNGRADED)
+          and not force):
         plan.skipped += 1
         book.record_file(run, ex, e, "skipped", "graded before (same file, same source)", digest)
     else:

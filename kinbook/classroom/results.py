@@ -8,7 +8,8 @@ Statuses (one per part; the submission's status is the worst of them):
 ok                 the answer was read and checked (its score may be anything from 0 to full)
 missing-answer     the variable was not assigned (cell left as released, or it raised before assigning)
 error              the answer is not gradable data (or too large to read), or the kernel died
-timeout            the notebook did not finish within ``timeout`` seconds
+timeout            the notebook used up its ``timeout`` seconds of CPU time (or, waiting instead of computing, did
+                   not finish by the wall-clock backstop)
 memory             the notebook exceeded its memory budget
 tampered           a locked code cell differs from the release (or is missing): not run, 0 points (edited
                    locked text cells are restored from the release instead)
@@ -21,6 +22,9 @@ refused            a symbolic link, hard link, device, FIFO or socket in ``colle
 bad-id             the student id taken from the path is too long: not graded (rename and grade again)
 duplicate-id       two files give the same student under different spellings (ids equal once case and Unicode
                    forms are folded): neither is graded
+grader-error       the grader failed before any code of the notebook ran (a kernel that did not start), each of
+                   the times it tried: not graded and no score (blank in every export, not 0) — the next run
+                   grades it again, without ``--force``
 =================  ==========================================================================================
 
 Entries of ``collected/`` that are not a student's result are listed, not graded (:mod:`.files`): ``ignored``
@@ -33,10 +37,12 @@ from __future__ import annotations
 import html
 from dataclasses import asdict, dataclass, field
 
-__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "Refused", "worst"]
+__all__ = ["STATUSES", "UNGRADED", "PartGrade", "SubmissionResult", "Refused", "worst"]
 
 STATUSES = ("ok", "missing-answer", "error", "timeout", "memory", "tampered", "wrong-release", "corrupt-notebook",
-            "too-large", "refused", "bad-id", "duplicate-id")
+            "too-large", "refused", "bad-id", "duplicate-id", "grader-error")
+#: Statuses of a submission that was not graded through no doing of the student's: no score (blank, not 0).
+UNGRADED = ("grader-error",)
 _SEVERITY = {s: i for i, s in enumerate(STATUSES)}
 
 

@@ -535,6 +535,7 @@ def test_a_cgroup_v2_hierarchy_is_used_where_its_controllers_are_delegated(tmp_p
     with open(os.path.join(d, "memory.events"), "w") as f:
         f.write("low 0\nhigh 0\nmax 3\noom 1\noom_kill 1\n")
     assert group.oom_kills() == 1
+    assert group.memory_events() == (1, 3)  # killed once; held at the limit three times
     (grader / "cgroup.controllers").write_text("cpuset io\n")  # not delegated: said so, and rlimits instead
     group, why = cgroup.create()
     assert group is None and "memory, pids are not available" in why

@@ -29,6 +29,7 @@ from pathlib import Path
 
 from ...errors import GradingError
 from ..gradebook import Gradebook, write_csv
+from ..results import UNGRADED
 
 __all__ = ["export", "FORMATS", "CANVAS_IDS", "MOODLE_IDS"]
 
@@ -108,8 +109,9 @@ def export(gradebook, out, fmt="csv", *, exercises=None, decimals=2, missing="ze
 
 
 def _cell(f, decimals, missing):
-    """A score cell: the final score, or "" for no row (or a missing student with ``missing="blank"``)."""
-    if f is None or (f.status == "missing" and missing == "blank"):
+    """A score cell: the final score, or "" for no row (or a missing student with ``missing="blank"``, or a
+    submission the grader could not grade)."""
+    if f is None or (f.status == "missing" and missing == "blank") or f.status in UNGRADED:
         return ""
     return _number(f.score, decimals)
 
@@ -149,15 +151,17 @@ def _kinbook_csv(out, exercises, finals, students, decimals, missing):
     for s in students:
         row = [s.student, s.display, s.section, s.sis_id, s.lms_id, s.email]
         total = mx = 0.0
+        ungraded = False  # a total with a submission the grader could not grade is no total: blank
         for e in exercises:
             f = finals[e].get(s.student)
             if f is None:
                 row += ["", "", "", "", "", ""]
                 continue
-            blank = f.status == "missing" and missing == "blank"
+            blank = (f.status == "missing" and missing == "blank") or f.status in UNGRADED
             row += ["" if blank else _number(f.score, decimals), _number(f.max_score, decimals), f.status,
                     f.late_days, _number(f.penalty, decimals), ";".join(p for p, _, _, o in f.parts if o)]
             total += f.score
             mx += f.max_score
-        rows.append(row + [_number(total, decimals), _number(mx, decimals)])
+            ungraded = ungraded or f.status in UNGRADED
+        rows.append(row + ["" if ungraded else _number(total, decimals), _number(mx, decimals)])
     return write_csv(Path(out), header, rows)

@@ -41,7 +41,7 @@ import subprocess
 import sys
 
 from ...errors import GradingError
-from .protocol import ISOLATED
+from .protocol import ISOLATED, THREAD_ENV
 
 __all__ = ["IsolationUnavailable", "check", "command", "readonly_dirs", "seccomp_program", "PACKAGE", "SANDBOX_UID",
            "ENV", "DENIED_SYSCALLS"]
@@ -54,8 +54,8 @@ SIZES = {ISOLATED.home: 256 << 20, ISOLATED.tmp: 256 << 20, "/run/kinbook": 32 <
 ENV = {
     "PATH": "/usr/local/bin:/usr/bin:/bin", "LANG": "C.UTF-8", "HOME": ISOLATED.home, "TMPDIR": ISOLATED.tmp,
     "USER": "student", "LOGNAME": "student", "PYTHONDONTWRITEBYTECODE": "1", "MALLOC_ARENA_MAX": "2",
-    "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "MPLBACKEND": "Agg",
-    "MPLCONFIGDIR": ISOLATED.tmp + "/.matplotlib", "PYDEVD_DISABLE_FILE_VALIDATION": "1",
+    "MPLBACKEND": "Agg", "MPLCONFIGDIR": ISOLATED.tmp + "/.matplotlib", "PYDEVD_DISABLE_FILE_VALIDATION": "1",
+    **THREAD_ENV,
 }
 #: The only ``PATH`` bubblewrap (and ``setpriv``) are started with: never the grader's own, which its processes
 #: would otherwise carry, readable in the sandbox's ``/proc``. (``bwrap`` itself is found on the grader's PATH,

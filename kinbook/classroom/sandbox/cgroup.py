@@ -205,6 +205,21 @@ class Cgroup:
             return int(raw) if raw.isdigit() else 0
         return 0
 
+    def memory_events(self):
+        """``(kills, hits)``: processes the out-of-memory killer stopped in the group (:meth:`oom_kills`), and how
+        often its memory reached the limit (v2 ``memory.events`` ``max``, v1 ``memory.failcnt``) — counters of
+        the kernel's, read before and after a run, so that a verdict of memory does not depend on the clock."""
+        if self.version == "v2":
+            hits = 0
+            for line in _read(self._file("memory", "", "memory.events")).splitlines():
+                key, _, value = line.partition(" ")
+                if key == "max" and value.strip().isdigit():
+                    hits = int(value)
+        else:
+            raw = _read(self._file("memory", "memory.failcnt", "")).strip()
+            hits = int(raw) if raw.isdigit() else 0
+        return self.oom_kills(), hits
+
     # -------------------------------------------------------------------------------------------- processes
     def pids(self):
         out = set()

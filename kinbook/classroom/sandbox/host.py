@@ -42,14 +42,30 @@ from dataclasses import dataclass, field
 from ...errors import GradingError
 from . import bwrap
 from . import cgroup as cgroups
-from .protocol import ISOLATED, MAX_RESULT_BYTES, FrameError, FrameReader, Layout, write_frame
+from .protocol import (
+    ISOLATED,
+    MAX_RESULT_BYTES,
+    RUNNING,
+    FrameError,
+    FrameReader,
+    Layout,
+    cpu_seconds,
+    wall_seconds,
+    write_frame,
+)
 
 __all__ = ["Execution", "Sandbox", "SandboxError", "STARTUP_SECONDS", "STATUSES"]
 
 #: Seconds allowed for the zygote's imports (once per sandbox) and for a kernel to start (per submission).
 STARTUP_SECONDS = 60.0
-#: Statuses an execution can have.
-STATUSES = ("ok", "timeout", "memory", "error")
+#: Statuses a worker's result can have.
+WORKER_STATUSES = ("ok", "timeout", "memory", "error")
+#: Statuses an execution can have: the worker's, and ``grader-error`` — the run failed before any code of the
+#: submission ran (a kernel that did not start, a sandbox that stopped), :data:`GRADER_RETRIES` times more after
+#: the first: nothing to grade, and not the student's doing.
+STATUSES = WORKER_STATUSES + ("grader-error",)
+#: Times a run that failed before any code of the submission ran is tried again, each in a new sandbox.
+GRADER_RETRIES = 2
 _MAX_ANSWERS = 100
 _MAX_ERRORS = 200
 #: Memory of the sandbox beyond its zygote's and the notebook's budget: the worker, the launcher and the
@@ -70,8 +86,9 @@ class Execution:
 
     Attributes
     ----------
-    status : {"ok", "timeout", "memory", "error"}
-        "ok": every cell was run (some may have raised) and the answers were read.
+    status : {"ok", "timeout", "memory", "error", "grader-error"}
+        "ok": every cell was run (some may have raised) and the answers were read; "grader-error": the sandbox
+        failed before any code of the submission ran, every time it was tried (:data:`GRADER_RETRIES`).
     message : str
     answers : dict or None
         {name: record or None} as written by :func:`kinbook.classroom.serialize.dumps` (not yet decoded): after
@@ -84,6 +101,11 @@ class Execution:
         The code cell (from 1) at which the run stopped (timeout, memory, a dead kernel), if it did.
     limits : str
         The limits in force (:attr:`Sandbox.limits`).
+    before_code : bool
+        The run ended before the worker said it sends the first cell: nothing of the submission ran, so the
+        failure is the grader's (tried again by :meth:`Sandbox.run`).
+    tries : int
+        How many times the notebook was run (more than 1 after failures of the grader's).
     """
 
     status: str
@@ -93,6 +115,8 @@ class Execution:
     seconds: float = 0.0
     cell: int | None = None
     limits: str = ""
+    before_code: bool = False
+    tries: int = 1
 
 
 def _text(value, limit):
@@ -102,7 +126,7 @@ def _text(value, limit):
 def _validated(header):
     """An :class:`Execution`'s fields from a result frame, every one checked (type, size), or an error."""
     status = header.get("status")
-    if status not in STATUSES:
+    if status not in WORKER_STATUSES:
         return Execution("error", "the sandbox returned a result that is not one (no valid status)")
     answers = header.get("answers")
     if answers is not None:
@@ -399,7 +423,9 @@ class Sandbox:
         names : list of str
             Answer variables to read after each cell (the last reading is the result).
         timeout : float
-            Wall-clock seconds for the cells (kernel start-up not included).
+            CPU seconds the kernel may use (its ``RLIMIT_CPU``: the limit that decides ``timeout``, whatever the
+            machine's load); a notebook that waits instead of computing is stopped by a wall-clock backstop
+            (:func:`~.protocol.wall_seconds`; kernel start-up not included).
         memory_mb : float
             Memory the code may allocate beyond the kernel's own footprint: the kernel's address-space
             limit, and — with a control group — the sandbox's memory beyond what it uses before the run
@@ -417,83 +443,143 @@ class Sandbox:
         import nbformat
 
         t0 = time.monotonic()
-        self.start()
         nb = nbformat.v4.new_notebook()
         nb.cells = [nbformat.v4.new_code_cell(c) for c in cells]
         files = dict(files or {})
         header = {"timeout": float(timeout), "names": list(names), "notebook": nbformat.writes(nb),
                   "files": [[os.path.basename(k), len(v)] for k, v in files.items()]}
         payload = b"".join(files.values())
-        limits = {"memory_mb": float(memory_mb), "cpu_s": int(float(timeout) * 2 + 30), "audit": bool(audit_hook),
-                  "fork": self.cgroup is not None or not self.seccomp}
-        in_force = self.limits
-        try:
-            ex = self._run(header, payload, float(timeout), limits)
-        finally:
-            self._reset()
+        limits = {"memory_mb": float(memory_mb), "cpu_s": cpu_seconds(timeout), "audit": bool(audit_hook)}
+        for tries in range(1, GRADER_RETRIES + 2):
+            if tries > 1:
+                self.close()  # a new sandbox for the next try
+            try:
+                self.start()
+            except SandboxError:
+                if tries <= GRADER_RETRIES:
+                    continue
+                raise  # the sandbox cannot be started any more: nothing can be graded
+            limits["fork"] = self.cgroup is not None or not self.seccomp
+            in_force = self.limits
+            try:
+                ex = self._run(header, payload, float(timeout), limits)
+            finally:
+                self._reset()
+            if not ex.before_code:
+                break
+        if ex.before_code:
+            ex.status, ex.message, ex.answers, ex.cell = "grader-error", (
+                f"the grader could not run the notebook ({tries} tries; the last: {ex.message}) — not the "
+                "submission's doing: grade it again"), None, None
+        ex.tries = tries
         ex.seconds = time.monotonic() - t0
         ex.limits = in_force
         return ex
 
     def _run(self, header, payload, timeout, limits):
+        """One try of :meth:`run`. Before the worker's ``running`` frame, every failure is the grader's
+        (``before_code``); after it, a verdict on the notebook, decided by what the sandbox counted — its control
+        group's out-of-memory kills and memory-limit hits, the kernel's CPU time — before any clock."""
         import select
 
-        kills = 0
+        def grader(message):
+            return Execution("error", message, before_code=True)
+
+        memory = (0, 0)
         if self.cgroup is not None:
-            kills = self.cgroup.oom_kills()
+            memory = self.cgroup.memory_events()
             if not self._set_memory(limits["memory_mb"] + OVERHEAD_MB):
-                return Execution("error", "the sandbox's control group refused the memory limit")
+                return grader("the sandbox's control group refused the memory limit")
         if not self._send("run " + json.dumps(limits)):
-            return Execution("error", "the sandbox stopped before the notebook could be run")
+            return grader("the sandbox stopped before the notebook could be run")
         word = self._event(time.monotonic() + 30)
         if not word.startswith("worker "):
-            return Execution("error", f"the sandbox did not start a worker ({word or 'no answer'})")
+            return grader(f"the sandbox did not start a worker ({word or 'no answer'})")
         try:
             write_frame(self.job_w, header, payload, deadline=time.monotonic() + 30)
         except FrameError as exc:
-            return Execution("error", f"the job could not be handed to the sandbox: {exc}")
-        deadline = time.monotonic() + timeout + STARTUP_SECONDS + 15.0
+            return grader(f"the job could not be handed to the sandbox: {exc}")
+        deadline = time.monotonic() + wall_seconds(timeout) + STARTUP_SECONDS + 15.0
         reader = FrameReader(MAX_RESULT_BYTES)
+        started = [False]
         ended = None
         events = self.evt_r
+
+        def feed(chunks=1):
+            for _ in range(chunks):
+                try:
+                    chunk = os.read(self.result_r, 1 << 16)
+                except BlockingIOError:
+                    return
+                if not chunk:
+                    return
+                reader.push(chunk)
+                take()
+
+        def take():
+            nonlocal reader
+            if reader.frame is not None and not started[0] and reader.frame[0] == {"status": RUNNING}:
+                started[0] = True  # from here on, the submission's code runs
+                rest, reader = reader.rest, FrameReader(MAX_RESULT_BYTES)
+                reader.push(rest)
+
         try:
             while reader.frame is None:
-                if ended is not None:
-                    reader.feed(self.result_r)  # what the worker wrote before it ended
+                if ended is not None:  # what the worker wrote before it ended (bounded: others may write too)
+                    feed(chunks=2 * (MAX_RESULT_BYTES >> 16) + 2)
                     break
                 left = deadline - time.monotonic()
                 if left <= 0:
-                    return Execution("timeout", f"the notebook did not finish within {timeout:g} s")
+                    if not started[0]:
+                        return grader(f"no cell was sent to the kernel within {wall_seconds(timeout) + STARTUP_SECONDS + 15:g} s")
+                    return self._out_of_memory(memory) or Execution(
+                        "timeout", f"the notebook did not finish within {wall_seconds(timeout):g} s")
                 ready, _, _ = select.select([self.result_r, events, self.err_r], [], [], min(left, 1.0))
                 if self.err_r in ready:
                     self._drain()
                 if self.result_r in ready:
-                    reader.feed(self.result_r)
+                    feed()
                 if events in ready or b"\n" in self.events:
                     word = self._event(time.monotonic() + 0.1)
                     if word.startswith(("exit ", "signal ")):
                         ended = word
                     elif word == "" and self.proc.poll() is not None:
-                        return self._out_of_memory(kills) or Execution(
+                        if not started[0]:
+                            return grader("the sandbox stopped before the notebook's first cell")
+                        return self._out_of_memory(memory) or Execution(
                             "error", "the sandbox stopped while running the notebook")
         except FrameError as exc:
+            if not started[0]:
+                return grader(f"the sandbox returned an unreadable result: {exc}")
             return Execution("error", f"the sandbox returned an unreadable result: {exc}")
+        if not started[0]:  # whatever the worker said: nothing of the submission ran
+            said = _validated(reader.frame[0]).message if reader.frame is not None else f"it ended: {ended}"
+            return grader(said or "the kernel did not start")
         if reader.frame is None:
-            return self._out_of_memory(kills) or Execution(
+            return self._out_of_memory(memory) or Execution(
                 "error", f"the grading worker stopped without a result ({ended})")
         ex = _validated(reader.frame[0])
-        oom = self._out_of_memory(kills)
-        if oom is not None and ex.status in ("ok", "error"):
-            # a process of the notebook was killed at the memory limit: the kernel itself (the answers read
-            # before it are kept), or a child it forked (the run went on, without what the child held)
+        oom = self._out_of_memory(memory, reached=ex.status == "timeout")
+        if oom is not None and ex.status in ("ok", "error", "timeout"):
+            # a process of the notebook was killed at the memory limit: the kernel itself (the answers read before
+            # it are kept) or a child it forked (the run went on, without what the child held); or the notebook,
+            # held at the limit, ran out of time there — memory, at any speed of the machine
             ex.status, ex.message = "memory", oom.message
         return ex
 
-    def _out_of_memory(self, before):
-        """An Execution "memory" when the control group's out-of-memory killer struck since ``before``."""
-        if self.cgroup is not None and self.cgroup.oom_kills() > before:
+    def _out_of_memory(self, before, reached=True):
+        """An Execution "memory" when the control group's out-of-memory killer struck since ``before``
+        (:meth:`~.cgroup.Cgroup.memory_events`), or — with ``reached``, for a run that did not finish — its memory
+        limit was reached."""
+        if self.cgroup is None:
+            return None
+        kills, hits = self.cgroup.memory_events()
+        if kills > before[0]:
             return Execution("memory", "the notebook went over its memory limit (a process was stopped by the "
                                        "sandbox's control group)")
+        if reached and hits > before[1]:
+            return Execution("memory", "the notebook reached its memory limit (the sandbox's control group held it "
+                                       "there)")
         return None
 
     def _reset(self):

@@ -2,8 +2,9 @@
 
 The zygote did the imports once (:func:`preload`: the scientific stack and kinbook, so that imports do not
 count against the limits below and read no file once the audit hook is on). In each forked kernel, the zygote
-first sets its environment (its own, fixed), directory, CPU time (``RLIMIT_CPU``, a backstop to the wall-clock
-timeout), file size, open files and processes, and — where no control group holds the sandbox together — a
+first sets its environment (its own, fixed), directory, CPU time (``RLIMIT_CPU``: the run's timeout, which decides
+the verdict; the worker's wall clock is only a backstop), file size, open files and processes, and — where no
+control group holds the sandbox together — a
 seccomp filter that lets it start threads but no process. Then :func:`main`:
 
 1. initializes ipykernel (reads the connection file, binds its ZeroMQ sockets);

@@ -15,7 +15,9 @@ Channels between the grading process (outside) and the sandbox (inside)
         one job frame per ``run``, read by that run's worker only — the zygote never reads it, so no
         submission ever enters the zygote's memory (which every later kernel would inherit);
     descriptor :data:`RESULT_FD` (write end, inside)
-        one result frame per run, written by the worker. The grading process reads at most
+        per run, a ``{"status": "running"}`` frame, written by the worker just before it sends the first cell
+        to the kernel (a run that ends without it ran no code of the submission: its failure is the grader's,
+        and the run is tried again), then one result frame, written by the worker. The grading process reads at most
         :data:`MAX_RESULT_BYTES` of it and treats it as untrusted data (:func:`kinbook.classroom.sandbox.host`
         validates every field).
 
@@ -31,8 +33,9 @@ import select
 import time
 from dataclasses import asdict, dataclass
 
-__all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "FrameError", "write_frame",
-           "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper"]
+__all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "RUNNING", "FrameError",
+           "write_frame", "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper",
+           "cpu_seconds", "wall_seconds", "THREAD_ENV"]
 
 JOB_FD = 3
 RESULT_FD = 4
@@ -41,6 +44,30 @@ MAX_JOB_BYTES = 40 * 1024 * 1024
 #: The answers (at most 2 MB each, 100 of them in principle; far less in practice) and cell errors.
 MAX_RESULT_BYTES = 16 * 1024 * 1024
 _MAGIC = b"KBF1"
+#: Thread pools of the numerical libraries, pinned to one thread in every process of the sandbox, in every mode: a
+#: pool sized by the machine's cores (dozens on a server) would take a kernel past its control group's task
+#: limit (:data:`kinbook.classroom.sandbox.cgroup.PIDS_MAX`) as it starts, and the sandbox has one CPU anyway.
+THREAD_ENV = {name: "1" for name in (
+    "OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS",
+    "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS", "NUMEXPR_MAX_THREADS", "NUMBA_NUM_THREADS",
+    "RAYON_NUM_THREADS", "TBB_NUM_THREADS")}
+#: The status of the worker's first frame: the kernel is up and the first cell is about to be sent.
+RUNNING = "running"
+
+
+def cpu_seconds(timeout):
+    """The kernel's CPU-time limit (``RLIMIT_CPU``) for a run limited to ``timeout`` seconds: the limit that
+    decides a verdict of ``timeout``, the same on a quiet machine and a loaded one."""
+    import math
+
+    return max(1, math.ceil(float(timeout)))
+
+
+def wall_seconds(timeout):
+    """The wall-clock backstop of a run limited to ``timeout`` CPU seconds: it stops a notebook that waits
+    (sleeps, blocks) instead of computing, and is far enough beyond the CPU limit that a notebook that computes
+    meets that limit first, unless the machine is loaded many times over."""
+    return 4.0 * float(timeout) + 60.0
 
 
 @dataclass(frozen=True)
@@ -115,7 +142,8 @@ class FrameReader:
     """Incremental reader of one frame from a (non-blocking) descriptor, with a size bound.
 
     Feed it with :meth:`feed` whenever the descriptor is readable; :attr:`frame` is ``(header, payload)``
-    once complete. More than ``limit`` bytes, or a malformed prefix, raise :class:`FrameError`.
+    once complete, and :attr:`rest` what followed it. More than ``limit`` bytes, or a malformed prefix, raise
+    :class:`FrameError`.
     """
 
     def __init__(self, limit):
@@ -123,6 +151,7 @@ class FrameReader:
         self.buf = bytearray()
         self.need = None  # (header bytes, payload bytes) once the prefix line is read
         self.frame = None
+        self.rest = b""  # what came after the frame (bounded by ``limit``)
         self.eof = False
 
     def feed(self, fd):
@@ -134,8 +163,15 @@ class FrameReader:
         if not chunk:
             self.eof = True
             return False
+        self.push(chunk)
+        return True
+
+    def push(self, chunk):
+        """Take bytes (read from the descriptor, or what followed the previous frame)."""
         if self.frame is not None:
-            return True  # anything after the frame is ignored (and drained)
+            if len(self.rest) <= self.limit:  # kept for a reader of the next frame; else drained and ignored
+                self.rest += chunk
+            return
         self.buf += chunk
         if len(self.buf) > self.limit + 64:
             raise FrameError(f"more than {self.limit // 2**20} MB")
@@ -144,7 +180,7 @@ class FrameReader:
             if end < 0:
                 if len(self.buf) >= 64:
                     raise FrameError("no frame header")
-                return True
+                return
             parts = bytes(self.buf[:end]).split(b" ")
             if len(parts) != 3 or parts[0] != _MAGIC or not parts[1].isdigit() or not parts[2].isdigit():
                 raise FrameError("no frame header")
@@ -161,8 +197,8 @@ class FrameReader:
             if not isinstance(header, dict):
                 raise FrameError("the frame header is not an object")
             self.frame = (header, bytes(self.buf[h:h + p]))
+            self.rest = bytes(self.buf[h + p:])
             self.buf = bytearray()
-        return True
 
 
 def read_frame(fd, limit, timeout=None):

@@ -8,13 +8,16 @@ worker:
 2. starts a kernel through jupyter_client with a kernelspec whose command is the launcher (:mod:`.launch`),
    to which it hands the launch channel: the zygote forks the kernel (:mod:`.kernel`), which has its limits
    and the audit hook before any cell;
-3. runs the cells with the wall-clock timeout (kernel start-up not counted) and, after each one, takes a
+3. runs the cells — the kernel stopped by its CPU-time limit (``SIGXCPU``: the verdict ``timeout``), a notebook
+   that waits instead of computing by a wall-clock backstop (kernel start-up not counted) — and, after each one,
+   takes a
    *snapshot* of the named answers (a silent request whose reply carries them as JSON:
    :func:`kinbook.classroom.serialize.dumps`): when a later cell times out, runs out of memory or kills the
    kernel, the answers produced before it are still there to grade. Output is not kept (the grader reads
    answers, not output): only each cell's exception, if any;
 4. writes one result frame (status, message, the failing cell, answers, cell errors) to the result descriptor
-   and exits.
+   and exits. (Before the first cell it writes a ``running`` frame there: a run that fails before it — a kernel
+   that did not start — ran nothing of the submission, and the grading process tries it again.)
 
 The worker runs as the student's kernel does (same user, same sandbox), so a student who got past the audit
 hook could tamper with it: the grading process treats its result as untrusted, bounded data (:mod:`.host`),
@@ -32,7 +35,7 @@ import sys
 import time
 from pathlib import Path
 
-from .protocol import MAX_JOB_BYTES, FrameError, read_frame, write_frame
+from .protocol import MAX_JOB_BYTES, RUNNING, FrameError, read_frame, wall_seconds, write_frame
 
 __all__ = ["main", "preload", "STARTUP_SECONDS", "MAX_ANSWER_CHARS", "SNAPSHOT_CHARS"]
 
@@ -99,7 +102,7 @@ def main(layout, job_fd, result_fd, channel_fd, limits):
         os.close(job_fd)
     for name, data in files.items():
         Path(layout.home, name).write_bytes(data)
-    result = run(job, layout, channel_fd)
+    result = run(job, layout, channel_fd, started=lambda: write_frame(result_fd, {"status": RUNNING}))
     write_frame(result_fd, result)
 
 
@@ -117,9 +120,9 @@ def _client_class():
     return Client
 
 
-def run(job, layout, channel_fd):
+def run(job, layout, channel_fd, started=None):
     """Run the job's notebook (``job["notebook"]``: nbformat JSON, code cells only) and read its answers;
-    returns the result."""
+    returns the result. ``started`` is called once the kernel is up, before the first cell is sent to it."""
     import nbformat
     from jupyter_client import AsyncKernelManager
     from jupyter_client.kernelspec import KernelSpecManager
@@ -131,11 +134,13 @@ def run(job, layout, channel_fd):
     ksm = KernelSpecManager(kernel_dirs=[str(_kernel_spec_dir(layout, channel_fd))])
     km = AsyncKernelManager(kernel_name=KERNEL_NAME, kernel_spec_manager=ksm)
     km.connection_file = layout.connection_file
-    timeout = float(job["timeout"])
+    timeout = float(job["timeout"])  # the kernel's CPU seconds (its RLIMIT_CPU, set by the zygote)
+    wall = wall_seconds(timeout)       # the backstop for a notebook that waits instead of computing
     deadline = [None]
+    late = f"the notebook did not finish within {wall:g} s (the wall-clock limit beside its {timeout:g} s of CPU time)"
 
     def left():
-        return timeout if deadline[0] is None else max(0.5, deadline[0] - time.monotonic())
+        return wall if deadline[0] is None else max(0.5, deadline[0] - time.monotonic())
 
     client = _client_class()(nb, km=km, timeout_func=lambda cell: left(), allow_errors=True,
                              startup_timeout=STARTUP_SECONDS, kernel_name=KERNEL_NAME, record_timing=False,
@@ -149,8 +154,10 @@ def run(job, layout, channel_fd):
         with client.setup_kernel(env=dict(os.environ), cwd=layout.home, pass_fds=(channel_fd,),
                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL):
             os.close(channel_fd)  # the launcher holds it now; the kernel never does
-            deadline[0] = time.monotonic() + timeout
+            deadline[0] = time.monotonic() + wall
             index = -1
+            if started is not None:
+                started()  # no code of the submission has run before this
             try:
                 for index, cell in enumerate(nb.cells):
                     client.execute_cell(cell, index)
@@ -159,19 +166,17 @@ def run(job, layout, channel_fd):
                                       cell=index + 1)
                         break
                     if not run_sync(snapshot.take)(client, left()):
-                        result.update(status="timeout", message=f"the notebook did not finish within {timeout:g} s",
-                                      cell=index + 1)
+                        result.update(status="timeout", message=late, cell=index + 1)
                         break
                 else:
                     result["status"] = "ok"
             except CellTimeoutError:
-                result.update(status="timeout", message=f"the notebook did not finish within {timeout:g} s",
-                              cell=index + 1)
+                result.update(status="timeout", message=late, cell=index + 1)
             except DeadKernelError:
                 code = km.provisioner.process.poll() if getattr(km, "provisioner", None) else None
                 result["cell"] = index + 1
                 if code is not None and code < 0 and -code == signal.SIGXCPU:
-                    result.update(status="timeout", message="the notebook used up its CPU time")
+                    result.update(status="timeout", message=f"the notebook used up its CPU time ({timeout:g} s)")
                 elif code is not None and code < 0 and -code == signal.SIGKILL and _memory_errors(nb):
                     result.update(status="memory", message="the notebook ran out of memory")
                 else:

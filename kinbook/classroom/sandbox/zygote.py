@@ -51,7 +51,7 @@ import sys
 import time
 import traceback
 
-from .protocol import Layout, die_with_parent, set_child_subreaper, set_dumpable
+from .protocol import THREAD_ENV, Layout, die_with_parent, set_child_subreaper, set_dumpable
 
 __all__ = ["serve", "kernel_environment", "MAX_ENTRIES", "NPROC", "NOFILE"]
 
@@ -76,6 +76,7 @@ def kernel_environment(layout):
     """The kernel's environment: the zygote's own (the sandbox's fixed one, never a request's) and its
     directories."""
     env = dict(_BASE_ENV or os.environ)
+    env.update(THREAD_ENV)  # whatever the zygote was started with
     env.update({"HOME": layout.home, "TMPDIR": layout.tmp, "IPYTHONDIR": os.path.join(layout.tmp, ".ipython"),
                 "MPLCONFIGDIR": os.path.join(layout.tmp, ".matplotlib"), "JUPYTER_RUNTIME_DIR": layout.work,
                 "KINBOOK_SANDBOX_ROOT": layout.home, "KINBOOK_SANDBOX_TMP": layout.tmp})
@@ -563,6 +564,7 @@ class _Lifeline:
 
 def main(argv):
     _BASE_ENV.update(os.environ)  # the sandbox's fixed environment, before any import adds to it
+    os.environ.update(THREAD_ENV)  # (the grading process gave them; libraries imported from here on read them)
     layout = Layout.from_json(argv[0])
     job_fd, result_fd = int(argv[1]), int(argv[2])
     # commands in, events out: pipes passed as descriptors of their own, made this process's 0 and 1
