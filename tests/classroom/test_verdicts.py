@@ -6,6 +6,7 @@
 * ``timeout`` is decided by the kernel's CPU time, ``memory`` by the control group's counters (out-of-memory kills,
   the limit reached) before any clock: a notebook held at its memory limit until it runs out of time is
   ``memory`` on a quiet machine and on a loaded one.
+* The kernel's ZeroMQ sockets are Unix sockets in the run's own directory, never TCP ports of the host.
 * The numerical libraries' thread pools are pinned to one thread in every mode, whatever the grader's environment
   says: a pool sized by a server's cores would take a kernel past the sandbox's task limit as it starts.
 """
@@ -162,7 +163,9 @@ a = np.random.default_rng(0).random((400, 400))
 for _ in range(5):
     a = a @ a / 400                                  # BLAS, with as many threads as it was allowed
 tasks = len(os.listdir('/proc/self/task'))
-probe = json.dumps({"env": {k: os.environ.get(k) for k in %r}, "tasks": tasks})
+connection = json.load(open(os.environ['JUPYTER_RUNTIME_DIR'] + '/connection.json'))
+probe = json.dumps({"env": {k: os.environ.get(k) for k in %r}, "tasks": tasks,
+                    "transport": connection["transport"], "ip": connection["ip"]})
 """ % (sorted(THREAD_ENV),)
 
 
@@ -178,5 +181,9 @@ def test_thread_pools_are_pinned_whatever_the_graders_environment(isolation, mon
     assert ex.status == "ok", ex
     probe = json.loads(ex.answers["probe"]["data"][0][1])
     assert probe["env"] == {k: "1" for k in THREAD_ENV}
-    assert probe["tasks"] <= PIDS_MAX // 4, probe   # ipykernel's own threads (about 8), no pool per core
+    assert probe["tasks"] <= PIDS_MAX // 4, probe   # ipykernel's own threads (11 or 12), no pool per core
+    # the kernel's sockets are Unix sockets in the run's own directory: no TCP port of the host that another
+    # process could take between the worker choosing it and the kernel binding it (a kernel "died before replying
+    # to kernel_info" that way, without bubblewrap, on a busy machine)
+    assert probe["transport"] == "ipc" and probe["ip"].startswith(sb.layout.work + "/"), probe
 

@@ -132,7 +132,11 @@ def run(job, layout, channel_fd, started=None):
     nb = nbformat.reads(job["notebook"], as_version=4)
     names = list(job["names"])
     ksm = KernelSpecManager(kernel_dirs=[str(_kernel_spec_dir(layout, channel_fd))])
-    km = AsyncKernelManager(kernel_name=KERNEL_NAME, kernel_spec_manager=ksm)
+    # the kernel's ZeroMQ sockets are Unix sockets in the run's own control directory, not TCP ports: ports chosen
+    # here and bound by the kernel later could be taken meanwhile by any process of the host (without bubblewrap,
+    # on a busy machine: the kernel then died before it answered kernel_info)
+    km = AsyncKernelManager(kernel_name=KERNEL_NAME, kernel_spec_manager=ksm, transport="ipc",
+                            ip=os.path.join(layout.work, "kernel"))
     km.connection_file = layout.connection_file
     timeout = float(job["timeout"])  # the kernel's CPU seconds (its RLIMIT_CPU, set by the zygote)
     wall = wall_seconds(timeout)       # the backstop for a notebook that waits instead of computing
