@@ -50,7 +50,7 @@ from .notebook import (
 from .options import check_options
 from .parts import CHECKS
 from .reference_use import exercise_calls, reference_use
-from .results import STATUSES, UNGRADED, PartGrade, Refused, SubmissionResult, worst
+from .results import STATUSES, PartGrade, Refused, SubmissionResult, ungraded_notice, worst
 from .sanitize import clean, clean_result
 from .serialize import DecodeError, decode
 from .variant import references, student_parameters
@@ -589,11 +589,8 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
             write_pages(book, book.outdir / "feedback", touched)
         finally:
             book.close()
-    ungraded = [r.student for r in results if r.status in UNGRADED]
-    if ungraded and progress:
-        progress(f"not graded, through a failure of the grader's, not theirs ({len(ungraded)}; no score recorded): "
-                 + ", ".join(ungraded[:20]) + (" …" if len(ungraded) > 20 else "")
-                 + " — run the same command again to grade them")
+    if progress and ungraded_notice(results):
+        progress(ungraded_notice(results))
     if plan.stale and progress:
         progress(f"graded with the earlier source and not regraded ({len(plan.stale)}; their files were not given): "
                  + ", ".join(plan.stale[:20]) + (" …" if len(plan.stale) > 20 else ""))

@@ -37,7 +37,7 @@ from __future__ import annotations
 import html
 from dataclasses import asdict, dataclass, field
 
-__all__ = ["STATUSES", "UNGRADED", "PartGrade", "SubmissionResult", "Refused", "worst"]
+__all__ = ["STATUSES", "UNGRADED", "ungraded_notice", "PartGrade", "SubmissionResult", "Refused", "worst"]
 
 STATUSES = ("ok", "missing-answer", "error", "timeout", "memory", "tampered", "wrong-release", "corrupt-notebook",
             "too-large", "refused", "bad-id", "duplicate-id", "grader-error")
@@ -53,6 +53,16 @@ class Refused(Exception):
     def __init__(self, status, message):
         super().__init__(message)
         self.status, self.message = status, message
+
+
+def ungraded_notice(results):
+    """The line saying which of ``results`` the grader could not grade (:data:`UNGRADED`), or ""."""
+    ungraded = [r.student for r in results if r.status in UNGRADED]
+    if not ungraded:
+        return ""
+    return (f"not graded, through a failure of the grader's, not theirs ({len(ungraded)}; no score recorded): "
+            + ", ".join(ungraded[:20]) + (" …" if len(ungraded) > 20 else "") + " — run the same command again "
+            "to grade them")
 
 
 def worst(statuses, default="ok"):

@@ -12,7 +12,15 @@ One :class:`Sandbox` serves one grading process: it starts the zygote (:mod:`.zy
    (:func:`_validated`): the result is data written by a process in the student's reach;
 4. sends ``reset``: the zygote kills everything the run started (in bubblewrap, every process of the pid
    namespace but itself — a ``setsid`` daemon included) and empties the writable directories. If it does not
-   answer ``clean`` in time, the whole sandbox is killed and the next run starts a new one.
+   answer ``clean`` in time, the whole sandbox is killed and the next run starts a new one;
+5. when the run ended before the worker's ``running`` frame (written just before the first cell is sent to the
+   kernel: nothing of the submission ran — a kernel that died as it started, a sandbox that stopped), tries it
+   again in a new sandbox, :data:`GRADER_RETRIES` times at most, then says ``grader-error``: not the student's
+   doing, and no verdict on the notebook.
+
+Verdicts come from what the sandbox counted before any clock: the kernel's CPU time (its ``RLIMIT_CPU`` is the
+run's timeout), the control group's out-of-memory kills and memory-limit hits; the wall clock is a backstop for
+a notebook that waits instead of computing (:func:`~.protocol.wall_seconds`).
 
 Killing the sandbox: the zygote's process group (the outermost ``bwrap`` with ``--die-with-parent`` at every
 level; without bubblewrap the zygote itself, whose children die with it), and every process left in its
@@ -480,85 +488,36 @@ class Sandbox:
         """One try of :meth:`run`. Before the worker's ``running`` frame, every failure is the grader's
         (``before_code``); after it, a verdict on the notebook, decided by what the sandbox counted — its control
         group's out-of-memory kills and memory-limit hits, the kernel's CPU time — before any clock."""
-        import select
-
-        def grader(message):
-            return Execution("error", message, before_code=True)
-
         memory = (0, 0)
         if self.cgroup is not None:
             memory = self.cgroup.memory_events()
             if not self._set_memory(limits["memory_mb"] + OVERHEAD_MB):
-                return grader("the sandbox's control group refused the memory limit")
+                return _grader("the sandbox's control group refused the memory limit")
         if not self._send("run " + json.dumps(limits)):
-            return grader("the sandbox stopped before the notebook could be run")
+            return _grader("the sandbox stopped before the notebook could be run")
         word = self._event(time.monotonic() + 30)
         if not word.startswith("worker "):
-            return grader(f"the sandbox did not start a worker ({word or 'no answer'})")
+            return _grader(f"the sandbox did not start a worker ({word or 'no answer'})")
         try:
             write_frame(self.job_w, header, payload, deadline=time.monotonic() + 30)
         except FrameError as exc:
-            return grader(f"the job could not be handed to the sandbox: {exc}")
-        deadline = time.monotonic() + wall_seconds(timeout) + STARTUP_SECONDS + 15.0
-        reader = FrameReader(MAX_RESULT_BYTES)
-        started = [False]
-        ended = None
-        events = self.evt_r
-
-        def feed(chunks=1):
-            for _ in range(chunks):
-                try:
-                    chunk = os.read(self.result_r, 1 << 16)
-                except BlockingIOError:
-                    return
-                if not chunk:
-                    return
-                reader.push(chunk)
-                take()
-
-        def take():
-            nonlocal reader
-            if reader.frame is not None and not started[0] and reader.frame[0] == {"status": RUNNING}:
-                started[0] = True  # from here on, the submission's code runs
-                rest, reader = reader.rest, FrameReader(MAX_RESULT_BYTES)
-                reader.push(rest)
-
+            return _grader(f"the job could not be handed to the sandbox: {exc}")
+        reading = _ResultReader(self.result_r)
         try:
-            while reader.frame is None:
-                if ended is not None:  # what the worker wrote before it ended (bounded: others may write too)
-                    feed(chunks=2 * (MAX_RESULT_BYTES >> 16) + 2)
-                    break
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    if not started[0]:
-                        return grader(f"no cell was sent to the kernel within {wall_seconds(timeout) + STARTUP_SECONDS + 15:g} s")
-                    return self._out_of_memory(memory) or Execution(
-                        "timeout", f"the notebook did not finish within {wall_seconds(timeout):g} s")
-                ready, _, _ = select.select([self.result_r, events, self.err_r], [], [], min(left, 1.0))
-                if self.err_r in ready:
-                    self._drain()
-                if self.result_r in ready:
-                    feed()
-                if events in ready or b"\n" in self.events:
-                    word = self._event(time.monotonic() + 0.1)
-                    if word.startswith(("exit ", "signal ")):
-                        ended = word
-                    elif word == "" and self.proc.poll() is not None:
-                        if not started[0]:
-                            return grader("the sandbox stopped before the notebook's first cell")
-                        return self._out_of_memory(memory) or Execution(
-                            "error", "the sandbox stopped while running the notebook")
+            ended, early = self._wait(reading, timeout, memory)
         except FrameError as exc:
-            if not started[0]:
-                return grader(f"the sandbox returned an unreadable result: {exc}")
-            return Execution("error", f"the sandbox returned an unreadable result: {exc}")
-        if not started[0]:  # whatever the worker said: nothing of the submission ran
-            said = _validated(reader.frame[0]).message if reader.frame is not None else f"it ended: {ended}"
-            return grader(said or "the kernel did not start")
-        if reader.frame is None:
+            return (Execution if reading.started else _grader)(
+                "error", f"the sandbox returned an unreadable result: {exc}")
+        if early is not None:
+            return early
+        frame = reading.reader.frame
+        if not reading.started:  # whatever the worker said: nothing of the submission ran
+            said = _validated(frame[0]).message if frame is not None else f"it ended: {ended}"
+            return _grader(said or "the kernel did not start")
+        if frame is None:
             return self._out_of_memory(memory) or Execution(
                 "error", f"the grading worker stopped without a result ({ended})")
-        ex = _validated(reader.frame[0])
+        ex = _validated(frame[0])
         oom = self._out_of_memory(memory, reached=ex.status == "timeout")
         if oom is not None and ex.status in ("ok", "error", "timeout"):
             # a process of the notebook was killed at the memory limit: the kernel itself (the answers read before
@@ -566,6 +525,40 @@ class Sandbox:
             # held at the limit, ran out of time there — memory, at any speed of the machine
             ex.status, ex.message = "memory", oom.message
         return ex
+
+    def _wait(self, reading, timeout, memory):
+        """Read the worker's frames until its result, its end, or the backstop: ``(ended, early)`` — the worker's
+        end event (or None), and an Execution when the run is decided without a result."""
+        import select
+
+        wall = wall_seconds(timeout)
+        deadline = time.monotonic() + wall + STARTUP_SECONDS + 15.0
+        ended = None
+        while reading.reader.frame is None:
+            if ended is not None:  # what the worker wrote before it ended (bounded: others may write too)
+                reading.feed(chunks=2 * (MAX_RESULT_BYTES >> 16) + 2)
+                break
+            left = deadline - time.monotonic()
+            if left <= 0:
+                if not reading.started:
+                    return ended, _grader(f"no cell was sent to the kernel within {wall + STARTUP_SECONDS + 15:g} s")
+                return ended, self._out_of_memory(memory) or Execution(
+                    "timeout", f"the notebook did not finish within {wall:g} s")
+            ready, _, _ = select.select([self.result_r, self.evt_r, self.err_r], [], [], min(left, 1.0))
+            if self.err_r in ready:
+                self._drain()
+            if self.result_r in ready:
+                reading.feed()
+            if self.evt_r in ready or b"\n" in self.events:
+                word = self._event(time.monotonic() + 0.1)
+                if word.startswith(("exit ", "signal ")):
+                    ended = word
+                elif word == "" and self.proc.poll() is not None:
+                    if not reading.started:
+                        return ended, _grader("the sandbox stopped before the notebook's first cell")
+                    return ended, self._out_of_memory(memory) or Execution(
+                        "error", "the sandbox stopped while running the notebook")
+        return ended, None
 
     def _out_of_memory(self, before, reached=True):
         """An Execution "memory" when the control group's out-of-memory killer struck since ``before``
@@ -603,6 +596,36 @@ class Sandbox:
         self._drain()
         if not ok:
             self.close()
+
+
+def _grader(*args):
+    """An Execution that failed before any code of the submission ran (``message``, or ``status, message``)."""
+    status, message = args if len(args) == 2 else ("error", args[0])
+    return Execution(status, message, before_code=True)
+
+
+class _ResultReader:
+    """The worker's frames on the result pipe: its ``running`` frame (:attr:`started`), then its result
+    (``reader.frame``)."""
+
+    def __init__(self, fd):
+        self.fd = fd
+        self.reader = FrameReader(MAX_RESULT_BYTES)
+        self.started = False
+
+    def feed(self, chunks=1):
+        for _ in range(chunks):
+            try:
+                chunk = os.read(self.fd, 1 << 16)
+            except BlockingIOError:
+                return
+            if not chunk:
+                return
+            self.reader.push(chunk)
+            if self.reader.frame is not None and not self.started and self.reader.frame[0] == {"status": RUNNING}:
+                self.started = True  # from here on, the submission's code runs
+                rest, self.reader = self.reader.rest, FrameReader(MAX_RESULT_BYTES)
+                self.reader.push(rest)
 
 
 def bwrap_text(data):
