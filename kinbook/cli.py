@@ -195,7 +195,7 @@ def _cmd_variant(args):
     roster = read_roster(args.roster, args.roster_id)
     t0 = time.perf_counter()
     written = write_variants(args.source, [s.student for s in roster], args.output)
-    print(f"wrote {len(written)} variant(s) into {args.output}/ in {time.perf_counter() - t0:.1f} s")
+    print(f"wrote {len(written)} variant(s) into {os.path.join(args.output, '')} in {time.perf_counter() - t0:.1f} s")
 
 
 # ---------------------------------------------------------------------------------------------- the course
@@ -254,7 +254,7 @@ def _cmd_feedback(args):
     from .classroom.feedback import feedback
 
     written = feedback(args.gradebook, args.out)
-    print(f"wrote {len(written)} page(s) into {args.out}/ (one folder per student)")
+    print(f"wrote {len(written)} page(s) into {os.path.join(args.out, '')} (one folder per student)")
 
 
 def header_arg(text):
@@ -377,6 +377,16 @@ def _cmd_grade(args):
     out = args.output.rstrip("/") or "."
     print(f"graded {len(results)} submission(s); gradebook {out}/gradebook.sqlite (grades.csv, totals.csv; every "
           f"file and what became of it in collection.csv), feedback in {out}/feedback/")
+    if results:  # the scores above are the grader's: say which instructor's decisions still stand on them
+        from .classroom.gradebook import Gradebook
+
+        with Gradebook(args.output) as book:
+            kept = book.overrides(results[0].exercise)
+        kept = [f"{s} {p} = {score:g}" for r in results for (_, s), parts in kept.items() if s == r.student
+                for p, (score, _) in sorted(parts.items())]
+        if kept:
+            print(f"overrides kept (the scores above are the grader's; export, report and feedback apply them): "
+                  f"{', '.join(kept)}")
 
 
 def _course_options(args):

@@ -313,6 +313,8 @@ def test_copying_signals_say_what_is_identical(term):
 def test_the_override_survives_the_force_regrade(term):
     course = term["course"]
     assert re.findall(r"graded (\d+) submission", term["out"])[-1] == "1"      # the --force regrade of s05
+    assert "overrides kept (the scores above are the grader's; export, report and feedback apply them): s05 " \
+           "revolute_OA = 3" in term["out"]                                   # and it says the override stands
     import sqlite3
 
     db = sqlite3.connect(course / "graded" / "gradebook.sqlite")
