@@ -240,6 +240,16 @@ def test_every_student_is_graded_and_every_file_listed(term):
     assert re.search(r"\d+ entries found: \d+ gradable, 2 ignored, 1 superseded — \d+ to grade now", term["out"])
 
 
+def why(course, got, want, student_of):
+    """For a failed cell-by-cell comparison: what the gradebook says of the students whose rows differ."""
+    students = {student_of(w) for g, w in zip(got, want) if g != w}
+    rows = []
+    for name in ("totals.csv", "grades.csv"):
+        rows += [dict(r) for r in csv.DictReader(open(course / "graded" / name, encoding="utf-8"))
+                 if r["student"] in students and (name == "totals.csv" or r["status"] != "ok")]
+    return rows
+
+
 def test_canvas_file_cell_by_cell(term):
     course, expected = term["course"], term["expected"]
     got = list(csv.reader(open(course / "canvas-import.csv", encoding="utf-8")))
@@ -248,7 +258,7 @@ def test_canvas_file_cell_by_cell(term):
     for k, s in enumerate(IDS):
         want.append([f"Last{s}, First{s}", CANVAS_ID[s], f"S{s[1:]}00", s, f"Section {'AB'[k % 2]}"]
                     + [("0" if s in MISSING[ex] else number(finals(ex, s, expected))) for ex in (EX01, EX11)])
-    assert got == want
+    assert got == want, why(course, got, want, lambda row: row[3])
 
 
 def test_moodle_file_cell_by_cell(term):
@@ -259,7 +269,7 @@ def test_moodle_file_cell_by_cell(term):
     for s in IDS:
         want.append([f"First{s}", f"Last{s}", f"S{s[1:]}00", "", "", ""]
                     + [("0" if s in MISSING[ex] else number(finals(ex, s, expected))) for ex in (EX01, EX11)])
-    assert got == want
+    assert got == want, why(course, got, want, lambda row: row[0].removeprefix("First"))
 
 
 def test_the_report_shows_the_mistakes_planted(term):
