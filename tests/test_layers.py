@@ -40,8 +40,7 @@ PENDING_CIRCLES = {
 """Circles known and being removed in another open branch; the test fails when one of them is gone (strike it)."""
 
 LARGE = {
-    "kinbook/classroom/grade.py:_grade_bytes": "H20's grading of one submission (issue 20)",
-    "kinbook/classroom/grade.py:grade": "the CLI's keyword-only entry (H20/H21, issues 20-21)",
+    "kinbook/classroom/grade.py:grade": "the CLI's keyword-only entry, which H20 is changing (issue 20)",
     "kinbook/classroom/sandbox/kernel.py:_make_hook": "every name the audit hook uses is a closure cell (H20)",
     "kinbook/classroom/sandbox/kernel.py:hook": "the audit hook itself, one closure (H20)",
     "kinbook/grading/jets.py:__call__": "the tape interpreter's one dispatch (H22, issue 22)",

@@ -52,7 +52,7 @@ from .parts import CHECKS
 from .reference_use import exercise_calls, reference_use
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, ungraded_notice, worst
 from .sanitize import clean, clean_result
-from .serialize import DecodeError, decode
+from .serialize import decode_answers
 from .variant import references, student_parameters
 
 __all__ = ["STATUSES", "PartGrade", "SubmissionResult", "grade_submission", "grade", "NO_ISOLATION_WARNING"]
@@ -275,15 +275,7 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
     if ex.status != "ok" and ex.answers is None and ex.cell is None:
         return done(ex.status, ex.message, _all_parts(parts, ex.status, ex.message), ran=limits)
 
-    decoded, problems = {}, {}
-    for name in names:
-        rec = (ex.answers or {}).get(name)
-        if rec is None:
-            continue
-        try:
-            decoded[name] = decode(rec, name)
-        except DecodeError as exc:
-            problems[name] = str(exc)
+    decoded, problems = decode_answers(ex.answers, names)
     stopped = None
     if ex.status != "ok":
         where = f" at {_cell_name(cells, ex.cell)}" if ex.cell else ""
@@ -294,36 +286,7 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
     numbers = [i for i, c in enumerate(cells, 1) if c["cell_type"] == "code"]  # as the student sees them
     used = reference_use(code, [p.answer for p in parts], calls=_reference_calls(source), locked=mine,
                          numbers=numbers)
-    grades = []
-    for p in parts:
-        if p.answer in problems:
-            grades.append(PartGrade(p.name, 0.0, p.points, "error", f"`{p.answer}`: {problems[p.answer]}"))
-            continue
-        if p.answer not in decoded:
-            if stopped is not None:
-                grades.append(PartGrade(p.name, 0.0, p.points, stopped[0],
-                                        f"`{p.answer}` was not assigned before the notebook stopped: {stopped[1]}"))
-                continue
-            why = _raised(cells, ex.errors)
-            grades.append(PartGrade(p.name, 0.0, p.points, "missing-answer",
-                                    f"`{p.answer}` is not assigned" + (f": {why}" if why else "")))
-            continue
-        too_large = _too_large(p, decoded)
-        if too_large:
-            grades.append(PartGrade(p.name, 0.0, p.points, "error", too_large))
-            continue
-        try:
-            result = p.run(decoded[p.answer], decoded)
-        except Exception as exc:  # a checker should not raise; if it does, the part is not lost silently
-            grades.append(PartGrade(p.name, 0.0, p.points, "error", f"the checker failed: {type(exc).__name__}: {exc}"))
-            continue
-        score = round(max(0.0, min(1.0, float(result.score))) * p.points, 4)
-        if p.hidden and not reveal_hidden:  # the verdict, not the expected value, of a hidden check
-            grades.append(PartGrade(p.name, score, p.points, "ok", _hidden_verdict(result), "", used[p.answer],
-                                    mistakes=mistake_rows(result)))
-            continue
-        grades.append(PartGrade(p.name, score, p.points, "ok", " | ".join(result.messages)[:1000],
-                                result._repr_html_(), used[p.answer], mistakes=mistake_rows(result)))
+    grades = [_part_grade(p, decoded, problems, stopped, cells, ex.errors, used, reveal_hidden) for p in parts]
     describe(grades, parts, decoded, cells)
     status = worst([g.status for g in grades] + ([stopped[0]] if stopped else []))
     if stopped is not None:
@@ -335,6 +298,33 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
                 "(only answer cells are yours to edit)")
         message = f"{message}; {note}" if message else note
     return done(status, message, grades, ran=limits)
+
+
+def _part_grade(p, decoded, problems, stopped, cells, errors, used, reveal_hidden):
+    """The grade of part ``p``: its answer refused, never assigned (before the notebook ``stopped``, or with the
+    cell that raised), too large, or checked (a hidden check shows its verdict only)."""
+    if p.answer in problems:
+        return PartGrade(p.name, 0.0, p.points, "error", f"`{p.answer}`: {problems[p.answer]}")
+    if p.answer not in decoded:
+        if stopped is not None:
+            return PartGrade(p.name, 0.0, p.points, stopped[0],
+                             f"`{p.answer}` was not assigned before the notebook stopped: {stopped[1]}")
+        why = _raised(cells, errors)
+        return PartGrade(p.name, 0.0, p.points, "missing-answer",
+                         f"`{p.answer}` is not assigned" + (f": {why}" if why else ""))
+    too_large = _too_large(p, decoded)
+    if too_large:
+        return PartGrade(p.name, 0.0, p.points, "error", too_large)
+    try:
+        result = p.run(decoded[p.answer], decoded)
+    except Exception as exc:  # a checker should not raise; if it does, the part is not lost silently
+        return PartGrade(p.name, 0.0, p.points, "error", f"the checker failed: {type(exc).__name__}: {exc}")
+    score = round(max(0.0, min(1.0, float(result.score))) * p.points, 4)
+    if p.hidden and not reveal_hidden:  # the verdict, not the expected value, of a hidden check
+        return PartGrade(p.name, score, p.points, "ok", _hidden_verdict(result), "", used[p.answer],
+                         mistakes=mistake_rows(result))
+    return PartGrade(p.name, score, p.points, "ok", " | ".join(result.messages)[:1000],
+                     result._repr_html_(), used[p.answer], mistakes=mistake_rows(result))
 
 
 _CALLS = {}

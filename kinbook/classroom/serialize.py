@@ -29,7 +29,7 @@ import re
 
 import numpy as np
 
-__all__ = ["encode", "dumps", "decode", "DecodeError", "FUNCTIONS", "MAX_NODES", "MAX_DEPTH", "MAX_TEXT"]
+__all__ = ["encode", "dumps", "decode", "decode_answers", "DecodeError", "FUNCTIONS", "MAX_NODES", "MAX_DEPTH", "MAX_TEXT"]
 
 FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "exp", "log", "sqrt", "Abs", "sign")
 OPERATIONS = ("Add", "Mul", "Pow")
@@ -190,6 +190,21 @@ def decode(record, name="answer"):
             return rows
         return sp.Matrix(shape[0], shape[1], entries)
     raise DecodeError(f"unknown answer kind {kind[:20]!r}")
+
+
+def decode_answers(answers, names):
+    """({name: value}, {name: why}) of the ``names`` among the answers a kernel reported (``{name: record}``
+    or None): each read by :func:`decode` as bounded data, or refused with the reason."""
+    decoded, problems = {}, {}
+    for name in names:
+        rec = (answers or {}).get(name)
+        if rec is None:
+            continue
+        try:
+            decoded[name] = decode(rec, name)
+        except DecodeError as exc:
+            problems[name] = str(exc)
+    return decoded, problems
 
 
 def _entry(t, budget, where):
