@@ -15,7 +15,7 @@ import numpy as np
 from . import mistakes as M
 from . import slips
 from ._i18n import Msg
-from .match import same, scale_match, scale_of
+from .compare import same, scale_match, scale_of
 
 __all__ = ["phi", "derived", "MAX_TERMS"]
 
@@ -585,7 +585,7 @@ def _variant_spans(target, ex, c, rows, rtol):
     normalization rows of a joint graded alone) — e.g. Aᵀ for A in the book's cross-product rows."""
     if not rows:
         return
-    from .match import _in_span
+    from .equivalence import _in_span
 
     F = target.reference("assembled")["free_q"][:, :, ex.data.cols]
     blocks = []

@@ -183,65 +183,12 @@ class Tape:
         VEL = QD if velocities is None else np.asarray(velocities, float)
         T = np.zeros(N) if T is None else np.asarray(T, float)
         frozen = set(frozen)
+        env = (N, Q, QD, VEL, T, frozen, grad, order, rule, dt)
         V, G, D1, D2 = [], [], [], []
         zero = np.zeros(N)
         with np.errstate(all="ignore"):
             for kind, payload, _dep in self.ops:
-                v = g = a = b = None
-                if kind == "const":
-                    v = np.full(N, payload)
-                elif kind == "q":
-                    v = Q[:, payload]
-                    if payload not in frozen:
-                        if grad:
-                            g = np.zeros((N, self.n))
-                            g[:, payload] = 1.0
-                        if order:
-                            a = QD[:, payload]
-                elif kind == "qd":
-                    v = VEL[:, payload]
-                elif kind == "t":
-                    v = T
-                    if order and dt:
-                        a = np.full(N, float(dt))
-                elif kind == "add":
-                    v = sum(V[s] for s in payload)
-                    g = _sum([G[s] for s in payload])
-                    a = _sum([D1[s] for s in payload])
-                    b = _sum([D2[s] for s in payload])
-                elif kind == "mul":
-                    s0 = payload[0]
-                    v, g, a, b = V[s0], G[s0], D1[s0], D2[s0]
-                    for s in payload[1:]:
-                        v, g, a, b = _mul((v, g, a, b), (V[s], G[s], D1[s], D2[s]), order)
-                elif kind == "powc":
-                    s, p = payload
-                    u = V[s]
-                    v = _power(u, p)
-                    if p != 0:
-                        f1 = p * _power(u, p - 1)
-                        f2 = p * (p - 1) * _power(u, p - 2) if order > 1 else None
-                        g, a, b = _chain(f1, f2, G[s], D1[s], D2[s], order)
-                elif kind == "pow":  # u^w = exp(w log u)
-                    su, sw = payload
-                    ju = _unary_jet("log", V[su], G[su], D1[su], D2[su], order)
-                    v, g, a, b = _mul(ju, (V[sw], G[sw], D1[sw], D2[sw]), order)
-                    v, g, a, b = _unary_jet("exp", v, g, a, b, order)
-                elif kind == "fn":
-                    name, s = payload
-                    u = V[s]
-                    if rule != "exact" and name in ("sin", "cos") and self.ops[s][2]:
-                        v, g, a, b = _trig_rule(name, u, G[s], D1[s], D2[s], order, rule)
-                    else:
-                        v, g, a, b = _unary_jet(name, u, G[s], D1[s], D2[s], order)
-                elif kind == "atan2":
-                    sy, sx = payload
-                    v, g, a, b = _atan2((V[sy], G[sy], D1[sy], D2[sy]), (V[sx], G[sx], D1[sx], D2[sx]), order)
-                elif kind == "logb":
-                    sx, sb = payload
-                    num = _unary_jet("log", V[sx], G[sx], D1[sx], D2[sx], order)
-                    den = _unary_jet("log", V[sb], G[sb], D1[sb], D2[sb], order)
-                    v, g, a, b = _mul(num, _unary_jet("inv", *den, order), order)
+                v, g, a, b = self._op(kind, payload, V, G, D1, D2, env)
                 if not grad:
                     g = None
                 if order < 2:
@@ -260,6 +207,67 @@ class Tape:
         if order >= 2:
             out["d2"] = np.stack([D2[s] if D2[s] is not None else zero for s in self.outputs], -1)
         return out
+
+    def _op(self, kind, payload, V, G, D1, D2, env):
+        """One operation of the tape: its value, gradient and path derivatives (v, g, a, b; None where not
+        computed) from those of the operations it uses."""
+        N, Q, QD, VEL, T, frozen, grad, order, rule, dt = env
+        v = g = a = b = None
+        if kind == "const":
+            v = np.full(N, payload)
+        elif kind == "q":
+            v = Q[:, payload]
+            if payload not in frozen:
+                if grad:
+                    g = np.zeros((N, self.n))
+                    g[:, payload] = 1.0
+                if order:
+                    a = QD[:, payload]
+        elif kind == "qd":
+            v = VEL[:, payload]
+        elif kind == "t":
+            v = T
+            if order and dt:
+                a = np.full(N, float(dt))
+        elif kind == "add":
+            v = sum(V[s] for s in payload)
+            g = _sum([G[s] for s in payload])
+            a = _sum([D1[s] for s in payload])
+            b = _sum([D2[s] for s in payload])
+        elif kind == "mul":
+            s0 = payload[0]
+            v, g, a, b = V[s0], G[s0], D1[s0], D2[s0]
+            for s in payload[1:]:
+                v, g, a, b = _mul((v, g, a, b), (V[s], G[s], D1[s], D2[s]), order)
+        elif kind == "powc":
+            s, p = payload
+            u = V[s]
+            v = _power(u, p)
+            if p != 0:
+                f1 = p * _power(u, p - 1)
+                f2 = p * (p - 1) * _power(u, p - 2) if order > 1 else None
+                g, a, b = _chain(f1, f2, G[s], D1[s], D2[s], order)
+        elif kind == "pow":  # u^w = exp(w log u)
+            su, sw = payload
+            ju = _unary_jet("log", V[su], G[su], D1[su], D2[su], order)
+            v, g, a, b = _mul(ju, (V[sw], G[sw], D1[sw], D2[sw]), order)
+            v, g, a, b = _unary_jet("exp", v, g, a, b, order)
+        elif kind == "fn":
+            name, s = payload
+            u = V[s]
+            if rule != "exact" and name in ("sin", "cos") and self.ops[s][2]:
+                v, g, a, b = _trig_rule(name, u, G[s], D1[s], D2[s], order, rule)
+            else:
+                v, g, a, b = _unary_jet(name, u, G[s], D1[s], D2[s], order)
+        elif kind == "atan2":
+            sy, sx = payload
+            v, g, a, b = _atan2((V[sy], G[sy], D1[sy], D2[sy]), (V[sx], G[sx], D1[sx], D2[sx]), order)
+        elif kind == "logb":
+            sx, sb = payload
+            num = _unary_jet("log", V[sx], G[sx], D1[sx], D2[sx], order)
+            den = _unary_jet("log", V[sb], G[sb], D1[sb], D2[sb], order)
+            v, g, a, b = _mul(num, _unary_jet("inv", *den, order), order)
+        return v, g, a, b
 
     def derived(self, Q, QD, T, *, rule="exact", frozen=(), parts=False):
         """Φ, Φ_q, ν and γ of the tape's expressions read as a constraint vector Φ(q, t).

@@ -239,25 +239,32 @@ def _coords(c):
     return ("ξ", "η", "ζ")
 
 
+def _add(code, exprs, detail=None, erratum=None):
+    yield Variant(code, exprs, detail, erratum)
+
+
+def _safe(fn):
+    try:
+        return fn()
+    except Exception:  # a variant that cannot be built for this constraint is skipped
+        return None
+
+
 def _structural(target, c):
-    import sympy as sp
-
+    """The catalogue's structural variants of constraint ``c``, in a fixed order: exchanged points and bodies,
+    A transposed or omitted, signs, degrees, the book's printed forms."""
     spec = spec_of(c)
-    mech = target.mech
-    Q = [mech.body_symbols(b.name) for b in c.bodies]
+    Q = [target.mech.body_symbols(b.name) for b in c.bodies]
     names = [b.name for b in c.bodies]
-    roles = "ijk"
+    yield from _exchanged(target, c, spec, Q)
+    yield from _frames(target, c, spec, Q, names)
+    yield from _signs(target, c, spec, Q, names)
+    yield from _degrees_and_forms(target, c, spec, Q)
 
-    def add(code, exprs, detail=None, erratum=None):
-        yield Variant(code, exprs, detail, erratum)
 
-    def safe(fn):
-        try:
-            return fn()
-        except Exception:  # a variant that cannot be built for this constraint is skipped
-            return None
-
-    # exchanged points / bodies
+def _exchanged(target, c, spec, Q):
+    """Exchanged points, bodies, radii."""
+    mech, add, safe = target.mech, _add, _safe
     for a, b in spec.swap_points:
         e = safe(lambda a=a, b=b: _phi(target, c, **{a: getattr(c, b), b: getattr(c, a)}))
         if e is not None:
@@ -271,6 +278,11 @@ def _structural(target, c):
         e = safe(lambda: _phi(target, c, **{a: getattr(c, b), b: getattr(c, a)}))
         if e is not None:
             yield from add("swapped_bodies", e)
+
+
+def _frames(target, c, spec, Q, names):
+    """Aᵀ for A, A omitted, the book's A(p)."""
+    mech, add, safe = target.mech, _add, _safe
     # Aᵀ for A, A omitted — on every body, then on one body only (the ground's A transposed …): made from the
     # constraint's own rows by substitution in A (cheap), never by re-deriving them
     if spec.frame and (spec.points or spec.vectors):
@@ -292,6 +304,14 @@ def _structural(target, c):
             e = safe(lambda: book_A_rows(c, Q, mech.t))
             if e is not None:
                 yield from add("book_misprint", e, None, "14.3-A-of-p")
+
+
+def _signs(target, c, spec, Q, names):
+    """The sign of one local coordinate, of a whole A s', of a coordinate term, of a radius; a length for its
+    square."""
+    import sympy as sp
+
+    mech, add, safe, roles = target.mech, _add, _safe, "ijk"
     # the sign of one local coordinate, of a whole A s', of a coordinate term
     for attr, role in spec.points + spec.vectors:
         v = getattr(c, attr, None)
@@ -327,6 +347,14 @@ def _structural(target, c):
         e = safe(lambda attr=attr: _phi(target, c, **{attr: sp.sqrt(getattr(c, attr))}))
         if e is not None:
             yield from add("missing_square", e, Msg("d.length_not_squared"))
+
+
+def _degrees_and_forms(target, c, spec, Q):
+    """Degrees for radians (a constant angle, a driver's function), a driver's sign, the book's printed forms
+    and the type's own extra variants."""
+    import sympy as sp
+
+    mech, add, safe = target.mech, _add, _safe
     # degrees
     for attr in spec.angles:
         e = safe(lambda attr=attr: _degrees(target, c, attr))

@@ -22,7 +22,7 @@ import numpy as np
 from . import mistakes as M
 from . import sample
 from ._i18n import Msg
-from .match import scale_match
+from .compare import scale_match
 
 __all__ = ["phi", "derived", "samples", "N_WITNESS"]
 

@@ -1,0 +1,336 @@
+"""Equivalent formulations (part of the fourth stage, :mod:`~kinbook.grading.match`): a row that is no multiple of
+a reference row is judged where its own constraint alone holds — it must vanish there with its gradient in the
+span of that constraint's rows' gradients (and of the bodies' normalization rows); a row true only where the
+whole mechanism is assembled is *masked*; the zeros of accepted rows are searched for a factor that vanishes;
+Φ_q rows may be combinations of one constraint's rows.
+
+Everything here works on arrays (samples × rows × columns); nothing reads answers or knows constraint types.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from .compare import scale_match, scale_of, zero_tol
+
+__all__ = ["vanishing", "jacobian_equivalents"]
+
+
+def _equivalents(data, rest, blocks, owner_of, taken, rtol):
+    """Rows that are no multiple of a reference row: right when, where one constraint alone holds (its own
+    assembled samples), they vanish and their gradient lies in the span of that constraint's rows' gradients
+    (and of the bodies' normalization rows). A row that is right only where the *whole* mechanism is assembled
+    is "masked": wrong, and the constraints that make it true are named."""
+    S_G = data.S_G
+    gG = data.grads("generic")
+    for r in rest:
+        k = r.k
+        g_gen = gG[:, k, :]
+        gscale = float(np.max(np.linalg.norm(g_gen, axis=1)))
+        magnitude = max(scale_of(S_G[:, k]), gscale)
+        if magnitude == 0.0:
+            continue  # identically zero: wrong
+        if len(blocks) > 1 and data.on_manifold and not _whole(data, k, magnitude, gscale, rtol):
+            continue  # not even true where the whole mechanism is assembled: wrong for every constraint
+        support = np.max(np.abs(g_gen), axis=0) > 1e-9 * max(gscale, 1e-300)
+        cols = data.block_cols or [np.ones_like(support)] * len(blocks)
+        # the constraints whose bodies hold every coordinate the row moves, those with rows left first; only when
+        # there is none, every constraint (a row may carry a factor of another body's coordinates that never
+        # vanishes: right, if odd)
+        cands = [b for b in range(len(blocks)) if not np.any(support & ~cols[b])] or list(range(len(blocks)))
+        cands.sort(key=lambda b: (all(j in taken for j in blocks[b]), b))
+        for b in cands:
+            B = data.block(b)
+            verdict = _judge(B, k, magnitude, gscale, S_G, data.R_G, rtol)
+            if verdict is None:
+                continue
+            r.owner = b
+            kind, covers = verdict
+            if kind == "equivalent":
+                r.status, r.how, r.covers = "ok", "equivalent", covers
+                r.ref = next((j for j in covers if j not in taken), covers[0])
+            else:
+                r.status, r.dependence, r.depends_on = "dependent", kind, covers
+            break
+        if r.status == "wrong" and data.on_manifold and len(blocks) > 1:
+            _masked(data, r, blocks, owner_of, cands, magnitude, gscale, rtol)
+
+
+def _whole(data, k, magnitude, gscale, rtol):
+    """Answer row k vanishes where the whole mechanism is assembled, with its gradient (if not zero) in the span
+    of all the reference rows' there: the least a row of any one constraint must do (checked first: cheap)."""
+    if scale_of(data.S_M[:, k]) > zero_tol(rtol) * magnitude:
+        return False
+    g = data.grads("assembled")[:, k, :]
+    gnorm = np.linalg.norm(g, axis=1)
+    if np.all(gnorm <= zero_tol(rtol) * max(gscale, float(np.max(gnorm)))):
+        return True
+    basis = np.concatenate([data.gR_M, data.F_M], axis=1) if data.F_M is not None and data.F_M.size else data.gR_M
+    return _in_span(g, basis, rtol)[1]
+
+
+def _judge(B, k, magnitude, gscale, S_G, R_G, rtol):
+    """("equivalent", covered rows) / ("function" | "free", depends_on) / None for answer row k in block B."""
+    if not B.on_manifold:
+        return None
+    S = B.S[:, k]
+    if not np.all(np.isfinite(S)) or scale_of(S) > zero_tol(rtol) * magnitude:
+        return None  # not zero where the constraint holds: wrong (diagnosed later)
+    g = B.gS[:, k, :]
+    gnorm = np.linalg.norm(g, axis=1)
+    gscale = max(gscale, float(np.max(gnorm)))
+    if np.all(gnorm <= zero_tol(rtol) * gscale):
+        # a power or product of its rows, or else some other function of them (a sum of squares): its rows
+        return "function", (_function_of(S_G[:, k], R_G[:, B.refs], rtol, B.refs)
+                            or [("ref", j) for j in B.refs])
+    basis = np.concatenate([B.gR, B.F], axis=1) if B.F is not None and B.F.size else B.gR
+    alpha, inspan = _in_span(g, basis, rtol)
+    if not inspan:
+        return None
+    contrib = np.abs(alpha[:, : len(B.refs)]) * np.linalg.norm(B.gR, axis=2)
+    regular = _regular_samples(gnorm)  # where the gradient is at rounding level its coefficients are noise
+    covers = [j for i, j in enumerate(B.refs) if np.any(contrib[regular, i] > 1e-3 * gnorm[regular])]
+    if not covers:  # a combination of the always-true rows only (a normalization row, given again)
+        return "free", []
+    return "equivalent", covers
+
+
+def _masked(data, r, blocks, owner_of, cands, magnitude, gscale, rtol):
+    """A row true where the whole mechanism is assembled but not where its own constraint alone holds: which
+    constraint it was meant for (``owner``) and which others make it true (``masked``)."""
+    k = r.k
+    if scale_of(data.S_M[:, k]) > zero_tol(rtol) * magnitude:
+        return
+    g = data.grads("assembled")[:, k, :]
+    gnorm = np.linalg.norm(g, axis=1)
+    if np.all(gnorm <= zero_tol(rtol) * max(gscale, float(np.max(gnorm)))):
+        return
+    basis = np.concatenate([data.gR_M, data.F_M], axis=1) if data.F_M is not None and data.F_M.size else data.gR_M
+    alpha, inspan = _in_span(g, basis, rtol)
+    if not inspan:
+        return
+    m = data.gR_M.shape[1]
+    contrib = np.abs(alpha[:, :m]) * np.linalg.norm(data.gR_M, axis=2)
+    weight = {}
+    for j in range(m):
+        w = float(np.max(contrib[:, j] / np.maximum(gnorm, 1e-300)))
+        if w > 1e-3:
+            weight[owner_of[j]] = weight.get(owner_of[j], 0.0) + w
+    if not weight:
+        return
+    mine = [b for b in cands if b in weight] or sorted(weight, key=lambda b: -weight[b])
+    r.owner = mine[0]
+    r.masked = sorted((b for b in weight if b != r.owner), key=lambda b: -weight[b])
+    if not r.masked and data.together is not None:  # the gradients do not tell: try each neighbour with it
+        cols = data.block_cols
+        near = [b for b in range(len(blocks)) if b != r.owner and np.any(cols[b] & cols[r.owner])]
+        for b in near:
+            S = data.together(sorted([r.owner, b]))
+            if S is not None and np.all(np.isfinite(S[:, k])) and scale_of(S[:, k]) <= zero_tol(rtol) * magnitude:
+                r.masked.append(b)
+    r.masked = r.masked or [None]
+
+
+def _still_missing(B, refs, lack, multiples, eq, rtol):
+    """Reference rows of one constraint that the accepted rows do not span where it holds; as many as the rank
+    lacks (one cross-product row for two h-rows lacks one)."""
+    pos = {j: i for i, j in enumerate(refs)}
+    # the samples where no accepted row's gradient is at rounding level (a factor of it vanishing there)
+    keep = np.all([_regular_samples(np.linalg.norm(B.gS[:, k, :], axis=1)) for k in eq], axis=0)
+    if keep.any() and not keep.all():
+        B = replace(B, gR=B.gR[keep], gS=B.gS[keep], F=None if B.F is None else B.F[keep])
+    parts = [B.gR[:, [pos[j] for j in multiples], :], B.gS[:, eq, :]]
+    if B.F is not None and B.F.size:
+        parts.append(B.F)
+    basis = np.concatenate(parts, axis=1)
+    still = [j for j in lack if not _in_span(B.gR[:, pos[j], :], basis, rtol)[1]]
+    nf = 0 if B.F is None else B.F.shape[1]
+    tol = 1e-8 * max(np.abs(basis[0]).max(), 1e-300)
+    acc = np.linalg.matrix_rank(basis[0].T, tol=tol) - (np.linalg.matrix_rank(B.F[0].T) if nf else 0)
+    full = np.linalg.matrix_rank(B.gR[0].T, tol=1e-8 * max(np.abs(B.gR[0]).max(), 1e-300))
+    deficit = max(full - acc, 0)
+    return still[len(still) - deficit:] if deficit < len(still) else still
+
+
+def vanishing(matching, data, rtol):
+    """Rows accepted as an equivalent formulation of a constraint whose zero set is larger than the constraint's:
+    a factor f(q) that vanishes somewhere (cos φ2 · Φ_4, e0 · Φ_k). The zeros of the constraint's answer rows are
+    searched (seeded Newton, the bodies free: :func:`kinbook.grading.sample.zeros`); where they vanish and a row
+    they stand for does not, the row is wrong ("vanishing_factor", ``where`` = that configuration). The book's own
+    rows of the constraint (two of the three cross-product rows of a parallel constraint) are its accepted form.
+
+    Returns
+    -------
+    dict {constraint index: number of configurations found where its answer rows vanish} for the constraints
+    searched (what the verdict may then claim).
+    """
+    searched = {}
+    if data.search is None:
+        return searched
+    for b, refs in enumerate(data.blocks or []):
+        mine = [r for r in matching.rows if r.status == "ok" and r.owner == b]
+        eq = [r for r in mine if r.how == "equivalent"]
+        if not eq:
+            continue
+        book = data.book(b) if data.book is not None else None
+        if book is not None:
+            for r in eq:
+                if any(scale_match(data.S_G[:, r.k], book[:, i], rtol) is not None for i in range(book.shape[1])):
+                    r.book = True
+            eq = [r for r in eq if not r.book]
+            if not eq:
+                continue
+        found = data.search(b, [r.k for r in mine])
+        if found is None:
+            searched[b] = 0
+            continue
+        Q, T, R = found
+        searched[b] = len(Q)
+        tol = 1e-6 * max(scale_of(data.R_G[:, refs]), 1.0)
+        bad = np.flatnonzero(np.max(np.abs(R), axis=1) > tol)
+        if not bad.size:
+            continue
+        i = int(bad[0])
+        pos = {j: p for p, j in enumerate(refs)}
+        culprits = [r for r in eq if any(abs(R[i, pos[j]]) > tol for j in r.covers)] or eq
+        for r in culprits:
+            r.status, r.code, r.how = "wrong", "vanishing_factor", "multiple"
+            r.where = (Q[i], T[i], {j: float(R[i, pos[j]]) for j in r.covers})
+            r.ref = next(j for j in r.covers if abs(R[i, pos[j]]) > tol) if any(
+                abs(R[i, pos[j]]) > tol for j in r.covers) else r.covers[0]
+    return searched
+
+
+def jacobian_equivalents(matching, S, R, blocks, rtol, F=None, book=None):
+    """Φ_q rows of an equivalent formulation: a row that is no constant multiple of a reference row but, at
+    every assembled sample, a combination of the rows of one constraint (the Jacobian of M(q)·Φ, e.g. the
+    book's cross-product rows of a parallel constraint) is right; reference rows whose gradients the accepted
+    rows span are then not missing.
+
+    Parameters
+    ----------
+    blocks : list of lists of int
+        The reference rows of each constraint.
+    F : ndarray (N, f, w), optional
+        Rows that hold anyway (the normalization rows of a joint graded alone), free to be added.
+    book : callable, optional
+        ``book(block)`` → the Jacobian rows of the book's own formulation of that constraint (N, r, w), or None.
+        Rows of an equivalent formulation whose combination of the constraint's rows changes with q (M(q)·Φ_q)
+        are right only if M(q) is regular at every sample (its determinant keeps its sign): the book's own
+        rows are its accepted form.
+    """
+    touched = []
+    for r in matching.rows:
+        if r.status not in ("wrong", "extra") or r.code is not None:
+            continue
+        s = S[:, r.k, :]
+        if scale_of(s) == 0:
+            continue
+        order = sorted(blocks, key=lambda b: 0 if r.ref in b else 1)
+        for block in order:
+            if len(block) < 2 and r.ref not in block:
+                pass
+            basis = R[:, block, :] if F is None or not F.size else np.concatenate([R[:, block, :], F], axis=1)
+            alpha, ok = _in_span(s, basis, rtol)
+            alpha = alpha[:, : len(block)]
+            if not ok:
+                continue
+            size = np.abs(alpha) * np.linalg.norm(R[:, block, :], axis=2)
+            covers = [j for i, j in enumerate(block) if np.any(size[:, i] > 1e-3 * np.linalg.norm(s, axis=1))]
+            if not covers:
+                continue
+            r.status, r.how, r.covers, r.code = "ok", "equivalent", covers, None
+            r.ref = covers[0]
+            touched.append(block)
+            break
+    if not touched:
+        return matching
+    _singular_combinations(matching, S, R, touched, rtol, F, book)
+    accepted = [r for r in matching.rows if r.status == "ok"]
+    multiples = {r.ref for r in accepted if r.how == "multiple"}
+    basis = S[:, [r.k for r in accepted], :]
+    if F is not None and F.size:
+        basis = np.concatenate([basis, F], axis=1)
+    still = []
+    held = {r.ref for r in matching.rows if r.code == "vanishing_factor"}
+    for j in sorted(set(matching.missing) | {j for b in touched for j in b} - multiples):
+        if j in multiples or j in held:
+            continue
+        _, ok = _in_span(R[:, j, :], basis, rtol)
+        if not ok:
+            still.append(j)
+    for r in matching.rows:  # wrong rows paired with a reference row that turned out covered
+        if r.status == "wrong" and r.ref is not None and r.ref not in still and r.ref not in multiples and \
+                r.code != "vanishing_factor":
+            r.status, r.code = "extra", None
+    matching.missing = still
+    return matching
+
+
+def _singular_combinations(matching, S, R, touched, rtol, F, book):
+    """Equivalent Φ_q rows of a block: S_block = M(q) R_block (+ normalization rows); where det M changes sign
+    between samples (or nearly vanishes) M(q) is singular somewhere — a factor f(q) that vanishes ("vanishing
+    factor"), unless the rows are the Jacobian of the book's own formulation."""
+    for block in touched:
+        mine = [r for r in matching.rows if r.status == "ok" and (r.ref in block or set(r.covers) & set(block))]
+        eq = [r for r in mine if r.how == "equivalent"]
+        if not eq or len(mine) != len(block):
+            continue
+        B = book(block) if book is not None else None
+        if B is not None:
+            eq = [r for r in eq if not any(scale_match(S[:, r.k], B[:, i], rtol) is not None
+                                           for i in range(B.shape[1]))]
+            if not eq:
+                continue
+        basis = R[:, block, :] if F is None or not F.size else np.concatenate([R[:, block, :], F], axis=1)
+        M = np.stack([_in_span(S[:, r.k, :], basis, rtol)[0][:, : len(block)] for r in mine], axis=1)
+        det = np.linalg.det(M)
+        size = np.prod(np.linalg.norm(M, axis=2), axis=1)
+        rel = det / np.maximum(size, 1e-300)
+        if np.all(rel > 1e-6) or np.all(rel < -1e-6):
+            continue
+        for r in eq:
+            coef = M[:, mine.index(r), :]
+            if np.ptp(coef / np.where(np.abs(coef[:1]) > 0, coef[:1], 1.0), axis=0).max() > zero_tol(rtol):
+                a = int(np.argmax(np.abs(coef).max(axis=0)))
+                r.status, r.code, r.how = "wrong", "vanishing_factor", "multiple"
+                r.ref, r.factor = block[a], None
+                r.where = ("ratio", float(coef[:, a].min()), float(coef[:, a].max()))
+
+
+def _regular_samples(gn):
+    """The samples where a gradient's norm ``gn`` (N,) is not at rounding level (≥ 10⁻³ of its largest)."""
+    return gn >= 1e-3 * max(float(np.max(gn, initial=0.0)), 1e-300)
+
+
+def _in_span(g, basis, rtol):
+    """Per sample, the least-squares coefficients of g (N, n) on the rows of basis (N, b, n), and whether
+    the residual is at rounding level at every sample."""
+    if basis.shape[1] == 0:
+        return np.zeros((g.shape[0], 0)), bool(np.all(np.linalg.norm(g, axis=1) == 0))
+    alpha = np.einsum("nbi,ni->nb", np.linalg.pinv(np.swapaxes(basis, 1, 2), rcond=1e-10), g)
+    res = np.linalg.norm(np.einsum("nbi,nb->ni", basis, alpha) - g, axis=1)
+    gn = np.linalg.norm(g, axis=1)
+    # a gradient at rounding level at one sample (a factor of the row vanishes there) is in every span
+    floor = max(1e-3 * float(np.max(gn, initial=0.0)), 1e-300)
+    ok = bool(np.all(res <= zero_tol(rtol) * np.maximum(gn, floor)))
+    return alpha, ok
+
+
+def _function_of(s, R, rtol, refs=None):
+    """For a row that vanishes with its gradient on the manifold: the reference rows it is a power or a
+    product of (["Φ_j"] as 0-based reference positions: ``refs[i]`` for column i of R), found at the generic
+    samples."""
+    m = R.shape[1]
+    refs = list(range(m)) if refs is None else list(refs)
+    for j in range(m):
+        for p in (2, 3):
+            if scale_match(s, R[:, j] ** p, rtol) is not None:
+                return [("ref", refs[j])]
+    for a in range(m):
+        for b in range(a + 1, m):
+            if scale_match(s, R[:, a] * R[:, b], rtol) is not None:
+                return [("ref", refs[a]), ("ref", refs[b])]
+    return []
