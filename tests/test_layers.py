@@ -40,7 +40,6 @@ PENDING_CIRCLES = {
 """Circles known and being removed in another open branch; the test fails when one of them is gone (strike it)."""
 
 LARGE = {
-    "kinbook/classroom/grade.py:grade": "the CLI's keyword-only entry, which H20 is changing (issue 20)",
     "kinbook/classroom/sandbox/kernel.py:_make_hook": "every name the audit hook uses is a closure cell (H20)",
     "kinbook/classroom/sandbox/kernel.py:hook": "the audit hook itself, one closure (H20)",
     "kinbook/grading/newton.py:check_iterates": "H25a's numeric feedback (issue 25)",

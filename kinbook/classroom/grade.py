@@ -531,9 +531,16 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         raise
     run = book.begin_run(src, "bubblewrap" if isolation else "none")
     options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden))
-    results, touched = [], set()
     plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
                   roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times)
+    return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
+                      progress=progress)
+
+
+def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progress):
+    """Grade what ``plan`` holds in ``run`` of ``book``: each result recorded as it completes (made inert, the
+    source checked unchanged), then the exports and the feedback pages, then the notices."""
+    results, touched = [], set()
 
     def record(res):
         res = clean_result(res)  # everything a student controls, made inert before it is stored or printed
