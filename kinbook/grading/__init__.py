@@ -24,7 +24,8 @@ from .catalogue import MISTAKES, explain
 from .checks import check_gamma, check_jacobian, check_nu, check_phi
 from .lms import assert_passed, nbgrader_score
 from .result import CheckResult, RowResult
-from .values import check_euler_parameters, check_rotation, check_value
+from .rotation_values import check_euler_parameters, check_rotation
+from .values import check_value
 
 CHECKERS = {
     "phi": check_phi,

@@ -104,11 +104,31 @@ def check_iterates(answer, problem, *, tol=1e-8, rtol=1e-6, reveal=False, name=N
         return _fail(name, Msg("n.width", n=n, got=a.shape[1]), "wrong_shape")
     if not np.all(np.isfinite(a)):
         return _fail(name, Msg("not_finite", where=name), "not_finite")
-    rows, notes, codes = [], [], []
+    notes, codes = [], []
     angles = [k for k, c in enumerate(mech.coordinate_names()) if c.startswith("phi")]
     if not np.allclose(a[0], guess, rtol=1e-9, atol=1e-9):
         return _fail(name, Msg("n.start"), "wrong_data")
-    first_bad = None
+    rows, first_bad = _steps(mech, a, t, guess, rtol, angles)
+    if first_bad is not None:
+        j, code, why = first_bad
+        bad = sum(1 for r in rows if r.status != "ok")
+        notes.append(Msg("n.steps_off", n=bad, total=len(rows)))
+        notes.append(Msg("n.first_bad", k=j + 1, j=j, why=why))
+        codes.append(code)
+    converged = _last_iterate(problem, a, tol, angles, first_bad is None, notes, codes)
+    steps = len(rows)
+    good = sum(r.score for r in rows)
+    score = 0.5 * good / steps + (0.5 if converged and "assembly_mode" not in codes else 0.0)
+    if not codes:
+        return CheckResult(True, 1.0, [Msg("n.ok", k=steps)], [], tuple(rows), name)
+    codes = list(dict.fromkeys(codes))
+    return CheckResult(False, round(score, 6), notes + hints(codes, {c: ("value",) for c in codes}), codes,
+                       tuple(rows), name)
+
+
+def _steps(mech, a, t, guess, rtol, angles):
+    """One row per step j → j + 1 of the iterates ``a``, and (j, code, why) of the first wrong one, or None."""
+    rows, first_bad = [], None
     for j in range(a.shape[0] - 1):
         try:
             dq = _step(mech, a[j], t)
@@ -123,19 +143,19 @@ def check_iterates(answer, problem, *, tol=1e-8, rtol=1e-6, reveal=False, name=N
         rows.append(RowResult(label, "wrong", why, code, (), 0.0))
         if first_bad is None:
             first_bad = (j, code, why)
-    if first_bad is not None:
-        j, code, why = first_bad
-        bad = sum(1 for r in rows if r.status != "ok")
-        notes.append(Msg("n.steps_off", n=bad, total=len(rows)))
-        notes.append(Msg("n.first_bad", k=j + 1, j=j, why=why))
-        codes.append(code)
-    last = a[-1]
+    return rows, first_bad
+
+
+def _last_iterate(problem, a, tol, angles, steps_right, notes, codes):
+    """Whether the last iterate solves Φ = 0 within ``tol``; adds to ``notes``/``codes`` when it has not converged
+    though every step was right, or when it converged to another assembly mode than the reference's."""
+    mech, t, last = problem.mechanism, float(problem.t), a[-1]
     try:
         res = float(np.abs(mech.Phi(last, t)).max())
     except KinbookError:
         res = np.inf
     converged = res <= tol
-    if not converged and first_bad is None:
+    if not converged and steps_right:
         notes.append(Msg("n.not_converged", k=a.shape[0] - 1, res=fmt(res)))
         codes.append("not_converged")
     elif converged:
@@ -145,14 +165,7 @@ def check_iterates(answer, problem, *, tol=1e-8, rtol=1e-6, reveal=False, name=N
         if np.abs(d).max() > 1e-6 * max(1.0, np.abs(ref).max()):
             notes.append(Msg("n.other_mode"))
             codes.append("assembly_mode")
-    steps = len(rows)
-    good = sum(r.score for r in rows)
-    score = 0.5 * good / steps + (0.5 if converged and "assembly_mode" not in codes else 0.0)
-    if not codes:
-        return CheckResult(True, 1.0, [Msg("n.ok", k=steps)], [], tuple(rows), name)
-    codes = list(dict.fromkeys(codes))
-    return CheckResult(False, round(score, 6), notes + hints(codes, {c: ("value",) for c in codes}), codes,
-                       tuple(rows), name)
+    return converged
 
 
 def _why(mech, a, j, t, guess, dq, rtol, angles):
