@@ -82,6 +82,8 @@ def test_a_grader_failure_that_persists_is_no_score_and_is_graded_again(flaky, t
         assert {(p["status"], p["score"]) for p in csv.DictReader(f)} == {("grader-error", "")}
     assert any(isinstance(s, str) and s.startswith("not graded, through a failure of the grader's") and "good" in s
                for s in said)
+    page = (tmp_path / "feedback" / "good" / "tiny.html").read_text(encoding="utf-8")
+    assert "Total: not graded yet / 6" in page and "not your doing" in page and "0 / " not in page
     flaky(0)
     again = grade(SOURCE, [submission("good")], tmp_path, timeout=ENOUGH, memory=400, isolation=BWRAP)
     assert [(r.student, r.status, r.score) for r in again] == [("good", "ok", FULL)]

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from ..files import PUBLIC_DIR, PUBLIC_FILE, atomic_write
 from ..gradebook import Gradebook
+from ..results import UNGRADED
 
 __all__ = ["write_pages", "feedback", "page", "STATUS_WORDS", "part_words"]
 
@@ -34,6 +35,8 @@ STATUS_WORDS = {
     "bad-id": "the file's name gives no usable student id",
     "duplicate-id": "two files were handed in under different spellings of your name",
     "missing": "nothing was handed in",
+    "grader-error": "not graded yet: the grader failed before your notebook ran (not your doing); it will be "
+                    "graded again",
 }
 
 _CSS = """
@@ -63,6 +66,11 @@ def part_words(score, max_score, status):
     return STATUS_WORDS.get(status, status), "bad"
 
 
+def _score(final):
+    """A final's score as shown: "not graded yet" for a submission the grader could not grade (never a 0)."""
+    return "not graded yet" if final.status in UNGRADED else _pts(final.score)
+
+
 def _e(text):
     return html.escape(str(text))
 
@@ -75,7 +83,7 @@ def page(final, result, *, name="", graded=""):
            f"<p class='meta'>Feedback for <b>{_e(who)}</b> ({_e(final.student)})"
            + (f" · handed in {_e(final.submitted)}" if final.submitted else "")
            + (f" · graded {_e(graded)}" if graded else "") + "</p>",
-           f"<p class='total'>Total: {_pts(final.score)} / {_pts(final.max_score)}</p>"]
+           f"<p class='total'>Total: {_score(final)} / {_pts(final.max_score)}</p>"]
     if final.status != "ok":
         out.append(f"<p class='note'><b>{_e(final.status)}</b>: {_e(STATUS_WORDS.get(final.status, ''))}"
                    + (f" — {_e(result.message)}" if result is not None and result.message else "") + "</p>")
@@ -94,14 +102,16 @@ def page(final, result, *, name="", graded=""):
     for p, score, mx, o in final.parts:
         shown = o[0] if o else score
         words, cls = part_words(shown, mx, grades[p].status if p in grades else "missing")
-        out.append(f"<tr><td>{_e(p)}</td><td>{_pts(shown)} / {_pts(mx)}{' (set by your instructor)' if o else ''}</td>"
+        shown = "—" if final.status in UNGRADED and not o else _pts(shown)  # not graded: no score, not a 0
+        out.append(f"<tr><td>{_e(p)}</td><td>{shown} / {_pts(mx)}{' (set by your instructor)' if o else ''}</td>"
                    f"<td class='{cls}'>{_e(words)}</td></tr>")
     out.append("</table>")
     for p, score, mx, o in final.parts:
         g = grades.get(p)
         if g is None:
             continue
-        out.append(f"<h2>{_e(p)}: {_pts(o[0] if o else score)} / {_pts(mx)}</h2>")
+        out.append(f"<h2>{_e(p)}: {'—' if final.status in UNGRADED and not o else _pts(o[0] if o else score)} / "
+                   f"{_pts(mx)}</h2>")
         if g.reference:
             out.append(f"<p><i>This answer was computed with kinbook's own reference: {_e(g.reference)}.</i></p>")
         message = g.html if g.html else f"<p>{_e(g.message)}</p>"  # g.html is rendered (escaped) by CheckResult
@@ -117,12 +127,13 @@ def page(final, result, *, name="", graded=""):
 
 
 def _index(student, name, finals):
-    rows = "".join(f"<tr><td><a href='{_e(f.exercise)}.html'>{_e(f.exercise)}</a></td><td>{_pts(f.score)} / "
+    rows = "".join(f"<tr><td><a href='{_e(f.exercise)}.html'>{_e(f.exercise)}</a></td><td>{_score(f)} / "
                    f"{_pts(f.max_score)}</td><td>{_e(STATUS_WORDS.get(f.status, f.status))}</td></tr>" for f in finals)
     total = sum(f.score for f in finals)
     mx = sum(f.max_score for f in finals)
     return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{_e(name or student)}</title>"
-            f"<style>{_CSS}</style></head><body><h1>{_e(name or student)}</h1><p class='total'>{_pts(total)} / {_pts(mx)}"
+            f"<style>{_CSS}</style></head><body><h1>{_e(name or student)}</h1><p class='total'>"
+            f"{'not graded yet' if any(f.status in UNGRADED for f in finals) else _pts(total)} / {_pts(mx)}"
             f"</p><table><tr><th>exercise</th><th>score</th><th>status</th></tr>{rows}</table></body></html>")
 
 
