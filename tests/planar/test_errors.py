@@ -15,6 +15,8 @@ from kinbook import (
 )
 from kinbook.planar import Driver, Mechanism, Revolute, RevoluteRevolute, Translational
 
+from ..mechanisms import pendulum
+
 
 @pytest.fixture
 def mech():
@@ -90,30 +92,7 @@ def test_symbolic_parameters_are_refused_numerically():
         m.Phi(np.zeros(6))
 
 
-TOML_OK = """
-[mechanism]
-name = "pendulum"
-[[bodies]]
-name = "ground"
-points = { O = [0, 0] }
-[[bodies]]
-name = "bar"
-q0 = [0.5, 0, 0]
-points = { O = [-0.5, 0] }
-[[constraints]]
-type = "ground"
-body = "ground"
-[[constraints]]
-type = "revolute"
-i = "ground"
-j = "bar"
-point = "O"
-[[constraints]]
-type = "driver"
-body = "bar"
-coordinate = "phi"
-f = "sin(t)"
-"""
+TOML_OK = pendulum(0.5, "sin(t)")
 
 
 def test_toml_round_trip():
