@@ -28,7 +28,7 @@ import numpy as np
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
-__all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "html_math", "equations", "matrix", "names",
+__all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "html_math", "html_text", "equations", "matrix", "names",
            "book_form", "factored", "lines", "Math", "local_points", "table", "tidy", "spatial_form",
            "SPATIAL_DEFINITIONS"]
 
@@ -455,6 +455,24 @@ def html_math(tex, display=False):
     the book (Sphinx enables no dollar delimiters)."""
     left, right = (r"\[", r"\]") if display else (r"\(", r"\)")
     return f"{left}{html.escape(str(tex))}{right}"
+
+
+def html_text(text):
+    r"""Prose with inline math between dollars, as a notebook's Markdown writes it ("row 2 of
+    $\boldsymbol\Phi_{\mathbf q}\dot{\mathbf q}$"), as HTML: the prose escaped, each formula set with
+    :func:`html_math` so that JupyterLab (trusted or not), the static book and ``nbconvert --to html`` typeset it.
+
+    Raises
+    ------
+    InputError
+        A dollar without its partner (the formula would show as raw TeX).
+    """
+    parts = str(text).split("$")
+    if len(parts) % 2 == 0:
+        from ..errors import InputError
+
+        raise InputError(f"html_text: an unpaired $ in {str(text)[:80]!r}")
+    return "".join(html_math(p) if k % 2 else html.escape(p) for k, p in enumerate(parts))
 
 
 def equations(rows, mech=None, first=1, label=r"\Phi"):

@@ -19,7 +19,54 @@ from io import BytesIO
 
 import numpy as np
 
-__all__ = ["Animation", "render_frames", "apng"]
+__all__ = ["Animation", "render_frames", "apng", "degrees_as_read", "swings_about_zero"]
+
+
+def degrees_as_read(radians, digits=4, signed=None):
+    """Angles (radians) as a person reads them in an overlay or a title: degrees in [0°, 360°), the range the
+    book gives a body's angle in (φ₄ = 240.8° in §13.5's example 1, never −119.2° or 600.8°), as text.
+
+    A driver that turns a crank on past a full turn reads 45° again, not 405°. A series of angles that swings
+    about zero within ±180° (a steering angle, 0.5 sin 2t) keeps its sign, as the text writes it. The text has
+    ``digits`` significant digits and is checked after rounding, so an angle a hair below 360° reads 0°, not
+    360°.
+
+    Parameters
+    ----------
+    radians : array_like
+        One angle or a series of them (one animation's, one explorer's): the range is chosen for the series.
+    digits : int
+    signed : bool, optional
+        Read in (−180°, 180°) instead of [0°, 360°); default: when the series swings about zero as above.
+
+    Returns
+    -------
+    list of str
+        One text per angle, without the degree sign.
+    """
+    deg = _degrees(radians)
+    if signed is None:
+        signed = swings_about_zero(radians)
+    lo = -180.0 if signed else 0.0
+    out = []
+    for d in deg:
+        d = (d - lo) % 360.0 + lo
+        text = f"{d:.{digits}g}"
+        if float(text) == 0.0 or float(text) >= 360.0:  # −0, or 359.99… rounded to 360 at this precision
+            text = "0"
+        out.append(text)
+    return out
+
+
+def swings_about_zero(radians):
+    """Whether a series of angles is read signed (:func:`degrees_as_read`): all within ±180°, some below zero."""
+    deg = _degrees(radians)
+    return bool(np.all(np.abs(deg) < 180.0) and np.any(deg < 0.0))
+
+
+def _degrees(radians):
+    """Degrees to a millionth (round-off is not a sign: −1e-12 is 0)."""
+    return np.round(np.degrees(np.atleast_1d(np.asarray(radians, dtype=float))), 6) + 0.0
 
 
 def _agg_canvas(fig):

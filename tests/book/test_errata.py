@@ -2,6 +2,7 @@
 
 import json
 import re
+from html import unescape
 from pathlib import Path
 
 import pytest
@@ -59,3 +60,82 @@ def test_html_outputs_carry_math_the_static_book_typesets():
             for out in cell.get("outputs", []):
                 found = DOLLAR_TEX.search("".join(out.get("data", {}).get("text/html", "")))
                 assert not found, f"{path.name}: $…$ in an HTML output: {found.group(0)[:80]}"
+
+
+# ------------------------------------------------------------------------------------------- typeset titles
+TITLE = re.compile(r"<b>(.*?)</b> <span")
+INLINE = re.compile(r"\\\((.*?)\\\)")
+RAW_MATH = re.compile(r"[\\$_^{}]|[\u0370-\u03ff\u0300-\u036f∂−ᵀ⁰¹²³⁴⁵⁶⁷⁸⁹₀₁₂₃₄₅₆₇₈₉]|\b[A-Za-z]+'(?![a-z])"
+                      r"|(?:^|[\s(])[b-zA-Z](?=[\s,;:)]|$)")
+"""A formula typed as text: TeX markup, a Greek letter, an accent, a minus, a superscript or subscript digit, a
+primed name (ω', phi' — not a possessive), a lone letter (t = 0, the points A, B — "a" is a word, and a letter quoted as the book
+prints it, “o”, is prose)."""
+
+
+def _titles(cards_html):
+    return [unescape(t) for t in TITLE.findall(cards_html)]
+
+
+def _raw_math(title):
+    return RAW_MATH.findall(INLINE.sub(" ", title))
+
+
+def test_titles_set_their_formulas_as_math():
+    """Every card's title (its <b>) has its formulas in \\(…\\), which JupyterLab (untrusted too), the book's
+    MathJax and `make html` typeset; the prose around them carries no formula as text."""
+    titles = _titles(errata.table()._repr_html_())
+    assert len(titles) == len(errata.ERRATA)
+    assert [t for t in titles if _raw_math(t)] == []
+    assert sum(bool(INLINE.search(t)) for t in titles) >= 35  # a formula in more than half the titles
+    # one title spelled out: row 2 of Φ_q q̇ (§13.8), bold Φ with subscript bold q, times q̇ — the book's notation
+    card = errata.show("13.8-revolute-Phiq-qd")._repr_html_()
+    assert INLINE.findall(_titles(card)[0]) == [r"\boldsymbol\Phi_{\mathbf q}\dot{\mathbf q}"]
+    # the old way of writing it fails the check
+    assert _raw_math("§13.8, the revolute joint worked step by step: row 2 of Φ_q q̇") == ["Φ", "_", "\u0307"]
+    assert _raw_math("§14.2, the first inverse relation (angle rates from phi'), row 2") == ["phi'"]
+
+
+def test_stored_notebooks_show_typeset_titles():
+    """The cards stored in the notebooks (errata.ipynb and the chapters that show errata) are the typeset ones."""
+    seen = 0
+    for path in sorted(ROOT.glob("chapters/*.ipynb")):
+        for cell in json.loads(path.read_text())["cells"]:
+            for out in cell.get("outputs", []):
+                for title in _titles("".join(out.get("data", {}).get("text/html", ""))):
+                    assert not _raw_math(title), f"{path.name}: {title}"
+                    seen += 1
+    assert seen >= 2 * len(errata.ERRATA)  # errata.ipynb has every card, the chapters show them again
+
+
+MATHJAX = ROOT / ".venv-web" / "npm" / "node_modules" / "mathjax"
+TEX2MML = """
+require(process.argv[2]).init({loader: {load: ['input/tex']}, startup: {typeset: false}}).then(async (MathJax) => {
+  const texs = JSON.parse(require('fs').readFileSync(0, 'utf8'));
+  const out = [];
+  for (const tex of texs) out.push(await MathJax.tex2mmlPromise(tex, {display: false}));
+  console.log(JSON.stringify(out));
+}).catch((e) => { console.error(e.message); process.exit(1); });
+"""
+
+
+def test_title_formulas_typeset_in_mathjax(tmp_path):
+    """The book's own MathJax 3 (`make web-env` installs it) reads every title formula: no TeX error, no undefined
+    macro (MathJax marks those in red), and the book's bold and accents come out as MathML says they should."""
+    import shutil
+    import subprocess
+
+    node = shutil.which("node")
+    if node is None or not MATHJAX.is_dir():
+        pytest.skip("needs node and MathJax 3 (make web-env)")
+    texs = [m for t in _titles(errata.table()._repr_html_()) for m in INLINE.findall(t)]
+    script = tmp_path / "tex2mml.js"
+    script.write_text(TEX2MML)
+    run = subprocess.run([node, str(script), str(MATHJAX)], input=json.dumps(texs), capture_output=True, text=True,
+                         timeout=120, check=True)
+    mml = dict(zip(texs, json.loads(run.stdout)))
+    for tex, m in mml.items():
+        assert "<merror" not in m and 'mathcolor="red"' not in m, (tex, m)
+    # Φ_q q̇: a bold Φ with a bold q below it, then a bold q under a dot
+    phi_q = re.sub(r"<mrow[^>]*>|</mrow>|\s+", "", unescape(mml[r"\boldsymbol\Phi_{\mathbf q}\dot{\mathbf q}"]))
+    assert '<msub><mimathvariant="bold">Φ</mi><mimathvariant="bold">q</mi></msub>' in phi_q, phi_q
+    assert '<mover><mimathvariant="bold">q</mi><mo>˙</mo></mover>' in phi_q, phi_q

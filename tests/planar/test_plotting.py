@@ -242,6 +242,47 @@ def test_animation_png_closes_its_figure_and_shows_the_driver_in_degrees(sweep):
     assert clock and f"    φ₂ = {phi2:.4g}°" in clock[0], clock
 
 
+def _overlays(anim):
+    """The overlay text of every frame of an animation, frame by frame."""
+    texts = []
+    for k in range(len(anim.kinbook_indices)):
+        anim._func(k)
+        texts += [t.get_text() for t in anim._fig.axes[0].texts if t.get_text().startswith("t = ")]
+    return texts
+
+
+def _read(deg):
+    """An angle as the text gives it, to 4 significant digits, in [0°, 360°): Python's floor modulo, not kinbook."""
+    return f"{round(deg, 6) % 360:.4g}"
+
+
+def test_animation_reads_a_crank_past_a_full_turn_in_0_to_360_degrees():
+    # example 2's crank turns from φ₂ = 45° once round to 405°: from frame 21 (360°) on, the same angles as 0°, 15°…
+    m = _example("ch13_example2")
+    sweep = m.simulate(np.linspace(0.0, 2 * np.pi / 100, 73))
+    anim = plotting.animate(sweep, every=3, labels=False)
+    A, O = sweep.position("crank", "A"), sweep.position("crank", "OA")
+    # the crank's direction O_A → A measured from the geometry, never from the driver's function
+    phi2 = [np.degrees(np.arctan2(*(A[i] - O[i])[::-1])) for i in anim.kinbook_indices]
+    texts = _overlays(anim)
+    assert len(texts) == 25 and np.degrees(sweep.q[-1, 5]) > 404.9  # the sweep went past a full turn
+    shown = [float(re.search("φ₂ = (-?[0-9.]+)°", t).group(1)) for t in texts]
+    assert shown[-1] == 45 and shown[21] == 0 and max(shown) == 345  # never 360°, 375° or 405°
+    assert [f"φ₂ = {_read(d)}°" in t for d, t in zip(phi2, texts)] == [True] * 25, texts
+
+
+def test_animation_keeps_the_sign_of_an_angle_that_swings_about_zero():
+    # the steering pinion turns φ₂ = 0.5 sin 2t: about ±28.6°, read signed (−28.65°, not 331.4°)
+    m = _example("steering")
+    sweep = m.simulate(np.linspace(0.0, np.pi, 25))
+    anim = plotting.animate(sweep, labels=False)
+    texts = _overlays(anim)
+    phi2 = np.degrees(sweep.coordinate("phi2")[anim.kinbook_indices])
+    assert phi2.min() < -28 and phi2.max() > 28
+    for d, t in zip(phi2, texts):
+        assert f"φ₂ = {round(d, 6) + 0.0:.4g}°" in t, t
+
+
 # --------------------------------------------------------------------------------------------- explorer
 def _residual(title):
     m = re.search(r"max\|Φ\| [=<] ([0-9.e+-]+)", title)
@@ -278,6 +319,19 @@ def test_explorer_static_marks_the_reachable_range_and_shows_the_limits(four_bar
     assert _has_circle_at(axes[4], A, tol=1e-3)
     same = plotting.explorer(m, values=np.degrees(values), degrees=True, static=True)
     assert [ax.get_title() for ax in same.axes if ax.get_visible()] == titles
+
+
+def test_explorer_reads_angles_beyond_a_turn_in_0_to_360_degrees():
+    # example 2's crank turns fully: 400° and −30° are reached by continuation from 45° and read 40° and 330°
+    m = _example("ch13_example2")
+    fig = plotting.explorer(m, values=[-30, 100, 400], degrees=True, static=True)
+    titles = [ax.get_title() for ax in fig.axes if ax.get_visible()]
+    assert [t.split("\n")[0] for t in titles] == [f"$\\varphi_{{2}}$ = {_read(d)}°" for d in (-30, 100, 400)]
+    pytest.importorskip("ipywidgets")
+    box = plotting.explorer(m, values=np.radians([-30, 400]), static=False)
+    box.kinbook_slider.value = 390.0
+    assert "φ₂ = 30°: max|Φ|" in box.kinbook_status.value
+    assert box.kinbook_slider.readout is False  # its own readout would say 390
 
 
 def test_explorer_widget_works_in_degrees_and_shows_the_limit(four_bar):

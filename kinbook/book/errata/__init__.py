@@ -13,7 +13,7 @@ from __future__ import annotations
 import html
 
 from ...errors import InputError
-from ..notation import html_math
+from ..notation import html_math, html_text
 from . import ch13, ch14
 from .erratum import KINDS, Erratum, Evidence
 
@@ -50,7 +50,7 @@ class ErrataTable:
     def _repr_html_(self):
         cards = []
         for e, ev in self.rows:
-            parts = [f"<p style='margin:0 0 4px 0'><b>{html.escape(e.where)}</b> "
+            parts = [f"<p style='margin:0 0 4px 0'><b>{html_text(e.where)}</b> "
                      f"<span style='color:#777'>[{html.escape(e.id)}, {e.kind}]</span></p>",
                      f"<p style='margin:0'>The book prints: {html_math(e.printed, display=True)}</p>",
                      f"<p style='margin:0'>Correct: {html_math(e.correct, display=True)}</p>"]

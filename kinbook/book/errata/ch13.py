@@ -350,21 +350,21 @@ def _ev_ex6_acceleration():
 ERRATA = [
     Erratum("13.5-eq4-text", "§13.5, text after eq. 4", r"[x, y]_i \text{: coordinates of O in local axes}",
             r"[x, y]_i \text{: global coordinates of } O_i", "wording"),
-    Erratum("13.5-q-elements", "§13.5, the sentence after q = [q_1ᵀ, q_2ᵀ, …, q_Nᵀ]ᵀ",
+    Erratum("13.5-q-elements", r"§13.5, the sentence after $\mathbf q = [\mathbf q_1^T, \mathbf q_2^T, \dots, \mathbf q_N^T]^T$",
             r"q_1, q_2, \dots, q_n \text{ correspond to the elements } 1, 2, \dots, n",
             r"\mathbf q_1, \dots, \mathbf q_N \text{ belong to the } N \text{ bodies; } n = 3N \text{ (plane) or } 6N "
             r"\text{ (space) counts coordinates}", "wording"),
-    Erratum("13.5-ex1-solution", "§13.5, example 1: solution at t = 0 and the points A, B",
+    Erratum("13.5-ex1-solution", r"§13.5, example 1: solution at $t = 0$ and the points $A$, $B$",
             r"x_3 = 1.5777,\ y_3 = 1.9854,\ \varphi_3 = 10.81°,\ x_4 = 3.7849,\ y_4 = 1.2783,\ \varphi_4 = 238.45°,\ B = (4.5697, 2.5566)",
             r"\varphi_3 = 11.58°,\ \varphi_4 = 240.80°,\ B = (4.4636, 2.6187)", "number", _ev_ex1_solution,
             "Examples 3, 5 and 6 reuse this configuration, so their numbers inherit the error."),
     Erratum("13.5-ex1-eq-ref", "§13.5, example 1, joint 2", r"\text{“puede emplearse la expresión general (1)”}",
             r"\text{the general expression, eq. 17 (in the scalar form of eq. 34)}", "wording", None,
             "There is no eq. 1 in the section: joint 1 just used eq. 17 and its scalar form, eq. 34."),
-    Erratum("13.5-ex3-x2", "§13.5, example 3 (and example 5): solution at t = 0", r"x_2 = 0.7071",
+    Erratum("13.5-ex3-x2", r"§13.5, example 3 (and example 5): solution at $t = 0$", r"x_2 = 0.7071",
             r"x_2 = -0.7071", "sign", _ev_ex3_x2, "Example 1 prints −0.7071 (x_2 = −cos 45°: the crank's middle is "
             "left of O_A), and so do example 5's Jacobian and example 6."),
-    Erratum("13.5-ex3-system", "§13.5, example 3: the assembled system, Φ_6 and Φ_7",
+    Erratum("13.5-ex3-system", r"§13.5, example 3: the assembled system, $\Phi_6$ and $\Phi_7$",
             r"\ldots - x_4 - 1.5\cos\varphi_3,\ \ldots - y_4 - 1.5\sin\varphi_3",
             r"\ldots - x_3 - 1.5\cos\varphi_3,\ \ldots - y_3 - 1.5\sin\varphi_3", "formula", _ev_ex3_system,
             "Example 3 has three bodies; there is no x_4 (the joint-2 section itself prints x_3, y_3)."),
@@ -375,12 +375,12 @@ ERRATA = [
             r"(y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)(x_1 - x_1 - \cos\varphi_1)",
             "formula", _ev_ex4_phi8_substituted, "y_i^P − y_j^Q = y_3 + 3 sin φ_3 − (y_1 + sin φ_1): a minus sign is "
             "missing, which makes y_1 sin φ_1 a product."),
-    Erratum("13.5-ex4-phi8", "§13.5, example 4, joint 3: Φ_8 simplified",
+    Erratum("13.5-ex4-phi8", r"§13.5, example 4, joint 3: $\Phi_8$ simplified",
             r"(x_3 + 3\cos\varphi_3 - x_1\cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)\cos\varphi_1",
             r"-(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)\cos\varphi_1",
             "formula", _ev_ex4_phi8, "Two slips: x_1 cos φ_1 for x_1 + cos φ_1 ... − cos φ_1, and the sign of the first "
             "product (the substituted row gives −(…) sin φ_1)."),
-    Erratum("13.5-ex4-phi8-system", "§13.5, example 4: Φ_8 in the assembled system",
+    Erratum("13.5-ex4-phi8-system", r"§13.5, example 4: $\Phi_8$ in the assembled system",
             r"(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1\sin\varphi_1)\cos\varphi_1",
             r"-(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)\cos\varphi_1",
             "formula", _ev_ex4_phi8_system, "The system repeats neither the simplified row nor its slips: here the x part "
@@ -424,13 +424,13 @@ ERRATA = [
             r"\Phi^{(i,2)},\ \Phi^{(r,1)},\ \text{apartado 4.3 / 4.5},\ \text{“as in example 3”}",
             r"\Phi^{(t,2)},\ \Phi^{(r\text{-}t,1)},\ \text{the translational / r-t subsections of §13.5},\ \text{example 2}",
             "wording"),
-    Erratum("13.6-q-example1", "§13.6, the coordinate vector q “for the example cited” (example 1)",
+    Erratum("13.6-q-example1", r"§13.6, the coordinate vector $\mathbf q$ “for the example cited” (example 1)",
             r"\mathbf q = [x_1, y_1, \varphi_1, x_2, y_2, \varphi_2, x_3, y_3, \varphi_3]^T",
             r"\mathbf q = [x_1, y_1, \varphi_1, \dots, x_4, y_4, \varphi_4]^T\ (n = 12)", "formula", _ev_q_13_6,
             "Example 1's four-bar has four bodies, the ground included (Φ_1–Φ_3 fix it), so n = 12 and m = 11; the "
             "section itself then lists Φ_4 … Φ_11 with y_4 and φ_4. (Nine coordinates fit three moving bars with "
             "the ground left out, which is not how example 1 is set up.)"),
-    Erratum("13.7-ex5-ground-points", "§13.7, example 5: global coordinates of O_A and O_B at t = 0",
+    Erratum("13.7-ex5-ground-points", r"§13.7, example 5: global coordinates of $O_A$ and $O_B$ at $t = 0$",
             r"y^{O_A} = y_1 + \eta_1^{O_A}\,\text{sen}\,\varphi_1,\quad y^{O_B} = y_1 + \eta_1^{O_B}\,\text{sen}\,\varphi_1",
             r"y^{P} = y_1 + \xi_1^{P}\sin\varphi_1\ \ (\eta_1^P = 0)", "formula", _ev_ex5_ground_points,
             "The simplified transformation just printed, y_i^P = y_i + ξ_i^P sen φ_i, has ξ; the x rows have ξ too."),
@@ -443,18 +443,18 @@ ERRATA = [
             r"\partial\Phi_1/\partial\varphi_i = -(y_i^P - y_j^P),\ \ldots",
             r"-(y_i^P - y_i),\ (y_j^P - y_j),\ (x_i^P - x_i),\ -(x_j^P - x_j)", "formula", _ev_table_13_1_text,
             "Table 13.1 itself is right; only the worked derivatives below it use the wrong points."),
-    Erratum("13.6-table-13.2", "§13.6, Table 13.2 (translational joint), ∂Φ_1/∂φ_j",
+    Erratum("13.6-table-13.2", r"§13.6, Table 13.2 (translational joint), $\partial\Phi_1/\partial\varphi_j$",
             r"(x_j^P - x_i)(x_i^P - x_i^O) + (y_j^P - y_i)(y_i^P - y_i^O)",
             r"(x_j^P - x_j)(x_i^P - x_i^Q) + (y_j^P - y_j)(y_i^P - y_i^Q)", "formula", _ev_table_13_2,
             "Table 13.5 prints this entry correctly."),
-    Erratum("13.6-table-13.3", "§13.6, Table 13.3 (revolute–revolute joint), ∂/∂φ_i and ∂/∂φ_j",
+    Erratum("13.6-table-13.3", r"§13.6, Table 13.3 (revolute–revolute joint), $\partial/\partial\varphi_i$ and $\partial/\partial\varphi_j$",
             r"\frac{\partial}{\partial\varphi_i}: -2(x_i^P - x_j^P)(y_i^P - y_j^P) + 2(y_i^P - y_j^P)(x_i^P - x_j^P)\ (= 0),"
             r"\quad \frac{\partial}{\partial\varphi_j}: 2(x_i^P - x_j^P)(y_j^P - y_j^P) - 2(y_i^P - y_j^P)(x_j^P - x_j^P)\ (= 0)",
             r"\frac{\partial}{\partial\varphi_i}: -2(x_i^P - x_j^P)(y_i^P - y_i) + 2(y_i^P - y_j^P)(x_i^P - x_i),\quad "
             r"\frac{\partial}{\partial\varphi_j}: 2(x_i^P - x_j^P)(y_j^P - y_j) - 2(y_i^P - y_j^P)(x_j^P - x_j)",
             "formula", _ev_table_13_3,
             "Example 5 repeats the zero entries; Table 13.5 prints them correctly."),
-    Erratum("13.6-table-13.4", "§13.6, Tables 13.4 and 13.5 (revolute–translational joint), ∂Φ/∂φ_j",
+    Erratum("13.6-table-13.4", r"§13.6, Tables 13.4 and 13.5 (revolute–translational joint), $\partial\Phi/\partial\varphi_j$",
             r"(y_i^P - y_i)(y_j^P - y_j^Q) + (x_i^P - x_i)(x_j^P - x_j^Q)",
             r"(y_i^P - y_j)(y_j^P - y_j^Q) + (x_i^P - x_j)(x_j^P - x_j^Q)", "formula", _ev_table_13_4),
     Erratum("13.7-ex5-joint3-working", "§13.7, example 5, joint 3 (r-r): the values substituted into the general row",
@@ -465,7 +465,7 @@ ERRATA = [
             "The first four lines are the lever arms of the corrected Table 13.3 (points relative to the body "
             "origins), labelled as differences of joint points; the numbers that follow (Φ_8's row) were computed "
             "with the right ones."),
-    Erratum("13.8-revolute-Phiq-qd", "§13.8, the revolute joint worked step by step: row 2 of Φ_q q̇",
+    Erratum("13.8-revolute-Phiq-qd", r"§13.8, the revolute joint worked step by step: row 2 of $\boldsymbol\Phi_{\mathbf q}\dot{\mathbf q}$",
             r"\dot x_j - (x_i^P - x_i)\dot\varphi_i - \dot y_j + (x_j^P - x_j)\dot\varphi_j",
             r"\dot y_i + (x_i^P - x_i)\dot\varphi_i - \dot y_j - (x_j^P - x_j)\dot\varphi_j", "formula",
             _ev_revolute_steps, "Row 2 of Table 13.1 times q̇; the next step, (Φ_q q̇)_q q̇, is printed right."),
@@ -473,10 +473,10 @@ ERRATA = [
             r"\gamma = (\Phi_q\dot q)_q\dot q", r"\gamma = -(\Phi_q\dot q)_q\dot q - 2\Phi_{qt}\dot q - \Phi_{tt}",
             "sign", _ev_gamma_sign, "The section first writes the minus sign, then drops it; its final γ rows use the "
             "right sign."),
-    Erratum("13.8-table-13.5-rr", "§13.8, Table 13.5, γ of the revolute–revolute joint (and example 6)",
+    Erratum("13.8-table-13.5-rr", r"§13.8, Table 13.5, $\gamma$ of the revolute–revolute joint (and example 6)",
             r"-2(\dot x_i - \dot x_j)^2 - 2(\dot y_i - \dot y_j) - \ldots",
             r"-2(\dot x_i - \dot x_j)^2 - 2(\dot y_i - \dot y_j)^2 - \ldots", "formula", _ev_gamma_rr),
-    Erratum("13.8-table-13.5-t", "§13.8, Table 13.5, γ_1 of the translational joint",
+    Erratum("13.8-table-13.5-t", r"§13.8, Table 13.5, $\gamma_1$ of the translational joint",
             r"2[(x_i^P - x_i^O)(\dot x_i - \dot x_j) + (y_i^P - y_i^O)(\dot y_i - \dot y_j)]\dot\varphi_i - [\ldots]\dot\varphi_i^2",
             r"-2[(x_i^P - x_i^Q)(\dot x_i - \dot x_j) + (y_i^P - y_i^Q)(\dot y_i - \dot y_j)]\dot\varphi_i - [\ldots]\dot\varphi_i^2",
             "sign", _ev_gamma_t, "The printed entry already uses φ̇_j = φ̇_i; its O is the guide point Q_i "
@@ -485,12 +485,12 @@ ERRATA = [
             r"\begin{bmatrix}\Phi_q\\ \Phi_q^{(d)}\end{bmatrix}\dot q = \begin{bmatrix}0\\ \Phi_t^{(d)}\end{bmatrix}",
             r"\begin{bmatrix}\Phi_q\\ \Phi_q^{(d)}\end{bmatrix}\dot q = \begin{bmatrix}0\\ -\Phi_t^{(d)}\end{bmatrix}",
             "sign", _ev_velocity_rhs, "The section's own derivation (before example 5) has the minus sign."),
-    Erratum("13.7-ex5-velocities", "§13.7, example 5: velocity solution and v_B",
+    Erratum("13.7-ex5-velocities", r"§13.7, example 5: velocity solution and $\mathbf v^B$",
             r"\dot x_2 = \dot y_2 = 70.71,\ \dot x_3 = 95.391,\ v_B = (-190.78, 117.14),\ |v_B| = 223.87",
             r"\dot x_2 = \dot y_2 = -70.71,\ \dot q_3 = (-96.22, 53.78, 73.49),\ v_B = (-192.44, 107.56),\ |v_B| = 220.46",
             "number", _ev_ex5_velocity, "The signs of ẋ_2, ẏ_2, ẋ_3 contradict the book's own equations; the "
             "other differences come from the wrong configuration of example 1/3."),
-    Erratum("13.8-ex6-point-A", "§13.8, example 6: the global points of the joints at t = 0",
+    Erratum("13.8-ex6-point-A", r"§13.8, example 6: the global points of the joints at $t = 0$",
             r"(x^A, y^A) = (1.4142,\ 1.4142)", r"(x^A, y^A) = (-1.4142,\ 1.4142)", "sign", _ev_ex6_point_A,
             "The same example's joint-3 data, a few lines below, use (−1.4142, 1.4142)."),
     Erratum("13.8-ex6-point-acceleration", "§13.8, example 6: the acceleration of a point, component by component",
@@ -501,7 +501,7 @@ ERRATA = [
             _ev_ex6_point_acceleration,
             "Eq. 13 written out with φ̈_i and φ̇_i² on the wrong brackets (the ÿ row likewise); eq. 12 of §13.5 is "
             "right (notebook 13-1)."),
-    Erratum("13.8-ex6-joint-label", "§13.8, example 6: the heading of the joint at O_B (rows 6–7)",
+    Erratum("13.8-ex6-joint-label", r"§13.8, example 6: the heading of the joint at $O_B$ (rows 6–7)",
             r"\text{“Junta n.º 3”}", r"\text{joint 2 (the r-r joint between bodies 2 and 3, headed next, is joint 3)}",
             "wording"),
     Erratum("13.8-driver-second-derivative", "§13.8, the second derivative of the driving constraints",
@@ -509,7 +509,7 @@ ERRATA = [
             r"\frac{d^2\Phi^{(d)}}{dt^2} = \frac{d}{dt}(\Phi_q^{(d)}\dot q + \Phi_t^{(d)})", "wording", None,
             "What is differentiated twice is the driving constraint Φ^(d) itself; Φ_q^(d) is its Jacobian. The "
             "result that follows is right."),
-    Erratum("13.8-ex6-accelerations", "§13.8, example 6: γ, the solution and a_B",
+    Erratum("13.8-ex6-accelerations", r"§13.8, example 6: $\gamma$, the solution and $\mathbf a^B$",
             r"\gamma_6 = 4370.82,\ \gamma_7 = 7118.39,\ \gamma_8 = \pm 1539.6,\ a_B = (4084.1, -22111.7)",
             r"\gamma_6 = 3952.10,\ \gamma_7 = 7071.08,\ \gamma_8 = 396.38,\ a_B = (4582.90, -21121.33)",
             "number", _ev_ex6_acceleration, "γ_8 is printed with both signs; the headings say “velocidad” for "

@@ -213,10 +213,10 @@ ERRATA = [
             r"A^\psi = \begin{bmatrix}\cos\psi & \sin\psi & 0\\ -\sin\psi & \cos\psi & 0\\ 0&0&1\end{bmatrix}",
             "sign", _ev_elementary_rotation, "The same slip is in A^θ and A^φ; the book's A^ψ, A^θ, A^φ are passive "
             "(global → local), the transposes of kinbook's active matrices (docs/conventions.md)."),
-    Erratum("14.2-A21-row3", "§14.2, the composed matrix A²¹ (both versions), row 3",
+    Erratum("14.2-A21-row3", r"§14.2, the composed matrix $\mathbf A^{21}$ (both versions), row 3",
             r"[\sin\psi\sin\phi,\ -\cos\psi\sin\phi,\ \cos\theta]",
             r"[\sin\psi\sin\theta,\ -\cos\psi\sin\theta,\ \cos\theta]", "formula", _ev_a21_row3),
-    Erratum("14.2-A-theta-second", "§14.2, the second (corrected) set of elementary matrices: A^θ",
+    Erratum("14.2-A-theta-second", r"§14.2, the second (corrected) set of elementary matrices: $\mathbf A^\theta$",
             r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\psi&-\operatorname{sen}\theta\\ 0&\operatorname{sen}\theta&\cos\theta\end{bmatrix}",
             r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\theta&\operatorname{sen}\theta\\ 0&-\operatorname{sen}\theta&\cos\theta"
             r"\end{bmatrix}\ \text{(passive, like the printed } A^\psi, A^\phi\text{)}",
@@ -224,12 +224,12 @@ ERRATA = [
             "active turn while the printed A^ψ and A^φ are passive; with cos θ restored but those signs kept, the "
             "product A^φ A^θ A^ψ would be the passive matrix of the opposite nutation −θ (notebook 14-2). The second "
             "A²¹ printed just below is the product of the passive matrices."),
-    Erratum("14.2-A21-row2-first", "§14.2, the first A²¹ (printed, before the corrected second set), row 2",
+    Erratum("14.2-A21-row2-first", r"§14.2, the first $\mathbf A^{21}$ (printed, before the corrected second set), row 2",
             r"[\,c\psi s\phi - s\psi c\theta c\phi,\ s\psi s\phi + c\psi c\theta c\phi,\ s\theta c\phi\,]",
             r"[\,-c\psi s\phi - s\psi c\theta c\phi,\ -s\psi s\phi + c\psi c\theta c\phi,\ s\theta c\phi\,]",
             "sign", _ev_A21_row2_first, "The second version prints this row right. (Only a repeated copy of the "
             "first elementary matrices is struck through in the book; this A²¹ is printed.)"),
-    Erratum("14.2-omega-matrix", "§14.2, the matrix relating ω to the angle rates (both versions)",
+    Erratum("14.2-omega-matrix", r"§14.2, the matrix relating $\boldsymbol\omega$ to the angle rates (both versions)",
             r"\begin{bmatrix}s\theta & s\phi & c\phi & 0\\ s\theta & c\phi & -s\phi & 0\\ c\theta & 0 & 1 & 1\end{bmatrix}"
             r"\ \text{(a } 3\times 4 \text{ array; the first version has } +s\phi \text{ in row 2 and } c\theta, 0, 0, 1 "
             r"\text{ in row 3)}",
@@ -237,11 +237,11 @@ ERRATA = [
             "formula", _ev_omega_matrix, "sin θ is split from sin φ and cos φ into a column of its own; the first version "
             "also prints +sin φ where −sin φ belongs in row 2, and 0, 0 for 0, 1 in row 3. "
             "kinbook.spatial.omega_from_euler_rates(frame='body') is the corrected relation."),
-    Erratum("14.2-rates-inverse-first", "§14.2, the first inverse relation (angle rates from ω'), row 2",
+    Erratum("14.2-rates-inverse-first", r"§14.2, the first inverse relation (angle rates from $\boldsymbol\omega'$), row 2",
             r"\dot\theta = \cos\phi\,\omega_1 + \operatorname{sen}\phi\,\omega_2",
             r"\dot\theta = \cos\phi\,\omega_1 - \operatorname{sen}\phi\,\omega_2", "sign", _ev_rates_inverse_first,
             "The second version prints it right; kinbook.spatial.euler_rates_from_omega(frame='body')."),
-    Erratum("14.3-A-of-p", "§14.3, A in terms of the Euler parameters",
+    Erratum("14.3-A-of-p", r"§14.3, $\mathbf A$ in terms of the Euler parameters",
             r"\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3-e_0e_2\\ e_1e_2-e_0e_3 & e_0^2+e_2^2-\tfrac12 & "
             r"e_2e_3-e_0e_1\\ e_1e_3-e_0e_2 & e_2e_3-e_0e_1 & e_0^2+e_3^2-\tfrac12\end{bmatrix}",
             r"2\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3+e_0e_2\\ e_1e_2+e_0e_3 & e_0^2+e_2^2-\tfrac12 & e_2e_3-e_0e_1\\ e_1e_3-e_0e_2 & e_2e_3+e_0e_1 & e_0^2+e_3^2-\tfrac12\end{bmatrix}",
@@ -259,17 +259,17 @@ ERRATA = [
             r"\mathbf p^T\mathbf p = e_0^2 + e_1^2 + e_2^2 + e_3^2 \ \Rightarrow\ \mathbf p^T\dot{\mathbf p} = 0",
             r"\mathbf p^T\mathbf p = 1 \ \Rightarrow\ (\text{differentiating})\ \mathbf p^T\dot{\mathbf p} = 0",
             "wording", None, "The conclusion is stated before the derivative that gives it."),
-    Erratum("14.3-A-ddot-a", "§14.3, Derivadas…, the last formula (Ä applied to a vector)",
+    Erratum("14.3-A-ddot-a", r"§14.3, Derivadas…, the last formula ($\ddot{\mathbf A}$ applied to a vector)",
             r"\ddot A\bar a = 2\dot E\dot G^T a + 2E\ddot a", r"\ddot A a = 2\dot E\dot G^T a + 2E\bar a\,\ddot{\mathbf p}",
             "formula", _ev_A_ddot_a, "The vector on the left is a, not ā, and ä (the second derivative of a constant vector: zero) "
             "stands for ā p̈; the next paragraph's “sea ā un vector arbitrario” means a."),
-    Erratum("14.3-a-bar", "§14.3, Derivadas…, ā written element by element",
+    Erratum("14.3-a-bar", r"§14.3, Derivadas…, $\bar{\mathbf a}$ written element by element",
             r"\bar a = \begin{bmatrix}0&-a_1&-a_2&-a_3\\ a_1&0&-a_3&a_2\\ a_2&a_3&0&-a_1\\ a_3&-a_2&a_1&0\end{bmatrix}",
             r"\bar a = \begin{bmatrix}0&-\mathbf a^T\\ \mathbf a&-\tilde{\mathbf a}\end{bmatrix} = \begin{bmatrix}0&-a_1&-a_2&-a_3\\ "
             r"a_1&0&a_3&-a_2\\ a_2&-a_3&0&a_1\\ a_3&a_2&-a_1&0\end{bmatrix}",
             "sign", _ev_a_bar_explicit, "The block form next to it is printed right (with a stray b̄ for ã); "
             "the element-by-element matrix has +ã in the lower right."),
-    Erratum("14.3-G-row2", "§14.3, the matrix G, row 2", r"[-e_2,\ e_3,\ e_0,\ e_1]", r"[-e_2,\ -e_3,\ e_0,\ e_1]",
+    Erratum("14.3-G-row2", r"§14.3, the matrix $\mathbf G$, row 2", r"[-e_2,\ e_3,\ e_0,\ e_1]", r"[-e_2,\ -e_3,\ e_0,\ e_1]",
             "sign", _ev_G_row2),
     Erratum("14.3-euler-theorem", "§14.3, Definición…, the paragraph that introduces the Euler parameters",
             r"\text{“están basados en que el movimiento instantáneo de un sólido con un punto fijo puede definirse por "
@@ -279,7 +279,7 @@ ERRATA = [
             "wording", None, "The Euler parameters describe that finite rotation (e_0 = cos α/2, [e_1, e_2, e_3] = u sin α/2), "
             "as the next paragraphs say — an orientation, not the instantaneous motion. The instantaneous rotation "
             "axis is the direction of ω, which the parameters' rates give (ω' = 2Gṗ)."),
-    Erratum("14.3-Ep-Gp", "§14.3, Propiedades…, the identities Ep = Gp = 0",
+    Erratum("14.3-Ep-Gp", r"§14.3, Propiedades…, the identities $\mathbf E\mathbf p = \mathbf G\mathbf p = \mathbf 0$",
             r"\frac{Ep}{Gp} = 0,\quad Ep = -e_1e_0 + e_0e_1 - e_3e_2 + e_2e_3 = 0",
             r"\mathbf E\mathbf p = \mathbf 0,\ \mathbf G\mathbf p = \mathbf 0\ (3\text{-vectors; the printed sum is row 1 of } "
             r"\mathbf E\mathbf p)", "wording", None, "A fraction bar stands for “and”, and the check computes one row of "
@@ -396,27 +396,27 @@ def _ev_14_4_revolute_tilde():
 
 # §14.4, constraints between two bodies (chapters/14-4-spatial-constraints.ipynb)
 ERRATA += [
-    Erratum("14.4-n2-primes", "§14.4, Vectores perpendiculares: Φ^(n2,1) in local components",
+    Erratum("14.4-n2-primes", r"§14.4, Vectores perpendiculares: $\Phi^{(n2,1)}$ in local components",
             r"\Phi^{(n2,1)} = s_i^T A_i^T (r_j + A_j s_j^B - r_i - A_i s_i^B)",
             r"\Phi^{(n2,1)} = s_i'^T A_i^T (r_j + A_j s_j'^B - r_i - A_i s_i'^B)",
             "formula", _ev_14_4_n2_primes, "The primes of the three local vectors are missing; the n1 formula just "
             "above (s_i'^T A_i^T A_j s_j') has them."),
-    Erratum("14.4-p1-local-form", "§14.4, Vectores paralelos: Φ^(p1,2) in local components",
+    Erratum("14.4-p1-local-form", r"§14.4, Vectores paralelos: $\Phi^{(p1,2)}$ in local components",
             r"\tilde s_i s_j = A_i \tilde s_i^T A_i^T A_j s_j^B",
             r"\tilde s_i s_j = A_i \tilde s_i' A_i^T A_j s_j'", "formula", _ev_14_4_p1_transpose,
             "The tilde is transposed (s̃ᵀ = −s̃), the primes are missing and a stray superscript B appears. Set to "
             "zero, −s̃_i s_j = 0 is the same constraint, but the identity is wrong. Φ^(p2,2) below is printed right."),
-    Erratum("14.4-p1-two-rows", "§14.4, Vectores paralelos: which two rows of s̃_i s_j = 0",
+    Erratum("14.4-p1-two-rows", r"§14.4, Vectores paralelos: which two rows of $\tilde{\mathbf s}_i\mathbf s_j = \mathbf 0$",
             r"\text{the third row is a linear combination of the first two}",
             r"s_{ix}(\tilde s_i s_j)_1 + s_{iy}(\tilde s_i s_j)_2 + s_{iz}(\tilde s_i s_j)_3 = 0:\ "
             r"\text{row 3 follows from rows 1-2 only if } s_{iz} \neq 0",
             "formula", _ev_14_4_p1_two_rows, "Which row is redundant depends on the orientation of s_i, and it changes "
             "as the mechanism moves. kinbook writes p1 and p2 as h_1ᵀs_j = h_2ᵀs_j = 0 with h_1, h_2 ⊥ s'_i fixed in "
             "body i (docs/conventions.md), two rows that stay independent in every orientation."),
-    Erratum("14.4-universal-primes", "§14.4, Junta universal: Φ^(s,3)",
+    Erratum("14.4-universal-primes", r"§14.4, Junta universal: $\Phi^{(s,3)}$",
             r"r_i + A_i s_i^P - A_j s_j^P - r_j", r"r_i + A_i s_i'^P - A_j s_j'^P - r_j",
             "formula", _ev_14_4_universal_primes, "The spherical-joint section just before prints it with the primes."),
-    Erratum("14.4-revolute-tilde", "§14.4, Junta de revolución: Φ^(p1,2) in local components",
+    Erratum("14.4-revolute-tilde", r"§14.4, Junta de revolución: $\Phi^{(p1,2)}$ in local components",
             r"A_i s_i' A_i^T A_j s_j' = 0", r"A_i \tilde s_i' A_i^T A_j s_j' = 0",
             "formula", _ev_14_4_revolute_tilde, "Without the tilde the product is undefined (3×1 times 3×3)."),
 ]
@@ -475,22 +475,22 @@ def _ev_14_5_gamma_n1_table():
 
 # §14.5, spatial kinematic analysis (chapters/14-5-spatial-analysis.ipynb)
 ERRATA += [
-    Erratum("14.5-cross-references", "§14.5, opening paragraph, the Φ_p derivation and the γ paragraph",
+    Erratum("14.5-cross-references", r"§14.5, opening paragraph, the $\boldsymbol\Phi_{\mathbf p}$ derivation and the $\gamma$ paragraph",
             r"\text{“apartado 211.5” (twice), “apartado 3.3” (once)}",
             r"\text{chapter 13 (§13.5–13.8) for the planar analysis; §14.3 for } \partial(Aa)/\partial p "
             r"\text{ and } \ddot A a", "wording", None,
             "The book has no §211.5 or §3.3 (numbers left from another edition): the planar analysis is chapter 13, "
             "the Euler-parameter formulas are in §14.3. (A second “apartado 3.3”, before Ä a, is in a passage the "
             "book strikes through.)"),
-    Erratum("14.5-n1-rj", "§14.5, Jacobian of Φ^(n1,1), the sentence before Φ_{r_j} and Φ_{p_j}",
+    Erratum("14.5-n1-rj", r"§14.5, Jacobian of $\Phi^{(n1,1)}$, the sentence before $\Phi^{(n1,1)}_{\mathbf r_j}$ and $\Phi^{(n1,1)}_{\mathbf p_j}$",
             r"\text{“respecto a } r_i \text{ y } p_j\text{”}", r"\text{with respect to } r_j \text{ and } p_j",
             "wording"),
-    Erratum("14.5-A-ddot-a", "§14.5, Ä a recalled from §14.3 for γ of Φ^(n1,1): the displayed formula",
+    Erratum("14.5-A-ddot-a", r"§14.5, $\ddot{\mathbf A}\mathbf a$ recalled from §14.3 for $\gamma$ of $\Phi^{(n1,1)}$: the displayed formula",
             r"\ddot A a = 2\dot E\dot G^T a + 2E\ddot a\,\ddot p", r"\ddot A a = 2\dot E\dot G^T a + 2E\bar a\,\ddot p",
             "formula", _ev_A_ddot_a, "ä (the second derivative of a constant vector: zero) stands for ā; the §14.3 "
             "version also drops p̈ (notebook 14-3). The sentences that introduce the formula are struck through in "
             "the book; the formula itself is printed."),
-    Erratum("14.5-gamma-n1", "§14.5, the acceleration equation of Φ^(n1,1)",
+    Erratum("14.5-gamma-n1", r"§14.5, the acceleration equation of $\Phi^{(n1,1)}$",
             r"[2s_j^TE_i\bar s'_i,\ 2s_i^TE_j\bar s'_j]\begin{bmatrix}\dot p_i\\ \dot p_j\end{bmatrix} = "
             r"2(s_j^T\dot E_i\dot G_i s'_i + s_i^T\dot E_j\dot G_j s'_j + \dot s_i^T\dot s_j)",
             r"[2s_j^TE_i\bar s'_i,\ 2s_i^TE_j\bar s'_j]\begin{bmatrix}\ddot p_i\\ \ddot p_j\end{bmatrix} = "
@@ -498,8 +498,8 @@ ERRATA += [
             "formula", _ev_14_5_gamma_n1,
             "Three slips: ṗ for p̈, Ġ for Ġᵀ (Ġ s' is undefined) and the sign of the right-hand side (the book's "
             "own line before, s_jᵀÄ_is'_i + s_iᵀÄ_js'_j + 2ṡ_iᵀṡ_j = 0, gives the minus)."),
-    Erratum("14.5-gamma-n1-table", "§14.5, “es necesario obtener el vector γ. Veamos como serían los pasos para su "
-            "obtención … normal tipo 1”: the γ those steps end with",
+    Erratum("14.5-gamma-n1-table", r"§14.5, “es necesario obtener el vector $\gamma$. Veamos como serían los pasos para su "
+            r"obtención … normal tipo 1”: the $\gamma$ those steps end with",
             r"\gamma^{(n1,1)} = -2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)"
             r"\ \text{(misprints of 14.5-gamma-n1 corrected)}",
             r"\gamma^{(n1,1)} = -2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)"

@@ -48,7 +48,7 @@ class Erratum:
     never an erratum, nor is a struck-through sentence the anchor of one)."""
 
     id: str
-    where: str
+    where: str  # the title: prose with inline TeX between dollars, in the book's notation ("$\Phi_8$ simplified")
     printed: str
     correct: str
     kind: str  # one of KINDS

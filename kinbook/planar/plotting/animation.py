@@ -8,7 +8,7 @@ import math
 import numpy as np
 import sympy as sp
 
-from ...core._animation import Animation
+from ...core._animation import Animation, degrees_as_read
 from ...errors import InputError
 from ._common import _TRACES, _plt, _style_axes
 from .joints import drawing_size, driver_symbol
@@ -74,7 +74,7 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
         artists = scene.update(qs[k])
         text = f"t = {result.t[idx[k]]:.4g}"  # plain text: mathtext would be parsed anew every frame
         if values is not None:
-            text += f"    {sym} = {values[k]:.4g}{unit}"
+            text += f"    {sym} = {values[k]}{unit}"
         if k == len(idx) - 1 and result.failure is not None:
             text += "   (last instant that assembles)"
         clock.set_text(text)
@@ -101,7 +101,9 @@ def _traces(ax, result, trace, idx):
 
 
 def _driver_values(result, idx):
-    """(symbol, values at the instants ``idx``, unit) of the first driver; (None, None, "") without one."""
+    """(symbol, values at the instants ``idx`` as text, unit) of the first driver; (None, None, "") without one.
+    An angle is read in degrees, in the range the text gives it (:func:`~kinbook.core._animation.degrees_as_read`):
+    a crank that has turned on from 45° past a full turn reads 45° again, not 405°."""
     mech = result.mechanism
     driver = mech.drivers[0] if mech.drivers else None
     sym = driver_symbol(mech, driver, unicode=True) if driver is not None else None
@@ -109,8 +111,10 @@ def _driver_values(result, idx):
     if driver is not None:
         f = sp.lambdify(mech.t, driver.f, "numpy")
         values = np.broadcast_to(np.asarray(f(result.t[idx]), dtype=float), idx.shape)
-        if (driver.measures or (None,))[-1] == "angle":  # an angle is read in degrees, as the text gives it
-            values, unit = np.degrees(values), "°"
+        if (driver.measures or (None,))[-1] == "angle":
+            values, unit = degrees_as_read(values), "°"
+        else:
+            values = [f"{v:.4g}" for v in values]
     return sym, values, unit
 
 

@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 
+from ...core._animation import degrees_as_read, swings_about_zero
 from ...core.sweep import follow, follow_times
 from ...errors import InputError
 from ._common import _plt, _style_axes
@@ -47,6 +48,7 @@ class _DriverAxis:
         slope = sp.diff(driver.f, t)
         self.linear = not slope.free_symbols and slope != 0
         self.angle = False
+        self.signed = False  # angles read in (−180°, 180°): set by the explorer for values swinging about zero
         if self.linear:
             self.a, self.b = float(driver.f.subs(t, 0)), float(slope)
             self.symbol = driver_symbol(mech, driver)
@@ -72,7 +74,9 @@ class _DriverAxis:
         return math.degrees(v) if self.angle else float(v)
 
     def text(self, v, digits=4):
-        return f"{self.shown(v):.{digits}g}°" if self.angle else f"{float(v):.{digits}g}"
+        """A driver value as text: a rotation in degrees in [0°, 360°) as the book gives angles (a value the
+        continuation reached by turning on past a full turn, or back below zero, names the same position)."""
+        return f"{degrees_as_read(v, digits, self.signed)[0]}°" if self.angle else f"{float(v):.{digits}g}"
 
     @property
     def max_step(self):
@@ -153,6 +157,7 @@ def explorer(mech, driver=None, values=None, *, degrees=False, static=None, fram
         raise InputError(f"`values` must be finite driver values, got {values}")
     if degrees and axis.angle:
         values = np.radians(values)
+    axis.signed = axis.angle and swings_about_zero(values)
     if static is None:
         static = not _live_kernel()
         if not static:
@@ -247,8 +252,11 @@ def _explorer_widget(mech, axis, values, frames):
 
     v_start = min(max(axis.v0, lo), hi)
     a, b, start = axis.shown(lo), axis.shown(hi), axis.shown(v_start)
+    # the slider runs over the continuation's range; where that leaves [0°, 360°) (or ±180° for a swing), its own
+    # readout would contradict the status line, which reads the angle as the book gives it
+    readout = not axis.angle or axis.signed or (a >= 0.0 and b < 360.0)
     slider = widgets.FloatSlider(value=start, min=a, max=b, step=(b - a) / 400,
-                                 description=axis.unicode + (" (°)" if axis.angle else ""),
+                                 description=axis.unicode + (" (°)" if axis.angle else ""), readout=readout,
                                  continuous_update=True, readout_format=".4g", layout=widgets.Layout(width="520px"))
     status = widgets.HTML()
     image = widgets.Image(format="png")
