@@ -62,47 +62,58 @@ def test_html_outputs_carry_math_the_static_book_typesets():
                 assert not found, f"{path.name}: $…$ in an HTML output: {found.group(0)[:80]}"
 
 
-# ------------------------------------------------------------------------------------------- typeset titles
+# ---------------------------------------------------------------------------------- typeset titles and notes
 TITLE = re.compile(r"<b>(.*?)</b> <span")
+NOTE = re.compile(r"<i>(.*?)</i>")
 INLINE = re.compile(r"\\\((.*?)\\\)")
-RAW_MATH = re.compile(r"[\\$_^{}]|[\u0370-\u03ff\u0300-\u036f∂−ᵀ⁰¹²³⁴⁵⁶⁷⁸⁹₀₁₂₃₄₅₆₇₈₉]|\b[A-Za-z]+'(?![a-z])"
-                      r"|(?:^|[\s(])[b-zA-Z](?=[\s,;:)]|$)")
-"""A formula typed as text: TeX markup, a Greek letter, an accent, a minus, a superscript or subscript digit, a
-primed name (ω', phi' — not a possessive), a lone letter (t = 0, the points A, B — "a" is a word, and a letter quoted as the book
-prints it, “o”, is prose)."""
+RAW_MATH = re.compile(r"[\\$_^{}]|[\u0370-\u03ff\u0300-\u036f∂ᵀ⁰¹²³⁴⁵⁶⁷⁸⁹₀₁₂₃₄₅₆₇₈₉]|\b[A-Za-z]{1,3}'(?![a-z])"
+                      r"|(?:^|[\s(])[b-zB-Z](?=[\s,;:)]|$)")
+"""A formula typed as text: TeX markup, a Greek letter, an accent, a superscript or subscript digit, a primed name
+(ω', phi' — not a possessive), a lone letter (t = 0, the points B, C — "a" and "A" are words, and a letter quoted
+as the book prints it, “o”, is prose)."""
+CODE = re.compile(r"[\w.]*\w+(?:_\w+){2,}(?:\([^)]*\))?")
+"""A function named in the prose (kinbook.spatial.euler_rates_from_omega(frame='body')): not a formula."""
 
 
 def _titles(cards_html):
     return [unescape(t) for t in TITLE.findall(cards_html)]
 
 
-def _raw_math(title):
-    return RAW_MATH.findall(INLINE.sub(" ", title))
+def _notes(cards_html):
+    return [unescape(t) for t in NOTE.findall(cards_html)]
 
 
-def test_titles_set_their_formulas_as_math():
-    """Every card's title (its <b>) has its formulas in \\(…\\), which JupyterLab (untrusted too), the book's
-    MathJax and `make html` typeset; the prose around them carries no formula as text."""
-    titles = _titles(errata.table()._repr_html_())
-    assert len(titles) == len(errata.ERRATA)
-    assert [t for t in titles if _raw_math(t)] == []
+def _raw_math(text):
+    return RAW_MATH.findall(CODE.sub(" ", INLINE.sub(" ", text)))
+
+
+def test_titles_and_notes_set_their_formulas_as_math():
+    """Every card's title (its <b>) and note (its <i>) have their formulas in \\(…\\), which JupyterLab (untrusted
+    too), the book's MathJax and `make html` typeset; the prose around them carries no formula as text."""
+    cards = errata.table()._repr_html_()
+    titles, notes = _titles(cards), _notes(cards)
+    assert len(titles) == len(errata.ERRATA) and len(notes) == sum(bool(e.note) for e in errata.ERRATA)
+    assert [t for t in titles + notes if _raw_math(t)] == []
     assert sum(bool(INLINE.search(t)) for t in titles) >= 35  # a formula in more than half the titles
     # one title spelled out: row 2 of Φ_q q̇ (§13.8), bold Φ with subscript bold q, times q̇ — the book's notation
     card = errata.show("13.8-revolute-Phiq-qd")._repr_html_()
     assert INLINE.findall(_titles(card)[0]) == [r"\boldsymbol\Phi_{\mathbf q}\dot{\mathbf q}"]
-    # the old way of writing it fails the check
+    # the old way of writing it fails the check, and a function's name in the prose does not
     assert _raw_math("§13.8, the revolute joint worked step by step: row 2 of Φ_q q̇") == ["Φ", "_", "\u0307"]
     assert _raw_math("§14.2, the first inverse relation (angle rates from phi'), row 2") == ["phi'"]
+    assert _raw_math("Example 1 prints −0.7071 (x_2 = −cos 45°)") == ["_"]
+    assert _raw_math("kinbook's p_from_A also covers it; the parameters' rates give ω") == ["ω"]
 
 
-def test_stored_notebooks_show_typeset_titles():
+def test_stored_notebooks_show_typeset_titles_and_notes():
     """The cards stored in the notebooks (errata.ipynb and the chapters that show errata) are the typeset ones."""
     seen = 0
     for path in sorted(ROOT.glob("chapters/*.ipynb")):
         for cell in json.loads(path.read_text())["cells"]:
             for out in cell.get("outputs", []):
-                for title in _titles("".join(out.get("data", {}).get("text/html", ""))):
-                    assert not _raw_math(title), f"{path.name}: {title}"
+                cards = "".join(out.get("data", {}).get("text/html", ""))
+                for text in _titles(cards) + _notes(cards):
+                    assert not _raw_math(text), f"{path.name}: {text}"
                     seen += 1
     assert seen >= 2 * len(errata.ERRATA)  # errata.ipynb has every card, the chapters show them again
 
@@ -118,8 +129,8 @@ require(process.argv[2]).init({loader: {load: ['input/tex']}, startup: {typeset:
 """
 
 
-def test_title_formulas_typeset_in_mathjax(tmp_path):
-    """The book's own MathJax 3 (`make web-env` installs it) reads every title formula: no TeX error, no undefined
+def test_title_and_note_formulas_typeset_in_mathjax(tmp_path):
+    """The book's own MathJax 3 (`make web-env` installs it) reads every formula of the titles and notes: no TeX error, no undefined
     macro (MathJax marks those in red), and the book's bold and accents come out as MathML says they should."""
     import shutil
     import subprocess
@@ -127,7 +138,8 @@ def test_title_formulas_typeset_in_mathjax(tmp_path):
     node = shutil.which("node")
     if node is None or not MATHJAX.is_dir():
         pytest.skip("needs node and MathJax 3 (make web-env)")
-    texs = [m for t in _titles(errata.table()._repr_html_()) for m in INLINE.findall(t)]
+    cards = errata.table()._repr_html_()
+    texs = sorted({m for t in _titles(cards) + _notes(cards) for m in INLINE.findall(t)})
     script = tmp_path / "tex2mml.js"
     script.write_text(TEX2MML)
     run = subprocess.run([node, str(script), str(MATHJAX)], input=json.dumps(texs), capture_output=True, text=True,

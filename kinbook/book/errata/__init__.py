@@ -57,7 +57,7 @@ class ErrataTable:
             if ev is not None:
                 parts.append(f"<p style='margin:4px 0 0 0'>Evidence: {html.escape(ev.text)}</p>")
             if e.note:
-                parts.append(f"<p style='margin:4px 0 0 0'><i>{html.escape(e.note)}</i></p>")
+                parts.append(f"<p style='margin:4px 0 0 0'><i>{html_text(e.note)}</i></p>")
             cards.append("<div style='text-align:left; border-left:4px solid #c62828; padding:4px 10px; "
                          "margin:10px 0; background:#fdf6f6'>" + "".join(parts) + "</div>")
         return "".join(cards)

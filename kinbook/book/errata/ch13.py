@@ -362,40 +362,42 @@ ERRATA = [
             r"\text{the general expression, eq. 17 (in the scalar form of eq. 34)}", "wording", None,
             "There is no eq. 1 in the section: joint 1 just used eq. 17 and its scalar form, eq. 34."),
     Erratum("13.5-ex3-x2", r"§13.5, example 3 (and example 5): solution at $t = 0$", r"x_2 = 0.7071",
-            r"x_2 = -0.7071", "sign", _ev_ex3_x2, "Example 1 prints −0.7071 (x_2 = −cos 45°: the crank's middle is "
-            "left of O_A), and so do example 5's Jacobian and example 6."),
+            r"x_2 = -0.7071", "sign", _ev_ex3_x2, r"Example 1 prints −0.7071 ($x_2 = -\cos 45°$: the crank's "
+            r"middle is left of $O_A$), and so do example 5's Jacobian and example 6."),
     Erratum("13.5-ex3-system", r"§13.5, example 3: the assembled system, $\Phi_6$ and $\Phi_7$",
             r"\ldots - x_4 - 1.5\cos\varphi_3,\ \ldots - y_4 - 1.5\sin\varphi_3",
             r"\ldots - x_3 - 1.5\cos\varphi_3,\ \ldots - y_3 - 1.5\sin\varphi_3", "formula", _ev_ex3_system,
-            "Example 3 has three bodies; there is no x_4 (the joint-2 section itself prints x_3, y_3)."),
+            r"Example 3 has three bodies; there is no $x_4$ (the joint-2 section itself prints $x_3$, $y_3$)."),
     Erratum("13.5-ex4-phi8-substituted", "§13.5, example 4, joint 3: the general row with the points substituted",
             r"(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)(y_1 - y_1 - \sin\varphi_1) - "
             r"(y_3 + 3\sin\varphi_3 - y_1\sin\varphi_1)(x_1 - x_1 - \cos\varphi_1)",
             r"(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)(y_1 - y_1 - \sin\varphi_1) - "
             r"(y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)(x_1 - x_1 - \cos\varphi_1)",
-            "formula", _ev_ex4_phi8_substituted, "y_i^P − y_j^Q = y_3 + 3 sin φ_3 − (y_1 + sin φ_1): a minus sign is "
-            "missing, which makes y_1 sin φ_1 a product."),
+            "formula", _ev_ex4_phi8_substituted, r"$y_i^P - y_j^Q = y_3 + 3\sin\varphi_3 - (y_1 + \sin\varphi_1)$: "
+            r"a minus sign is missing, which makes $y_1\sin\varphi_1$ a product."),
     Erratum("13.5-ex4-phi8", r"§13.5, example 4, joint 3: $\Phi_8$ simplified",
             r"(x_3 + 3\cos\varphi_3 - x_1\cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)\cos\varphi_1",
             r"-(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)\cos\varphi_1",
-            "formula", _ev_ex4_phi8, "Two slips: x_1 cos φ_1 for x_1 + cos φ_1 ... − cos φ_1, and the sign of the first "
-            "product (the substituted row gives −(…) sin φ_1)."),
+            "formula", _ev_ex4_phi8, r"Two slips: $x_1\cos\varphi_1$ for $x_1 + \cos\varphi_1$ … $-\cos\varphi_1$, "
+            r"and the sign of the first product (the substituted row gives $-(\ldots)\sin\varphi_1$)."),
     Erratum("13.5-ex4-phi8-system", r"§13.5, example 4: $\Phi_8$ in the assembled system",
             r"(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1\sin\varphi_1)\cos\varphi_1",
             r"-(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)\cos\varphi_1",
-            "formula", _ev_ex4_phi8_system, "The system repeats neither the simplified row nor its slips: here the x part "
-            "is right but its sign is not, and the y part has the substituted row's y_1 sin φ_1."),
+            "formula", _ev_ex4_phi8_system, r"The system repeats neither the simplified row nor its slips: here "
+            r"the $x$ part is right but its sign is not, and the $y$ part has the substituted row's "
+            r"$y_1\sin\varphi_1$."),
     Erratum("13.5-ex2-translational", "§13.5, example 2, joint 2: the general translational row",
             r"(x_i^P - x_i^Q)(y_j^P - y_j^Q) - (y_i^P - y_i^Q)(x_j^P - x_j^Q)",
             r"(x_i^P - x_i^Q)(y_j^P - y_i^P) - (y_i^P - y_i^Q)(x_j^P - x_i^P)\ \text{(eq. 26)}", "formula",
-            _ev_ex2_translational, "As printed it asks only that P_jQ_j be parallel to the guide (the second row "
-            "already does); eq. 26 asks P_j to lie on the guide line. The example defines no Q_j, and its Φ_6, "
-            "substituted just below, is eq. 26's."),
+            _ev_ex2_translational, r"As printed it asks only that $P_jQ_j$ be parallel to the guide (the second "
+            r"row already does); eq. 26 asks $P_j$ to lie on the guide line. The example defines no $Q_j$, and its "
+            r"$\Phi_6$, substituted just below, is eq. 26's."),
     Erratum("13.5-ex2-l3", "§13.5, example 2: local frame of body 3", r"l_3 = b/6", r"l_3 = 6", "number",
             _ev_ex2_l3),
     Erratum("13.5-ex2-driver", "§13.5, example 2, the driver's parameters", r"\varphi_2 = \frac{\pi}{4} = 45°",
             r"\varphi_2^0 = \frac{\pi}{4} = 45°", "wording", None,
-            "The initial value φ_2⁰ (as example 1 writes it), not the coordinate φ_2, which changes with t."),
+            r"The initial value $\varphi_2^0$ (as example 1 writes it), not the coordinate $\varphi_2$, which "
+            r"changes with $t$."),
     Erratum("13.5-motrices", "§13.5, examples 2 and 4: headings and the sentence on driving constraints",
             r"\text{“restricciones matrices adicionales”, “ecuaciones matrices”, “una única ecuación matriz”}",
             r"\text{restricciones / ecuaciones motrices, una única ecuación motriz (driving constraints)}",
@@ -410,9 +412,9 @@ ERRATA = [
             r"s_i = r_i^P - r_i^O,\ (x_i^P - x_i^O)(y_j^P - y_i^P) - (y_i^P - y_i^O)(x_j^P - x_i^P) = 0",
             r"s_i = r_i^P - r_i^Q,\ (x_i^P - x_i^Q)(y_j^P - y_i^P) - (y_i^P - y_i^Q)(x_j^P - x_i^P) = 0",
             "formula", _ev_eq25,
-            "The text takes the guide points P_i and Q_i; the formulas call the second one O, the letter the book "
-            "reserves for a body's reference point O_i. Read as O_i the equation holds only when O_i happens to lie "
-            "on the guide line."),
+            r"The text takes the guide points $P_i$ and $Q_i$; the formulas call the second one $O$, the letter "
+            r"the book reserves for a body's reference point $O_i$. Read as $O_i$ the equation holds only when "
+            r"$O_i$ happens to lie on the guide line."),
     Erratum("13.5-eq21", "§13.5, translational joint, text after eq. 21", r"\text{eq. (19) is one of the two equations}",
             r"\text{eq. (21)}", "wording"),
     Erratum("13.5-eq24", "§13.5, translational joint, before eq. 24", r"\text{multiplying the vectors scalarly}",
@@ -427,18 +429,20 @@ ERRATA = [
     Erratum("13.6-q-example1", r"§13.6, the coordinate vector $\mathbf q$ “for the example cited” (example 1)",
             r"\mathbf q = [x_1, y_1, \varphi_1, x_2, y_2, \varphi_2, x_3, y_3, \varphi_3]^T",
             r"\mathbf q = [x_1, y_1, \varphi_1, \dots, x_4, y_4, \varphi_4]^T\ (n = 12)", "formula", _ev_q_13_6,
-            "Example 1's four-bar has four bodies, the ground included (Φ_1–Φ_3 fix it), so n = 12 and m = 11; the "
-            "section itself then lists Φ_4 … Φ_11 with y_4 and φ_4. (Nine coordinates fit three moving bars with "
-            "the ground left out, which is not how example 1 is set up.)"),
+            r"Example 1's four-bar has four bodies, the ground included ($\Phi_1$–$\Phi_3$ fix it), so $n = 12$ "
+            r"and $m = 11$; the section itself then lists $\Phi_4 \dots \Phi_{11}$ with $y_4$ and $\varphi_4$. "
+            r"(Nine coordinates fit three moving bars with the ground left out, which is not how example 1 is set "
+            r"up.)"),
     Erratum("13.7-ex5-ground-points", r"§13.7, example 5: global coordinates of $O_A$ and $O_B$ at $t = 0$",
             r"y^{O_A} = y_1 + \eta_1^{O_A}\,\text{sen}\,\varphi_1,\quad y^{O_B} = y_1 + \eta_1^{O_B}\,\text{sen}\,\varphi_1",
             r"y^{P} = y_1 + \xi_1^{P}\sin\varphi_1\ \ (\eta_1^P = 0)", "formula", _ev_ex5_ground_points,
-            "The simplified transformation just printed, y_i^P = y_i + ξ_i^P sen φ_i, has ξ; the x rows have ξ too."),
+            r"The simplified transformation just printed, $y_i^P = y_i + \xi_i^P \operatorname{sen}\varphi_i$, has "
+            r"$\xi$; the $x$ rows have $\xi$ too."),
     Erratum("13.7-ex5-reference", "§13.7, example 5, the sentence after the statement",
             r"\text{“el mismo del ejemplo 3 del capítulo 3”}",
             r"\text{the mechanism of example 3, §13.5 (this chapter)}", "wording", None,
-            "There is no chapter 3 in these chapters: example 3 (the four-bar with a revolute–revolute joint) is in "
-            "§13.5, where its constraint equations and its solution at t = 0 are obtained."),
+            r"There is no chapter 3 in these chapters: example 3 (the four-bar with a revolute–revolute joint) is "
+            r"in §13.5, where its constraint equations and its solution at $t = 0$ are obtained."),
     Erratum("13.6-table-13.1-text", "§13.6, the derivation under Table 13.1",
             r"\partial\Phi_1/\partial\varphi_i = -(y_i^P - y_j^P),\ \ldots",
             r"-(y_i^P - y_i),\ (y_j^P - y_j),\ (x_i^P - x_i),\ -(x_j^P - x_j)", "formula", _ev_table_13_1_text,
@@ -462,25 +466,26 @@ ERRATA = [
             r"(x_j^p - x_j^p) = (x^B - x^3),\ (y_j^p - y_j^p) = (y^B - y^3)",
             r"(x_i^P - x_i) = x^A - x_2 = -1.4142 + 0.7071,\ (y_i^P - y_i) = y^A - y_2,\ (x_j^P - x_j) = x^B - x_3,"
             r"\ (y_j^P - y_j) = y^B - y_3", "formula", _ev_ex5_joint3_working,
-            "The first four lines are the lever arms of the corrected Table 13.3 (points relative to the body "
-            "origins), labelled as differences of joint points; the numbers that follow (Φ_8's row) were computed "
-            "with the right ones."),
+            r"The first four lines are the lever arms of the corrected Table 13.3 (points relative to the body "
+            r"origins), labelled as differences of joint points; the numbers that follow ($\Phi_8$'s row) were "
+            r"computed with the right ones."),
     Erratum("13.8-revolute-Phiq-qd", r"§13.8, the revolute joint worked step by step: row 2 of $\boldsymbol\Phi_{\mathbf q}\dot{\mathbf q}$",
             r"\dot x_j - (x_i^P - x_i)\dot\varphi_i - \dot y_j + (x_j^P - x_j)\dot\varphi_j",
             r"\dot y_i + (x_i^P - x_i)\dot\varphi_i - \dot y_j - (x_j^P - x_j)\dot\varphi_j", "formula",
-            _ev_revolute_steps, "Row 2 of Table 13.1 times q̇; the next step, (Φ_q q̇)_q q̇, is printed right."),
+            _ev_revolute_steps, r"Row 2 of Table 13.1 times $\dot{\mathbf q}$; the next step, "
+            r"$(\boldsymbol\Phi_{\mathbf q}\dot{\mathbf q})_{\mathbf q}\dot{\mathbf q}$, is printed right."),
     Erratum("13.8-gamma-sign", "§13.8, the revolute-joint walkthrough and example 6",
             r"\gamma = (\Phi_q\dot q)_q\dot q", r"\gamma = -(\Phi_q\dot q)_q\dot q - 2\Phi_{qt}\dot q - \Phi_{tt}",
-            "sign", _ev_gamma_sign, "The section first writes the minus sign, then drops it; its final γ rows use the "
-            "right sign."),
+            "sign", _ev_gamma_sign, r"The section first writes the minus sign, then drops it; its final $\gamma$ "
+            r"rows use the right sign."),
     Erratum("13.8-table-13.5-rr", r"§13.8, Table 13.5, $\gamma$ of the revolute–revolute joint (and example 6)",
             r"-2(\dot x_i - \dot x_j)^2 - 2(\dot y_i - \dot y_j) - \ldots",
             r"-2(\dot x_i - \dot x_j)^2 - 2(\dot y_i - \dot y_j)^2 - \ldots", "formula", _ev_gamma_rr),
     Erratum("13.8-table-13.5-t", r"§13.8, Table 13.5, $\gamma_1$ of the translational joint",
             r"2[(x_i^P - x_i^O)(\dot x_i - \dot x_j) + (y_i^P - y_i^O)(\dot y_i - \dot y_j)]\dot\varphi_i - [\ldots]\dot\varphi_i^2",
             r"-2[(x_i^P - x_i^Q)(\dot x_i - \dot x_j) + (y_i^P - y_i^Q)(\dot y_i - \dot y_j)]\dot\varphi_i - [\ldots]\dot\varphi_i^2",
-            "sign", _ev_gamma_t, "The printed entry already uses φ̇_j = φ̇_i; its O is the guide point Q_i "
-            "(13.5-eq25)."),
+            "sign", _ev_gamma_t, r"The printed entry already uses $\dot\varphi_j = \dot\varphi_i$; its $O$ is the "
+            r"guide point $Q_i$ (13.5-eq25)."),
     Erratum("13.7-velocity-rhs", "§13.7, example 5: general form of the velocity equations",
             r"\begin{bmatrix}\Phi_q\\ \Phi_q^{(d)}\end{bmatrix}\dot q = \begin{bmatrix}0\\ \Phi_t^{(d)}\end{bmatrix}",
             r"\begin{bmatrix}\Phi_q\\ \Phi_q^{(d)}\end{bmatrix}\dot q = \begin{bmatrix}0\\ -\Phi_t^{(d)}\end{bmatrix}",
@@ -488,8 +493,8 @@ ERRATA = [
     Erratum("13.7-ex5-velocities", r"§13.7, example 5: velocity solution and $\mathbf v^B$",
             r"\dot x_2 = \dot y_2 = 70.71,\ \dot x_3 = 95.391,\ v_B = (-190.78, 117.14),\ |v_B| = 223.87",
             r"\dot x_2 = \dot y_2 = -70.71,\ \dot q_3 = (-96.22, 53.78, 73.49),\ v_B = (-192.44, 107.56),\ |v_B| = 220.46",
-            "number", _ev_ex5_velocity, "The signs of ẋ_2, ẏ_2, ẋ_3 contradict the book's own equations; the "
-            "other differences come from the wrong configuration of example 1/3."),
+            "number", _ev_ex5_velocity, r"The signs of $\dot x_2$, $\dot y_2$, $\dot x_3$ contradict the book's "
+            r"own equations; the other differences come from the wrong configuration of example 1/3."),
     Erratum("13.8-ex6-point-A", r"§13.8, example 6: the global points of the joints at $t = 0$",
             r"(x^A, y^A) = (1.4142,\ 1.4142)", r"(x^A, y^A) = (-1.4142,\ 1.4142)", "sign", _ev_ex6_point_A,
             "The same example's joint-3 data, a few lines below, use (−1.4142, 1.4142)."),
@@ -499,19 +504,19 @@ ERRATA = [
             r"\ddot x_i^P = \ddot x_i + (-\xi_i^P\sin\varphi_i - \eta_i^P\cos\varphi_i)\,\ddot\varphi_i"
             r" - (\xi_i^P\cos\varphi_i - \eta_i^P\sin\varphi_i)\,\dot\varphi_i^2,\ \ldots", "formula",
             _ev_ex6_point_acceleration,
-            "Eq. 13 written out with φ̈_i and φ̇_i² on the wrong brackets (the ÿ row likewise); eq. 12 of §13.5 is "
-            "right (notebook 13-1)."),
+            r"Eq. 13 written out with $\ddot\varphi_i$ and $\dot\varphi_i^2$ on the wrong brackets (the $\ddot y$ "
+            r"row likewise); eq. 12 of §13.5 is right (notebook 13-1)."),
     Erratum("13.8-ex6-joint-label", r"§13.8, example 6: the heading of the joint at $O_B$ (rows 6–7)",
             r"\text{“Junta n.º 3”}", r"\text{joint 2 (the r-r joint between bodies 2 and 3, headed next, is joint 3)}",
             "wording"),
     Erratum("13.8-driver-second-derivative", "§13.8, the second derivative of the driving constraints",
             r"\frac{d^2\Phi_q^{(d)}}{dt^2} = \frac{d}{dt}(\Phi_q^{(d)}\dot q + \Phi_t^{(d)})",
             r"\frac{d^2\Phi^{(d)}}{dt^2} = \frac{d}{dt}(\Phi_q^{(d)}\dot q + \Phi_t^{(d)})", "wording", None,
-            "What is differentiated twice is the driving constraint Φ^(d) itself; Φ_q^(d) is its Jacobian. The "
-            "result that follows is right."),
+            r"What is differentiated twice is the driving constraint $\Phi^{(d)}$ itself; $\Phi_{\mathbf q}^{(d)}$ "
+            r"is its Jacobian. The result that follows is right."),
     Erratum("13.8-ex6-accelerations", r"§13.8, example 6: $\gamma$, the solution and $\mathbf a^B$",
             r"\gamma_6 = 4370.82,\ \gamma_7 = 7118.39,\ \gamma_8 = \pm 1539.6,\ a_B = (4084.1, -22111.7)",
             r"\gamma_6 = 3952.10,\ \gamma_7 = 7071.08,\ \gamma_8 = 396.38,\ a_B = (4582.90, -21121.33)",
-            "number", _ev_ex6_acceleration, "γ_8 is printed with both signs; the headings say “velocidad” for "
-            "accelerations."),
+            "number", _ev_ex6_acceleration, r"$\gamma_8$ is printed with both signs; the headings say “velocidad” "
+            r"for accelerations."),
 ]

@@ -211,8 +211,9 @@ ERRATA = [
     Erratum("14.2-elementary-rotations", "§14.2, the three elementary rotations (first set)",
             r"A^\psi = \begin{bmatrix}\cos\psi & \sin\psi & 0\\ \sin\psi & \cos\psi & 0\\ 0&0&1\end{bmatrix}",
             r"A^\psi = \begin{bmatrix}\cos\psi & \sin\psi & 0\\ -\sin\psi & \cos\psi & 0\\ 0&0&1\end{bmatrix}",
-            "sign", _ev_elementary_rotation, "The same slip is in A^θ and A^φ; the book's A^ψ, A^θ, A^φ are passive "
-            "(global → local), the transposes of kinbook's active matrices (docs/conventions.md)."),
+            "sign", _ev_elementary_rotation, r"The same slip is in $\mathbf A^\theta$ and $\mathbf A^\phi$; the "
+            r"book's $\mathbf A^\psi$, $\mathbf A^\theta$, $\mathbf A^\phi$ are passive (global → local), the "
+            r"transposes of kinbook's active matrices (docs/conventions.md)."),
     Erratum("14.2-A21-row3", r"§14.2, the composed matrix $\mathbf A^{21}$ (both versions), row 3",
             r"[\sin\psi\sin\phi,\ -\cos\psi\sin\phi,\ \cos\theta]",
             r"[\sin\psi\sin\theta,\ -\cos\psi\sin\theta,\ \cos\theta]", "formula", _ev_a21_row3),
@@ -220,23 +221,24 @@ ERRATA = [
             r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\psi&-\operatorname{sen}\theta\\ 0&\operatorname{sen}\theta&\cos\theta\end{bmatrix}",
             r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\theta&\operatorname{sen}\theta\\ 0&-\operatorname{sen}\theta&\cos\theta"
             r"\end{bmatrix}\ \text{(passive, like the printed } A^\psi, A^\phi\text{)}",
-            "formula", _ev_A_theta_second, "Two slips: cos ψ stands for cos θ, and the signs of sin θ are those of the "
-            "active turn while the printed A^ψ and A^φ are passive; with cos θ restored but those signs kept, the "
-            "product A^φ A^θ A^ψ would be the passive matrix of the opposite nutation −θ (notebook 14-2). The second "
-            "A²¹ printed just below is the product of the passive matrices."),
+            "formula", _ev_A_theta_second, r"Two slips: $\cos\psi$ stands for $\cos\theta$, and the signs of "
+            r"$\sin\theta$ are those of the active turn while the printed $\mathbf A^\psi$ and $\mathbf A^\phi$ "
+            r"are passive; with $\cos\theta$ restored but those signs kept, the product $\mathbf A^\phi\mathbf "
+            r"A^\theta\mathbf A^\psi$ would be the passive matrix of the opposite nutation $-\theta$ (notebook "
+            r"14-2). The second $\mathbf A^{21}$ printed just below is the product of the passive matrices."),
     Erratum("14.2-A21-row2-first", r"§14.2, the first $\mathbf A^{21}$ (printed, before the corrected second set), row 2",
             r"[\,c\psi s\phi - s\psi c\theta c\phi,\ s\psi s\phi + c\psi c\theta c\phi,\ s\theta c\phi\,]",
             r"[\,-c\psi s\phi - s\psi c\theta c\phi,\ -s\psi s\phi + c\psi c\theta c\phi,\ s\theta c\phi\,]",
-            "sign", _ev_A21_row2_first, "The second version prints this row right. (Only a repeated copy of the "
-            "first elementary matrices is struck through in the book; this A²¹ is printed.)"),
+            "sign", _ev_A21_row2_first, r"The second version prints this row right. (Only a repeated copy of the "
+            r"first elementary matrices is struck through in the book; this $\mathbf A^{21}$ is printed.)"),
     Erratum("14.2-omega-matrix", r"§14.2, the matrix relating $\boldsymbol\omega$ to the angle rates (both versions)",
             r"\begin{bmatrix}s\theta & s\phi & c\phi & 0\\ s\theta & c\phi & -s\phi & 0\\ c\theta & 0 & 1 & 1\end{bmatrix}"
             r"\ \text{(a } 3\times 4 \text{ array; the first version has } +s\phi \text{ in row 2 and } c\theta, 0, 0, 1 "
             r"\text{ in row 3)}",
             r"\omega' = \begin{bmatrix}s\theta s\phi & c\phi & 0\\ s\theta c\phi & -s\phi & 0\\ c\theta & 0 & 1\end{bmatrix}\begin{bmatrix}\dot\psi\\ \dot\theta\\ \dot\phi\end{bmatrix}",
-            "formula", _ev_omega_matrix, "sin θ is split from sin φ and cos φ into a column of its own; the first version "
-            "also prints +sin φ where −sin φ belongs in row 2, and 0, 0 for 0, 1 in row 3. "
-            "kinbook.spatial.omega_from_euler_rates(frame='body') is the corrected relation."),
+            "formula", _ev_omega_matrix, r"$\sin\theta$ is split from $\sin\phi$ and $\cos\phi$ into a column of "
+            r"its own; the first version also prints $+\sin\phi$ where $-\sin\phi$ belongs in row 2, and 0, 0 for "
+            r"0, 1 in row 3. kinbook.spatial.omega_from_euler_rates(frame='body') is the corrected relation."),
     Erratum("14.2-rates-inverse-first", r"§14.2, the first inverse relation (angle rates from $\boldsymbol\omega'$), row 2",
             r"\dot\theta = \cos\phi\,\omega_1 + \operatorname{sen}\phi\,\omega_2",
             r"\dot\theta = \cos\phi\,\omega_1 - \operatorname{sen}\phi\,\omega_2", "sign", _ev_rates_inverse_first,
@@ -245,30 +247,35 @@ ERRATA = [
             r"\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3-e_0e_2\\ e_1e_2-e_0e_3 & e_0^2+e_2^2-\tfrac12 & "
             r"e_2e_3-e_0e_1\\ e_1e_3-e_0e_2 & e_2e_3-e_0e_1 & e_0^2+e_3^2-\tfrac12\end{bmatrix}",
             r"2\begin{bmatrix}e_0^2+e_1^2-\tfrac12 & e_1e_2-e_0e_3 & e_1e_3+e_0e_2\\ e_1e_2+e_0e_3 & e_0^2+e_2^2-\tfrac12 & e_2e_3-e_0e_1\\ e_1e_3-e_0e_2 & e_2e_3+e_0e_1 & e_0^2+e_3^2-\tfrac12\end{bmatrix}",
-            "formula", _ev_A_of_p, "Two kinds of slip: the factor 2 is missing, and three signs — a13, a21 and a32 "
-            "need + e_0 terms (the printed matrix is symmetric, which a rotation is not in general)."),
+            "formula", _ev_A_of_p, r"Two kinds of slip: the factor 2 is missing, and three signs — $a_{13}$, "
+            r"$a_{21}$ and $a_{32}$ need $+e_0$ terms (the printed matrix is symmetric, which a rotation is not in "
+            r"general)."),
     Erratum("14.3-p-from-A", "§14.3, Definición…, the Euler parameters from the direction cosines",
             r"t = 2(3e_0^2 + e_1^2 + e_2^2 + e_3^2) - 3,\quad e_0^2 = \frac{p+1}{4}",
             r"t = \operatorname{tr}\mathbf A = a_{11} + a_{22} + a_{33},\quad e_0^2 = \frac{t+1}{4}",
             "formula", _ev_p_from_A_recipe,
-            "Two slips in the recipe: e_0² is printed with a p (undefined there) for t, and t is defined through the "
-            "parameters being sought; it is the same number as tr A, which is what the recipe must compute from the "
-            "known matrix. With e_0 ≠ 0, the condition the book states, its division by 4e_0 is right; kinbook's "
-            "p_from_A also covers e_0 = 0 (every half turn) by starting from the largest of e_0², …, e_3²."),
+            r"Two slips in the recipe: $e_0^2$ is printed with a $p$ (undefined there) for $t$, and $t$ is defined "
+            r"through the parameters being sought; it is the same number as $\operatorname{tr}\mathbf A$, which is "
+            r"what the recipe must compute from the known matrix. With $e_0 \neq 0$, the condition the book "
+            r"states, its division by $4e_0$ is right; kinbook's p_from_A also covers $e_0 = 0$ (every half turn) "
+            r"by starting from the largest of $e_0^2, \dots, e_3^2$."),
     Erratum("14.3-p-dot", "§14.3, Derivadas…, first lines",
             r"\mathbf p^T\mathbf p = e_0^2 + e_1^2 + e_2^2 + e_3^2 \ \Rightarrow\ \mathbf p^T\dot{\mathbf p} = 0",
             r"\mathbf p^T\mathbf p = 1 \ \Rightarrow\ (\text{differentiating})\ \mathbf p^T\dot{\mathbf p} = 0",
             "wording", None, "The conclusion is stated before the derivative that gives it."),
     Erratum("14.3-A-ddot-a", r"§14.3, Derivadas…, the last formula ($\ddot{\mathbf A}$ applied to a vector)",
             r"\ddot A\bar a = 2\dot E\dot G^T a + 2E\ddot a", r"\ddot A a = 2\dot E\dot G^T a + 2E\bar a\,\ddot{\mathbf p}",
-            "formula", _ev_A_ddot_a, "The vector on the left is a, not ā, and ä (the second derivative of a constant vector: zero) "
-            "stands for ā p̈; the next paragraph's “sea ā un vector arbitrario” means a."),
+            "formula", _ev_A_ddot_a, r"The vector on the left is $\mathbf a$, not $\bar{\mathbf a}$, and "
+            r"$\ddot{\mathbf a}$ (the second derivative of a constant vector: zero) stands for $\bar{\mathbf "
+            r"a}\ddot{\mathbf p}$; the next paragraph's “sea $\bar{\mathbf a}$ un vector arbitrario” means "
+            r"$\mathbf a$."),
     Erratum("14.3-a-bar", r"§14.3, Derivadas…, $\bar{\mathbf a}$ written element by element",
             r"\bar a = \begin{bmatrix}0&-a_1&-a_2&-a_3\\ a_1&0&-a_3&a_2\\ a_2&a_3&0&-a_1\\ a_3&-a_2&a_1&0\end{bmatrix}",
             r"\bar a = \begin{bmatrix}0&-\mathbf a^T\\ \mathbf a&-\tilde{\mathbf a}\end{bmatrix} = \begin{bmatrix}0&-a_1&-a_2&-a_3\\ "
             r"a_1&0&a_3&-a_2\\ a_2&-a_3&0&a_1\\ a_3&a_2&-a_1&0\end{bmatrix}",
-            "sign", _ev_a_bar_explicit, "The block form next to it is printed right (with a stray b̄ for ã); "
-            "the element-by-element matrix has +ã in the lower right."),
+            "sign", _ev_a_bar_explicit, r"The block form next to it is printed right (with a stray $\bar{\mathbf "
+            r"b}$ for $\tilde{\mathbf a}$); the element-by-element matrix has $+\tilde{\mathbf a}$ in the lower "
+            r"right."),
     Erratum("14.3-G-row2", r"§14.3, the matrix $\mathbf G$, row 2", r"[-e_2,\ e_3,\ e_0,\ e_1]", r"[-e_2,\ -e_3,\ e_0,\ e_1]",
             "sign", _ev_G_row2),
     Erratum("14.3-euler-theorem", "§14.3, Definición…, the paragraph that introduces the Euler parameters",
@@ -276,14 +283,16 @@ ERRATA = [
             r"medio de una rotación instantánea alrededor de un eje”}",
             r"\text{Euler's theorem: any orientation of a body with a fixed point is reached by one finite rotation, by "
             r"an angle } \alpha \text{ about an axis } \vec u",
-            "wording", None, "The Euler parameters describe that finite rotation (e_0 = cos α/2, [e_1, e_2, e_3] = u sin α/2), "
-            "as the next paragraphs say — an orientation, not the instantaneous motion. The instantaneous rotation "
-            "axis is the direction of ω, which the parameters' rates give (ω' = 2Gṗ)."),
+            "wording", None, r"The Euler parameters describe that finite rotation ($e_0 = \cos\frac{\alpha}{2}$, "
+            r"$[e_1, e_2, e_3]^T = \mathbf u\sin\frac{\alpha}{2}$), as the next paragraphs say — an orientation, "
+            r"not the instantaneous motion. The instantaneous rotation axis is the direction of "
+            r"$\boldsymbol\omega$, which the parameters' rates give ($\boldsymbol\omega' = 2\mathbf G\dot{\mathbf "
+            r"p}$)."),
     Erratum("14.3-Ep-Gp", r"§14.3, Propiedades…, the identities $\mathbf E\mathbf p = \mathbf G\mathbf p = \mathbf 0$",
             r"\frac{Ep}{Gp} = 0,\quad Ep = -e_1e_0 + e_0e_1 - e_3e_2 + e_2e_3 = 0",
             r"\mathbf E\mathbf p = \mathbf 0,\ \mathbf G\mathbf p = \mathbf 0\ (3\text{-vectors; the printed sum is row 1 of } "
-            r"\mathbf E\mathbf p)", "wording", None, "A fraction bar stands for “and”, and the check computes one row of "
-            "the three as if it were all of Ep."),
+            r"\mathbf E\mathbf p)", "wording", None, r"A fraction bar stands for “and”, and the check computes one "
+            r"row of the three as if it were all of $\mathbf E\mathbf p$."),
 ]
 
 
@@ -399,20 +408,22 @@ ERRATA += [
     Erratum("14.4-n2-primes", r"§14.4, Vectores perpendiculares: $\Phi^{(n2,1)}$ in local components",
             r"\Phi^{(n2,1)} = s_i^T A_i^T (r_j + A_j s_j^B - r_i - A_i s_i^B)",
             r"\Phi^{(n2,1)} = s_i'^T A_i^T (r_j + A_j s_j'^B - r_i - A_i s_i'^B)",
-            "formula", _ev_14_4_n2_primes, "The primes of the three local vectors are missing; the n1 formula just "
-            "above (s_i'^T A_i^T A_j s_j') has them."),
+            "formula", _ev_14_4_n2_primes, r"The primes of the three local vectors are missing; the n1 formula "
+            r"just above ($\mathbf s_i'^T\mathbf A_i^T\mathbf A_j\mathbf s'_j$) has them."),
     Erratum("14.4-p1-local-form", r"§14.4, Vectores paralelos: $\Phi^{(p1,2)}$ in local components",
             r"\tilde s_i s_j = A_i \tilde s_i^T A_i^T A_j s_j^B",
             r"\tilde s_i s_j = A_i \tilde s_i' A_i^T A_j s_j'", "formula", _ev_14_4_p1_transpose,
-            "The tilde is transposed (s̃ᵀ = −s̃), the primes are missing and a stray superscript B appears. Set to "
-            "zero, −s̃_i s_j = 0 is the same constraint, but the identity is wrong. Φ^(p2,2) below is printed right."),
+            r"The tilde is transposed ($\tilde{\mathbf s}^T = -\tilde{\mathbf s}$), the primes are missing and a "
+            r"stray superscript $B$ appears. Set to zero, $-\tilde{\mathbf s}_i\mathbf s_j = \mathbf 0$ is the "
+            r"same constraint, but the identity is wrong. $\Phi^{(p2,2)}$ below is printed right."),
     Erratum("14.4-p1-two-rows", r"§14.4, Vectores paralelos: which two rows of $\tilde{\mathbf s}_i\mathbf s_j = \mathbf 0$",
             r"\text{the third row is a linear combination of the first two}",
             r"s_{ix}(\tilde s_i s_j)_1 + s_{iy}(\tilde s_i s_j)_2 + s_{iz}(\tilde s_i s_j)_3 = 0:\ "
             r"\text{row 3 follows from rows 1-2 only if } s_{iz} \neq 0",
-            "formula", _ev_14_4_p1_two_rows, "Which row is redundant depends on the orientation of s_i, and it changes "
-            "as the mechanism moves. kinbook writes p1 and p2 as h_1ᵀs_j = h_2ᵀs_j = 0 with h_1, h_2 ⊥ s'_i fixed in "
-            "body i (docs/conventions.md), two rows that stay independent in every orientation."),
+            "formula", _ev_14_4_p1_two_rows, r"Which row is redundant depends on the orientation of $\mathbf s_i$, "
+            r"and it changes as the mechanism moves. kinbook writes p1 and p2 as $\mathbf h_1^T\mathbf s_j = "
+            r"\mathbf h_2^T\mathbf s_j = 0$ with $\mathbf h_1, \mathbf h_2 \perp \mathbf s'_i$ fixed in body $i$ "
+            r"(docs/conventions.md), two rows that stay independent in every orientation."),
     Erratum("14.4-universal-primes", r"§14.4, Junta universal: $\Phi^{(s,3)}$",
             r"r_i + A_i s_i^P - A_j s_j^P - r_j", r"r_i + A_i s_i'^P - A_j s_j'^P - r_j",
             "formula", _ev_14_4_universal_primes, "The spherical-joint section just before prints it with the primes."),
@@ -479,25 +490,27 @@ ERRATA += [
             r"\text{“apartado 211.5” (twice), “apartado 3.3” (once)}",
             r"\text{chapter 13 (§13.5–13.8) for the planar analysis; §14.3 for } \partial(Aa)/\partial p "
             r"\text{ and } \ddot A a", "wording", None,
-            "The book has no §211.5 or §3.3 (numbers left from another edition): the planar analysis is chapter 13, "
-            "the Euler-parameter formulas are in §14.3. (A second “apartado 3.3”, before Ä a, is in a passage the "
-            "book strikes through.)"),
+            r"The book has no §211.5 or §3.3 (numbers left from another edition): the planar analysis is chapter "
+            r"13, the Euler-parameter formulas are in §14.3. (A second “apartado 3.3”, before $\ddot{\mathbf "
+            r"A}\mathbf a$, is in a passage the book strikes through.)"),
     Erratum("14.5-n1-rj", r"§14.5, Jacobian of $\Phi^{(n1,1)}$, the sentence before $\Phi^{(n1,1)}_{\mathbf r_j}$ and $\Phi^{(n1,1)}_{\mathbf p_j}$",
             r"\text{“respecto a } r_i \text{ y } p_j\text{”}", r"\text{with respect to } r_j \text{ and } p_j",
             "wording"),
     Erratum("14.5-A-ddot-a", r"§14.5, $\ddot{\mathbf A}\mathbf a$ recalled from §14.3 for $\gamma$ of $\Phi^{(n1,1)}$: the displayed formula",
             r"\ddot A a = 2\dot E\dot G^T a + 2E\ddot a\,\ddot p", r"\ddot A a = 2\dot E\dot G^T a + 2E\bar a\,\ddot p",
-            "formula", _ev_A_ddot_a, "ä (the second derivative of a constant vector: zero) stands for ā; the §14.3 "
-            "version also drops p̈ (notebook 14-3). The sentences that introduce the formula are struck through in "
-            "the book; the formula itself is printed."),
+            "formula", _ev_A_ddot_a, r"$\ddot{\mathbf a}$ (the second derivative of a constant vector: zero) "
+            r"stands for $\bar{\mathbf a}$; the §14.3 version also drops $\ddot{\mathbf p}$ (notebook 14-3). The "
+            r"sentences that introduce the formula are struck through in the book; the formula itself is printed."),
     Erratum("14.5-gamma-n1", r"§14.5, the acceleration equation of $\Phi^{(n1,1)}$",
             r"[2s_j^TE_i\bar s'_i,\ 2s_i^TE_j\bar s'_j]\begin{bmatrix}\dot p_i\\ \dot p_j\end{bmatrix} = "
             r"2(s_j^T\dot E_i\dot G_i s'_i + s_i^T\dot E_j\dot G_j s'_j + \dot s_i^T\dot s_j)",
             r"[2s_j^TE_i\bar s'_i,\ 2s_i^TE_j\bar s'_j]\begin{bmatrix}\ddot p_i\\ \ddot p_j\end{bmatrix} = "
             r"-2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)",
             "formula", _ev_14_5_gamma_n1,
-            "Three slips: ṗ for p̈, Ġ for Ġᵀ (Ġ s' is undefined) and the sign of the right-hand side (the book's "
-            "own line before, s_jᵀÄ_is'_i + s_iᵀÄ_js'_j + 2ṡ_iᵀṡ_j = 0, gives the minus)."),
+            r"Three slips: $\dot{\mathbf p}$ for $\ddot{\mathbf p}$, $\dot{\mathbf G}$ for $\dot{\mathbf G}^T$ "
+            r"($\dot{\mathbf G}\mathbf s'$ is undefined) and the sign of the right-hand side (the book's own line "
+            r"before, $\mathbf s_j^T\ddot{\mathbf A}_i\mathbf s'_i + \mathbf s_i^T\ddot{\mathbf A}_j\mathbf s'_j + "
+            r"2\dot{\mathbf s}_i^T\dot{\mathbf s}_j = 0$, gives the minus)."),
     Erratum("14.5-gamma-n1-table", r"§14.5, “es necesario obtener el vector $\gamma$. Veamos como serían los pasos para su "
             r"obtención … normal tipo 1”: the $\gamma$ those steps end with",
             r"\gamma^{(n1,1)} = -2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)"
@@ -505,8 +518,11 @@ ERRATA += [
             r"\gamma^{(n1,1)} = -2(s_j^T\dot E_i\dot G_i^T s'_i + s_i^T\dot E_j\dot G_j^T s'_j + \dot s_i^T\dot s_j)"
             r" - 2(s_j^Ts'_i)\,\dot p_i^T\dot p_i - 2(s_i^Ts'_j)\,\dot p_j^T\dot p_j",
             "formula", _ev_14_5_gamma_n1_table,
-            "The equation's row 2s_jᵀE_i s̄'_i is the derivative of E Gᵀ s'_i, not Table 14.1's Φ_p_i = "
-            "2s_jᵀ(E_i s̄'_i + s'_i p_iᵀ), the derivative of the A the constraint uses. With Table 14.1's Φ_q the "
-            "normalization rows force pᵀp̈ = −ṗᵀṗ, so Φ_q q̈ = γ needs the ṗᵀṗ terms; without them the "
-            "accelerations are wrong whenever s_jᵀs'_i or s_iᵀs'_j ≠ 0."),
+            r"The equation's row $2\mathbf s_j^T\mathbf E_i\bar{\mathbf s}'_i$ is the derivative of $\mathbf "
+            r"E\mathbf G^T\mathbf s'_i$, not Table 14.1's $\boldsymbol\Phi_{\mathbf p_i} = 2\mathbf s_j^T(\mathbf "
+            r"E_i\bar{\mathbf s}'_i + \mathbf s'_i\mathbf p_i^T)$, the derivative of the $\mathbf A$ the "
+            r"constraint uses. With Table 14.1's $\boldsymbol\Phi_{\mathbf q}$ the normalization rows force "
+            r"$\mathbf p^T\ddot{\mathbf p} = -\dot{\mathbf p}^T\dot{\mathbf p}$, so $\boldsymbol\Phi_{\mathbf "
+            r"q}\ddot{\mathbf q} = \gamma$ needs the $\dot{\mathbf p}^T\dot{\mathbf p}$ terms; without them the "
+            r"accelerations are wrong whenever $\mathbf s_j^T\mathbf s'_i$ or $\mathbf s_i^T\mathbf s'_j \neq 0$."),
 ]

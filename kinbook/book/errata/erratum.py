@@ -53,7 +53,7 @@ class Erratum:
     correct: str
     kind: str  # one of KINDS
     evidence: Callable[[], Evidence] | None = field(default=None, repr=False)
-    note: str = ""
+    note: str = ""  # prose with inline TeX between dollars, as ``where``
 
     def check(self):
         """Run the evidence function (``None`` for wording errata)."""
