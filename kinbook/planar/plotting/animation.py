@@ -49,7 +49,10 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
 
     Notes
     -----
-    The artists are created once and moved (blitting), so the animation renders quickly.
+    The artists are created once and moved (blitting), so the animation renders quickly. The overlay shows t and
+    the first driver's value; an angle in degrees as the book gives it, in [0°, 360°) — a crank driven on past a
+    full turn reads 45° again, not 405° — or signed when it swings about zero
+    (:func:`kinbook.core._animation.degrees_as_read`).
     """
     from matplotlib.animation import FuncAnimation
 
