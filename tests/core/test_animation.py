@@ -110,3 +110,14 @@ def test_an_animation_that_does_not_blit_is_drawn_frame_by_frame():
     res = m.simulate(np.linspace(0.0, 0.1, 5))
     frames = plotting.animation_png(res, every=2).frames()
     assert len(frames) == 3 and np.abs(frames[0].astype(int) - frames[-1]).max() > 0
+
+
+def test_overlay_angles_read_in_0_to_360_degrees_and_never_360():
+    from kinbook.core._animation import degrees_as_read
+
+    turn = np.radians([45, 405, 765, 360, -90, 289.47, 359.99999, -1e-10])  # a crank's series
+    assert degrees_as_read(turn) == ["45", "45", "45", "0", "270", "289.5", "0", "0"]
+    swing = 0.5 * np.sin(2 * np.array([0.0, np.pi / 4, 3 * np.pi / 4, np.pi]))  # a steering wheel: ±28.65°
+    assert degrees_as_read(swing) == ["0", "28.65", "-28.65", "0"]
+    assert degrees_as_read(np.radians(-30), signed=False) == ["330"]
+    assert degrees_as_read(np.radians(-30)) == ["-30"]  # alone, within ±180°: read as it swings
