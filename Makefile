@@ -161,6 +161,7 @@ $(WEB_STAMP): $(WEB_PIN) requirements/lite-kernel.txt web/package.json web/packa
 book: $(WEB_STAMP)
 	$(WEB_BIN)/python web/build.py book
 
+# The live site serves Pyodide itself, compiled (web/pyodide_site.py: assembled once into .venv-web/pyodide/).
 lite: $(WEB_STAMP)
 	$(WEB_BIN)/python web/build.py lite
 
@@ -169,10 +170,8 @@ chromium:
 	@test -x /usr/bin/chromium || { test "$$(id -u)" = 0 || { echo "make test-web needs Debian's chromium: apt-get install chromium" >&2; exit 1; }; \
 		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 
-# The Pyodide test fixture (tests/web/fixture/prepare.py) is fetched once into .venv-web/pyodide-fixture.
 # tests/web/test_lab.py opens the stored notebooks, untrusted, in the lab environment's JupyterLab ($(STAMP)).
 test-web: book lite chromium $(STAMP)
-	$(WEB_BIN)/python tests/web/fixture/prepare.py $(WEB_VENV)/pyodide-fixture
 	KINBOOK_TEST_WEB=1 $(WEB_BIN)/python -m pytest tests/web --confcutdir=tests/web -p no:cacheprovider -v -s
 
 # Re-pin the website's tools (as `make lock` does for the lab/test environment).

@@ -1,14 +1,15 @@
 """Live site (JupyterLite) time to interactive, first and second visit, and where the time goes (issue 25 item 6).
 
-Run:  .venv-web/bin/python benchmarks/live_site.py [REPS] [--no-preload]     (default: 2 repetitions; needs make book
-      lite and the Pyodide fixture: .venv-web/bin/python tests/web/fixture/prepare.py .venv-web/pyodide-fixture)
+Run:  .venv-web/bin/python benchmarks/live_site.py [REPS] [--uncompiled] [--no-preload]
+      (default: 2 repetitions; needs make book lite)
 
-``--no-preload`` drops ``loadPyodideOptions`` from the site's jupyter-lite.json: the kernel then loads numpy, sympy,
-matplotlib and scipy one after another in the first cell (``%pip install kinbook`` pulls them in), as before
-issue 25 — the same build, for the comparison.
+``--uncompiled`` serves the official Pyodide distribution as it is (web/pyodide_site.py's dist/: sources only) in
+place of the site's compiled copy, as the site did before; ``--no-preload`` drops ``loadPyodideOptions`` from the
+site's jupyter-lite.json: the kernel then loads numpy, sympy, matplotlib and scipy one after another in the first
+cell (``%pip install kinbook`` pulls them in). The same build, for the comparison.
 
-The site as built, served from 127.0.0.1 like a static host (tests/web: Cache-Control max-age=600) with the Pyodide
-test fixture in place of the CDN, in Debian's chromium driven by Playwright, every other host refused. Each
+The site as built, served from 127.0.0.1 like a static host (tests/web: Cache-Control max-age=600), in Debian's
+chromium driven by Playwright, every other host refused. Each
 repetition starts an empty browser profile (first visit: nothing cached) and opens the live notebook again in the
 same profile (second visit: warm HTTP cache, the case the target is about).
 
@@ -27,6 +28,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import statistics
 import sys
 import tempfile
@@ -40,7 +42,7 @@ from tests.web.conftest import (  # noqa: E402
     RefusingProxy,
     StaticServer,
     _browser_args,
-    site_with_pyodide_fixture,
+    site_copy,
 )
 
 NOTEBOOK = "13-3-position-analysis.ipynb"
@@ -139,27 +141,50 @@ def table(rows, title):
         print(f"| {n} | {' | '.join(f'{v:.2f}' for v in values)} | {statistics.median(values):.2f} |")
 
 
-def without_preload(copy):
+def kernel_settings(copy, change):
+    """Apply ``change`` to the Pyodide kernel's settings in the copy's jupyter-lite.json."""
     config_path = copy / "live" / "jupyter-lite.json"
     config = json.loads(config_path.read_text())
-    config["jupyter-config-data"]["litePluginSettings"]["@jupyterlite/pyodide-kernel-extension:kernel"].pop(
-        "loadPyodideOptions", None)
+    change(config["jupyter-config-data"]["litePluginSettings"]["@jupyterlite/pyodide-kernel-extension:kernel"])
     config_path.unlink()  # a hard link into build/site/: write a new file
     config_path.write_text(json.dumps(config, indent=2))
 
 
-def main(reps=2, preload=True):
+def without_preload(copy):
+    kernel_settings(copy, lambda settings: settings.pop("loadPyodideOptions", None))
+
+
+def uncompiled(copy):
+    """The site as it was: the official distribution, sources only (web/pyodide_site.py's dist/), in place of the
+    compiled copy, and the kernel's start loading only official packages (kinbook and ipywidgets then come from
+    the first cell's %pip)."""
+    static = copy / "live" / "static" / "pyodide"
+    shutil.rmtree(static)
+    shutil.copytree(ROOT / ".venv-web" / "pyodide" / "dist", static, copy_function=os.link)
+    official = json.loads((static / "pyodide-lock.json").read_text())["packages"]
+
+    def official_only(settings):
+        options = settings.get("loadPyodideOptions")
+        if options:
+            options["packages"] = [n for n in options["packages"] if n in official]
+    kernel_settings(copy, official_only)
+
+
+def main(reps=2, preload=True, compiled=True):
     from playwright.sync_api import sync_playwright
 
     with tempfile.TemporaryDirectory() as tmp:
-        copy = site_with_pyodide_fixture(Path(tmp) / "site")
+        copy = site_copy(Path(tmp) / "site")
+        if not compiled:
+            uncompiled(copy)
         if not preload:
             without_preload(copy)
         wheel = next((copy / "live" / "pypi").glob("kinbook-*.whl"))
         (copy / "live" / "bench.html").write_text(
             BENCH_PAGE.replace("WHEEL_PATH", json.dumps(f"pypi/{wheel.name}")).replace("IMPORTS_CODE", json.dumps(IMPORTS)))
         proxy, server = RefusingProxy(), StaticServer(copy)
-        print(f"packages preloaded while the kernel starts: {'yes' if preload else 'no (--no-preload)'}; "
+        print(f"Pyodide's packages compiled: {'yes' if compiled else 'no (--uncompiled)'}; "
+              f"packages preloaded while the kernel starts: {'yes' if preload else 'no (--no-preload)'}; "
               f"load average at start: {load_average():.2f} (2 cores)")
         parts, first, second = [], [], []
         with sync_playwright() as pw:
@@ -183,4 +208,4 @@ def main(reps=2, preload=True):
 
 if __name__ == "__main__":
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
-    main(int(args[0]) if args else 2, preload="--no-preload" not in sys.argv)
+    main(int(args[0]) if args else 2, preload="--no-preload" not in sys.argv, compiled="--uncompiled" not in sys.argv)

@@ -12,10 +12,11 @@ kept true by nbval in `make test`), copy them into a staging folder under build/
 * the live site's pages get web/lite/kinbook-live.js, which says in the page when Python (Pyodide) cannot be
   downloaded.
 
-Everything a page needs is served by the site itself (MathJax, kinbook's wheel), except the Pyodide
-runtime of the live notebooks, which comes from the official Pyodide CDN (`PYODIDE_URL` in
-web/lite/jupyter-lite.json). Nothing here uses the network: the tools and assets are installed beforehand by
-`make web-env` (pip, requirements/web.txt; npm ci, web/package-lock.json).
+Everything a page needs is served by the site itself: MathJax, kinbook's wheel, and Pyodide — its runtime and
+the packages the kernel loads at start, compiled to bytecode (web/pyodide_site.py; only packages a cell installs
+later come from the official Pyodide CDN). Nothing here uses the network but web/pyodide_site.py's first
+assembly (PyPI): the tools and assets are installed beforehand by `make web-env` (pip, requirements/web.txt; npm
+ci, web/package-lock.json).
 """
 
 from __future__ import annotations
@@ -29,6 +30,9 @@ import subprocess
 import sys
 import tempfile
 from pathlib import Path
+
+import pyodide_site
+from packaging.version import Version
 
 ROOT = Path(__file__).resolve().parent.parent
 WEB = ROOT / "web"
@@ -46,13 +50,13 @@ MATHJAX_PARTS = ("tex-chtml.js", "input", "output/chtml", "a11y", "sre", "ui", "
 # The page of the live site that opens one notebook (JupyterLite's Notebook interface), from a book page.
 LIVE_NOTEBOOK = "../live/notebooks/index.html?path={name}"
 
-# What the first cell of each live notebook runs: kinbook and ipywidgets (for the sliders) from the site's piplite
-# index — their dependencies numpy, scipy, sympy and matplotlib are already loaded: web/lite/jupyter-lite.json has
-# the kernel load them while it starts (loadPyodideOptions), in parallel with the kernel's own packages. Then
-# matplotlib's font list, which Pyodide builds anew at each visit: here, quietly, rather than as a red "Matplotlib
-# is building the font cache" box under the chapter's first plot.
+# What the first cell of each live notebook runs. kinbook and ipywidgets (for the sliders), with numpy, scipy,
+# sympy and matplotlib, are already there: web/lite/jupyter-lite.json has the kernel load them, compiled, from the
+# site's own Pyodide while it starts (loadPyodideOptions; web/pyodide_site.py); %pip only makes sure of them (from
+# the site's piplite index). Then matplotlib's font list, which Pyodide builds anew at each visit: here, quietly,
+# rather than as a red "Matplotlib is building the font cache" box under the chapter's first plot.
 INSTALL_CELL = """\
-# Running in your browser (JupyterLite): this cell installs kinbook and ipywidgets from this site.
+# Running in your browser (JupyterLite): this cell makes sure kinbook and ipywidgets are installed.
 %pip install -q kinbook ipywidgets
 import logging
 fonts_log = logging.getLogger("matplotlib.font_manager")
@@ -193,6 +197,20 @@ def kinbook_wheel(dst):
     return sorted(Path(dst).glob("kinbook-*.whl"))
 
 
+def kernel_wheels():
+    """The Pyodide kernel's own Python packages (pyodide_kernel, piplite, and the ipykernel and widgetsnbextension
+    stand-ins), from the JupyterLite extension installed in the web environment: the newest of each name."""
+    pypi = VENV / "share" / "jupyter" / "labextensions" / "@jupyterlite" / "pyodide-kernel-extension" / "static" / "pypi"
+    newest = {}
+    for whl in pypi.glob("*.whl"):
+        name, version = whl.name.split("-")[:2]
+        if name not in newest or Version(version) > Version(newest[name].name.split("-")[1]):
+            newest[name] = whl
+    if "pyodide_kernel" not in newest:
+        raise SystemExit(f"{pypi}: no pyodide_kernel wheel (is jupyterlite-pyodide-kernel installed? make web-env)")
+    return sorted(newest.values())
+
+
 def build_lite():
     lite = _fresh(STAGE / "lite")
     for f in ("jupyter_lite_config.json", "jupyter-lite.json"):
@@ -207,14 +225,20 @@ def build_lite():
     wheels.mkdir()
     if not list(WHEELS.glob("*.whl")):
         raise SystemExit(f"{WHEELS} has no wheels: run `make web-env` first")
-    for whl in WHEELS.glob("*.whl"):
-        shutil.copy2(whl, wheels / whl.name)
-    kinbook_wheel(wheels)
+    with tempfile.TemporaryDirectory() as tmp:
+        (kinbook,) = kinbook_wheel(tmp)
+        # the site's own wheels, compiled like Pyodide's packages, in the site's Pyodide lockfile so that the
+        # kernel loads them while it starts; kinbook keeps its sources too (kb.reveal shows a solution's code)
+        site_wheels = [(kinbook, "beside")] + [(w, "replace") for w in WHEELS.glob("*.whl")]
+        pyodide = pyodide_site.prepare(VENV / "pyodide", site_wheels + [(w, "replace") for w in kernel_wheels()])
+    for whl, _ in site_wheels:   # and in the piplite index, for a cell's %pip install
+        shutil.copy2(pyodide / whl.name, wheels / whl.name)
 
     if LIVE.exists():
         shutil.rmtree(LIVE)
     _run([VENV / "bin" / "jupyter", "lite", "build", "--lite-dir", lite, "--contents", contents,
           "--piplite-wheels", wheels, "--output-dir", LIVE], cwd=lite)
+    shutil.copytree(pyodide, LIVE / "static" / "pyodide", ignore=shutil.ignore_patterns("STAMP"))
     _page_script(LIVE)
     print(f"lite: {LIVE}/index.html ({_size(LIVE)})")
 

@@ -5,7 +5,7 @@ The site is served from 127.0.0.1 by a plain static server that answers like a s
 127.0.0.1, which counts it and answers 403: pages, web workers and service workers alike (Playwright's own
 request routing would miss workers and switch the browser cache off). Each test fails if that count is not 0.
 
-These tests need `make book`, `make lite` and the Pyodide fixture (tests/web/fixture/prepare.py); `make test`
+These tests need `make book` and `make lite` (the live site serves Pyodide itself: web/pyodide_site.py); `make test`
 does not collect them (KINBOOK_TEST_WEB=1 is set by `make test-web`).
 """
 
@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import functools
 import http.server
-import json
 import os
 import shutil
 import socketserver
@@ -169,37 +168,24 @@ def watch(page, seen):
     return page
 
 
-PYODIDE_FIXTURE = Path(os.environ.get("KINBOOK_PYODIDE_FIXTURE",
-                                     ROOT / ".venv-web" / "pyodide-fixture" / "pyodide"))
-
-
-def site_with_pyodide_fixture(copy):
-    """Copy the built site (make book + make lite) to ``copy`` with the Pyodide test fixture in live/static/pyodide/
-    and the live site's pyodideUrl pointed at it: hard links, so build/site/ itself stays as shipped. Returns
-    ``copy``, or raises RuntimeError naming what to build first. (Also used by benchmarks/live_site.py.)"""
-    if not (SITE / "index.html").exists() or not (SITE / "live" / "index.html").exists():
+def site_copy(copy):
+    """Copy the built site (make book + make lite) to ``copy``: hard links, so that a test may change a file of
+    the copy (by writing a new one) and build/site/ stays as shipped. Returns ``copy``, or raises RuntimeError
+    naming what to build first. (Also used by benchmarks/live_site.py.)"""
+    if not (SITE / "index.html").exists() or not (SITE / "live" / "static" / "pyodide" / "pyodide.js").exists():
         raise RuntimeError("build/site/ is incomplete: run `make book` and `make lite` (make test-web does)")
-    if not (PYODIDE_FIXTURE / "pyodide.js").exists():
-        raise RuntimeError(f"{PYODIDE_FIXTURE} is missing: run tests/web/fixture/prepare.py (make test-web does)")
     copy = Path(copy)
     if copy.exists():
         shutil.rmtree(copy)
     shutil.copytree(SITE, copy, copy_function=os.link)
-    shutil.copytree(PYODIDE_FIXTURE, copy / "live" / "static" / "pyodide", copy_function=os.link)
-    config_path = copy / "live" / "jupyter-lite.json"
-    config = json.loads(config_path.read_text())
-    settings = config["jupyter-config-data"]["litePluginSettings"]["@jupyterlite/pyodide-kernel-extension:kernel"]
-    settings["pyodideUrl"] = "./static/pyodide/pyodide.js"
-    config_path.unlink()  # a hard link: write a new file, not through the link into build/site/
-    config_path.write_text(json.dumps(config, indent=2))
     return copy
 
 
 @pytest.fixture(scope="session")
 def site():
-    """The built site served from 127.0.0.1 with the Pyodide test fixture (:func:`site_with_pyodide_fixture`)."""
+    """The built site served from 127.0.0.1 (a copy: :func:`site_copy`)."""
     try:
-        copy = site_with_pyodide_fixture(ROOT / "build" / "web" / "test-site")
+        copy = site_copy(ROOT / "build" / "web" / "test-site")
     except RuntimeError as err:
         pytest.fail(str(err))
     server = StaticServer(copy)

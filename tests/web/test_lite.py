@@ -1,11 +1,13 @@
 """The live notebooks (make lite) in a real browser, offline: a student opens a chapter notebook, runs the cell
 that installs kinbook, imports it, simulates a mechanism, gets a checker's feedback on a wrong answer and moves
-the explorer's slider. The Pyodide runtime and packages come from the test fixture put in live/static/pyodide/
-(see conftest.site); everything else is the site as built."""
+the explorer's slider. The site as built, Pyodide included (live/static/pyodide/: web/pyodide_site.py), served
+from 127.0.0.1 with every other host refused."""
 
 import re
 
-from .conftest import ANIMATED, SCREENSHOTS, SITE, Clock, StaticServer, plays, watch
+import pytest
+
+from .conftest import ANIMATED, SCREENSHOTS, Clock, StaticServer, plays, site_copy, watch
 
 NOTEBOOK = "13-3-position-analysis.ipynb"
 
@@ -124,7 +126,7 @@ def test_a_student_runs_the_live_notebook(profile, site, offline, screenshots):
     own = site.bytes_sent() - site_before - pyodide
     print(f"\nfirst visit: notebook shown {t_open:.1f} s and kinbook installed and imported {t_interactive:.1f} s "
           f"after the page load ({cpu:.1f} s of browser CPU); served {own / 1e6:.1f} MB "
-          f"of the site + {pyodide / 1e6:.1f} MB of Pyodide (the CDN's part)")
+          f"of the site + {pyodide / 1e6:.1f} MB of Pyodide")
 
     assert page.locator("#kinbook-no-python").count() == 0  # Python was downloaded: no banner says otherwise
 
@@ -207,10 +209,13 @@ def test_stored_animations_play_in_the_live_notebooks(browser, site, offline, sc
         page.close()
 
 
-def test_without_python_the_page_says_so(browser, proxy, screenshots):
-    """The site as built loads Python from the official CDN; here the proxy refuses it (offline, a firewall):
-    the page says so in a banner, instead of cells waiting at [*] forever."""
-    server = StaticServer(SITE)
+def test_without_python_the_page_says_so(browser, proxy, screenshots, tmp_path):
+    """When Python cannot be downloaded (here a copy of the site without its static/pyodide/pyodide.js: a host
+    that dropped it, or offline), the page says so in a banner at its foot, under a menu bar that stays usable,
+    instead of cells waiting at [*] forever."""
+    copy = site_copy(tmp_path / "site")
+    (copy / "live" / "static" / "pyodide" / "pyodide.js").unlink()
+    server = StaticServer(copy)
     before = len(proxy.requests)
     try:
         page = browser.new_page(viewport={"width": 1280, "height": 800})
@@ -218,12 +223,17 @@ def test_without_python_the_page_says_so(browser, proxy, screenshots):
         banner = page.locator("#kinbook-no-python")
         banner.wait_for(timeout=120_000)
         text = banner.inner_text()
-        assert "Python could not be downloaded" in text and "cdn.jsdelivr.net" in text, text
-        # the banner says the notebook and its stored outputs are there to read: they are, under it
+        assert "Python could not be downloaded" in text and server.url.split("//")[1] in text, text
+        assert "answered 404" in text and "missing its copy of Python" in text, text
+        # the banner says the notebook and its stored outputs are there to read: they are, above it
         page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=120_000)
         page.locator(".jp-Notebook .jp-MarkdownOutput h1").first.wait_for(timeout=120_000)
+        box = banner.bounding_box()
+        menu = page.locator("#jp-menu-panel, .jp-MenuBar, #top-panel").first.bounding_box()
+        assert box["y"] + box["height"] == pytest.approx(800, abs=1), box    # at the foot of the window
+        assert menu is None or menu["y"] + menu["height"] <= box["y"], (menu, box)   # the menu bar uncovered
         page.screenshot(path=str(screenshots / "live-no-python.png"))
         page.close()
     finally:
         server.close()
-    assert proxy.requests[before:] and all("cdn.jsdelivr.net" in r for r in proxy.requests[before:])
+    assert proxy.requests[before:] == []
