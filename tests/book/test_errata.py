@@ -62,17 +62,19 @@ def test_html_outputs_carry_math_the_static_book_typesets():
                 assert not found, f"{path.name}: $…$ in an HTML output: {found.group(0)[:80]}"
 
 
-# ---------------------------------------------------------------------------------- typeset titles and notes
+# ------------------------------------------------------------------------------------------- typeset cards
 TITLE = re.compile(r"<b>(.*?)</b> <span")
 NOTE = re.compile(r"<i>(.*?)</i>")
+EVIDENCE = re.compile(r"<p[^>]*>Evidence: (.*?)</p>")
 INLINE = re.compile(r"\\\((.*?)\\\)")
 RAW_MATH = re.compile(r"[\\$_^{}]|[\u0370-\u03ff\u0300-\u036f∂ᵀ⁰¹²³⁴⁵⁶⁷⁸⁹₀₁₂₃₄₅₆₇₈₉]|\b[A-Za-z]{1,3}'(?![a-z])"
                       r"|(?:^|[\s(])[b-zB-Z](?=[\s,;:)]|$)")
 """A formula typed as text: TeX markup, a Greek letter, an accent, a superscript or subscript digit, a primed name
 (ω', phi' — not a possessive), a lone letter (t = 0, the points B, C — "a" and "A" are words, and a letter quoted
 as the book prints it, “o”, is prose)."""
-CODE = re.compile(r"[\w.]*\w+(?:_\w+){2,}(?:\([^)]*\))?")
-"""A function named in the prose (kinbook.spatial.euler_rates_from_omega(frame='body')): not a formula."""
+CODE = re.compile(r"[\w.]*\b\w+?_[a-z]{2,}\w*(?:\([^)]*\))?")
+"""A function named in the prose (kinbook.spatial.euler_rates_from_omega(frame='body'), p_from_A,
+point_acceleration): not a formula (a subscript is one letter or a number: x_i, Φ_q, γ_1)."""
 
 
 def _titles(cards_html):
@@ -83,17 +85,27 @@ def _notes(cards_html):
     return [unescape(t) for t in NOTE.findall(cards_html)]
 
 
+def _evidence(cards_html):
+    return [unescape(t) for t in EVIDENCE.findall(cards_html)]
+
+
+def _prose(cards_html):
+    """Every title, evidence and note of the cards: the text around formulas."""
+    return _titles(cards_html) + _evidence(cards_html) + _notes(cards_html)
+
+
 def _raw_math(text):
     return RAW_MATH.findall(CODE.sub(" ", INLINE.sub(" ", text)))
 
 
-def test_titles_and_notes_set_their_formulas_as_math():
-    """Every card's title (its <b>) and note (its <i>) have their formulas in \\(…\\), which JupyterLab (untrusted
-    too), the book's MathJax and `make html` typeset; the prose around them carries no formula as text."""
+def test_titles_evidence_and_notes_set_their_formulas_as_math():
+    """Every card's title (its <b>), evidence and note (its <i>) have their formulas in \\(…\\), which JupyterLab
+    (untrusted too), the book's MathJax and `make html` typeset; the prose around them carries no formula as text."""
     cards = errata.table()._repr_html_()
     titles, notes = _titles(cards), _notes(cards)
     assert len(titles) == len(errata.ERRATA) and len(notes) == sum(bool(e.note) for e in errata.ERRATA)
-    assert [t for t in titles + notes if _raw_math(t)] == []
+    assert len(_evidence(cards)) == sum(e.evidence is not None for e in errata.ERRATA)
+    assert [t for t in _prose(cards) if _raw_math(t)] == []
     assert sum(bool(INLINE.search(t)) for t in titles) >= 35  # a formula in more than half the titles
     # one title spelled out: row 2 of Φ_q q̇ (§13.8), bold Φ with subscript bold q, times q̇ — the book's notation
     card = errata.show("13.8-revolute-Phiq-qd")._repr_html_()
@@ -105,17 +117,17 @@ def test_titles_and_notes_set_their_formulas_as_math():
     assert _raw_math("kinbook's p_from_A also covers it; the parameters' rates give ω") == ["ω"]
 
 
-def test_stored_notebooks_show_typeset_titles_and_notes():
+def test_stored_notebooks_show_typeset_cards():
     """The cards stored in the notebooks (errata.ipynb and the chapters that show errata) are the typeset ones."""
     seen = 0
     for path in sorted(ROOT.glob("chapters/*.ipynb")):
         for cell in json.loads(path.read_text())["cells"]:
             for out in cell.get("outputs", []):
                 cards = "".join(out.get("data", {}).get("text/html", ""))
-                for text in _titles(cards) + _notes(cards):
+                for text in _prose(cards):
                     assert not _raw_math(text), f"{path.name}: {text}"
                     seen += 1
-    assert seen >= 2 * len(errata.ERRATA)  # errata.ipynb has every card, the chapters show them again
+    assert seen >= 3 * len(errata.ERRATA)  # errata.ipynb has every card, the chapters show them again
 
 
 MATHJAX = ROOT / ".venv-web" / "npm" / "node_modules" / "mathjax"
@@ -129,8 +141,8 @@ require(process.argv[2]).init({loader: {load: ['input/tex']}, startup: {typeset:
 """
 
 
-def test_title_and_note_formulas_typeset_in_mathjax(tmp_path):
-    """The book's own MathJax 3 (`make web-env` installs it) reads every formula of the titles and notes: no TeX error, no undefined
+def test_card_formulas_typeset_in_mathjax(tmp_path):
+    """The book's own MathJax 3 (`make web-env` installs it) reads every formula of the titles, evidence and notes: no TeX error, no undefined
     macro (MathJax marks those in red), and the book's bold and accents come out as MathML says they should."""
     import shutil
     import subprocess
@@ -139,7 +151,7 @@ def test_title_and_note_formulas_typeset_in_mathjax(tmp_path):
     if node is None or not MATHJAX.is_dir():
         pytest.skip("needs node and MathJax 3 (make web-env)")
     cards = errata.table()._repr_html_()
-    texs = sorted({m for t in _titles(cards) + _notes(cards) for m in INLINE.findall(t)})
+    texs = sorted({m for t in _prose(cards) for m in INLINE.findall(t)})
     script = tmp_path / "tex2mml.js"
     script.write_text(TEX2MML)
     run = subprocess.run([node, str(script), str(MATHJAX)], input=json.dumps(texs), capture_output=True, text=True,

@@ -55,7 +55,7 @@ class ErrataTable:
                      f"<p style='margin:0'>The book prints: {html_math(e.printed, display=True)}</p>",
                      f"<p style='margin:0'>Correct: {html_math(e.correct, display=True)}</p>"]
             if ev is not None:
-                parts.append(f"<p style='margin:4px 0 0 0'>Evidence: {html.escape(ev.text)}</p>")
+                parts.append(f"<p style='margin:4px 0 0 0'>Evidence: {html_text(ev.text)}</p>")
             if e.note:
                 parts.append(f"<p style='margin:4px 0 0 0'><i>{html_text(e.note)}</i></p>")
             cards.append("<div style='text-align:left; border-left:4px solid #c62828; padding:4px 10px; "

@@ -35,6 +35,11 @@ def example(name):
 
 
 # ------------------------------------------------------------------------------------------- evidence
+def _math_names(coordinates):
+    """kinbook's coordinate names as the book writes them, each a formula: "x4, phi4" → "$x_{4}$, $\\varphi_{4}$"."""
+    return ", ".join(f"${notation.latex(sp.Symbol(c))}$" for c in coordinates)
+
+
 def _ev_ex1_solution():
     m = example("ch13_example1")
 
@@ -45,11 +50,12 @@ def _ev_ex1_solution():
     q = m.solve_position(0.0)
     ok = np.abs(m.Phi(q, 0.0)).max()
     return Evidence(
-        f"The printed configuration leaves max |Φ_k| = {np.abs(res).max():.3f} (row Φ_{np.argmax(np.abs(res)) + 1}); "
-        f"at the printed A and B the coupler would be |AB| = {np.linalg.norm(B - A):.3f} long instead of 6. "
-        f"kinbook's solution: φ_3 = {np.degrees(q[8]):.2f}°, φ_4 = {np.degrees(q[11]):.2f}°, "
-        f"B = ({m.point_position(q, 'rocker', 'B')[0]:.4f}, {m.point_position(q, 'rocker', 'B')[1]:.4f}), "
-        f"max |Φ_k| {below(ok)}.",
+        rf"The printed configuration leaves $\max|\Phi_k| = {np.abs(res).max():.3f}$ (row "
+        rf"$\Phi_{{{np.argmax(np.abs(res)) + 1}}}$); at the printed $A$ and $B$ the coupler would be "
+        rf"$|AB| = {np.linalg.norm(B - A):.3f}$ long instead of 6. kinbook's solution: "
+        rf"$\varphi_3 = {np.degrees(q[8]):.2f}°$, $\varphi_4 = {np.degrees(q[11]):.2f}°$, "
+        rf"$B = ({m.point_position(q, 'rocker', 'B')[0]:.4f}, {m.point_position(q, 'rocker', 'B')[1]:.4f})$, "
+        rf"$\max|\Phi_k|$ {below(ok)}.",
         float(np.abs(res).max()), float(ok))
 
 
@@ -61,8 +67,8 @@ def _ev_ex3_x2():
     fixed = qb.copy()
     fixed[3] = -0.7071
     return Evidence(
-        f"With the printed x_2 = +0.7071, Φ_4 = x_1 − x_2 + cos φ_2 = {res[3]:.4f}; with x_2 = −0.7071 it is "
-        f"{small(m.Phi(fixed, 0.0)[3], 1e-4)} (the printed four decimals).", abs(float(res[3])),
+        rf"With the printed $x_2 = +0.7071$, $\Phi_4 = x_1 - x_2 + \cos\varphi_2 = {res[3]:.4f}$; with "
+        rf"$x_2 = -0.7071$ it is {small(m.Phi(fixed, 0.0)[3], 1e-4)} (the printed four decimals).", abs(float(res[3])),
         abs(float(m.Phi(fixed, 0.0)[3])), tolerance=1e-4)
 
 
@@ -76,12 +82,12 @@ def _ex4_phi8(printed_row, what):
     f = sp.lambdify(list(m.q), [printed_row, corrected], "numpy")
     rows = [(*f(*q), m.Phi(q, 0.0)[7]) for q in np.random.default_rng(1).uniform(-2, 2, (20, 9))]
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random configurations {what} differs from kinbook's Φ_8 by up to {e_p:.3f}; the "
-                    f"corrected row {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"At 20 random configurations {what} differs from kinbook's $\Phi_8$ by up to {e_p:.3f}; the "
+                    rf"corrected row {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_ex4_phi8():
-    return _ex4_phi8(EX4["Phi8"], "the simplified Φ_8 as printed")
+    return _ex4_phi8(EX4["Phi8"], r"the simplified $\Phi_8$ as printed")
 
 
 def _ev_ex4_phi8_substituted():
@@ -89,7 +95,7 @@ def _ev_ex4_phi8_substituted():
 
 
 def _ev_ex4_phi8_system():
-    return _ex4_phi8(EX4["Phi8_system"], "the system's Φ_8 as printed")
+    return _ex4_phi8(EX4["Phi8_system"], r"the system's $\Phi_8$ as printed")
 
 
 def _ev_ex3_system():
@@ -102,9 +108,9 @@ def _ev_ex3_system():
     f = sp.lambdify(list(m.q), list(printed_rows.subs({x4: x3, y4: y3})), "numpy")
     err = max(float(np.abs(np.array(f(*q), dtype=float) - m.Phi(q, 0.0)[5:7]).max())
               for q in np.random.default_rng(3).uniform(-2, 2, (20, 9)))
-    return Evidence(f"The printed rows hold {', '.join(foreign)}: example 3 has three bodies (coordinates x_1 … φ_3), "
-                    f"so they cannot be evaluated. With x_3, y_3 they are kinbook's Φ_6, Φ_7: at 20 random "
-                    f"configurations the difference {below(err)}.", float("inf") if foreign else 0.0, err)
+    return Evidence(rf"The printed rows hold {_math_names(foreign)}: example 3 has three bodies (coordinates "
+                    rf"$x_1 \dots \varphi_3$), so they cannot be evaluated. With $x_3$, $y_3$ they are kinbook's $\Phi_6$, "
+                    rf"$\Phi_7$: at 20 random configurations the difference {below(err)}.", float("inf") if foreign else 0.0, err)
 
 
 def _ev_ex2_translational():
@@ -118,9 +124,10 @@ def _ev_ex2_translational():
         corrected = ex2_translational_general(P_i, Q_i, P_j, P_i)   # eq. 26: P_j − P_i
         rows.append((printed_row, corrected, m.Phi(q, 0.0)[5]))
     e_p, e_c = compare(rows)
-    return Evidence(f"With P_i = O_1, Q_i = (1, 0) on body 1 (the example's choice) and Q_j = (1, 0) on body 4, the "
-                    f"printed row is sin(φ_4 − φ_1), blind to where the slider is: at 20 random configurations it "
-                    f"differs from kinbook's Φ_6 by up to {e_p:.3f}; with P_j − P_i (eq. 26) it {agrees(e_c)}.",
+    return Evidence(rf"With $P_i = O_1$, $Q_i = (1, 0)$ on body 1 (the example's choice) and $Q_j = (1, 0)$ on body 4, "
+                    rf"the printed row is $\sin(\varphi_4 - \varphi_1)$, blind to where the slider is: at 20 random "
+                    rf"configurations it differs from kinbook's $\Phi_6$ by up to {e_p:.3f}; with $P_j - P_i$ (eq. 26) it "
+                    rf"{agrees(e_c)}.",
                     e_p, e_c)
 
 
@@ -128,8 +135,8 @@ def _ev_ex2_l3():
     m = example("ch13_example2")
     rod = next(b for b in m.bodies if b.name == "rod")
     length = float(np.linalg.norm(np.subtract(rod.points["B"], rod.points["A"]).astype(float)))
-    return Evidence(f"“b/6” is no length (b is defined nowhere); the local coordinates printed next, ξ_3^A = −3 and "
-                    f"ξ_3^B = 3, put A and B 6 apart, as kinbook's example-2 rod does (|AB| = {length:g}).",
+    return Evidence(rf"“b/6” is no length ($b$ is defined nowhere); the local coordinates printed next, $\xi_3^A = -3$ and "
+                    rf"$\xi_3^B = 3$, put $A$ and $B$ 6 apart, as kinbook's example-2 rod does ($|AB| = {length:g}$).",
                     float("inf"), abs(length - 6.0))
 
 
@@ -141,10 +148,11 @@ def _ev_ex5_joint3_working():
     corrected = np.array([A_[0] - x2, A_[1] - y2, B_[0] - x3, B_[1] - y3])
     values = EX5["rr_arms"]
     e_p, e_c = float(np.abs(as_labelled - values).max()), float(np.abs(corrected - values).max())
-    return Evidence(f"At the book's own points A = ({A_[0]}, {A_[1]}), B = ({B_[0]}, {B_[1]}) and x_2 = {x2}, "
-                    f"x_3 = {x3}: the printed labels (x^A − x^B, y^A − y^B, and x_j^p − x_j^p, which is 0) differ from "
-                    f"the numbers written after them by up to {e_p:.4f}; the lever arms x^A − x_2, y^A − y_2, "
-                    f"x^B − x_3, y^B − y_3 give those numbers to their printed digits ({small(e_c, 2e-4, relation=True)}).",
+    return Evidence(rf"At the book's own points $A = ({A_[0]}, {A_[1]})$, $B = ({B_[0]}, {B_[1]})$ and $x_2 = {x2}$, "
+                    rf"$x_3 = {x3}$: the printed labels ($x^A - x^B$, $y^A - y^B$, and $x_j^p - x_j^p$, which is 0) differ "
+                    rf"from the numbers written after them by up to {e_p:.4f}; the lever arms $x^A - x_2$, $y^A - y_2$, "
+                    rf"$x^B - x_3$, $y^B - y_3$ give those numbers to their printed digits "
+                    rf"({small(e_c, 2e-4, relation=True)}).",
                     e_p, e_c, tolerance=2e-4)
 
 
@@ -158,11 +166,10 @@ def _ev_q_13_6():
     f = sp.lambdify(list(m.q), phi11.subs({s: m.q[m.index(str(s)), 0] for s in phi11.free_symbols}), "numpy")
     err = max(abs(float(f(*q)) - m.Phi(q, 0.0)[10]) for q in np.random.default_rng(6).uniform(-2, 2, (20, m.n)))
     needs = sorted(str(v) for v in phi11.free_symbols if str(v) not in printed_q)
-    names = ", ".join(missing).replace("phi", "φ")
-    return Evidence(f"Example 1 has four bodies, ground included: kinbook's q has {m.n} coordinates, the printed one "
-                    f"{len(printed_q)}, without {names}. The Φ_11 printed a few lines below holds "
-                    f"{', '.join(needs).replace('phi', 'φ')} and is kinbook's Φ_11 with all twelve (at 20 random "
-                    f"configurations the difference {below(err)}).", float(len(missing)), float(len(outside) + err))
+    return Evidence(rf"Example 1 has four bodies, ground included: kinbook's $\mathbf q$ has {m.n} coordinates, the "
+                    rf"printed one {len(printed_q)}, without {_math_names(missing)}. The $\Phi_{{11}}$ printed a few lines below holds "
+                    rf"{_math_names(needs)} and is kinbook's $\Phi_{{11}}$ with all twelve (at 20 random "
+                    rf"configurations the difference {below(err)}).", float(len(missing)), float(len(outside) + err))
 
 
 def _ev_ex5_ground_points():
@@ -174,10 +181,11 @@ def _ev_ex5_ground_points():
             y = m.point_position(q, "ground", point)[1]
             rows.append((ex5_ground_point_y(q[1], q[2], xi, eta), q[1] + xi * np.sin(q[2]) + eta * np.cos(q[2]), y))
     e_p, e_c = compare(rows)
-    return Evidence(f"For the ground's points O_A = (0, 0) and O_B = (3, 0) at 20 random ground positions, the printed "
-                    f"y_1 + η_1^P sen φ_1 differs from kinbook's y^P by up to {e_p:.4f}; y_1 + ξ_1^P sen φ_1 + "
-                    f"η_1^P cos φ_1 agrees (difference {below(e_c)}). At t = 0 (y_1 = φ_1 = 0) both give 0, so the "
-                    f"example's numbers hide the slip.", e_p, e_c)
+    return Evidence(rf"For the ground's points $O_A = (0, 0)$ and $O_B = (3, 0)$ at 20 random ground positions, the "
+                    rf"printed $y_1 + \eta_1^P \operatorname{{sen}}\varphi_1$ differs from kinbook's $y^P$ by up to "
+                    rf"{e_p:.4f}; $y_1 + \xi_1^P \operatorname{{sen}}\varphi_1 + \eta_1^P\cos\varphi_1$ agrees "
+                    rf"(difference {below(e_c)}). At $t = 0$ ($y_1 = \varphi_1 = 0$) both give 0, so the example's numbers "
+                    rf"hide the slip.", e_p, e_c)
 
 
 def _ev_ex6_point_A():
@@ -185,10 +193,10 @@ def _ev_ex6_point_A():
     A = m.point_position(EX5["q"], "crank", "A")     # the book's configuration (x_2 = −0.7071, φ_2 = 135°)
     printed_A, corrected = EX6["A"], EX6["A"] * np.array([-1.0, 1.0])
     e_p, e_c = float(np.abs(printed_A - A).max()), float(np.abs(corrected - A).max())
-    return Evidence(f"At the book's own configuration (x_2 = −0.7071, φ_2 = 135°, ξ_2^A = 1) kinbook's A is "
-                    f"({A[0]:.4f}, {A[1]:.4f}): the listed x^A is off by {e_p:.4f}, −1.4142 agrees to the printed "
-                    f"digits ({small(e_c, 2e-4, relation=True)}). Example 5 and example 6's own joint-3 data print "
-                    f"−1.4142.", e_p, e_c, tolerance=2e-4)
+    return Evidence(rf"At the book's own configuration ($x_2 = -0.7071$, $\varphi_2 = 135°$, $\xi_2^A = 1$) kinbook's "
+                    rf"$A$ is ({A[0]:.4f}, {A[1]:.4f}): the listed $x^A$ is off by {e_p:.4f}, −1.4142 agrees to the "
+                    rf"printed digits ({small(e_c, 2e-4, relation=True)}). Example 5 and example 6's own joint-3 data "
+                    rf"print −1.4142.", e_p, e_c, tolerance=2e-4)
 
 
 def _ev_ex6_point_acceleration():
@@ -202,10 +210,11 @@ def _ev_ex6_point_acceleration():
         printed_a = ex6_point_acceleration(rdd, phi, w, al, xi, eta)
         rows += [(printed_a[k], corrected[k], ref[k]) for k in range(2)]
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random states (r̈, φ, φ̇, φ̈, ξ, η) the printed rows differ from kinbook's "
-                    f"point_acceleration (eq. 13) by up to {e_p:.3f}; with φ̈ on the B s' bracket and φ̇² on the A s' "
-                    f"one they agree (difference {below(e_c)}). With η = 0 the simplified rows the example uses next "
-                    f"are right.", e_p, e_c)
+    return Evidence(rf"At 20 random states ($\ddot{{\mathbf r}}$, $\varphi$, $\dot\varphi$, $\ddot\varphi$, $\xi$, "
+                    rf"$\eta$) the printed rows differ from kinbook's point_acceleration (eq. 13) by up to {e_p:.3f}; with "
+                    rf"$\ddot\varphi$ on the $\mathbf B\mathbf s'$ bracket and $\dot\varphi^2$ on the $\mathbf A\mathbf s'$ "
+                    rf"one they agree (difference {below(e_c)}). With $\eta = 0$ the simplified rows the example uses next "
+                    rf"are right.", e_p, e_c)
 
 
 def _printed_vs_kinbook(kind, quantity, printed_matrix, corrected_matrix, entry, equal=(), up_to_sign=True):
@@ -229,26 +238,28 @@ def _with_entry(M, entry, value):
 
 def _ev_table_13_1_text():
     e_p, e_c = _printed_vs_kinbook("r", "Phi_q", TABLE_13_1_TEXT, TABLES["13.1"][1], [(0, 2), (0, 5), (1, 2), (1, 5)])
-    return Evidence(f"The four printed derivatives ∂Φ/∂φ_i, ∂Φ/∂φ_j at 20 random configurations: off by up to "
-                    f"{e_p:.3f}; with the body origins (x_i, y_i, x_j, y_j), as Table 13.1 prints them, they "
-                    f"{agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"The four printed derivatives $\partial\Phi/\partial\varphi_i$, $\partial\Phi/\partial\varphi_j$ "
+                    rf"at 20 random configurations: off by up to {e_p:.3f}; with the body origins ($x_i$, $y_i$, $x_j$, "
+                    rf"$y_j$), as Table 13.1 prints them, they {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_eq25():
     corrected = EQ["26"]
     printed_eq = corrected.subs({S.xQ_i: S.x_i, S.yQ_i: S.y_i})   # the second guide point read as the origin O_i
     e_p, e_c = _printed_vs_kinbook("t", "Phi", printed_eq, corrected, (0, 0))
-    return Evidence(f"Eq. 26 with O read as the body origin O_i: at 20 random configurations (guide line not through "
-                    f"O_i) its first row differs from kinbook's by up to {e_p:.3f}; with the guide point Q_i it "
-                    f"{agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"Eq. 26 with $O$ read as the body origin $O_i$: at 20 random configurations (guide line not "
+                    rf"through $O_i$) its first row differs from kinbook's by up to {e_p:.3f}; with the guide point $Q_i$ "
+                    rf"it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_gamma_sign():
     P = REVOLUTE_STEPS["(Phi_q qd)_q qd"]
     e_p, e_c = _printed_vs_kinbook("r", "gamma", P, -P, [(0, 0), (1, 0)], up_to_sign=False)
-    return Evidence(f"For the revolute joint, γ = (Φ_q q̇)_q q̇ with the section's own (Φ_q q̇)_q q̇ differs from "
-                    f"kinbook's γ by up to {e_p:.2f} at 20 random states; γ = −(Φ_q q̇)_q q̇ (Φ_t = 0 here) "
-                    f"{agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"For the revolute joint, $\gamma = (\boldsymbol\Phi_{{\mathbf q}}\dot{{\mathbf q}})_{{\mathbf q}}"
+                    rf"\dot{{\mathbf q}}$ with the section's own $(\boldsymbol\Phi_{{\mathbf q}}\dot{{\mathbf q}})_"
+                    rf"{{\mathbf q}}\dot{{\mathbf q}}$ differs from kinbook's $\gamma$ by up to {e_p:.2f} at 20 random "
+                    rf"states; $\gamma = -(\boldsymbol\Phi_{{\mathbf q}}\dot{{\mathbf q}})_{{\mathbf q}}"
+                    rf"\dot{{\mathbf q}}$ ($\boldsymbol\Phi_t = \mathbf 0$ here) {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_velocity_rhs():
@@ -258,17 +269,18 @@ def _ev_velocity_rhs():
     phi_t = (m.Phi(q, h) - m.Phi(q, -h)) / (2 * h)     # Φ_t: only the driver's row depends on t
     nu = m.nu(q, 0.0)
     e_p, e_c = float(np.abs(phi_t - nu).max()), float(np.abs(-phi_t - nu).max())
-    return Evidence(f"Example 3's driver φ_2 − 3π/4 − 100t has Φ_t = {phi_t[-1]:.4g}: the printed right-hand side "
-                    f"[0; Φ_t] gives ν_9 = {phi_t[-1]:.4g}, kinbook's ν_9 = {nu[-1]:.4g} (example 5 itself uses "
-                    f"100); [0; −Φ_t] {agrees(e_c, 1e-6)}.", e_p, e_c, tolerance=1e-6)
+    return Evidence(rf"Example 3's driver $\varphi_2 - 3\pi/4 - 100t$ has $\Phi_t = {phi_t[-1]:.4g}$: the printed "
+                    rf"right-hand side $[\mathbf 0; \boldsymbol\Phi_t]$ gives $\nu_9 = {phi_t[-1]:.4g}$, kinbook's "
+                    rf"$\nu_9 = {nu[-1]:.4g}$ (example 5 itself uses 100); $[\mathbf 0; -\boldsymbol\Phi_t]$ "
+                    rf"{agrees(e_c, 1e-6)}.", e_p, e_c, tolerance=1e-6)
 
 
 def _ev_table_13_2():
     P = TABLES["13.2"][1]
     fixed = (S.xP_j - S.x_j) * (S.xP_i - S.xQ_i) + (S.yP_j - S.y_j) * (S.yP_i - S.yQ_i)
     e_p, e_c = _printed_vs_kinbook("t", "Phi_q", P, _with_entry(P, (0, 5), fixed), (0, 5))
-    return Evidence(f"∂Φ_1/∂φ_j at 20 random configurations: the printed entry is off by up to {e_p:.3f}; with "
-                    f"x_j, y_j it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"$\partial\Phi_1/\partial\varphi_j$ at 20 random configurations: the printed entry is off by up "
+                    rf"to {e_p:.3f}; with $x_j$, $y_j$ it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_table_13_3():
@@ -277,24 +289,25 @@ def _ev_table_13_3():
     fixed = _with_entry(P, (0, 2), -2 * dx * (S.yP_i - S.y_i) + 2 * dy * (S.xP_i - S.x_i))
     fixed[0, 5] = 2 * dx * (S.yP_j - S.y_j) - 2 * dy * (S.xP_j - S.x_j)
     e_p, e_c = _printed_vs_kinbook("rr", "Phi_q", P, fixed, [(0, 2), (0, 5)])
-    return Evidence(f"Both printed entries, ∂Φ/∂φ_i and ∂Φ/∂φ_j, reduce to 0; kinbook's entries reach {e_p:.3f} at 20 "
-                    f"random configurations; the corrected entries {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"Both printed entries, $\partial\Phi/\partial\varphi_i$ and $\partial\Phi/\partial\varphi_j$, "
+                    rf"reduce to 0; kinbook's entries reach {e_p:.3f} at 20 random configurations; the corrected entries "
+                    rf"{agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_table_13_4():
     P = TABLES["13.4"][1]
     fixed = (S.yP_i - S.y_j) * (S.yP_j - S.yQ_j) + (S.xP_i - S.x_j) * (S.xP_j - S.xQ_j)
     e_p, e_c = _printed_vs_kinbook("rt", "Phi_q", P, _with_entry(P, (0, 5), fixed), (0, 5))
-    return Evidence(f"∂Φ/∂φ_j of the r-t joint at 20 random configurations: printed entry off by up to {e_p:.3f}; "
-                    f"with x_j, y_j it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"$\partial\Phi/\partial\varphi_j$ of the r-t joint at 20 random configurations: printed entry off "
+                    rf"by up to {e_p:.3f}; with $x_j$, $y_j$ it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_gamma_rr():
     P = TABLE_13_5_GAMMA["rr"]
     fixed = P + sp.Matrix([2 * (S.yd_i - S.yd_j) - 2 * (S.yd_i - S.yd_j) ** 2])
     e_p, e_c = _printed_vs_kinbook("rr", "gamma", P, fixed, (0, 0))
-    return Evidence(f"γ of the r-r joint at 20 random states: printed entry off by up to {e_p:.2f}; with "
-                    f"(ẏ_i − ẏ_j)² it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"$\gamma$ of the r-r joint at 20 random states: printed entry off by up to {e_p:.2f}; with "
+                    rf"$(\dot y_i - \dot y_j)^2$ it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_gamma_t():
@@ -303,8 +316,8 @@ def _ev_gamma_t():
     velocity_term = 2 * (sx * (S.xd_i - S.xd_j) + sy * (S.yd_i - S.yd_j)) * S.w_i
     fixed = _with_entry(P, (0, 0), P[0, 0] - 2 * velocity_term)
     e_p, e_c = _printed_vs_kinbook("t", "gamma", P, fixed, (0, 0), equal=[(S.w_i, S.w_j)])
-    return Evidence(f"γ_1 of the translational joint at 20 random states with φ̇_j = φ̇_i: printed entry off by up "
-                    f"to {e_p:.2f}; with −2[…]φ̇_i it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"$\gamma_1$ of the translational joint at 20 random states with $\dot\varphi_j = \dot\varphi_i$: "
+                    rf"printed entry off by up to {e_p:.2f}; with $-2[\ldots]\dot\varphi_i$ it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_revolute_steps():
@@ -315,8 +328,9 @@ def _ev_revolute_steps():
     derived = m.symbolic().Phi_q * m.qd
     e_p = float(verify.compare(P, derived, m).errors[1, 0])
     e_c = float(verify.compare(fixed, derived, m).errors[1, 0])
-    return Evidence(f"Row 2 of Φ_q q̇ for the revolute joint at 20 random states: the printed row is off by up to "
-                    f"{e_p:.2f}; ẏ_i + (x_i^P − x_i)φ̇_i − ẏ_j − (x_j^P − x_j)φ̇_j {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"Row 2 of $\boldsymbol\Phi_{{\mathbf q}}\dot{{\mathbf q}}$ for the revolute joint at 20 random "
+                    rf"states: the printed row is off by up to {e_p:.2f}; $\dot y_i + (x_i^P - x_i)\dot\varphi_i - \dot y_j "
+                    rf"- (x_j^P - x_j)\dot\varphi_j$ {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_ex5_velocity():
@@ -326,9 +340,10 @@ def _ev_ex5_velocity():
     vB = m.point_velocity(q, qd, "rocker", "B")
     printed = np.array([-190.7802, 117.1410])
     return Evidence(
-        f"kinbook: q̇_3 = ({qd[6]:.2f}, {qd[7]:.2f}, {qd[8]:.2f}), v_B = ({vB[0]:.2f}, {vB[1]:.2f}), "
-        f"|v_B| = {np.linalg.norm(vB):.2f}; the printed v_B = (−190.78, 117.14) is off by "
-        f"{np.linalg.norm(printed - vB):.2f} because it is computed at the unassembled printed configuration.",
+        rf"kinbook: $\dot{{\mathbf q}}_3 = ({qd[6]:.2f}, {qd[7]:.2f}, {qd[8]:.2f})$, "
+        rf"$\mathbf v^B = ({vB[0]:.2f}, {vB[1]:.2f})$, $|\mathbf v^B| = {np.linalg.norm(vB):.2f}$; the printed "
+        rf"$\mathbf v^B = (-190.78, 117.14)$ is off by {np.linalg.norm(printed - vB):.2f} because it is computed at "
+        rf"the unassembled printed configuration.",
         float(np.linalg.norm(printed - vB)), 0.0)
 
 
@@ -341,9 +356,10 @@ def _ev_ex6_acceleration():
     printed = np.array([4084.136, -22111.679])
     g = m.gamma(q, qd, 0.0)
     return Evidence(
-        f"kinbook: γ_6..γ_8 = ({g[5]:.2f}, {g[6]:.2f}, {g[7]:.2f}), q̈_3 = ({qdd[6]:.2f}, {qdd[7]:.2f}, "
-        f"{qdd[8]:.2f}), a_B = ({aB[0]:.2f}, {aB[1]:.2f}), |a_B| = {np.linalg.norm(aB):.2f}; the printed a_B "
-        f"is off by {np.linalg.norm(printed - aB):.1f}.", float(np.linalg.norm(printed - aB)), 0.0)
+        rf"kinbook: $\gamma_6, \gamma_7, \gamma_8 = {g[5]:.2f}, {g[6]:.2f}, {g[7]:.2f}$, "
+        rf"$\ddot{{\mathbf q}}_3 = ({qdd[6]:.2f}, {qdd[7]:.2f}, {qdd[8]:.2f})$, "
+        rf"$\mathbf a^B = ({aB[0]:.2f}, {aB[1]:.2f})$, $|\mathbf a^B| = {np.linalg.norm(aB):.2f}$; the printed "
+        rf"$\mathbf a^B$ is off by {np.linalg.norm(printed - aB):.1f}.", float(np.linalg.norm(printed - aB)), 0.0)
 
 
 # ----------------------------------------------------------------------------------------------- the list

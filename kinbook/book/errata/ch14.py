@@ -47,9 +47,9 @@ def _ev_elementary_rotation():
         reference = A_from_euler(psi, 0, 0).T  # the book's passive A^ψ
         rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
     e_p, e_c = compare(rows)
-    return Evidence(f"The printed A^ψ has det = cos 2ψ (0.5 at ψ = 30°), so it is no rotation; it differs from the "
-                    f"transpose of kinbook's A(ψ, 0, 0) by up to {e_p:.3f}; with −sin ψ in row 2 it "
-                    f"{agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"The printed $\mathbf A^\psi$ has $\det = \cos 2\psi$ (0.5 at $\psi = 30°$), so it is no rotation; it "
+                    rf"differs from the transpose of kinbook's $\mathbf A(\psi, 0, 0)$ by up to {e_p:.3f}; with "
+                    rf"$-\sin\psi$ in row 2 it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_a21_row3():
@@ -61,8 +61,9 @@ def _ev_a21_row3():
         corrected = np.array([np.sin(psi) * np.sin(th), -np.cos(psi) * np.sin(th), np.cos(th)])
         rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
     e_p, e_c = compare(rows)
-    return Evidence(f"Row 3 of the product A^φ A^θ A^ψ (the transpose of kinbook's A_from_euler) at 20 random "
-                    f"angles: the printed row is off by up to {e_p:.3f}; with sin θ for sin φ it {agrees(e_c)}.",
+    return Evidence(rf"Row 3 of the product $\mathbf A^\phi\mathbf A^\theta\mathbf A^\psi$ (the transpose of kinbook's "
+                    rf"A_from_euler) at 20 random angles: the printed row is off by up to {e_p:.3f}; with $\sin\theta$ "
+                    rf"for $\sin\phi$ it {agrees(e_c)}.",
                     e_p, e_c)
 
 
@@ -78,9 +79,9 @@ def _ev_A_of_p():
         ref = A_from_p(p)
         rows.append((np.abs(printed - ref).max(), np.abs(corrected - ref).max(), 0.0))
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random unit p the printed matrix differs from A(p) by up to {e_p:.3f} (it is symmetric, "
-                    f"so it cannot be a rotation in general); twice it, with + e0 terms at a13, a21, a32, "
-                    f"{agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"At 20 random unit $\mathbf p$ the printed matrix differs from $\mathbf A(\mathbf p)$ by up to "
+                    rf"{e_p:.3f} (it is symmetric, so it cannot be a rotation in general); twice it, with $+e_0$ terms "
+                    rf"at $a_{{13}}$, $a_{{21}}$, $a_{{32}}$, {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_G_row2():
@@ -91,8 +92,8 @@ def _ev_G_row2():
         printed[1] = [-e2, e3, e0, e1]
         rows.append((np.abs(printed @ p).max(), np.abs(G(p) @ p).max(), 0.0))
     e_p, e_c = compare(rows)
-    return Evidence(f"With the printed row 2, G p = [0, 2 e1 e3, 0] reaches {e_p:.3f} at random unit p instead of "
-                    f"0; kinbook's G gives |G p| {below(e_c)}.", e_p, e_c)
+    return Evidence(rf"With the printed row 2, $\mathbf G\mathbf p = [0, 2e_1e_3, 0]^T$ reaches {e_p:.3f} at random unit "
+                    rf"$\mathbf p$ instead of 0; kinbook's $\mathbf G$ gives $|\mathbf G\mathbf p|$ {below(e_c)}.", e_p, e_c)
 
 
 def _matrices_vs(reference, samples):
@@ -111,10 +112,11 @@ def _ev_A_theta_second():
                 A_from_euler(0.0, th, 0.0).T)  # the nutation alone, passive like the printed A^ψ and A^φ
 
     e_p, e_c = _matrices_vs(matrices, np.random.default_rng(21).uniform(-3, 3, (20, 2)))
-    return Evidence(f"At 20 random (ψ, θ) the printed A^θ differs from the passive nutation matrix (the transpose of "
-                    f"kinbook's A(0, θ, 0), as the printed A^ψ and A^φ are passive) by up to {e_p:.3f} — it is no "
-                    f"rotation (det = cψ cθ + sθ²); with cos θ in row 2 and + sin θ above the diagonal it "
-                    f"{agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"At 20 random $(\psi, \theta)$ the printed $\mathbf A^\theta$ differs from the passive nutation "
+                    rf"matrix (the transpose of kinbook's $\mathbf A(0, \theta, 0)$, as the printed $\mathbf A^\psi$ "
+                    rf"and $\mathbf A^\phi$ are passive) by up to {e_p:.3f} — it is no rotation "
+                    rf"($\det = c\psi\, c\theta + s\theta^2$); with $\cos\theta$ in row 2 and $+\sin\theta$ above the "
+                    rf"diagonal it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_omega_matrix():
@@ -131,10 +133,10 @@ def _ev_omega_matrix():
         M = np.array([[sth * sph, cph, 0], [sth * cph, -sph, 0], [cth, 0, 1]])
         rows.append(float(np.abs(M @ rates - omega_from_euler_rates((psi, th, ph), rates, frame="body")).max()))
     e_c = max(rows)
-    return Evidence(f"As printed, a 3×4 array multiplies the three rates (ψ̇, θ̇, φ̇): the product is not defined "
-                    f"(sympy raises ShapeError). The 3×3 matrix with sθ sφ and sθ cφ in column 1 gives kinbook's ω' "
-                    f"(omega_from_euler_rates, frame='body') at 20 random angles and rates: the difference "
-                    f"{below(e_c)}.", shape_error, e_c)
+    return Evidence(rf"As printed, a $3\times4$ array multiplies the three rates $(\dot\psi, \dot\theta, \dot\phi)$: the "
+                    rf"product is not defined (sympy raises ShapeError). The $3\times3$ matrix with $s\theta\, s\phi$ "
+                    rf"and $s\theta\, c\phi$ in column 1 gives kinbook's $\boldsymbol\omega'$ (omega_from_euler_rates, "
+                    rf"frame='body') at 20 random angles and rates: the difference {below(e_c)}.", shape_error, e_c)
 
 
 def _ev_rates_inverse_first():
@@ -148,9 +150,10 @@ def _ev_rates_inverse_first():
         ref = euler_rates_from_omega((psi, th, ph), w, frame="body")
         rows.append((np.abs(printed @ w - ref).max(), np.abs(corrected @ w - ref).max(), 0.0))
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random angles (sin θ ≠ 0) and body angular velocities ω', the first printed inverse gives "
-                    f"rates off by up to {e_p:.3f} from kinbook's euler_rates_from_omega(frame='body'); with −sin φ in "
-                    f"row 2 (as the second version prints it) it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"At 20 random angles ($\sin\theta \neq 0$) and body angular velocities $\boldsymbol\omega'$, the "
+                    rf"first printed inverse gives rates off by up to {e_p:.3f} from kinbook's "
+                    rf"euler_rates_from_omega(frame='body'); with $-\sin\phi$ in row 2 (as the second version prints "
+                    rf"it) it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_A21_row2_first():
@@ -161,8 +164,9 @@ def _ev_A21_row2_first():
                 A_from_euler(psi, th, ph).T[1])
 
     e_p, e_c = _matrices_vs(rows, np.random.default_rng(22).uniform(-3, 3, (20, 3)))
-    return Evidence(f"Row 2 of A^φ A^θ A^ψ at 20 random angles: the first printed version is off by up to {e_p:.3f}; "
-                    f"with −cψ sφ and −sψ sφ (as the second version prints it) it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"Row 2 of $\mathbf A^\phi\mathbf A^\theta\mathbf A^\psi$ at 20 random angles: the first printed "
+                    rf"version is off by up to {e_p:.3f}; with $-c\psi\, s\phi$ and $-s\psi\, s\phi$ (as the second "
+                    rf"version prints it) it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_p_from_A_recipe():
@@ -173,10 +177,10 @@ def _ev_p_from_A_recipe():
         squares = np.array([(t + 1) / 4, *((1 + 2 * np.diag(A) - t) / 4)])
         rows.append(float(np.abs(squares - p**2).max()))
     e_c = max(rows)
-    return Evidence(f"e_0² = (p + 1)/4 has a p defined nowhere, and t = 2(3e_0² + e_1² + e_2² + e_3²) − 3 needs the "
-                    f"parameters being sought: as printed the recipe cannot be evaluated from A. With t = tr A, the four "
-                    f"squares match those of the Euler parameters of 20 random rotations (the difference "
-                    f"{below(e_c)}).", float("inf"), e_c)
+    return Evidence(rf"$e_0^2 = (p + 1)/4$ has a $p$ defined nowhere, and $t = 2(3e_0^2 + e_1^2 + e_2^2 + e_3^2) - 3$ "
+                    rf"needs the parameters being sought: as printed the recipe cannot be evaluated from $\mathbf A$. "
+                    rf"With $t = \operatorname{{tr}}\mathbf A$, the four squares match those of the Euler parameters "
+                    rf"of 20 random rotations (the difference {below(e_c)}).", float("inf"), e_c)
 
 
 def _ev_A_ddot_a():
@@ -191,9 +195,12 @@ def _ev_A_ddot_a():
         ref = A_ddot(p, pd, pdd) @ a
         rows.append((np.abs(EGt - ref).max(), np.abs(EGt + 2 * E(p) @ a_bar(a) @ pdd - ref).max(), 0.0))
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random states of a motion (unit p, pᵀṗ = 0, pᵀp̈ = −ṗᵀṗ) and vectors a: with ä = 0 (a is "
-                    f"constant) the printed right-hand side is 2ĖĠᵀa, off from kinbook's Ä a by up to {e_p:.3f}; "
-                    f"2ĖĠᵀa + 2Eā p̈ {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"At 20 random states of a motion (unit $\mathbf p$, $\mathbf p^T\dot{{\mathbf p}} = 0$, "
+                    rf"$\mathbf p^T\ddot{{\mathbf p}} = -\dot{{\mathbf p}}^T\dot{{\mathbf p}}$) and vectors "
+                    rf"$\mathbf a$: with $\ddot{{\mathbf a}} = \mathbf 0$ ($\mathbf a$ is constant) the printed "
+                    rf"right-hand side is $2\dot{{\mathbf E}}\dot{{\mathbf G}}^T\mathbf a$, off from kinbook's "
+                    rf"$\ddot{{\mathbf A}}\mathbf a$ by up to {e_p:.3f}; $2\dot{{\mathbf E}}\dot{{\mathbf G}}^T\mathbf a "
+                    rf"+ 2\mathbf E\bar{{\mathbf a}}\ddot{{\mathbf p}}$ {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_a_bar_explicit():
@@ -203,8 +210,10 @@ def _ev_a_bar_explicit():
         printed = np.array([[0, -a1, -a2, -a3], [a1, 0, -a3, a2], [a2, a3, 0, -a1], [a3, -a2, a1, 0]])
         rows.append((np.abs(printed @ p - G(p).T @ a).max(), np.abs(a_bar(a) @ p - G(p).T @ a).max(), 0.0))
     e_p, e_c = compare(rows)
-    return Evidence(f"ā p against Gᵀa at 20 random unit p and vectors a: the printed element-by-element ā is off by up "
-                    f"to {e_p:.3f}; the block form [0, −aᵀ; a, −ã] {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"$\bar{{\mathbf a}}\mathbf p$ against $\mathbf G^T\mathbf a$ at 20 random unit $\mathbf p$ and "
+                    rf"vectors $\mathbf a$: the printed element-by-element $\bar{{\mathbf a}}$ is off by up to "
+                    rf"{e_p:.3f}; the block form $\begin{{bmatrix}}0 & -\mathbf a^T\\ \mathbf a & -\tilde{{\mathbf a}}"
+                    rf"\end{{bmatrix}}$ {agrees(e_c)}.", e_p, e_c)
 
 
 ERRATA = [
@@ -325,9 +334,10 @@ def _ev_14_4_n2_primes():
         corrected = s_i @ A_i.T @ (r_j + A_j @ B_j - r_i - A_i @ B_i)
         rows.append((printed, corrected, m.Phi(q)[c.rows][0]))
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random configurations the printed Φ^(n2,1), read with global s_i, s_i^B, s_j^B "
-                    f"(s = A s'), differs from kinbook's normal-2 row by up to {e_p:.3f}; with the local s'_i, "
-                    f"s'_i^B, s'_j^B it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"At 20 random configurations the printed $\Phi^{{(n2,1)}}$, read with global $\mathbf s_i$, "
+                    rf"$\mathbf s_i^B$, $\mathbf s_j^B$ ($\mathbf s = \mathbf A\mathbf s'$), differs from kinbook's "
+                    rf"normal-2 row by up to {e_p:.3f}; with the local $\mathbf s'_i$, $\mathbf s_i'^B$, "
+                    rf"$\mathbf s_j'^B$ it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_14_4_p1_transpose():
@@ -341,8 +351,10 @@ def _ev_14_4_p1_transpose():
         corrected = A_i @ skew(s_i) @ A_i.T @ A_j @ s_j
         rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random pairs of orientations A_i s̃'_iᵀ A_iᵀ A_j s'_j differs from s̃_i s_j by up to "
-                    f"{e_p:.3f} (it equals −s̃_i s_j, because s̃ᵀ = −s̃); A_i s̃'_i A_iᵀ A_j s'_j {agrees(e_c)}.",
+    return Evidence(rf"At 20 random pairs of orientations $\mathbf A_i\tilde{{\mathbf s}}_i'^T\mathbf A_i^T\mathbf A_j"
+                    rf"\mathbf s'_j$ differs from $\tilde{{\mathbf s}}_i\mathbf s_j$ by up to {e_p:.3f} (it equals "
+                    rf"$-\tilde{{\mathbf s}}_i\mathbf s_j$, because $\tilde{{\mathbf s}}^T = -\tilde{{\mathbf s}}$); "
+                    rf"$\mathbf A_i\tilde{{\mathbf s}}'_i\mathbf A_i^T\mathbf A_j\mathbf s'_j$ {agrees(e_c)}.",
                     e_p, e_c)
 
 
@@ -358,9 +370,11 @@ def _ev_14_4_p1_two_rows():
         corrected = np.linalg.norm(m.Phi(q)[c.rows])  # kinbook's h_1ᵀ s_j, h_2ᵀ s_j
         rows.append((printed, corrected, cross))
     e_p, e_c = compare(rows)
-    return Evidence(f"With s_i along X and s_j turned 10°…170° about Z, rows 1-2 of s̃_i s_j are both 0 although "
-                    f"|s_i × s_j| reaches {e_p:.3f}: they miss the whole misalignment. The norm of kinbook's two rows "
-                    f"h_1ᵀ s_j, h_2ᵀ s_j equals |s_i × s_j|: it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"With $\mathbf s_i$ along $X$ and $\mathbf s_j$ turned 10°…170° about $Z$, rows 1-2 of "
+                    rf"$\tilde{{\mathbf s}}_i\mathbf s_j$ are both 0 although $|\mathbf s_i \times \mathbf s_j|$ reaches "
+                    rf"{e_p:.3f}: they miss the whole misalignment. The norm of kinbook's two rows "
+                    rf"$\mathbf h_1^T\mathbf s_j$, $\mathbf h_2^T\mathbf s_j$ equals $|\mathbf s_i \times \mathbf s_j|$: "
+                    rf"it {agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_14_4_universal_primes():
@@ -374,9 +388,10 @@ def _ev_14_4_universal_primes():
         corrected = r_i + A_i @ P_i - A_j @ P_j - r_j
         rows.append((np.abs(printed - reference).max(), np.abs(corrected - reference).max(), 0.0))
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random configurations the printed Φ^(s,3) of the universal joint, read with global "
-                    f"s_i^P, s_j^P as the spherical-joint section defines them, differs from kinbook's first three "
-                    f"rows by up to {e_p:.3f}; with s'^P_i, s'^P_j it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"At 20 random configurations the printed $\Phi^{{(s,3)}}$ of the universal joint, read with global "
+                    rf"$\mathbf s_i^P$, $\mathbf s_j^P$ as the spherical-joint section defines them, differs from "
+                    rf"kinbook's first three rows by up to {e_p:.3f}; with $\mathbf s'^P_i$, $\mathbf s'^P_j$ it "
+                    rf"{agrees(e_c)}.", e_p, e_c)
 
 
 def _ev_14_4_revolute_tilde():
@@ -397,9 +412,11 @@ def _ev_14_4_revolute_tilde():
     except sp.ShapeError:
         printed = np.inf
     corrected = float(np.abs(A_i @ skew(s_i) @ A_i.T @ A_j @ np.array(s_j, float)).max())
-    return Evidence(f"As printed, A_i s'_i A_iᵀ A_j s'_j multiplies a 3×1 column by a 3×3 matrix: it is not defined "
-                    f"(sympy raises ShapeError). At an assembled revolute joint (kinbook's five rows: max |Φ| "
-                    f"{below(joint)}), the form with the tilde, A_i s̃'_i A_iᵀ A_j s'_j, has max |·| {below(corrected)}.",
+    return Evidence(rf"As printed, $\mathbf A_i\mathbf s'_i\mathbf A_i^T\mathbf A_j\mathbf s'_j$ multiplies a $3\times1$ "
+                    rf"column by a $3\times3$ matrix: it is not defined (sympy raises ShapeError). At an assembled "
+                    rf"revolute joint (kinbook's five rows: $\max|\Phi|$ {below(joint)}), the form with the tilde, "
+                    rf"$\mathbf A_i\tilde{{\mathbf s}}'_i\mathbf A_i^T\mathbf A_j\mathbf s'_j$, has $\max|\cdot|$ "
+                    rf"{below(corrected)}.",
                     printed, max(corrected, joint))
 
 
@@ -468,20 +485,29 @@ def _ev_14_5_n1_states(seed, tangent):
 def _ev_14_5_gamma_n1():
     rows = [(b["printed"], b["corrected"], b["phi_dd"]) for b in _ev_14_5_n1_states(1451, tangent=True)]
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random states on the unit sphere (pᵀṗ = 0, pᵀp̈ = −ṗᵀṗ) the printed relation, "
-                    f"2s_jᵀE_i s̄'_i ṗ_i + 2s_iᵀE_j s̄'_j ṗ_j − 2(s_jᵀĖ_iĠ_iᵀs'_i + s_iᵀĖ_jĠ_jᵀs'_j + "
-                    f"ṡ_iᵀṡ_j) (Ġ read as Ġᵀ: Ġ s' is undefined), differs from Φ̈ = Φ_q q̈ − γ by up to "
-                    f"{e_p:.3f}; with p̈ for ṗ and the right-hand side's sign changed it {agrees(e_c)}.",
+    return Evidence(rf"At 20 random states on the unit sphere ($\mathbf p^T\dot{{\mathbf p}} = 0$, $\mathbf p^T"
+                    rf"\ddot{{\mathbf p}} = -\dot{{\mathbf p}}^T\dot{{\mathbf p}}$) the printed relation, "
+                    rf"$2\mathbf s_j^T\mathbf E_i\bar{{\mathbf s}}'_i\dot{{\mathbf p}}_i + 2\mathbf s_i^T\mathbf E_j"
+                    rf"\bar{{\mathbf s}}'_j\dot{{\mathbf p}}_j - 2(\mathbf s_j^T\dot{{\mathbf E}}_i\dot{{\mathbf G}}_i^T"
+                    rf"\mathbf s'_i + \mathbf s_i^T\dot{{\mathbf E}}_j\dot{{\mathbf G}}_j^T\mathbf s'_j + "
+                    rf"\dot{{\mathbf s}}_i^T\dot{{\mathbf s}}_j)$ ($\dot{{\mathbf G}}$ read as $\dot{{\mathbf G}}^T$: "
+                    rf"$\dot{{\mathbf G}}\mathbf s'$ is undefined), differs from $\ddot\Phi = \boldsymbol\Phi_"
+                    rf"{{\mathbf q}}\ddot{{\mathbf q}} - \gamma$ by up to {e_p:.3f}; with $\ddot{{\mathbf p}}$ for "
+                    rf"$\dot{{\mathbf p}}$ and the right-hand side's sign changed it {agrees(e_c)}.",
                     e_p, e_c)
 
 
 def _ev_14_5_gamma_n1_table():
     rows = [(-b["rhs"], -b["rhs"] - b["extra"], b["gamma"]) for b in _ev_14_5_n1_states(1452, tangent=False)]
     e_p, e_c = compare(rows)
-    return Evidence(f"At 20 random states the book's right-hand side, −2(s_jᵀĖ_iĠ_iᵀs'_i + s_iᵀĖ_jĠ_jᵀs'_j + "
-                    f"ṡ_iᵀṡ_j) (misprints of §14.5's n1 equation corrected), differs from kinbook's γ — the one "
-                    f"that goes with Table 14.1's Φ_p = 2s_jᵀ(E_i s̄'_i + s'_i p_iᵀ) — by up to {e_p:.3f}; "
-                    f"adding −2(s_jᵀs'_i)ṗ_iᵀṗ_i − 2(s_iᵀs'_j)ṗ_jᵀṗ_j it {agrees(e_c)}.", e_p, e_c)
+    return Evidence(rf"At 20 random states the book's right-hand side, $-2(\mathbf s_j^T\dot{{\mathbf E}}_i"
+                    rf"\dot{{\mathbf G}}_i^T\mathbf s'_i + \mathbf s_i^T\dot{{\mathbf E}}_j\dot{{\mathbf G}}_j^T"
+                    rf"\mathbf s'_j + \dot{{\mathbf s}}_i^T\dot{{\mathbf s}}_j)$ (misprints of §14.5's n1 equation "
+                    rf"corrected), differs from kinbook's $\gamma$ — the one that goes with Table 14.1's "
+                    rf"$\boldsymbol\Phi_{{\mathbf p}} = 2\mathbf s_j^T(\mathbf E_i\bar{{\mathbf s}}'_i + \mathbf s'_i"
+                    rf"\mathbf p_i^T)$ — by up to {e_p:.3f}; adding $-2(\mathbf s_j^T\mathbf s'_i)\dot{{\mathbf p}}_i^T"
+                    rf"\dot{{\mathbf p}}_i - 2(\mathbf s_i^T\mathbf s'_j)\dot{{\mathbf p}}_j^T\dot{{\mathbf p}}_j$ it "
+                    rf"{agrees(e_c)}.", e_p, e_c)
 
 
 # §14.5, spatial kinematic analysis (chapters/14-5-spatial-analysis.ipynb)

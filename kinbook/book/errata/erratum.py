@@ -19,7 +19,7 @@ class Evidence:
     Attributes
     ----------
     text : str
-        One or two sentences with the numbers.
+        One or two sentences with the numbers; formulas as inline TeX between dollars, in the book's notation.
     printed_error : float
         Size of the discrepancy of the book's version (0 would mean the book is right).
     corrected_error : float
