@@ -88,19 +88,30 @@ class ExpressionError(InputError):
 
     Attributes
     ----------
-    where : str
+    where : str or kinbook.i18n.Message
         Where the text came from ("file 'x.toml', key constraints[3].f").
     text : str or None
         The text read (None when the value was not text).
     reason : str
-        What is wrong, without the location.
+        What is wrong, without the location, in English (for code; the message says it in the reader's language).
     column : int or None
         1-based column of the offending part of ``text``.
+    message : str or kinbook.i18n.Message
+        The whole message. The reader's are marked messages (:class:`kinbook.i18n.Message`): ``str(err)`` writes
+        it in the language of the moment (:func:`kinbook.set_language`), ``err.args[0]`` is its English.
     """
 
     def __init__(self, message, *, where=None, text=None, reason=None, column=None):
-        super().__init__(message)
+        marked = not isinstance(message, str) and hasattr(message, "render")  # a kinbook.i18n.Message (a floor up)
+        super().__init__(message.render("en") if marked else message)
+        if not isinstance(reason, str) and hasattr(reason, "render"):
+            reason = reason.render("en")
+        self.message = message
         self.where, self.text, self.reason, self.column = where, text, reason, column
+
+    def __str__(self):
+        message = self.message
+        return message if isinstance(message, str) else message.render()
 
 
 class DriverValueError(InputError):

@@ -12,6 +12,9 @@ A message is *marked* where it is written and translated when it is shown, in th
   (:func:`gettext.ngettext`: Spanish and English both have two, the catalogue's Plural-Forms header says so);
 * ``pN_("verdict on a row", "correct")`` — where one English word has two translations (correcta / correcto).
 
+:class:`Message` keeps a marked message with its fields and writes it when shown: the expression reader's refusals
+are made of them (``ExpressionError``'s ``str`` follows the language; its ``args[0]`` is the English).
+
 After changing a marked message: ``make translations`` (Babel's extract, update and compile: the new or changed
 message appears untranslated in the .po; translate it and run it again). tests/test_i18n.py fails on any marked
 message the Spanish catalogue lacks, leaves fuzzy or translates with other fields, and on a stale ``.mo``.
@@ -24,7 +27,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import NamedTuple
 
-__all__ = ["N_", "Np_", "pN_", "Plural", "Contextual", "translate", "set_language", "get_language", "LANGUAGES",
+__all__ = ["N_", "Np_", "pN_", "Plural", "Contextual", "Message", "translate", "set_language", "get_language", "LANGUAGES",
            "DOMAIN", "LOCALE_DIR", "KEYWORDS"]
 
 DOMAIN = "kinbook"
@@ -64,6 +67,43 @@ def Np_(singular, plural):
 def pN_(context, message):
     """Mark a message whose English is shared with another of a different translation."""
     return Contextual(context, message)
+
+
+class Message:
+    """A marked message and its fields: a sentence written in the language of the moment when it is shown.
+
+    ``str(m)`` (or :meth:`render`) translates the template, then fills its fields; a field that is itself a
+    :class:`Message` is written in the same language. The errors of kinbook's reader carry one
+    (:class:`kinbook.errors.ExpressionError`), so a refused expression reads in Spanish after ``set_language("es")``.
+
+    Examples
+    --------
+    >>> m = Message(N_("{where} is empty"), where=Message(N_("the answer")))
+    >>> str(m), m.render("es")
+    ('the answer is empty', 'la respuesta está vacía')
+    """
+
+    __slots__ = ("template", "fields")
+
+    def __init__(self, template, **fields):
+        self.template, self.fields = template, fields
+
+    def render(self, lang=None):
+        """The sentence in ``lang`` (default: the current language)."""
+        lang = lang or _state["lang"]
+        text = translate(self.template, lang, self.fields.get("n"))
+        return text.format(**{k: v.render(lang) if isinstance(v, Message) else v for k, v in self.fields.items()})
+
+    def __str__(self):
+        return self.render()
+
+    def __repr__(self):
+        return f"{type(self).__name__}({self.render('en')!r})"
+
+    def __eq__(self, other):
+        return type(other) is type(self) and (self.template, self.fields) == (other.template, other.fields)
+
+    __hash__ = None
 
 
 def set_language(lang):

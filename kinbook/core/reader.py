@@ -36,8 +36,11 @@ from collections.abc import Mapping
 import sympy as sp
 
 from ..errors import ExpressionError
+from ..i18n import N_, Np_
 from ._mpvalue import COMPLEX, MP_BY_NAME, mp_value
-from .bounds import DEFAULT_LIMITS, check_expression
+from .bounds import DEFAULT_LIMITS, check_expression, refuse, too_large
+from .refusals import HINTS, NOT_FINITE, REFUSED_NODES, fail, short, syntax_reason, unknown
+from .refusals import m as _m
 
 __all__ = ["read_expression", "read_number", "read_constant", "FUNCTIONS", "ALIASES", "CONSTANTS", "ExpressionError"]
 
@@ -75,69 +78,9 @@ ALIASES = {
 CONSTANTS = {"pi": sp.pi, "π": sp.pi, "E": sp.E}
 """Named constants: π and Euler's number e (written ``E``, as sympy does, so that ``e`` stays free)."""
 
-# names people try that are refused with a reason and what to write instead
-_HINTS = {
-    "I": "complex numbers are not accepted: kinematic quantities are real",
-    "j": "complex numbers are not accepted: kinematic quantities are real",
-    "oo": "infinity is not a number kinbook can compute with",
-    "inf": "infinity is not a number kinbook can compute with",
-    "nan": "NaN is not a number kinbook can compute with",
-    "e": "Euler's number is written E (exp(1))",
-    "floor": "step functions are not accepted: a prescribed motion needs two continuous derivatives (for ν and γ); "
-             "drive each phase in its own sweep, or blend smoothly, e.g. (1 - cos(pi*t))/2",
-    "ceiling": "step functions are not accepted: a prescribed motion needs two continuous derivatives (for ν and "
-               "γ); drive each phase in its own sweep, or blend smoothly, e.g. (1 - cos(pi*t))/2",
-    "Heaviside": "step functions are not accepted: a prescribed motion needs two continuous derivatives (for ν "
-                 "and γ); drive each phase in its own sweep, or blend smoothly, e.g. (1 - cos(pi*t))/2",
-    "Piecewise": "piecewise functions are not accepted: a prescribed motion needs two continuous derivatives "
-                 "(for ν and γ); drive each phase in its own sweep (mechanism.remove / add a driver)",
-    "Min": "Min/Max have corners: write a smooth expression, or drive each phase in its own sweep",
-    "Max": "Min/Max have corners: write a smooth expression, or drive each phase in its own sweep",
-    "factorial": "factorial is not needed in kinematics (and grows too fast to bound)",
-    "gamma": "the gamma function is not available (γ of the acceleration equations is not an input)",
-    "DiracDelta": "impulses are not accepted: a prescribed motion needs two continuous derivatives",
-}
-
 _OPERATORS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "^"}
-_REFUSED_NODES = {
-    ast.Attribute: "attribute access ('.') is not allowed",
-    ast.Subscript: "subscripts ('[ ]') are not allowed",
-    ast.Compare: "comparisons (<, >, ==) are not expressions of a number",
-    ast.BoolOp: "'and' / 'or' are not expressions of a number",
-    ast.IfExp: "'if … else' is not allowed; a prescribed motion needs two continuous derivatives",
-    ast.Lambda: "lambda is not allowed",
-    ast.List: "a list is not an expression of a number",
-    ast.Tuple: "a tuple is not an expression of a number (a comma where none belongs?)",
-    ast.Set: "a set is not an expression of a number",
-    ast.Dict: "a dict is not an expression of a number",
-    ast.Starred: "'*' unpacking is not allowed",
-    ast.JoinedStr: "strings are not expressions of a number",
-    ast.NamedExpr: "':=' is not allowed",
-    ast.Await: "'await' is not allowed",
-    ast.Yield: "'yield' is not allowed",
-    ast.ListComp: "comprehensions are not allowed",
-    ast.GeneratorExp: "comprehensions are not allowed",
-    ast.SetComp: "comprehensions are not allowed",
-    ast.DictComp: "comprehensions are not allowed",
-    ast.Slice: "slices are not allowed",
-}
 _BINOP_NAMES = {ast.Mod: "%", ast.FloorDiv: "//", ast.MatMult: "@", ast.BitAnd: "&", ast.BitOr: "|",
                 ast.LShift: "<<", ast.RShift: ">>", ast.BitXor: "xor"}
-
-
-def _short(text, width=60):
-    text = str(text)
-    return repr(text if len(text) <= width else text[: width - 1] + "…")
-
-
-def _fail(where, text, reason, expected=None, node=None, column=None):
-    if column is None and node is not None:
-        column = node.col_offset + 1
-    at = f" at column {column}" if column is not None else ""
-    msg = f"{where}: {reason}{at} in {_short(text)}"
-    if expected:
-        msg += f"; expected {expected}"
-    raise ExpressionError(msg, where=where, text=text, reason=reason, column=column)
 
 
 def _function_table(functions):
@@ -205,32 +148,28 @@ def read_expression(text, *, symbols, where, functions=None, limits=None):
     """
     limits = DEFAULT_LIMITS if limits is None else limits
     if not isinstance(text, str):
-        raise ExpressionError(f"{where}: expected the text of an expression, got {type(text).__name__}",
-                              where=where, text=None, reason="not a string")
+        refuse(where, _m(N_("expected the text of an expression, got {type}"), type=type(text).__name__),
+               code="not a string")
     if len(text) > limits.length:  # before anything that reads the whole text
-        _fail(where, text, f"the text is too long ({len(text)} characters, at most {limits.length})")
+        fail(where, text, _m(Np_("the text is too long ({n} character, at most {limit})",
+                                  "the text is too long ({n} characters, at most {limit})"), n=len(text),
+                              limit=limits.length))
     reader = _Reader(text, symbols, where, functions, limits)
     if not reader.source:
-        reader.fail("the text is empty", reader.expected())
+        reader.fail(_m(N_("the text is empty")), reader.expected())
     try:
         tree = ast.parse(reader.source, mode="eval")
     except SyntaxError as exc:
-        reason = "not a valid expression"
-        detail = (exc.msg or "").split(" (")[0].split(";")[0]  # (Python's advice on octal does not apply)
-        if detail and detail != "invalid syntax":
-            reason += f" ({detail})"
-        if "decimal literal" in (exc.msg or "") or "imaginary literal" in (exc.msg or ""):
-            reason += "; write products with * (2*t, not 2t)"
         column = reader.column(char=exc.offset - 1) if exc.offset and exc.lineno == 1 else None
-        reader.fail(reason, reader.expected(), column=column)
+        reader.fail(syntax_reason(exc.msg), reader.expected(), column=column)
     except (ValueError, RecursionError, MemoryError):  # null bytes, or nesting beyond the parser's stack
-        reader.fail("not a valid expression (unreadable characters or nesting too deep)")
+        reader.fail(_m(N_("not a valid expression (unreadable characters or nesting too deep)")))
     reader.walk(tree.body)
     expr = reader.build(tree.body)
     if not isinstance(expr, sp.Expr):
-        reader.fail(f"not an expression of a number (got {type(expr).__name__})")
+        reader.fail(_m(N_("not an expression of a number (got {type})"), type=type(expr).__name__))
     if expr.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
-        reader.fail("the expression is not finite (a division by zero?)", "a finite expression")
+        reader.fail(_m(N_("the expression is not finite (a division by zero?)")), _m(N_("a finite expression")))
     return expr
 
 
@@ -253,9 +192,10 @@ class _Reader:
         self.bits = {}  # id(node) -> bound on the bits of the exact numbers sympy builds for the sub-expression
 
     def fail(self, reason, expected=None, node=None, column=None):
+        """Refuse the text for ``reason`` (a marked message), at a node or a column."""
         if column is None and node is not None:
             column = self.column(node=node)
-        _fail(self.where, self.text, reason, expected, column=column)
+        fail(self.where, self.text, reason, expected, column=column)
 
     def column(self, node=None, char=None):
         """The 1-based column, in characters of the text as given, of a node (or of a character of the
@@ -270,9 +210,13 @@ class _Reader:
 
     def expected(self):
         symbols = self.symbols
+        functions = ", ".join(self.table)
+        if not symbols:
+            return _m(N_("a number or an expression of numbers with + - * / ^, the functions {functions} and the "
+                         "constants pi, E"), functions=functions)
         names = ", ".join(list(symbols)[:8]) + (" …" if len(symbols) > 8 else "")
-        what = f"an expression of {names}" if symbols else "a number or an expression of numbers"
-        return f"{what} with + - * / ^, the functions {', '.join(self.table)} and the constants pi, E"
+        return _m(N_("an expression of {names} with + - * / ^, the functions {functions} and the constants pi, E"),
+                  names=names, functions=functions)
 
     # ------------------------------------------------------------------------------------------- walk
     def walk(self, root):
@@ -291,9 +235,12 @@ class _Reader:
                 continue
             count += 1
             if count > limits.nodes:
-                self.fail(f"the expression is too large (more than {limits.nodes} parts)")
+                self.fail(_m(Np_("the expression is too large (more than {n} part)",
+                                 "the expression is too large (more than {n} parts)"), n=limits.nodes))
             if depth > limits.depth:
-                self.fail(f"the expression is nested too deeply (more than {limits.depth} levels)", node=node)
+                self.fail(_m(Np_("the expression is nested too deeply (more than {n} level)",
+                                 "the expression is nested too deeply (more than {n} levels)"), n=limits.depth),
+                          node=node)
             stack.append((node, depth, True))
             for c in self.children(node):
                 # a chain a + b - c + … (or a * b / c …) is one level, however long: sums of many terms
@@ -306,74 +253,75 @@ class _Reader:
         if isinstance(node, ast.Constant):
             v = node.value
             if isinstance(v, bool) or v is None or v is Ellipsis:
-                self.fail(f"{v!r} is not a number", node=node)
+                self.fail(_m(N_("{value} is not a number"), value=repr(v)), node=node)
             if isinstance(v, complex):
-                self.fail("complex numbers are not accepted: kinematic quantities are real", node=node)
+                self.fail(_m(HINTS["I"]), node=node)
             if not isinstance(v, (int, float)):
-                self.fail(f"a {type(v).__name__} literal is not an expression of a number", self.expected(), node)
+                self.fail(_m(N_("a {type} literal is not an expression of a number"), type=type(v).__name__),
+                          self.expected(), node)
             width = (node.end_col_offset or 0) - node.col_offset if node.end_lineno == node.lineno else None
             if width is None or width > self.limits.digits:
-                self.fail(f"a number is too long (more than {self.limits.digits} characters)", node=node)
+                self.fail(_m(Np_("a number is too long (more than {n} character)",
+                                 "a number is too long (more than {n} characters)"), n=self.limits.digits), node=node)
             written = self.literal(node)
             if not _DECIMAL.fullmatch(written):  # Python also reads 0x1f, 0o17, 0b101, 1_000
-                self.fail(f"the number {written!r} is not written in decimal digits", "a decimal number such as "
-                          "12, -0.5 or 1e-3", node)
+                self.fail(_m(N_("the number {number} is not written in decimal digits"), number=repr(written)),
+                          _m(N_("a decimal number such as 12, -0.5 or 1e-3")), node)
             if isinstance(v, float) and not math.isfinite(v):
-                self.fail("a number is not finite (too large for a float)", node=node)
+                self.fail(_m(N_("a number is not finite (too large for a float)")), node=node)
             if abs(v) > self.limits.magnitude:  # before any arithmetic: 1e308 squared overflows
-                self.fail(f"a number is too large (more than {self.limits.magnitude:.0e})", node=node)
+                self.fail(too_large(self.limits.magnitude), node=node)
             return ()
         if isinstance(node, ast.Name):
             name = node.id
             if name in symbols or name in CONSTANTS:
                 return ()
             if name in table or name in aliases:
-                self.fail(f"'{name}' is a function: call it, as in {name}(…)", node=node)
-            reason = f"unknown name '{name}'"
-            if name in _HINTS:
-                reason += f" ({_HINTS[name]})"
-            self.fail(reason, self.expected(), node)
+                self.fail(_m(N_("'{name}' is a function: call it, as in {name}(…)"), name=name), node=node)
+            self.fail(unknown(N_("unknown name '{name}'"), N_("unknown name '{name}' ({hint})"), name),
+                      self.expected(), node)
         if isinstance(node, ast.BinOp):
             if type(node.op) not in _OPERATORS:
                 op = _BINOP_NAMES.get(type(node.op), type(node.op).__name__)
-                self.fail(f"the operator '{op}' is not allowed", "+ - * / ^", node)
+                self.fail(_m(N_("the operator '{op}' is not allowed"), op=op), _m(N_("+ - * / ^")), node)
             return (node.left, node.right)
         if isinstance(node, ast.UnaryOp):
             if not isinstance(node.op, (ast.USub, ast.UAdd)):
                 op = {ast.Not: "not", ast.Invert: "~"}.get(type(node.op), type(node.op).__name__)
-                self.fail(f"the operator '{op}' is not allowed", "+ - * / ^ and unary minus", node)
+                self.fail(_m(N_("the operator '{op}' is not allowed"), op=op), _m(N_("+ - * / ^ and unary minus")),
+                          node)
             return (node.operand,)
         if isinstance(node, ast.Call):
             func = node.func
             if not isinstance(func, ast.Name):
-                what = "attribute access ('.')" if isinstance(func, ast.Attribute) else "this kind of call"
-                self.fail(f"{what} is not allowed", f"a call of one of {', '.join(table)}", node)
+                what = REFUSED_NODES[ast.Attribute] if isinstance(func, ast.Attribute) else \
+                    N_("this kind of call is not allowed")
+                self.fail(_m(what), _m(N_("a call of one of {functions}"), functions=", ".join(table)), node)
             name = aliases.get(func.id, func.id)
             if name not in table:
                 if func.id in symbols or func.id in CONSTANTS:
-                    self.fail(f"'{func.id}' is not a function (a product needs its *: {func.id}*(…))", node=node)
-                reason = f"unknown function '{func.id}'"
-                if func.id in _HINTS:
-                    reason += f" ({_HINTS[func.id]})"
-                self.fail(reason, self.expected(), node)
+                    self.fail(_m(N_("'{name}' is not a function (a product needs its *: {name}*(…))"), name=func.id),
+                              node=node)
+                self.fail(unknown(N_("unknown function '{name}'"), N_("unknown function '{name}' ({hint})"), func.id),
+                          self.expected(), node)
             if node.keywords:
-                self.fail(f"{func.id}() takes no keyword arguments", node=node)
+                self.fail(_m(N_("{name}() takes no keyword arguments"), name=func.id), node=node)
             counts = table[name][1]
             if len(node.args) not in counts:
-                want = " or ".join(str(c) for c in counts)
-                self.fail(f"{func.id}() takes {want} argument(s), got {len(node.args)}", node=node)
+                self.fail(_m(Np_("{name}() takes {want} argument, got {got}", "{name}() takes {want} arguments, got {got}"),
+                             name=func.id, want=_m(N_("{a} or {b}"), a=counts[0], b=counts[1]) if len(counts) == 2 else
+                             ", ".join(map(str, counts)), n=max(counts), got=len(node.args)), node=node)
             return tuple(node.args)
-        for cls, reason in _REFUSED_NODES.items():
+        for cls, reason in REFUSED_NODES.items():
             if isinstance(node, cls):
-                self.fail(reason, self.expected(), node)
-        self.fail(f"'{type(node).__name__}' is not allowed", self.expected(), node)
+                self.fail(_m(reason), self.expected(), node)
+        self.fail(_m(N_("'{type}' is not allowed"), type=type(node).__name__), self.expected(), node)
 
     def estimate(self, node):
         """A floating-point (complex) estimate of a sub-expression made of numbers only — None when it has
         symbols — and the checks of exponent and magnitude that need it. Float arithmetic: it cannot hang."""
         value, limits = self.value, self.limits
         big = limits.magnitude
-        too_large = f"a number is too large (more than {big:.0e})"
         if isinstance(node, ast.Constant):
             return complex(node.value)
         if isinstance(node, ast.Name):
@@ -387,13 +335,14 @@ class _Reader:
             op = type(node.op)
             if op is ast.Pow and b is not None and abs(b) > limits.exponent:
                 shown = f"{b.real:.6g}" if b.imag == 0 else f"{b:.6g}"
-                self.fail(f"the exponent {shown} is too large (at most {limits.exponent:g} in size)", node=node)
+                self.fail(_m(N_("the exponent {exponent} is too large (at most {limit:g} in size)"), exponent=shown,
+                             limit=limits.exponent), node=node)
             if a is None or b is None:
                 return None
             if op is ast.Pow and a == 0 and b.real < 0:
-                self.fail("division by zero (0 to a negative power)", node=node)
+                self.fail(_m(N_("division by zero (0 to a negative power)")), node=node)
             if op is ast.Div and b == 0:
-                self.fail("division by zero", node=node)
+                self.fail(_m(N_("division by zero")), node=node)
             compute = {ast.Pow: lambda: a**b, ast.Div: lambda: a / b, ast.Mult: lambda: a * b,
                        ast.Add: lambda: a + b, ast.Sub: lambda: a - b}[op]
         elif isinstance(node, ast.Call):
@@ -407,16 +356,17 @@ class _Reader:
         try:
             r = complex(compute())
         except (OverflowError, ZeroDivisionError):
-            self.fail(f"{too_large}, or a division by zero", node=node)
+            self.fail(_m(N_("{too_large}, or a division by zero"), too_large=too_large(big)), node=node)
         except (ValueError, TypeError):  # atan2 or sign of a complex number, or a domain error
             r = complex(math.nan, math.nan)
         if math.isnan(r.real) or math.isnan(r.imag):
-            self.fail("a part of the expression has no finite real value", "real numbers", node)
+            self.fail(NOT_FINITE, _m(N_("real numbers")), node)
         if not (math.isfinite(r.real) and math.isfinite(r.imag)) or abs(r) > big:
-            self.fail(too_large, node=node)
+            self.fail(too_large(big), node=node)
         if abs(r.imag) > 1e-9 * max(1.0, abs(r.real)):
-            self.fail(f"a part of the expression is not a real number (≈ {r.real:.6g}{r.imag:+.6g}i)",
-                      "real numbers (kinematic quantities are real)", node)
+            self.fail(_m(N_("a part of the expression is not a real number (≈ {value})"),
+                         value=f"{r.real:.6g}{r.imag:+.6g}i"),
+                      _m(N_("real numbers (kinematic quantities are real)")), node)
         return complex(r.real, 0.0) if r.imag else r
 
     def exact_bits(self, node):
@@ -442,7 +392,9 @@ class _Reader:
         else:
             n = 0
         if n > self.limits.bits:
-            self.fail(f"the exact numbers are too large (more than {self.limits.bits} bits in all)", node=node)
+            self.fail(_m(Np_("the exact numbers are too large (more than {n} bit in all)",
+                             "the exact numbers are too large (more than {n} bits in all)"), n=self.limits.bits),
+                      node=node)
         return n
 
     # ------------------------------------------------------------------------------------------- build
@@ -490,7 +442,7 @@ class _Reader:
             except (ValueError, ZeroDivisionError, OverflowError, TypeError):
                 z = mpmath.mpc(mpmath.nan)
             if not (mpmath.isfinite(z.real) and mpmath.isfinite(z.imag)) or abs(z.imag) > 1e-20 * max(1, abs(z.real)):
-                self.fail("a part of the expression has no finite real value", "real numbers", node)
+                self.fail(NOT_FINITE, _m(N_("real numbers")), node)
             return sp.Float(z.real, 20)
 
     def mp(self, root, mpmath):
@@ -547,7 +499,7 @@ class _Parameters(Mapping):
 
     def __contains__(self, name):
         return isinstance(name, str) and name.isidentifier() and not name.startswith("_") and \
-            name not in FUNCTIONS and name not in ALIASES and name not in CONSTANTS and name not in _HINTS
+            name not in FUNCTIONS and name not in ALIASES and name not in CONSTANTS and name not in HINTS
 
     def __getitem__(self, name):
         if name not in self:
@@ -585,22 +537,18 @@ def read_constant(value, *, where, symbolic=False, limits=None):
     ExpressionError
     """
     if isinstance(value, bool) or value is None:
-        raise ExpressionError(f"{where}: expected a number, got {value!r}", where=where, text=None,
-                              reason="not a number")
+        refuse(where, _m(N_("expected a number, got {value}"), value=repr(value)), code="not a number")
+    magnitude = (limits or DEFAULT_LIMITS).magnitude
+    too_big = _m(N_("the number is too large (more than {limit:.0e})"), limit=magnitude)
     if isinstance(value, int):
-        if abs(value) > (limits or DEFAULT_LIMITS).magnitude:
-            raise ExpressionError(f"{where}: the number is too large (more than "
-                                  f"{(limits or DEFAULT_LIMITS).magnitude:.0e})", where=where, text=None,
-                                  reason="too large")
+        if abs(value) > magnitude:
+            refuse(where, too_big, code="too large")
         return sp.Integer(value)
     if isinstance(value, float):
         if not math.isfinite(value):
-            raise ExpressionError(f"{where}: expected a finite number, got {value!r}", where=where, text=None,
-                                  reason="not finite")
-        if abs(value) > (limits or DEFAULT_LIMITS).magnitude:  # a float from a file or a caller, as a literal
-            raise ExpressionError(f"{where}: the number is too large (more than "
-                                  f"{(limits or DEFAULT_LIMITS).magnitude:.0e})", where=where, text=None,
-                                  reason="too large")
+            refuse(where, _m(N_("expected a finite number, got {value}"), value=repr(value)), code="not finite")
+        if abs(value) > magnitude:  # a float from a file or a caller, as a literal
+            refuse(where, too_big, code="too large")
         return sp.Float(value)
     if isinstance(value, str):
         expr = read_expression(value, symbols=_Parameters() if symbolic else {}, where=where, limits=limits)
@@ -614,18 +562,17 @@ def read_constant(value, *, where, symbolic=False, limits=None):
             return read_constant(float(value), where=where, limits=limits)
         if isinstance(value, numbers.Integral):
             return read_constant(int(value), where=where, limits=limits)
-        raise ExpressionError(f"{where}: expected a number or the text of one (such as \"pi/4\"), got "
-                              f"{type(value).__name__} {_short(value)}", where=where, text=None,
-                              reason="not a number")
+        refuse(where, _m(N_("expected a number or the text of one (such as \"pi/4\"), got {type} {value}"),
+                         type=type(value).__name__, value=short(value)), code="not a number")
     if symbolic and isinstance(expr, sp.Expr) and expr.free_symbols:
         if expr.has(sp.I, sp.zoo, sp.oo, -sp.oo, sp.nan):
-            raise ExpressionError(f"{where}: expected a real parameter, got {_short(value)}", where=where,
-                                  text=value if isinstance(value, str) else None, reason="not real")
+            refuse(where, _m(N_("expected a real parameter, got {value}"), value=short(value)), code="not real",
+                   text=value if isinstance(value, str) else None)
         return expr
     if not isinstance(expr, sp.Expr) or expr.free_symbols:
         names = ", ".join(sorted(map(str, getattr(expr, "free_symbols", ())))) or type(expr).__name__
-        raise ExpressionError(f"{where}: expected a number, got an expression of {names}: {_short(value)}",
-                              where=where, text=value if isinstance(value, str) else None, reason="not a number")
+        refuse(where, _m(N_("expected a number, got an expression of {names}: {value}"), names=names,
+                         value=short(value)), code="not a number", text=value if isinstance(value, str) else None)
     _real_value(expr, value, where)
     return expr
 
@@ -644,9 +591,9 @@ def _real_value(expr, value, where):
         z = mpmath.mpc(z)
         finite = mpmath.isfinite(z.real) and mpmath.isfinite(z.imag)
         if not finite or abs(z.imag) > mpmath.mpf(10) ** -25 * max(1, abs(z.real)):
-            got = mpmath.nstr(z, 6) if finite else "not finite"
-            raise ExpressionError(f"{where}: expected a finite real number, got {_short(value)} ({got})",
-                                  where=where, text=value if isinstance(value, str) else None, reason="not real")
+            got = mpmath.nstr(z, 6) if finite else _m(N_("not finite"))
+            refuse(where, _m(N_("expected a finite real number, got {value} ({got})"), value=short(value), got=got),
+                   code="not real", text=value if isinstance(value, str) else None)
         return float(z.real)
 
 

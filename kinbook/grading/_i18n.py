@@ -12,23 +12,27 @@ A module adds its own templates with :func:`add_texts` (``{"key": N_("…")}``).
 
 from __future__ import annotations
 
-from ..i18n import LANGUAGES, N_, Np_, get_language, pN_, set_language, translate
+from ..i18n import LANGUAGES, N_, Message, Np_, get_language, pN_, set_language, translate
 
 __all__ = ["set_language", "get_language", "tr", "Msg", "render", "both", "constraint_label", "row_name",
            "rows_name", "LANGUAGES", "add_texts"]
 
 
-class Msg:
-    """A sentence to be written later: a template key and its fields (which may be Msg objects, or dicts
-    by language, themselves rendered when the sentence is). A template with plural forms takes them from the
-    field ``n``."""
+class Msg(Message):
+    """A sentence to be written later: a template key and its fields (which may be Msg objects, marked messages
+    such as a reader error's, or dicts by language, themselves rendered when the sentence is). A template with
+    plural forms takes them from the field ``n``."""
 
-    __slots__ = ("key", "fields")
+    __slots__ = ("key",)
 
     def __init__(self, key, **fields):
         if key not in _TEXT:
             raise KeyError(f"no feedback template {key!r}")
-        self.key, self.fields = key, fields
+        super().__init__(_TEXT[key], **fields)
+        self.key = key
+
+    def render(self, lang=None):
+        return render(self, lang)
 
     def __repr__(self):
         return f"Msg({self.key!r})"
@@ -49,6 +53,8 @@ def render(x, lang=None):
     if isinstance(x, Msg):
         text = _template(x.key, lang, x.fields.get("n"))
         return text.format(**{k: _field(v, lang) for k, v in x.fields.items()})
+    if isinstance(x, Message):
+        return x.render(lang)
     if isinstance(x, dict) and "en" in x:
         return x.get(lang) or x["en"]
     return x if isinstance(x, str) else str(x)
@@ -63,9 +69,9 @@ def _template(key, lang, n):
 
 
 def _field(v, lang):
-    if isinstance(v, (Msg, dict)):
+    if isinstance(v, (Message, dict)):
         return render(v, lang)
-    if isinstance(v, (list, tuple)) and v and all(isinstance(e, (Msg, dict, str)) for e in v):
+    if isinstance(v, (list, tuple)) and v and all(isinstance(e, (Message, dict, str)) for e in v):
         sep = "; "
         return sep.join(render(e, lang) for e in v)
     return v
@@ -234,7 +240,10 @@ _TEXT = {
     "empty_text": N_("{where} is empty"),
     "bad_entry": N_("{where}: expected an expression, a string or a number, got {type}"),
     "not_an_expression": N_("{where}: {type} is not an expression of a number (a relation or a set?)"),
-    "reader": "{message}",  # a message of the reader, already marked there
+    "reader": "{message}",  # a message of the reader (an ExpressionError's), already marked there
+    "answer_row": N_("answer row {i}"),
+    "answer_entry": N_("answer row {i}, entry {j}"),
+    "answer_at": N_("answer{index}"),
     "unsupported": N_("the answer cannot be evaluated: {what}"),
     "unknown_symbols": N_("{where}: unknown symbol(s) {names}: write the answer in the coordinates x1, y1, phi1 … "
                           "(or φ1, phi_1), velocities dx1, dphi1 … and t"),

@@ -313,13 +313,17 @@ def _plain_numbers(a):
 
 def _as_numbers(value, what, **fields):
     """Real finite-or-not numbers as a 2-D float array; refuses bools, complex values, ragged or huge data."""
+    where = what if isinstance(what, Msg) else Msg(what)
     if _is_sympy(value):
         import sympy as sp
 
         if isinstance(value, sp.MatrixBase):
-            value = [[_sympy_number(e) for e in value.row(k)] for k in range(value.rows)]
+            value = [[_sympy_number(e, where) for e in value.row(k)] for k in range(value.rows)]
         else:
-            value = _sympy_number(value)
+            value = _sympy_number(value, where)
+    elif isinstance(value, (list, tuple, np.ndarray)) and any(_is_sympy(x) for x in _flat(value)):
+        # sympy numbers in a list: each bounded before numpy evaluates it (complex(x**10**6) expands a polynomial)
+        value = _sympy_numbers(value, where)
     if isinstance(value, (bool, np.bool_)) or (isinstance(value, (list, tuple)) and
                                                  any(isinstance(x, (bool, np.bool_)) for x in _flat(value))):
         raise Refused("malformed", "bool_answer")
@@ -364,12 +368,23 @@ def describe(value, width=40):
     return f"{type(value).__name__} {text}"
 
 
-def _sympy_number(e):
+def _sympy_numbers(value, where):
+    """A (nested) list of numbers and sympy objects, each sympy one bounded and evaluated (:func:`_sympy_number`)."""
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [_sympy_numbers(x, where) for x in value]
+    if _is_sympy(value):
+        return _sympy_numbers(value.tolist(), where) if hasattr(value, "shape") else _sympy_number(value, where)
+    return value
+
+
+def _sympy_number(e, where):
     ex = _reader()
     try:  # bounded before sympy walks it (is_number, free_symbols and evaluation walk the tree)
-        _bounds().check_expression(e, where=Msg("callable_result"), limits=_limits())
+        _bounds().check_expression(e, where=where, limits=_limits())
     except ex.ExpressionError as err:
-        raise Refused("malformed", "reader", message=str(err)) from None
+        raise Refused("malformed", "reader", message=err.message) from None
     if getattr(e, "is_number", False) and not e.free_symbols:
         try:
             c = complex(e)
@@ -396,7 +411,7 @@ def _matrix(answer, symbols, quantity):
     for i, row in enumerate(rows):
         out = []
         for j, e in enumerate(row):
-            where = f"answer row {i + 1}" if len(row) == 1 else f"answer row {i + 1}, entry {j + 1}"
+            where = Msg("answer_row", i=i + 1) if len(row) == 1 else Msg("answer_entry", i=i + 1, j=j + 1)
             out.append(_entry(e, symbols, where))
         entries.append(out)
     M = sp.Matrix(entries)
@@ -414,17 +429,25 @@ def _sympy_matrix(M):
     for i, row in enumerate(entries):
         for j, e in enumerate(row):
             if not isinstance(e, sp.Expr) or isinstance(e, sp.MatrixBase):
-                where = f"answer row {i + 1}, entry {j + 1}"
+                where = Msg("answer_entry", i=i + 1, j=j + 1)
                 raise Refused("malformed", "not_an_expression", where=where, type=type(e).__name__)
     limits = _limits()
     try:
-        _bounds().check_expression(M, where="the answer", limits=type(limits)(
+        _bounds().check_expression(M, where=Msg("answer"), limits=type(limits)(
             length=limits.length, nodes=limits.nodes * max(1, min(len(M), 50)), depth=limits.depth,
             tree=limits.tree * max(1, min(len(M), 50))))
     except ex.ExpressionError as err:
-        code = "not_finite" if "not a finite number" in str(err) else "malformed"
-        raise Refused(code, "reader", message=str(err)) from None
+        raise _reader_refused(err) from None
     return sp.ImmutableMatrix(M)
+
+
+def _reader_refused(err):
+    """The reader's refusal of an entry (its message, written in the language of the moment when shown), with the
+    catalogue code of its cause."""
+    reason = str(err.reason or "")
+    code = "not_finite" if reason == "not finite" else "unknown_symbol" if reason.startswith("unknown name") \
+        else "malformed"
+    return Refused(code, "reader", message=err.message)
 
 
 def _rows(items):
@@ -463,8 +486,7 @@ def _entry(e, symbols, where):
         try:
             return ex.read_expression(e, symbols=symbols, where=where, limits=_limits())
         except ex.ExpressionError as err:
-            unknown = str(getattr(err, "reason", "") or "").startswith("unknown name")
-            raise Refused("unknown_symbol" if unknown else "malformed", "reader", message=str(err)) from None
+            raise _reader_refused(err) from None
     if isinstance(e, (bool, np.bool_)):
         raise Refused("malformed", "bool_answer")
     if _is_number(e):
@@ -483,8 +505,7 @@ def _entry(e, symbols, where):
     try:
         _bounds().check_expression(e, where=where, limits=_limits())
     except ex.ExpressionError as err:
-        code = "not_finite" if "not a finite number" in str(err) else "malformed"
-        raise Refused(code, "reader", message=str(err)) from None
+        raise _reader_refused(err) from None
     return e  # its symbols are matched by name when it is taped (Answer.tape)
 
 

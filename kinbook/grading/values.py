@@ -57,6 +57,9 @@ add_texts({
     "v.direction_right": N_("your vector points the right way; its length is not right"),
     "v.got_type": N_("{what}: expected real numbers (a number, a list or an array), got {type}"),
     "v.scaled_units": N_("your answer is the expected one multiplied by {c} (a unit conversion: m and mm?)"),
+    "v.of_type": N_("an object of type {type}"),
+    "v.container_of": N_("a {type} of {inner}"),
+    "v.empty_container": N_("an empty {type}"),
 })
 
 
@@ -164,7 +167,7 @@ def _texts(answer):
 
     def walk(x, where):
         if isinstance(x, str):
-            return read_number(x, where=where)
+            return read_number(x, where=Msg("answer_at", index=where))
         if isinstance(x, (list, tuple)):
             return [walk(v, f"{where}[{k + 1}]") for k, v in enumerate(x)]
         return x
@@ -176,7 +179,7 @@ def _texts(answer):
         answer = answer.tolist()
     if not has_text(answer):
         return None
-    return walk(answer, "answer")
+    return walk(answer, "")
 
 
 def _read(answer, name):
@@ -187,7 +190,7 @@ def _read(answer, name):
     try:
         parsed = _texts(answer)
     except ExpressionError as exc:
-        return None, Refused("malformed", "reader", message=str(exc))
+        return None, Refused("malformed", "reader", message=exc.message)
     except RecursionError:
         return None, Refused("malformed", "nested_deeper")
     if parsed is not None:
@@ -196,7 +199,7 @@ def _read(answer, name):
         arr = _as_numbers(answer, Msg("answer"))
     except Refused as exc:
         if exc.key == "not_numbers":
-            return None, Refused("malformed", "v.got_type", what=Msg("answer"), type=_type_name(answer))
+            return None, Refused("malformed", "v.got_type", what=Msg("answer"), type=_got_type(answer))
         return None, exc
     try:
         raw = np.asarray(answer, dtype=float)
@@ -205,11 +208,14 @@ def _read(answer, name):
     return (raw if raw.size == arr.size and raw.ndim <= 2 else arr), None
 
 
-def _type_name(x):
+def _got_type(x):
+    """What was received, for the student: "a list of dict, str" (written when shown)."""
     if isinstance(x, (list, tuple)):
         inner = sorted({type(v).__name__ for v in x})[:3]
-        return f"a {type(x).__name__} of {', '.join(inner)}" if inner else f"an empty {type(x).__name__}"
-    return type(x).__name__
+        if not inner:
+            return Msg("v.empty_container", type=type(x).__name__)
+        return Msg("v.container_of", type=type(x).__name__, inner=", ".join(inner))
+    return Msg("v.of_type", type=type(x).__name__)
 
 
 def _failed(name, msg, code):
@@ -237,7 +243,7 @@ def _expected(expected):
 
 def _bad_expected(expected):
     raise InputError(f"`expected` must be real finite numbers (computed with kinbook) or an "
-                     f"kinbook.grading.expected.Expected, got {_type_name(expected)}")
+                     f"kinbook.grading.expected.Expected, got {_got_type(expected).render('en')}")
 
 
 def _shape(a, e, name):
