@@ -10,6 +10,8 @@ import re
 from ..i18n import N_, Message, get_language
 from .bounds import refuse
 
+__all__ = ["HINTS", "REFUSED_NODES", "NOT_FINITE", "fail", "m", "short", "syntax_reason", "unknown"]
+
 # names people try that are refused with a reason and what to write instead
 HINTS = {
     "I": N_("complex numbers are not accepted: kinematic quantities are real"),
