@@ -7,6 +7,7 @@ import string
 from pathlib import Path
 
 import pytest
+import sympy as sp
 
 babel = pytest.importorskip("babel")  # a test/dev dependency (pyproject's test extra): the catalogue's tools
 
@@ -105,3 +106,27 @@ def test_set_language_switches_every_message_and_plural_forms():
     assert render(Msg("summary", what="Φ", ok=0, n=1, score=0.0)) == "Φ: 0 of 1 row correct (score 0.00)."
     with pytest.raises(kinbook.KinbookError, match="`lang` must be one of en, es, got 'fr'"):
         kinbook.set_language("fr")
+
+
+def test_a_driver_function_is_refused_in_the_language_of_the_moment():
+    """A prescribed function of time (kinbook.core.symbolic) is refused through the reader's marked messages: a
+    student who types a driver in Spanish mode reads Spanish, the English stays as it was."""
+    from kinbook.core.symbolic import time_function
+
+    with pytest.raises(kinbook.ExpressionError) as info:
+        time_function("sign(t - 1)", "driver on body 'crank', f")
+    err = info.value
+    en = ("driver on body 'crank', f: the function of time 'sign(t - 1)' uses sign, which jumps: a prescribed motion "
+          "needs two continuous derivatives (for ν and γ); write a smooth function (a blend such as (1 - cos(pi*t))/2), "
+          "or drive each phase in its own sweep")
+    assert str(err) == en
+    try:
+        kinbook.set_language("es")
+        assert str(err) == ("driver on body 'crank', f: la función del tiempo 'sign(t - 1)' usa sign, que salta: un "
+                            "movimiento prescrito necesita dos derivadas continuas (para ν y γ); escribe una función "
+                            "suave (un enlace como (1 - cos(pi*t))/2), o analiza cada fase en su propio barrido")
+        with pytest.raises(kinbook.ExpressionError, match=r"^f: la función del tiempo 't\*w' usa símbolos desconocidos "
+                                                          r"w; se esperaba una expresión de t solo$"):
+            time_function(sp.Symbol("w") * sp.Symbol("t"), "f")
+    finally:
+        kinbook.set_language("en")

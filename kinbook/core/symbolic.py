@@ -135,8 +135,8 @@ def time_function(f, where, time=t):
         two continuous derivatives for ν and γ). ``Abs`` is accepted: its kink is reported, as a
         :class:`~kinbook.errors.DriverValueError`, only at an instant an analysis asks f'' there.
     """
-    from ..errors import ExpressionError
-    from .bounds import check_expression
+    from ..i18n import N_, Message
+    from .bounds import check_expression, refuse
     from .reader import read_constant, read_expression
 
     key = (f if isinstance(f, (str, sp.Basic)) else None, time)
@@ -147,43 +147,46 @@ def time_function(f, where, time=t):
     elif isinstance(f, sp.Basic):
         check_expression(f, where=where)
         if not isinstance(f, sp.Expr):
-            raise ExpressionError(f"{where}: expected an expression of t, got {type(f).__name__} {f}", where=where)
+            refuse(where, Message(N_("expected an expression of t, got {type} {value}"), type=type(f).__name__,
+                                  value=str(f)))
         expr = f.xreplace({s: time for s in f.free_symbols if isinstance(s, sp.Symbol) and s.name == time.name})
         if expr.has(sp.I):
-            raise ExpressionError(f"{where}: the function of time {f} is complex; expected a real function of t",
-                                  where=where)
+            refuse(where, Message(N_("the function of time {text} is complex; expected a real function of t"),
+                                  text=str(f)))
     else:
         expr = read_constant(f, where=where)
     text = f if isinstance(f, str) else str(f)
     extra = sorted(str(s) for s in expr.free_symbols - {time})
     if extra:
-        raise ExpressionError(f"{where}: the function of time {text!r} uses unknown symbols {', '.join(extra)}; "
-                              "expected an expression of t alone", where=where, text=text)
+        refuse(where, Message(N_("the function of time {text} uses unknown symbols {names}; expected an expression of "
+                                 "t alone"), text=repr(text), names=", ".join(extra)), text=text)
     if expr.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
-        raise ExpressionError(f"{where}: the function of time {text!r} is not finite; expected a finite function "
-                              "of t", where=where, text=text)
+        refuse(where, Message(N_("the function of time {text} is not finite; expected a finite function of t"),
+                              text=repr(text)), text=text)
     jumps = sorted({type(a).__name__ for a in sp.preorder_traversal(expr)
                     if isinstance(a, sp.Basic) and type(a).__name__ in _NOT_SMOOTH and a.has(time)})
     if jumps:
-        raise ExpressionError(
-            f"{where}: the function of time {text!r} uses {', '.join(jumps)}, which jumps: a prescribed motion "
-            "needs two continuous derivatives (for ν and γ); write a smooth function (a blend such as "
-            "(1 - cos(pi*t))/2), or drive each phase in its own sweep", where=where, text=text)
+        refuse(where, Message(N_("the function of time {text} uses {names}, which jumps: a prescribed motion needs two "
+                                 "continuous derivatives (for ν and γ); write a smooth function (a blend such as "
+                                 "(1 - cos(pi*t))/2), or drive each phase in its own sweep"), text=repr(text),
+                              names=", ".join(jumps)), text=text)
     _check_derivative_size(expr, time, where, text)
     for k in (1, 2):
         d = sp.diff(expr, time, k)
         if d.has(sp.Derivative, sp.Subs):
-            raise ExpressionError(f"{where}: sympy cannot differentiate the function of time {text!r} twice; "
-                                  "expected a function built from + - * / ^ and sin, cos, exp …", where=where,
-                                  text=text)
+            refuse(where, Message(N_("sympy cannot differentiate the function of time {text} twice; expected a "
+                                     "function built from + - * / ^ and sin, cos, exp …"), text=repr(text)), text=text)
+    error = None
     try:  # printable to numpy: compiled here (cached), evaluated once so that a printer gap shows now
         with np.errstate(all="ignore"):
             for f in _compiled_derivatives(expr, time):
                 f(np.array([0.0]))
     except (NameError, TypeError, AttributeError, KeyError) as exc:
-        raise ExpressionError(f"{where}: the function of time {text!r} or a derivative cannot be evaluated by "
-                              f"numpy ({type(exc).__name__}: {exc}); write it with + - * / ^ and sin, cos, exp …",
-                              where=where, text=text) from None
+        error = f"{type(exc).__name__}: {exc}"
+    if error is not None:
+        refuse(where, Message(N_("the function of time {text} or a derivative cannot be evaluated by numpy ({error}); "
+                                 "write it with + - * / ^ and sin, cos, exp …"), text=repr(text),
+                              error=error), text=text)
     if key[0] is not None:
         if len(_VALID) > 4096:
             _VALID.clear()
@@ -197,14 +200,15 @@ _VALID = {}  # (text or expression, time symbol) -> the validated expression
 def _check_derivative_size(expr, time, where, text):
     """Refuse, before sympy differentiates, a function whose second derivative would exceed
     :data:`DERIVATIVE_PARTS` (a few hundred bytes of text can take sympy minutes)."""
-    from ..errors import ExpressionError
+    from ..i18n import N_, Message
+    from .bounds import refuse
 
     size = derivative_sizes(expr, time)[2]
     if size > DERIVATIVE_PARTS:
-        raise ExpressionError(
-            f"{where}: the function of time {_short(text)} is too involved to differentiate: its second derivative "
-            f"would have up to {size:,} parts (at most {DERIVATIVE_PARTS:,}); expected a prescribed motion of a "
-            "few terms (a driver of the book has a few dozen parts)", where=where, text=text)
+        refuse(where, Message(N_("the function of time {text} is too involved to differentiate: its second derivative "
+                                 "would have up to {size:,} parts (at most {limit:,}); expected a prescribed motion of "
+                                 "a few terms (a driver of the book has a few dozen parts)"), text=_short(text),
+                              size=size, limit=DERIVATIVE_PARTS), text=text)
 
 
 def derivative_sizes(expr, time=t):
