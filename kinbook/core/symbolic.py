@@ -176,17 +176,7 @@ def time_function(f, where, time=t):
         if d.has(sp.Derivative, sp.Subs):
             refuse(where, Message(N_("sympy cannot differentiate the function of time {text} twice; expected a "
                                      "function built from + - * / ^ and sin, cos, exp …"), text=repr(text)), text=text)
-    error = None
-    try:  # printable to numpy: compiled here (cached), evaluated once so that a printer gap shows now
-        with np.errstate(all="ignore"):
-            for f in _compiled_derivatives(expr, time):
-                f(np.array([0.0]))
-    except (NameError, TypeError, AttributeError, KeyError) as exc:
-        error = f"{type(exc).__name__}: {exc}"
-    if error is not None:
-        refuse(where, Message(N_("the function of time {text} or a derivative cannot be evaluated by numpy ({error}); "
-                                 "write it with + - * / ^ and sin, cos, exp …"), text=repr(text),
-                              error=error), text=text)
+    _check_numpy(expr, time, where, text)
     if key[0] is not None:
         if len(_VALID) > 4096:
             _VALID.clear()
@@ -195,6 +185,25 @@ def time_function(f, where, time=t):
 
 
 _VALID = {}  # (text or expression, time symbol) -> the validated expression
+
+
+def _check_numpy(expr, time, where, text):
+    """Refuse a function that numpy cannot evaluate with its derivatives: they are compiled here (cached) and
+    evaluated once, so that a printer gap shows when the driver is built."""
+    from ..i18n import N_, Message
+    from .bounds import refuse
+
+    error = None
+    try:
+        with np.errstate(all="ignore"):
+            for f in _compiled_derivatives(expr, time):
+                f(np.array([0.0]))
+    except (NameError, TypeError, AttributeError, KeyError) as exc:
+        error = f"{type(exc).__name__}: {exc}"
+    if error is not None:
+        refuse(where, Message(N_("the function of time {text} or a derivative cannot be evaluated by numpy ({error}); "
+                                 "write it with + - * / ^ and sin, cos, exp …"), text=repr(text), error=error),
+               text=text)
 
 
 def _check_derivative_size(expr, time, where, text):
