@@ -53,7 +53,26 @@ __all__ = [
 
 
 class KinbookError(Exception):
-    """Base class of every error kinbook raises on purpose."""
+    """Base class of every error kinbook raises on purpose.
+
+    Its message may be a marked one (a :class:`kinbook.i18n.Message`, a floor up: anything with
+    ``render(lang)``): ``str(err)`` writes it in the language of the moment (:func:`kinbook.set_language`),
+    ``err.args[0]`` is its English and ``err.message`` the marked message."""
+
+    def __init__(self, *args):
+        self.message = args[0] if args else ""
+        if _marked(self.message):
+            args = (self.message.render("en"), *args[1:])
+        super().__init__(*args)
+
+    def __str__(self):
+        message = getattr(self, "message", None)
+        return message.render() if _marked(message) else super().__str__()
+
+
+def _marked(message):
+    """A marked message (kinbook.i18n.Message, a floor up), written when shown."""
+    return not isinstance(message, str) and hasattr(message, "render")
 
 
 class ModelError(KinbookError, ValueError):
@@ -102,16 +121,10 @@ class ExpressionError(InputError):
     """
 
     def __init__(self, message, *, where=None, text=None, reason=None, column=None):
-        marked = not isinstance(message, str) and hasattr(message, "render")  # a kinbook.i18n.Message (a floor up)
-        super().__init__(message.render("en") if marked else message)
-        if not isinstance(reason, str) and hasattr(reason, "render"):
+        super().__init__(message)
+        if _marked(reason):
             reason = reason.render("en")
-        self.message = message
         self.where, self.text, self.reason, self.column = where, text, reason, column
-
-    def __str__(self):
-        message = self.message
-        return message if isinstance(message, str) else message.render()
 
 
 class DriverValueError(InputError):

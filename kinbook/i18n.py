@@ -13,7 +13,8 @@ A message is *marked* where it is written and translated when it is shown, in th
 * ``pN_("verdict on a row", "correct")`` — where one English word has two translations (correcta / correcto).
 
 :class:`Message` keeps a marked message with its fields and writes it when shown: the expression reader's refusals
-are made of them (``ExpressionError``'s ``str`` follows the language; its ``args[0]`` is the English).
+are made of them, and any :class:`~kinbook.errors.KinbookError` may carry one (its ``str`` follows the language;
+its ``args[0]`` is the English).
 
 After changing a marked message: ``make translations`` (Babel's extract, update and compile: the new or changed
 message appears untranslated in the .po; translate it and run it again). tests/test_i18n.py fails on any marked

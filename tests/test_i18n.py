@@ -130,3 +130,27 @@ def test_a_driver_function_is_refused_in_the_language_of_the_moment():
             time_function(sp.Symbol("w") * sp.Symbol("t"), "f")
     finally:
         kinbook.set_language("en")
+
+
+def test_any_kinbook_error_may_carry_a_marked_message():
+    """KinbookError writes a marked message when shown: a student's mistyped try-it id reads in Spanish, its args
+    keep the English (and a pickled copy the marked message)."""
+    import pickle
+
+    from kinbook.book import tryits
+
+    with pytest.raises(kinbook.InputError) as info:
+        tryits.get("13-1/try-9")
+    err = info.value
+    en = "no try-it '13-1/try-9'; expected one of 13-1/try-1, 13-1/try-2, 13-1/try-3"
+    assert str(err) == en and err.args == (en,)
+    try:
+        kinbook.set_language("es")
+        es = "no existe el ejercicio '13-1/try-9'; se esperaba uno de 13-1/try-1, 13-1/try-2, 13-1/try-3"
+        assert str(err) == es and str(pickle.loads(pickle.dumps(err))) == es
+        with pytest.raises(kinbook.InputError, match=r"^kb\.another\('13-1/try-1', k\): k debe ser un número entero "
+                                                     r"≥ 0 \(0 = los datos del cuaderno\), se recibió -1$"):
+            tryits.another("13-1/try-1", -1)
+    finally:
+        kinbook.set_language("en")
+    assert str(kinbook.KinbookError()) == "" and kinbook.KinbookError().args == ()

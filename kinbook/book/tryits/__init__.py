@@ -30,6 +30,7 @@ __all__ = ["TryIt", "NotAnswered", "Variant", "TRY_ITS", "get", "try_it", "revea
 def get(id):
     """The :class:`TryIt` with this id; the error lists the ids of the same notebook."""
     from ...errors import InputError
+    from ...i18n import N_, Message
 
     _load()
     try:
@@ -37,7 +38,8 @@ def get(id):
     except KeyError:
         notebook = str(id).split("/")[0]
         near = [k for k in TRY_ITS if k.startswith(notebook + "/")] or list(TRY_ITS)[:6]
-        raise InputError(f"no try-it {id!r}; expected one of {', '.join(near)}") from None
+        raise InputError(Message(N_("no try-it {id}; expected one of {ids}"), id=repr(id),
+                                 ids=", ".join(near))) from None
 
 
 def _load():
@@ -215,12 +217,14 @@ def another(id, k=None):
     """
     from ...classroom.variant import draw, seed_from
     from ...errors import InputError, KinbookError
+    from ...i18n import N_, Message
 
     item = get(id)
     if k is None:
         k = _CURRENT.get(id, (0, None))[0] + 1
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 0:
-        raise InputError(f"kb.another({id!r}, k): k must be a whole number ≥ 0 (0 = the notebook's data), got {k!r}")
+        raise InputError(Message(N_("kb.another({id}, k): k must be a whole number ≥ 0 (0 = the notebook's data), got "
+                                    "{k}"), id=repr(id), k=repr(k)))
     k = int(k)
     if k == 0 or not item.ranges:
         _CURRENT.pop(id, None)
@@ -238,4 +242,5 @@ def another(id, k=None):
             continue
         _CURRENT[id] = (k, data)
         return Variant(item, k, data, seed)
-    raise InputError(f"{id}: no data drawn for variant {k} works ({last})")
+    raise InputError(Message(N_("{id}: no data drawn for variant {k} works ({last})"), id=id, k=k,
+                             last=last.message if last is not None else None))
