@@ -154,3 +154,113 @@ def test_any_kinbook_error_may_carry_a_marked_message():
     finally:
         kinbook.set_language("en")
     assert str(kinbook.KinbookError()) == "" and kinbook.KinbookError().args == ()
+
+
+def _texts_by_language(tree):
+    """Every dict display of the module whose keys are language codes besides English: text translated outside the
+    catalogue ({"en": …, "es": …}), which test_every_marked_message_is_translated_in_the_spanish_catalogue
+    cannot see."""
+    import ast
+
+    others = set(i18n.LANGUAGES) - {"en"}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Dict) and any(isinstance(k, ast.Constant) and k.value in others for k in node.keys):
+            yield node.lineno
+
+
+def test_no_text_is_translated_outside_the_catalogue():
+    """The class of problem stays closed: no {"en": …, "es": …} of user-facing text anywhere in kinbook/ (constraint
+    titles, try-it texts, templates: all marked messages, their Spanish in kinbook.po)."""
+    import ast
+
+    found = []
+    for path in sorted((ROOT / "kinbook").rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        found += [f"{path.relative_to(ROOT)}:{line}" for line in _texts_by_language(tree)]
+    assert found == []
+    # the scan finds what it looks for
+    sample = ast.parse('title = {"en": "gear pair", "es": "engranaje"}\nx = {"en": 1}\n')
+    assert list(_texts_by_language(sample)) == [1]
+
+
+def test_every_constraint_title_of_kinbook_reads_in_spanish():
+    """Each constraint type kinbook declares has its title in the catalogue, in the book's vocabulary; the same
+    English title is the same Spanish in both chapters."""
+    from kinbook.core.registry import constraint_types
+
+    titles = {}
+    for chapter in ("planar", "spatial"):
+        for name, cls in constraint_types(chapter).items():
+            if cls.__module__.startswith("kinbook."):
+                titles[f"{chapter} {name}"] = (cls.title, i18n.translate(cls.title, "es"))
+    untranslated = [k for k, (en, es) in titles.items() if en == es]
+    assert untranslated == [] and len(titles) >= 25
+    assert titles["planar gear"] == ("gear pair", "engranaje")
+    assert titles["planar revolute"] == titles["spatial revolute"] == ("revolute joint", "par de revolución")
+    assert titles["planar driver"] == ("driver", "restricción motriz")
+    assert titles["spatial spherical"] == ("spherical joint", "par esférico")
+    assert titles["spatial normalization"] == ("Euler-parameter normalization", "normalización de los parámetros de Euler")
+
+
+def test_an_extension_title_outside_the_catalogue_reads_as_written():
+    """docs/extending.md: an extension declares its title as a text, shown as written in Spanish too; a title by
+    language is refused where the class is defined."""
+    import sympy as sp
+
+    from kinbook import planar
+    from kinbook.grading._i18n import constraint_label
+
+    class Hinge(planar.Constraint):
+        type_name = "test-i18n-hinge"
+        n_eq = 1
+        title = "hinge of the test"
+        roles = ("i",)
+        points = {"P": "i"}
+
+        def phi(self, Q, t=None):
+            return [self.point(Q, "P")[0]]
+
+    m = planar.Mechanism("t")
+    m.add_body("a", points={"P": (0, 0)})
+    m.add(Hinge("a", P="P", name="h"))
+    c = m.constraint("h")
+    try:
+        kinbook.set_language("es")
+        assert constraint_label(c) == "hinge of the test h (fila Φ_1)"
+    finally:
+        kinbook.set_language("en")
+    assert constraint_label(c) == "hinge of the test h (row Φ_1)"
+    with pytest.raises(kinbook.ModelError, match=r"\('test-i18n-other'\): `title` must be a text, its English "
+                                                 r"\(\"cam and follower\"; .*got \{'en': 'x', 'es': 'y'\}"):
+        type("Other", (planar.Constraint,), {"type_name": "test-i18n-other", "n_eq": 1, "title": {"en": "x", "es": "y"},
+                                             "phi": lambda self, Q, t=None: [sp.S(0)], "__module__": __name__})
+
+
+def test_the_try_its_read_in_spanish_with_tu():
+    """The try-its' texts are marked messages: their Spanish comes from the catalogue and says "tú", as the
+    checkers' feedback does."""
+    import html as _html
+
+    from kinbook.book import tryits
+
+    item = tryits.get("13-1/try-1")
+    try:
+        kinbook.set_language("es")
+        blank = _html.unescape(repr(tryits.NotAnswered(item)))
+        assert blank == ("Pruébalo 1 (13-1) aún no tiene respuesta: sustituye `...` en `my_A = ...` por tu respuesta "
+                         "y ejecuta de nuevo la celda. ¿Atascado? `kb.reveal(\"13-1/try-1\")` muestra una solución.")
+        assert tryits.reveal("13-1/try-1").why == (
+            "la ec. 6 con el ángulo en radianes: np.cos y np.sin toman radianes, así que convierte primero "
+            "(np.radians). Las columnas de A son los ejes ξ y η del elemento en componentes globales.")
+        assert tryits.get("14-4/try-3").stated() == "P en [1.2, 0, 0] sobre el elemento i (s'_i, s'_j a lo largo de ζ como arriba)"
+        assert tryits.get("13-1/try-1").stated() == "φ = 120°"  # notation alone: not a message of the catalogue
+        copied = item.check(item.reference_answer(), {"phi_deg": 150})  # a variant asked, the notebook's answered
+        assert copied.mistakes == ["wrong_data"]
+        assert copied.messages[1] == "corresponde a la respuesta para los datos del cuaderno, no para los de esta variante"
+    finally:
+        kinbook.set_language("en")
+    assert tryits.reveal("13-1/try-1").why.startswith("eq. 6 with the angle in radians: np.cos and np.sin take radians")
+    assert copied.messages[1] == "this is the answer for the notebook's data, not for this variant's"
+    assert tryits.get("14-4/try-3").stated() == "P at [1.2, 0, 0] on body i (s'_i, s'_j along ζ as above)"
+    po = PO.read_text(encoding="utf-8")
+    assert not re.search(r"\b(sustituya|ejecute|Pruébelo|Respóndala|convierta)\b", po)

@@ -60,8 +60,10 @@ class ConstraintBase(abc.ABC):
     n_eq : int
         Number of equations (rows of Φ).
     kind : {"joint", "simple", "driver", "normalization"}
-    title : dict
-        ``{"en": "revolute joint", "es": "par de revolución"}`` for messages and tables.
+    title : str
+        Its name in messages and tables, in English (``"revolute joint"``): kinbook's own types mark it
+        ``N_("revolute joint")`` and the package's catalogue holds its Spanish (par de revolución); a title the
+        catalogue does not have is shown as written.
     roles : tuple of str
         The roles of the bodies it connects, in order ("i", "j").
     measures : tuple or None
@@ -233,7 +235,7 @@ class ConstraintBase(abc.ABC):
     def _where(self):
         """The constraint named by its bodies, before it has a name or rows: "revolute joint between 'a' and
         'b'"."""
-        title = (self.title or {}).get("en") or str(self.type_name)
+        title = self.title or str(self.type_name)
         names = self.body_names
         if len(names) == 1:
             return f"{title} on body '{names[0]}'"

@@ -226,9 +226,13 @@ def register(cls):
     if not set(cls.quantities.values()) <= set(QUANTITIES):
         raise ModelError(f"{where} ('{name}'): `quantities` must be one of {', '.join(QUANTITIES)} each, got "
                          f"{cls.quantities!r}")
-    if cls.__dict__.get("title") is None:
+    title = cls.__dict__.get("title")
+    if title is None:
         word = {"joint": "joint", "driver": "driver", "simple": "constraint", "normalization": "equation"}[cls.kind]
-        cls.title = {"en": f"{name} {word}", "es": f"{name} {word}"}
+        cls.title = f"{name} {word}"
+    elif not isinstance(title, str) or not title.strip():
+        raise ModelError(f"{where} ('{name}'): `title` must be a text, its English (\"cam and follower\"; kinbook's "
+                         f"own types mark it N_(\"…\"), their Spanish in the package's catalogue), got {title!r}")
     types = _REGISTRY.setdefault(chapter, {})
     old = types.get(name)
     if old is not None and (old.__module__, old.__qualname__) != (cls.__module__, cls.__qualname__):

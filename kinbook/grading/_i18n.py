@@ -12,7 +12,7 @@ A module adds its own templates with :func:`add_texts` (``{"key": N_("…")}``).
 
 from __future__ import annotations
 
-from ..i18n import LANGUAGES, N_, Message, Np_, get_language, pN_, set_language, translate
+from ..i18n import LANGUAGES, N_, Contextual, Message, Np_, Plural, get_language, pN_, set_language, translate
 
 __all__ = ["set_language", "get_language", "tr", "Msg", "render", "both", "constraint_label", "row_name",
            "rows_name", "LANGUAGES", "add_texts"]
@@ -47,8 +47,8 @@ class Msg(Message):
 
 
 def render(x, lang=None):
-    """A Msg, a {"en": …, "es": …} dict, a list of those, or a plain value, as text in ``lang`` (default:
-    the current language)."""
+    """A Msg, a marked message, a text computed per language (:func:`both`: a dict by language), a list of those,
+    or a plain value, as text in ``lang`` (default: the current language)."""
     lang = lang or get_language()
     if isinstance(x, Msg):
         text = _template(x.key, lang, x.fields.get("n"))
@@ -61,11 +61,7 @@ def render(x, lang=None):
 
 
 def _template(key, lang, n):
-    text = _TEXT[key]
-    if isinstance(text, dict):  # a module's own {"en": …, "es": …} (see add_texts): its English is the message
-        out = translate(text["en"], lang)
-        return text.get(lang, out) if out == text["en"] and lang != "en" else out
-    return translate(text, lang, n)
+    return translate(_TEXT[key], lang, n)
 
 
 def _field(v, lang):
@@ -101,10 +97,11 @@ def rows_name(rows):
 
 
 def _title(c, lang):
-    """The class's title (``title = {"en": …, "es": …}``, every registered constraint class has one)."""
+    """The class's title in ``lang`` (``title = N_("revolute joint")``, every registered constraint class has one):
+    through the catalogue, as written when the catalogue does not have it (an extension's own type)."""
     title = getattr(c, "title", None)
-    if isinstance(title, dict) and title.get("en"):
-        return title.get(lang) or title["en"]
+    if isinstance(title, str) and title:
+        return translate(title, lang)
     return str(getattr(c, "type_name", None) or type(c).__name__)
 
 
@@ -283,11 +280,11 @@ _TEXT = {
 
 
 def add_texts(table):
-    """Register more templates: ``{key: N_("…")}`` (or ``Np_``, ``pN_``), their translations in the catalogue.
-
-    A ``{"en": …, "es": …}`` dict is still read (its English as the message, its Spanish until the catalogue has
-    one); tests/test_i18n.py asks for its English in the catalogue."""
+    """Register more templates: ``{key: N_("…")}`` (or ``Np_``, ``pN_``), their translations in the catalogue
+    (tests/test_i18n.py fails on a marked message the Spanish catalogue lacks)."""
     for key, value in table.items():
         if key in _TEXT:
             raise KeyError(f"feedback template {key!r} defined twice")
+        if not isinstance(value, (str, Plural, Contextual)):
+            raise TypeError(f"feedback template {key!r} must be a marked message (N_, Np_, pN_), got {value!r}")
         _TEXT[key] = value

@@ -22,7 +22,7 @@ import numbers
 import numpy as np
 
 from ..errors import InputError
-from ..i18n import N_, Np_
+from ..i18n import N_, Message, Np_
 from ._i18n import Msg, add_texts
 from .expected import DEG, Expected
 from .read import Refused, _as_numbers
@@ -301,7 +301,7 @@ def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name=None, angles=Non
     >>> check_value([[1, 3], [2, 4]], [[1, 2], [3, 4]]).mistakes
     ['transposed']
     """
-    name = _name(name, {"en": "value", "es": "valor"})
+    name = _name(name, Message(N_("value")))
     exp = _expected(expected)
     if exp is None:
         _bad_expected(expected)
@@ -314,6 +314,8 @@ def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name=None, angles=Non
 def _indexed(name, idx):
     """"A[1, 2]" — in every language when the name is translated."""
     suffix = "[" + ", ".join(str(int(i) + 1) for i in idx) + "]" if len(idx) else ""
+    if isinstance(name, Message):
+        return Message(N_("{name}{index}"), name=name, index=suffix) if suffix else name
     if isinstance(name, dict):
         return {lang: text + suffix for lang, text in name.items()}
     return name + suffix

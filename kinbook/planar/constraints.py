@@ -22,6 +22,7 @@ from ..core.reader import read_constant
 from ..core.registry import constraint_types
 from ..core.symbolic import t as t_symbol
 from ..errors import ModelError
+from ..i18n import N_
 from .transforms import A as A_matrix
 
 __all__ = [
@@ -179,7 +180,7 @@ class Simple(_Linear):
     label = "s"
     n_eq = 1
     kind = "simple"
-    title = {"en": "simple constraint", "es": "restricción simple"}
+    title = N_("simple constraint")
     roles = ("i",)
     parameters = ("value",)
 
@@ -211,7 +212,7 @@ class Ground(_Linear):
     label = "simple"
     n_eq = 3
     kind = "simple"
-    title = {"en": "simple constraints of the fixed body", "es": "restricciones simples del elemento fijo"}
+    title = N_("simple constraints of the fixed body")
     roles = ("i",)
     measures = ("length", "length", "angle")
     per_body = True
@@ -251,7 +252,7 @@ class Gear(_Linear):
     type_name = "gear"
     label = "g"
     n_eq = 1
-    title = {"en": "gear pair", "es": "engranaje"}
+    title = N_("gear pair")
     roles = ("i", "j", "k")
     measures = ("length",)
     quantities = {"radius_i": "radius", "radius_j": "radius", "phi0": "angle"}
@@ -290,7 +291,7 @@ class RackPinion(_Linear):
     type_name = "rack-pinion"
     label = "rp"
     n_eq = 1
-    title = {"en": "rack-and-pinion", "es": "piñón-cremallera"}
+    title = N_("rack-and-pinion")
     measures = ("length",)
     quantities = {"radius": "radius", "initial[phi_i]": "angle"}
     parameters = ("radius", "initial")
@@ -336,7 +337,7 @@ class Driver(_Linear):
     label = "d"
     n_eq = 1
     kind = "driver"
-    title = {"en": "driver", "es": "restricción motriz"}
+    title = N_("driver")
     roles = ("i",)
 
     def __init__(self, body, coordinate, f, name=None):
@@ -357,7 +358,7 @@ class RelativeAngleDriver(_Linear):
     label = "d"
     n_eq = 1
     kind = "driver"
-    title = {"en": "relative-angle driver", "es": "restricción motriz de ángulo relativo"}
+    title = N_("relative-angle driver")
     measures = ("angle",)
 
     def phi(self, Q, t=t_symbol):
@@ -397,7 +398,7 @@ class Revolute(Constraint):
     type_name = "revolute"
     label = "r"
     n_eq = 2
-    title = {"en": "revolute joint", "es": "par de revolución"}
+    title = N_("revolute joint")
     measures = ("length", "length")
     points = {"point_i": ("i", "s_i"), "point_j": ("j", "s_j")}
     aliases = {"point": ("point_i", "point_j")}
@@ -465,7 +466,7 @@ class Translational(Constraint):
     type_name = "translational"
     label = "t"
     n_eq = 2
-    title = {"en": "translational joint", "es": "par de traslación"}
+    title = N_("translational joint")
     measures = ("length^2", "angle")
     points = {"axis": ("i", ("s_Pi", "s_Qi")), "point_j": ("j", "s_Pj")}
     constants = ("phi0",)
@@ -519,7 +520,7 @@ class RevoluteRevolute(Constraint):
     type_name = "revolute-revolute"
     label = "r-r"
     n_eq = 1
-    title = {"en": "revolute-revolute joint", "es": "par revolución-revolución"}
+    title = N_("revolute-revolute joint")
     measures = ("length^2",)
     points = {"point_i": ("i", "s_i"), "point_j": ("j", "s_j")}
     constants = ("length",)
@@ -571,7 +572,7 @@ class RevoluteTranslational(Constraint):
     type_name = "revolute-translational"
     label = "r-t"
     n_eq = 1
-    title = {"en": "revolute-translational joint", "es": "par revolución-traslación"}
+    title = N_("revolute-translational joint")
     measures = ("length^2",)
     points = {"point_i": ("i", "s_Pi"), "axis": ("j", ("s_Pj", "s_Qj"))}
     parameters = ("s_Pi", "s_Pj", "s_Qj")
@@ -625,7 +626,7 @@ class DistanceDriver(Constraint):
     label = "d"
     n_eq = 1
     kind = "driver"
-    title = {"en": "distance driver", "es": "restricción motriz de distancia"}
+    title = N_("distance driver")
     measures = ("length",)
     points = {"axis": ("i", ("s_Pi", "s_Qi")), "point_j": ("j", "s_Pj")}
     parameters = ("s_Pi", "s_Qi", "s_Pj", "axis_length")

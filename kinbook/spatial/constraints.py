@@ -52,6 +52,7 @@ from ..core.reader import read_number
 from ..core.registry import constraint_types
 from ..core.symbolic import t as t_symbol
 from ..errors import ModelError, UnknownPointError
+from ..i18n import N_
 from . import kernels as K
 from .kernels import NCOORD
 from .rotations import A_from_p as _A_sym
@@ -233,7 +234,7 @@ class Normalization(Constraint):
     label = "pᵀp−1"
     n_eq = 1
     kind = "normalization"
-    title = {"en": "Euler-parameter normalization", "es": "normalización de los parámetros de Euler"}
+    title = N_("Euler-parameter normalization")
     roles = ("i",)
     measures = ("ratio",)
     per_body = True
@@ -263,7 +264,7 @@ class Ground(Constraint):
     label = "ground"
     n_eq = 6
     kind = "simple"
-    title = {"en": "simple constraints of the fixed body", "es": "restricciones simples del elemento fijo"}
+    title = N_("simple constraints of the fixed body")
     roles = ("i",)
     measures = ("length",) * 3 + ("ratio",) * 3
     per_body = True
@@ -324,7 +325,7 @@ class Normal1(Constraint):
     type_name = "normal-1"
     label = "n1,1"
     n_eq = 1
-    title = {"en": "normal-1 constraint", "es": "restricción normal-1"}
+    title = N_("normal-1 constraint")
     measures = ("length^2",)
     vectors = {"vector_i": ("i", "a_i"), "vector_j": ("j", "a_j")}
     parameters = ("a_i", "a_j")
@@ -351,7 +352,7 @@ class Normal2(Constraint):
     type_name = "normal-2"
     label = "n2,1"
     n_eq = 1
-    title = {"en": "normal-2 constraint", "es": "restricción normal-2"}
+    title = N_("normal-2 constraint")
     measures = ("length^2",)
     vectors = {"vector_i": ("i", "a_i")}
     points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
@@ -389,7 +390,7 @@ class Parallel1(_ParallelMixin, Constraint):
     type_name = "parallel-1"
     label = "p1,2"
     n_eq = 2
-    title = {"en": "parallel-1 constraint", "es": "restricción paralela-1"}
+    title = N_("parallel-1 constraint")
     measures = ("length", "length")
     vectors = {"vector_i": ("i", "a_i"), "vector_j": ("j", "a_j")}
     parameters = ("h1", "h2", "a_j")
@@ -412,7 +413,7 @@ class Parallel2(_ParallelMixin, Constraint):
     type_name = "parallel-2"
     label = "p2,2"
     n_eq = 2
-    title = {"en": "parallel-2 constraint", "es": "restricción paralela-2"}
+    title = N_("parallel-2 constraint")
     measures = ("length", "length")
     vectors = {"vector_i": ("i", "a_i")}
     points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
@@ -442,7 +443,7 @@ class Spherical(Constraint):
     type_name = "spherical"
     label = "s,3"
     n_eq = 3
-    title = {"en": "spherical joint", "es": "par esférico"}
+    title = N_("spherical joint")
     measures = ("length", "length", "length")
     points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
     aliases = {"point": ("point_i", "point_j")}
@@ -468,7 +469,7 @@ class Universal(Spherical):
     """
 
     type_name = "universal"
-    title = {"en": "universal joint", "es": "junta universal"}
+    title = N_("universal joint")
     parts = (Spherical, Normal1)
     vectors = Normal1.vectors
 
@@ -485,7 +486,7 @@ class Revolute(_ParallelMixin, Spherical):
     """
 
     type_name = "revolute"
-    title = {"en": "revolute joint", "es": "par de revolución"}
+    title = N_("revolute joint")
     parts = (Spherical, Parallel1)
     vectors = {"axis_i": ("i", "a_i"), "axis_j": ("j", "a_j")}
 
@@ -501,7 +502,7 @@ class Cylindrical(_ParallelMixin, Constraint):
     """
 
     type_name = "cylindrical"
-    title = {"en": "cylindrical joint", "es": "par cilíndrico"}
+    title = N_("cylindrical joint")
     parts = (Parallel1, Parallel2)
     vectors = {"axis_i": ("i", "a_i"), "axis_j": ("j", "a_j")}
     points = Spherical.points
@@ -522,7 +523,7 @@ class Translational(Cylindrical):
     """
 
     type_name = "translational"
-    title = {"en": "translational joint", "es": "par de traslación"}
+    title = N_("translational joint")
     parts = (Cylindrical, (Normal1, {"a_i": "hp_i", "a_j": "hp_j"}))
     vectors = {**Cylindrical.vectors, "perp_i": "i", "perp_j": "j"}
     defaults = {"perp_i": None, "perp_j": None}
@@ -553,7 +554,7 @@ class SphericalSpherical(Constraint):
     type_name = "spherical-spherical"
     label = "s-s,1"
     n_eq = 1
-    title = {"en": "spherical-spherical joint", "es": "par esférico-esférico"}
+    title = N_("spherical-spherical joint")
     measures = ("length^2",)
     points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}
     numbers = ("length",)
@@ -598,7 +599,7 @@ class RevoluteDriver(Constraint):
     label = "d"
     n_eq = 1
     kind = "driver"
-    title = {"en": "revolute driver", "es": "restricción motriz de rotación"}
+    title = N_("revolute driver")
     measures = ("angle",)
     wrap = {0: 2 * np.pi}
     vectors = {"axis_i": ("i", "a_i"), "ref_i": "i", "ref_j": "j"}
@@ -641,7 +642,7 @@ class DistanceDriver(Constraint):
     label = "d"
     n_eq = 1
     kind = "driver"
-    title = {"en": "distance driver", "es": "restricción motriz de distancia"}
+    title = N_("distance driver")
     measures = ("length",)
     vectors = {"axis_i": ("i", "a_i")}
     points = {"point_i": ("i", "P_i"), "point_j": ("j", "P_j")}

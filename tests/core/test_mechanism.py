@@ -42,7 +42,7 @@ def test_a_subclass_registers_itself_in_its_chapter():
     assert constraint_class("planar", "test-circular-slot") is Slot
     with pytest.raises(ModelError, match=r"must be one of the spatial constraint types .*got 'test-circular-slot'"):
         constraint_class("spatial", "test-circular-slot")
-    assert Slot.title == {"en": "test-circular-slot joint", "es": "test-circular-slot joint"}
+    assert Slot.title == "test-circular-slot joint"
 
 
 def test_a_declared_type_gets_its_constructor_and_binds_its_keys():

@@ -24,7 +24,7 @@ class Cam(planar.Constraint):
     type_name = "harmonic-cam"
     label = "cf"
     n_eq = 1
-    title = {"en": "cam and follower", "es": "leva y seguidor"}
+    title = "cam and follower"
     measures = ("length",)
     points = {"roller": "j"}
     numbers = ("base", "lift")

@@ -23,7 +23,7 @@ class PlaneOnPlane(spatial.Constraint):
     type_name = "plane-on-plane"
     label = "p1,2 + n2,1"
     n_eq = 3
-    title = {"en": "planar joint", "es": "par plano"}
+    title = "planar joint"
     measures = ("length",) * 3
     points = {"point_i": "i", "point_j": "j"}
     vectors = {"normal": "i", "ref": "i", "side": "i", "normal_j": "j"}

@@ -21,6 +21,7 @@ import inspect
 
 import numpy as np
 
+from ...i18n import translate
 from .registry import TRY_ITS, TryIt, register, same_data, table_text
 
 __all__ = ["TryIt", "NotAnswered", "Variant", "TRY_ITS", "get", "try_it", "reveal", "another", "register",
@@ -90,12 +91,8 @@ class NotAnswered:
 
 
 def _explanation(item):
-    from ...grading import get_language
-
-    text = item.explanation
-    if not text:
-        return ""
-    return text.get(get_language()) or text["en"]
+    """Why the worked answer is what it is, in the language of the moment (a marked message of the catalogue)."""
+    return translate(item.explanation) if item.explanation else ""
 
 
 class Revealed:

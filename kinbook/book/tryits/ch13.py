@@ -25,6 +25,7 @@ from ...files import build
 from ...grading import check_gamma, check_jacobian, check_nu, check_phi, check_value
 from ...grading import expected as X
 from ...grading.newton import Problem, check_iterates
+from ...i18n import N_, Message
 from ...planar import (
     A,
     B,
@@ -41,11 +42,11 @@ __all__ = []  # nothing to import from here: importing the module registers its 
 DEGREES = list(range(15, 346, 15))
 
 
-def _printed(en, es):
-    """A lookalike's detail: what it is the answer to (the notebook prints it above)."""
+def _printed(what, **fields):
+    """A lookalike's detail: what it is the answer to (the notebook prints it above), a marked message."""
     from ...grading._i18n import Msg
 
-    return Msg("x.other_data", what={"en": en, "es": es})
+    return Msg("x.other_data", what=Message(what, **fields))
 
 
 # ------------------------------------------------------------------------------------------------- 13-1
@@ -59,11 +60,8 @@ def _s13_1_1(*, phi_deg):
 register("13-1/try-1", "my_A", check_value, lambda phi_deg: X.A(np.radians(phi_deg)), _s13_1_1,
          {"name": "A(φ)"}, data={"phi_deg": 120}, ranges={"phi_deg": [d for d in DEGREES if d % 90]},
          statement="φ = {phi_deg}°",
-         explanation={"en": "eq. 6 with the angle in radians: np.cos and np.sin take radians, so convert first "
-                            "(np.radians). The columns of A are the body's ξ and η axes in global components.",
-                      "es": "la ec. 6 con el ángulo en radianes: np.cos y np.sin toman radianes, así que convierta "
-                            "primero (np.radians). Las columnas de A son los ejes ξ y η del elemento en "
-                            "componentes globales."})
+         explanation=N_("eq. 6 with the angle in radians: np.cos and np.sin take radians, so convert first "
+                        "(np.radians). The columns of A are the body's ξ and η axes in global components."))
 
 _BODY = {"x_Oi": 1.5, "y_Oi": -0.5, "phi_i_deg": 45, "xi_Q": 0.8, "eta_Q": 0.3}
 _BODY_RANGES = {"x_Oi": (-2.0, 2.0), "y_Oi": (-2.0, 2.0), "phi_i_deg": DEGREES, "xi_Q": (0.3, 1.5),
@@ -81,10 +79,8 @@ def _s13_1_2(*, x_Oi, y_Oi, phi_i_deg, xi_Q, eta_Q):
 register("13-1/try-2", "my_rQ", check_value,
          lambda x_Oi, y_Oi, phi_i_deg, xi_Q, eta_Q: X.point_position([x_Oi, y_Oi], np.radians(phi_i_deg), [xi_Q, eta_Q]),
          _s13_1_2, {"name": "r_i^Q"}, data=_BODY, ranges=_BODY_RANGES, statement=_BODY_TEXT,
-         explanation={"en": "r^Q = r + A s'^Q (eq. 4): the local coordinates are turned by A into global "
-                            "components before they are added to the origin's position.",
-                      "es": "r^Q = r + A s'^Q (ec. 4): las coordenadas locales se giran con A a componentes "
-                            "globales antes de sumarlas a la posición del origen."})
+         explanation=N_("r^Q = r + A s'^Q (eq. 4): the local coordinates are turned by A into global "
+                        "components before they are added to the origin's position."))
 
 _MOTION = dict(_BODY, xd_i=0.2, yd_i=0.0, w_i=2.0, a_i=-1.0)
 _MOTION_RANGES = dict(_BODY_RANGES, xd_i=(-1.0, 1.0), yd_i=(-1.0, 1.0), w_i=(0.5, 3.0), a_i=(-2.0, 2.0))
@@ -105,11 +101,9 @@ def _t13_1_3(x_Oi, y_Oi, phi_i_deg, xi_Q, eta_Q, xd_i, yd_i, w_i, a_i):
 register("13-1/try-3", "my_vaQ", check_value, _t13_1_3, _s13_1_3, {"name": "[v_Q, a_Q]"}, data=_MOTION,
          ranges=_MOTION_RANGES,
          statement=_BODY_TEXT + ", ṙ_i = [{xd_i}, {yd_i}] m/s, φ̇_i = {w_i} rad/s, r̈_i = 0, φ̈_i = {a_i} rad/s²",
-         explanation={"en": "eq. 10 differentiates A s' into B s' φ̇ (B = dA/dφ); eq. 13 differentiates once more: "
-                            "a tangential part B s' φ̈ and a centripetal part −A s' φ̇², which points from Q back to "
-                            "the body's origin.",
-                      "es": "la ec. 10 deriva A s' en B s' φ̇ (B = dA/dφ); la ec. 13 deriva otra vez: una parte "
-                            "tangencial B s' φ̈ y una centrípeta −A s' φ̇², que apunta de Q al origen del elemento."})
+         explanation=N_("eq. 10 differentiates A s' into B s' φ̇ (B = dA/dφ); eq. 13 differentiates once more: "
+                        "a tangential part B s' φ̈ and a centripetal part −A s' φ̇², which points from Q back to "
+                        "the body's origin."))
 
 
 # ------------------------------------------------------------------------------------------------- 13-2
@@ -165,7 +159,7 @@ register("13-2/try-3", "my_Phi_rr", check_phi,
          _s13_2_3, data={"xi_B": 2, "eta_B": 0, "xi_C": 0, "eta_C": 0.5, "l_BC": 3},
          ranges={"xi_B": (1.0, 3.0), "eta_B": (-0.5, 0.5), "xi_C": (-1.0, 1.0), "eta_C": (-1.0, 1.0),
                  "l_BC": (2.0, 5.0)},
-         statement="B = ({xi_B}, {eta_B}) on body 1, C = ({xi_C}, {eta_C}) on body 2, l = {l_BC}")
+         statement=N_("B = ({xi_B}, {eta_B}) on body 1, C = ({xi_C}, {eta_C}) on body 2, l = {l_BC}"))
 
 
 # ------------------------------------------------------------------------------------------------- 13-3
@@ -204,9 +198,9 @@ def _s13_3_1(*, xi_OA, eta_OA):
     return my_Phi_45
 
 
-def _printed_joint(name, what_en, what_es):
+def _printed_joint(name, what):
     def lookalikes(**_):
-        return [(_example(name)[0].constraint("1"), _printed(what_en, what_es))]
+        return [(_example(name)[0].constraint("1"), _printed(what))]
     return lookalikes
 
 
@@ -214,9 +208,8 @@ register("13-3/try-1", "my_Phi_45", check_phi,
          lambda xi_OA, eta_OA: _edited("ch13_example1", "crank", "OA", (xi_OA, eta_OA)).constraint("1"), _s13_3_1,
          data={"xi_OA": -1.2, "eta_OA": 0.2}, ranges={"xi_OA": (-1.4, -0.6), "eta_OA": (-0.3, 0.3)},
          statement="(ξ_2^{{O_A}}, η_2^{{O_A}}) = ({xi_OA}, {eta_OA})",
-         lookalikes=_printed_joint("ch13_example1", "Φ_4, Φ_5 of example 1 as printed above, with the crank's own "
-                                   "O_A at (−1, 0)", "Φ_4, Φ_5 del ejemplo 1 como se imprimen arriba, con el O_A "
-                                   "propio de la manivela en (−1, 0)"))
+         lookalikes=_printed_joint("ch13_example1", N_("Φ_4, Φ_5 of example 1 as printed above, with the crank's own "
+                                   "O_A at (−1, 0)")))
 
 
 def _s13_3_2(m3, *, t_newton):
@@ -233,14 +226,10 @@ register("13-3/try-2", "my_iterates", check_iterates,
          _s13_3_2, data={"t_newton": 0.005},
          ranges={"t_newton": [round(0.001 * k, 3) for k in range(-9, 22) if k]},
          statement="t = {t_newton} s (φ_2 = 3π/4 + 100 t)", context=lambda: {"m3": _example("ch13_example3")[0]},
-         explanation={"en": "each pass solves the linear system Φ_q(q_k, t) Δq = −Φ(q_k, t) at the current iterate "
-                            "and steps to q_k + Δq. Near the solution the error is squared at every step (quadratic "
-                            "convergence): max |Φ| goes roughly 1e-1, 1e-2, 1e-5, 1e-10. Further passes change "
-                            "nothing.",
-                      "es": "cada paso resuelve el sistema lineal Φ_q(q_k, t) Δq = −Φ(q_k, t) en el iterado actual "
-                            "y avanza a q_k + Δq. Cerca de la solución el error se eleva al cuadrado en cada paso "
-                            "(convergencia cuadrática): max |Φ| pasa aproximadamente por 1e-1, 1e-2, 1e-5, 1e-10. "
-                            "Los pasos siguientes no cambian nada."})
+         explanation=N_("each pass solves the linear system Φ_q(q_k, t) Δq = −Φ(q_k, t) at the current iterate "
+                        "and steps to q_k + Δq. Near the solution the error is squared at every step (quadratic "
+                        "convergence): max |Φ| goes roughly 1e-1, 1e-2, 1e-5, 1e-10. Further passes change "
+                        "nothing."))
 
 
 def _s13_3_3(q1, *, xi_C, eta_C):
@@ -252,8 +241,7 @@ def _s13_3_3(q1, *, xi_C, eta_C):
 
 def _l13_3_3(xi_C, eta_C):
     m1, q1 = _example("ch13_example1")
-    return [(m1.point_position(q1, b, p), _printed(f"the position of {p}, printed above", f"la posición de {p}, "
-                                                                                           "impresa arriba"))
+    return [(m1.point_position(q1, b, p), _printed(N_("the position of {p}, printed above"), p=p))
             for b, p in (("crank", "A"), ("rocker", "B"), ("coupler", "B"))]
 
 
@@ -311,20 +299,15 @@ def _t13_4_2(w_arm, rho_sun, rho_planet):
 def _l13_4_2(**_):
     pl, q = _example("ch13_planetary")
     return [(pl.solve_velocity(q, 0.0)[pl.index("phi3")],
-             _printed("the planet's speed printed above, for the notebook's train (arm at 1 rad/s, ρ = 2 and 1)",
-                      "la velocidad del satélite impresa arriba, para el tren del cuaderno (brazo a 1 rad/s, ρ = 2 "
-                      "y 1)"))]
+             _printed(N_("the planet's speed printed above, for the notebook's train (arm at 1 rad/s, ρ = 2 and 1)")))]
 
 
 register("13-4/try-2", "my_w3", check_value, _t13_4_2, _s13_4_2, {"name": "φ̇_3 (rad/s)"}, data=_TRAIN,
          ranges={"w_arm": (0.5, 3.0), "rho_sun": (1.5, 3.0), "rho_planet": (0.5, 1.5)},
          statement="φ̇_2 = {w_arm} rad/s, φ̇_1 = 0, ρ_1 = {rho_sun}, ρ_3 = {rho_planet}", lookalikes=_l13_4_2,
-         explanation={"en": "eq. 38 relates the turns relative to the arm: (φ̇_3 − φ̇_2) ρ_3 = −(φ̇_1 − φ̇_2) ρ_1. With "
-                            "the sun fixed the planet turns relative to the arm at (ρ_1/ρ_3) φ̇_2, and the arm's own "
-                            "turn comes on top: φ̇_3 = φ̇_2 (1 + ρ_1/ρ_3).",
-                      "es": "la ec. 38 relaciona los giros relativos al brazo: (φ̇_3 − φ̇_2) ρ_3 = −(φ̇_1 − φ̇_2) ρ_1. "
-                            "Con el sol fijo, el satélite gira respecto al brazo a (ρ_1/ρ_3) φ̇_2, y encima va el "
-                            "giro del propio brazo: φ̇_3 = φ̇_2 (1 + ρ_1/ρ_3)."})
+         explanation=N_("eq. 38 relates the turns relative to the arm: (φ̇_3 − φ̇_2) ρ_3 = −(φ̇_1 − φ̇_2) ρ_1. With "
+                        "the sun fixed the planet turns relative to the arm at (ρ_1/ρ_3) φ̇_2, and the arm's own "
+                        "turn comes on top: φ̇_3 = φ̇_2 (1 + ρ_1/ρ_3)."))
 
 
 @lru_cache(maxsize=64)
@@ -353,7 +336,7 @@ def _t13_4_3(rho_p, turn_deg):
 
 register("13-4/try-3", "my_dx", check_value, _t13_4_3, _s13_4_3, {"name": "rack displacement (m)"},
          data={"rho_p": 1, "turn_deg": 90}, ranges={"rho_p": (0.5, 2.0), "turn_deg": list(range(30, 301, 15))},
-         statement="ρ = {rho_p} m, a turn of {turn_deg}°")
+         statement=N_("ρ = {rho_p} m, a turn of {turn_deg}°"))
 
 
 # ------------------------------------------------------------------------------------------------- 13-5
@@ -405,8 +388,7 @@ def _t13_5_3(t_J):
 
 def _l13_5_3(t_J):
     m, q = _example("ch13_example3")
-    return [(m.Phi_q(q, 0.0)[7, 8], _printed("the entry at t = 0, printed in Φ_q above",
-                                             "el elemento en t = 0, impreso en Φ_q arriba"))]
+    return [(m.Phi_q(q, 0.0)[7, 8], _printed(N_("the entry at t = 0, printed in Φ_q above")))]
 
 
 register("13-5/try-3", "my_J88", check_value, _t13_5_3, _s13_5_3, {"name": "∂Φ_8/∂φ_3"},
@@ -427,8 +409,7 @@ register("13-6/try-1", "my_nu", check_nu,
          ranges={"w_drive": list(range(50, 151, 10)), "alpha_drive": list(range(-1000, 1001, 250))},
          statement="φ_2 = 3π/4 + {w_drive} t + ½·{alpha_drive} t²",
          lookalikes=lambda **_: [(_example("ch13_example3")[0], _printed(
-             "ν of the book's driver φ_2 = 3π/4 + 100 t, printed above", "ν de la motriz del libro, "
-             "φ_2 = 3π/4 + 100 t, impresa arriba"))])
+             N_("ν of the book's driver φ_2 = 3π/4 + 100 t, printed above")))])
 
 
 @lru_cache(maxsize=None)
@@ -448,10 +429,8 @@ def _t13_6_2(d_D):
     v = point_velocity(qd[6:8], q[8], qd[8], [1.5 - d_D, 0.0])    # O_B is at ξ_3 = 1.5, B at −1.5
     vB = m.point_velocity(q, qd, "rocker", "B")
     return X.speed(float(np.linalg.norm(v)), others=[
-        ("wrong_data", float(np.linalg.norm(vB)), _printed("|v_B|, printed above", "|v_B|, impresa arriba")),
-        ("wrong_data", d_D * abs(qd[5]), _printed("the speed with the crank's φ̇_2: D is on the rocker, which turns at φ̇_3",
-                                                  "la celeridad con el φ̇_2 de la manivela: D está en el balancín, "
-                                                  "que gira a φ̇_3"))])
+        ("wrong_data", float(np.linalg.norm(vB)), _printed(N_("|v_B|, printed above"))),
+        ("wrong_data", d_D * abs(qd[5]), _printed(N_("the speed with the crank's φ̇_2: D is on the rocker, which turns at φ̇_3")))])
 
 
 register("13-6/try-2", "my_speed_D", check_value, _t13_6_2, _s13_6_2, {"name": "|v_D| (m/s)"},
@@ -470,9 +449,8 @@ def _l13_6(which):
     def lookalikes(**_):
         m, q, qd, qdd = _ex3_motion()
         if which == "v":
-            return [(m.point_velocity(q, qd, "rocker", "B"), _printed("v_B, printed above", "v_B, impresa arriba"))]
-        return [(m.point_acceleration(q, qd, qdd, "rocker", "B"), _printed("a_B, printed above",
-                                                                          "a_B, impresa arriba"))]
+            return [(m.point_velocity(q, qd, "rocker", "B"), _printed(N_("v_B, printed above")))]
+        return [(m.point_acceleration(q, qd, qdd, "rocker", "B"), _printed(N_("a_B, printed above")))]
     return lookalikes
 
 
@@ -496,9 +474,8 @@ register("13-7/try-1", "my_gamma_1", check_gamma,
          lambda xi_OA, eta_OA: _edited("ch13_example3", "crank", "OA", (xi_OA, eta_OA)).constraint("1"), _s13_7_1,
          data={"xi_OA": -1.0, "eta_OA": 0.3}, ranges={"xi_OA": (-1.4, -0.6), "eta_OA": (-0.4, 0.4)},
          statement="(ξ_2^{{O_A}}, η_2^{{O_A}}) = ({xi_OA}, {eta_OA})",
-         lookalikes=_printed_joint("ch13_example3", "γ_4, γ_5 of the book's example printed above, with the crank's "
-                                   "own O_A at (−1, 0)", "γ_4, γ_5 del ejemplo del libro impresos arriba, con el O_A "
-                                   "propio de la manivela en (−1, 0)"))
+         lookalikes=_printed_joint("ch13_example3", N_("γ_4, γ_5 of the book's example printed above, with the crank's "
+                                   "own O_A at (−1, 0)")))
 
 
 def _s13_7_2(mech, *, t_g):
@@ -527,7 +504,7 @@ def _t13_7_2(t_g):
 
 def _l13_7_2(t_g):
     m, q, qd, _ = _ex3_motion()
-    return [(m.gamma(q, qd, 0.0)[7], _printed("γ_8 at t = 0, printed above", "γ_8 en t = 0, impreso arriba"))]
+    return [(m.gamma(q, qd, 0.0)[7], _printed(N_("γ_8 at t = 0, printed above")))]
 
 
 register("13-7/try-2", "my_gamma_8", check_value, _t13_7_2, _s13_7_2, {"name": "γ_8"},

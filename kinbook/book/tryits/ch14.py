@@ -7,7 +7,7 @@ import numpy as np
 from ...grading import check_euler_parameters, check_gamma, check_jacobian, check_phi, check_rotation, check_value
 from ...grading import expected as X
 from ...grading._i18n import add_texts
-from ...i18n import N_
+from ...i18n import N_, Message
 from ...spatial import A_from_p
 from ...spatial import rotations as R
 from .registry import register
@@ -43,10 +43,8 @@ def _s14_1_1(*, axes_given):
 
 register("14-1/try-1", "my_A", check_rotation, lambda axes_given: X.A_from_axes(*axes_given), _s14_1_1, {"name": "A"},
          data={"axes_given": _AXES[0]}, ranges={"axes_given": _AXES}, statement=_axes_text,
-         explanation={"en": "eq. 7: the columns of A are the body's unit vectors in global components, so that "
-                            "s = A s' (a local vector's global components). The axes as rows give Aᵀ.",
-                      "es": "ec. 7: las columnas de A son los vectores unitarios del elemento en componentes "
-                            "globales, de modo que s = A s'. Los ejes como filas dan Aᵀ."})
+         explanation=N_("eq. 7: the columns of A are the body's unit vectors in global components, so that "
+                        "s = A s' (a local vector's global components). The axes as rows give Aᵀ."))
 
 _S_GLOBAL = [[2, 1, -1], [1, -2, 3], [0, 2, 1], [-1, 1, 2], [3, 0, -2], [2, -1, 1]]
 
@@ -134,12 +132,9 @@ register("14-2/try-3", "my_angles", check_value, lambda A_given: X.euler_from_A(
          {"name": "(ψ, θ, φ)"}, data={"A_given": _A_14_2_3}, ranges={"A_given": _A_GIVEN},
          statement=lambda A_given: "A_given = " + np.array2string(np.asarray(A_given), precision=6,
                                                                  separator=", ").replace("\n", ""),
-         explanation={"en": "the third row of A = A_z(ψ) A_x(θ) A_z(φ) is [sin θ sin φ, sin θ cos φ, cos θ] and its "
-                            "third column [sin ψ sin θ, −cos ψ sin θ, cos θ]. arccos gives θ in [0, π]; the triple "
-                            "(ψ + π, −θ, φ + π) gives the same A and is accepted too.",
-                      "es": "la tercera fila de A = A_z(ψ) A_x(θ) A_z(φ) es [sen θ sen φ, sen θ cos φ, cos θ] y su "
-                            "tercera columna [sen ψ sen θ, −cos ψ sen θ, cos θ]. arccos da θ en [0, π]; la terna "
-                            "(ψ + π, −θ, φ + π) da la misma A y también se acepta."})
+         explanation=N_("the third row of A = A_z(ψ) A_x(θ) A_z(φ) is [sin θ sin φ, sin θ cos φ, cos θ] and its "
+                        "third column [sin ψ sin θ, −cos ψ sin θ, cos θ]. arccos gives θ in [0, π]; the triple "
+                        "(ψ + π, −θ, φ + π) gives the same A and is accepted too."))
 
 
 # ------------------------------------------------------------------------------------------------- 14-3
@@ -155,7 +150,7 @@ register("14-3/try-1", "my_p", check_euler_parameters,
          data={"axis_u": [0, 1, 1], "chi_deg": 90},
          ranges={"axis_u": [[0, 1, 1], [1, 0, 1], [1, 1, 0], [1, 2, 2], [2, -1, 2], [1, -1, 1], [0, 3, 4]],
                  "chi_deg": list(range(30, 331, 30))},
-         statement="χ = {chi_deg}° about u = {axis_u}")
+         statement=N_("χ = {chi_deg}° about u = {axis_u}"))
 
 _P_TRY = [[0.5, 0.5, 0.5, 0.5], [0.2, 0.4, 0.4, 0.8], [0.8, 0.4, 0.4, 0.2], [6 / 7, 2 / 7, 3 / 7, 0.0],
           [2 / 9, 4 / 9, 5 / 9, 6 / 9], [0.6, 0.0, 0.8, 0.0], [4 / 9, 4 / 9, 7 / 9, 0.0]]
@@ -173,12 +168,9 @@ def _s14_3_2(*, p_try):
 register("14-3/try-2", "my_A_p", check_rotation, lambda p_try: X.A_from_p(p_try), _s14_3_2, {"name": "A(p)"},
          data={"p_try": [0.5, 0.5, 0.5, 0.5]}, ranges={"p_try": _P_TRY},
          statement=lambda p_try: "p = [" + ", ".join(f"{e:.6g}" for e in p_try) + "]",
-         explanation={"en": "A sends [1, 0, 0] to its first column. For p = [½, ½, ½, ½] that is [0, 1, 0], and "
-                            "[0, 1, 0] goes to [0, 0, 1]: x → y → z → x, the turn of 120° about [1, 1, 1] of section 1 "
-                            "(e0 = cos 60° = 0.5, e = u sin 60° with u = [1, 1, 1]/√3).",
-                      "es": "A lleva [1, 0, 0] a su primera columna. Para p = [½, ½, ½, ½] es [0, 1, 0], y [0, 1, 0] "
-                            "va a [0, 0, 1]: x → y → z → x, el giro de 120° alrededor de [1, 1, 1] de la sección 1 "
-                            "(e0 = cos 60° = 0,5, e = u sen 60° con u = [1, 1, 1]/√3)."})
+         explanation=N_("A sends [1, 0, 0] to its first column. For p = [½, ½, ½, ½] that is [0, 1, 0], and "
+                        "[0, 1, 0] goes to [0, 0, 1]: x → y → z → x, the turn of 120° about [1, 1, 1] of section 1 "
+                        "(e0 = cos 60° = 0.5, e = u sin 60° with u = [1, 1, 1]/√3)."))
 
 
 def _s14_3_3(*, p_dot):
@@ -296,19 +288,13 @@ def _w14_4_3(P_hinge):
 
 register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3, wrong_forms=_w14_4_3, data={"P_hinge": [1.2, 0, 0]},
          ranges={"P_hinge": [[1.2, 0, 0], [0.5, 0.5, 0], [1, 0, 0.3], [0, 1.5, 0], [0.8, -0.4, 0.2]]},
-         statement="P at {P_hinge} on body i (s'_i, s'_j along ζ as above)",
-         explanation={"en": "the checker accepts the two rows although they are not kinbook's h_1ᵀs_j, h_2ᵀs_j letter "
-                            "for letter: with s'_i along ζ, kinbook's h'_1 = η and h'_2 = −ξ, so these rows are "
-                            "kinbook's rows times a constant (−0.8 here): the same constraint. That is the idea of "
-                            "kinbook's p1: the two rows are picked in body i's frame, where the redundant one is "
-                            "known once and for all — global rows 1–2 of s̃_i s_j lose rank wherever s_i lies in "
-                            "the global x-y plane.",
-                      "es": "el comprobador acepta las dos filas aunque no sean letra por letra las h_1ᵀs_j, h_2ᵀs_j "
-                            "de kinbook: con s'_i a lo largo de ζ, h'_1 = η y h'_2 = −ξ, así que estas filas son las "
-                            "de kinbook por una constante (−0,8 aquí): la misma restricción. Es la idea del p1 de "
-                            "kinbook: las dos filas se eligen en el sistema del elemento i, donde la fila redundante "
-                            "se conoce de una vez — las filas globales 1–2 de s̃_i s_j pierden rango allí donde s_i "
-                            "queda en el plano x-y global."})
+         statement=N_("P at {P_hinge} on body i (s'_i, s'_j along ζ as above)"),
+         explanation=N_("the checker accepts the two rows although they are not kinbook's h_1ᵀs_j, h_2ᵀs_j letter "
+                        "for letter: with s'_i along ζ, kinbook's h'_1 = η and h'_2 = −ξ, so these rows are "
+                        "kinbook's rows times a constant (−0.8 here): the same constraint. That is the idea of "
+                        "kinbook's p1: the two rows are picked in body i's frame, where the redundant one is "
+                        "known once and for all — global rows 1–2 of s̃_i s_j lose rank wherever s_i lies in "
+                        "the global x-y plane."))
 
 
 # ------------------------------------------------------------------------------------------------- 14-5
@@ -336,8 +322,8 @@ def _t14_5_1(t_n):
     out.add("gamma_sign", -value).add("scaled", value / 2, _msg("x.term", term="−ṗᵀṗ"))
     for body in ("crank", "coupler"):
         other = float(m.gamma(q, qd, t_n)[m.constraint(f"normalization {body}").rows.start])
-        out.add("wrong_data", other, _msg("x.other_data", what={"en": f"γ of the {body}'s normalization",
-                                                                "es": f"γ de la normalización de '{body}'"}))
+        out.add("wrong_data", other, _msg("x.other_data", what=Message(N_("γ of the {body}'s normalization"),
+                                                                             body=body)))
     return out
 
 
@@ -405,14 +391,8 @@ add_texts({
 
 register("14-5/try-3", "my_gamma_A", check_gamma, lambda: _fourbar().constraint("A"), _s14_5_3,
          context=lambda: {"mech": _fourbar()}, wrong_forms=_w14_5_3,
-         explanation={"en": "B(ṗ)ṗ = 2E(ṗ)āṗ + 2a(ṗᵀṗ) and 2ĖĠᵀa = 2E(ṗ)āṗ (because Gᵀa = āp), so the book's form lacks "
-                            "2a ṗᵀṗ — a vector along a. For the coupler a = s'^A_3 = 0 and nothing is lost; for the "
-                            "crank a = s'^A_2 = (1, 0, 0), so only the x row, Φ_16, changes: the checker rejects that "
-                            "row alone. (On the unit sphere the two forms differ only by this term, the same 2apᵀ "
-                            "difference between ∂(Aa)/∂p and ∂(EGᵀa)/∂p seen in notebook 14-3.)",
-                      "es": "B(ṗ)ṗ = 2E(ṗ)āṗ + 2a(ṗᵀṗ) y 2ĖĠᵀa = 2E(ṗ)āṗ (porque Gᵀa = āp), así que a la forma del "
-                            "libro le falta 2a ṗᵀṗ — un vector a lo largo de a. Para el acoplador a = s'^A_3 = 0 y no "
-                            "se pierde nada; para la manivela a = s'^A_2 = (1, 0, 0), así que solo cambia la fila x, "
-                            "Φ_16: el comprobador rechaza esa fila sola. (Sobre la esfera unidad las dos formas "
-                            "difieren solo en este término, la misma diferencia 2apᵀ entre ∂(Aa)/∂p y ∂(EGᵀa)/∂p "
-                            "vista en el cuaderno 14-3.)"})
+         explanation=N_("B(ṗ)ṗ = 2E(ṗ)āṗ + 2a(ṗᵀṗ) and 2ĖĠᵀa = 2E(ṗ)āṗ (because Gᵀa = āp), so the book's form lacks "
+                        "2a ṗᵀṗ — a vector along a. For the coupler a = s'^A_3 = 0 and nothing is lost; for the "
+                        "crank a = s'^A_2 = (1, 0, 0), so only the x row, Φ_16, changes: the checker rejects that "
+                        "row alone. (On the unit sphere the two forms differ only by this term, the same 2apᵀ "
+                        "difference between ∂(Aa)/∂p and ∂(EGᵀa)/∂p seen in notebook 14-3.)"))

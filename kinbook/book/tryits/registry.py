@@ -11,7 +11,9 @@ from typing import Any, Callable
 
 import numpy as np
 
-__all__ = ["TryIt", "TRY_ITS", "register", "same_data", "table_text", "both_texts"]
+from ...i18n import N_, Message, translate
+
+__all__ = ["TryIt", "TRY_ITS", "register", "same_data", "table_text", "text_message"]
 
 TRY_ITS: dict[str, "TryIt"] = {}
 """Every try-it, by id ("13-1/try-1"), in notebook order."""
@@ -47,9 +49,12 @@ class TryIt:
         For each datum that varies, ``(low, high)`` or a list of values (as in
         :func:`kinbook.classroom.parameters`).
     statement : callable or str
-        The data as the question gives them ("t = 0.004 s"): a format string or a function of the data.
-    explanation : dict or None
-        ``{"en": …, "es": …}``: why the worked answer is what it is, shown by :func:`reveal` after the code.
+        The data as the question gives them ("t = 0.004 s"): a format string or a function of the data. A
+        statement with words is a marked message (``N_("χ = {chi_deg}° about u = {axis_u}")``), translated when
+        stated.
+    explanation : str or None
+        A marked message (``N_("…")``, its Spanish in the package's catalogue): why the worked answer is what it
+        is, shown by :func:`reveal` after the code.
     lookalikes : callable or None
         ``lookalikes(**data)`` → [(value, Msg)]: numbers the notebook prints nearby that a student may copy
         (named ``wrong_data``); for a symbolic try-it, [(target, Msg)]: other constraints the answer may be right
@@ -145,7 +150,7 @@ class TryIt:
 
         others = list(self.lookalikes(**data)) if self.lookalikes is not None else []
         if not same_data(data, self.data):
-            others.append((self.target(**self.data), _msg("x.other_data", what=both_texts("notebook_data"))))
+            others.append((self.target(**self.data), _msg("x.other_data", what=text_message("notebook_data"))))
         for target, detail in others:
             try:
                 if self.checker(answer, target, **options).passed:
@@ -170,7 +175,7 @@ class TryIt:
         if not same_data(data, self.data):  # a variant: the notebook's own answer is a lookalike too
             other = self.target(**self.data)
             seen.append((np.asarray(getattr(other, "value", other), float), _msg("x.other_data",
-                                                                                what=both_texts("notebook_data"))))
+                                                                                what=text_message("notebook_data"))))
         for value, detail in seen:
             target.variants.insert(0, ("wrong_data", np.asarray(value, float), detail, None))
         return target
@@ -212,7 +217,7 @@ class TryIt:
             return ", ".join(f"{k} = {_literal(v)}" for k, v in data.items())
         if callable(self.statement):
             return self.statement(**data)
-        return self.statement.format(**{k: _literal(v) for k, v in data.items()})
+        return translate(self.statement).format(**{k: _literal(v) for k, v in data.items()})
 
 
 def same_data(a, b):
@@ -243,14 +248,14 @@ def _msg(key, **fields):
     return Msg(key, **fields)
 
 
-def both_texts(key, **fields):
-    """A text of this module in every language (a dict rendered when shown)."""
-    return {lang: table_text(key, lang, **fields) for lang in ("en", "es")}
+def text_message(key, **fields):
+    """A text of this module as a marked message, written in the language of the moment when shown."""
+    return Message(_TEXT[key], **fields)
 
 
 def table_text(key, lang, **fields):
-    table = _TEXT[key]
-    return (table.get(lang) or table["en"]).format(**fields)
+    """A text of this module in ``lang``, through the package's catalogue (:mod:`kinbook.i18n`)."""
+    return Message(_TEXT[key], **fields).render(lang)
 
 
 def register(id, answer, checker, target, solution, options=None, context=None, *, data=None, ranges=None,
@@ -264,39 +269,23 @@ def register(id, answer, checker, target, solution, options=None, context=None, 
     return item
 
 
-
 _TEXT = {
-    "blank": {
-        "en": "{title} is not answered yet: replace <code>...</code> in <code>{answer} = ...</code> with your "
-              "answer and run the cell again. Stuck? <code>kb.reveal(\"{id}\")</code> shows a worked answer.",
-        "es": "{title} aún no tiene respuesta: sustituya <code>...</code> en <code>{answer} = ...</code> por su "
-              "respuesta y ejecute de nuevo la celda. ¿Atascado? <code>kb.reveal(\"{id}\")</code> muestra una "
-              "solución.",
-    },
-    "title": {"en": "Try it {k} ({notebook})", "es": "Pruébelo {k} ({notebook})"},
-    "worked": {"en": "A worked answer to {title}", "es": "Una solución de {title}"},
-    "uses": {"en": "It uses these variables of the notebook: {names}.",
-             "es": "Usa estas variables del cuaderno: {names}."},
-    "variant_title": {"en": "{title}, variant {k}", "es": "{title}, variante {k}"},
-    "variant_data": {"en": "the same question with this data: {data}", "es": "la misma pregunta con estos datos: "
-                                                                                "{data}"},
-    "variant_how": {
-        "en": "Answer it in a cell of your own, then <code>kb.try_it(\"{id}\", {answer})</code> checks it and "
-              "<code>kb.reveal(\"{id}\")</code> shows its worked answer; <code>kb.another(\"{id}\")</code> draws "
-              "the next variant, <code>kb.another(\"{id}\", 0)</code> goes back to the notebook's data (drawn "
-              "with seed {seed}).",
-        "es": "Respóndala en una celda propia; luego <code>kb.try_it(\"{id}\", {answer})</code> la comprueba y "
-              "<code>kb.reveal(\"{id}\")</code> muestra su solución; <code>kb.another(\"{id}\")</code> saca la "
-              "variante siguiente, <code>kb.another(\"{id}\", 0)</code> vuelve a los datos del cuaderno "
-              "(sorteada con la semilla {seed}).",
-    },
-    "variant_zero": {"en": "{title}, the notebook's data: {data}", "es": "{title}, los datos del cuaderno: {data}"},
-    "no_variants": {"en": "{title} has no other data to draw: its data is the notebook's.",
-                    "es": "{title} no tiene otros datos que sortear: sus datos son los del cuaderno."},
-    "with_data": {"en": "for the data {data}", "es": "para los datos {data}"},
-    "notebook_data": {"en": "the answer for the notebook's data, not for this variant's",
-                      "es": "la respuesta para los datos del cuaderno, no para los de esta variante"},
-    "why": {"en": "Why", "es": "Por qué"},
+    "blank": N_("{title} is not answered yet: replace <code>...</code> in <code>{answer} = ...</code> with your "
+                "answer and run the cell again. Stuck? <code>kb.reveal(\"{id}\")</code> shows a worked answer."),
+    "title": N_("Try it {k} ({notebook})"),
+    "worked": N_("A worked answer to {title}"),
+    "uses": N_("It uses these variables of the notebook: {names}."),
+    "variant_title": N_("{title}, variant {k}"),
+    "variant_data": N_("the same question with this data: {data}"),
+    "variant_how": N_("Answer it in a cell of your own, then <code>kb.try_it(\"{id}\", {answer})</code> checks it and "
+                      "<code>kb.reveal(\"{id}\")</code> shows its worked answer; <code>kb.another(\"{id}\")</code> draws "
+                      "the next variant, <code>kb.another(\"{id}\", 0)</code> goes back to the notebook's data (drawn "
+                      "with seed {seed})."),
+    "variant_zero": N_("{title}, the notebook's data: {data}"),
+    "no_variants": N_("{title} has no other data to draw: its data is the notebook's."),
+    "with_data": N_("for the data {data}"),
+    "notebook_data": N_("the answer for the notebook's data, not for this variant's"),
+    "why": N_("Why"),
 }
 
 
