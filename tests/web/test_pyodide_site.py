@@ -98,3 +98,18 @@ def test_pyodide_imports_the_start_up_packages_without_compiling_one_module(tmp_
     assert result["kinbook"].endswith("site-packages/kinbook/__init__.py")        # the source is there...
     assert Path(result["kinbook_cached"]).name == "__init__.cpython-312.pyc"        # ...and its bytecode is used
     assert result["source"].startswith("class Mechanism")                          # kb.reveal reads sources
+
+
+def test_the_start_up_set_follows_dependencies_by_their_pep_503_names_and_names_what_is_missing():
+    import sys
+
+    sys.path.insert(0, str(ROOT / "web"))
+    try:
+        import pyodide_site
+    finally:
+        sys.path.remove(str(ROOT / "web"))
+    lock = {"packages": {"matplotlib-inline": {"depends": []}, "ipython": {"depends": ["matplotlib_inline"]},
+                         "kinbook": {"depends": ["IPython"]}}}
+    assert pyodide_site.closure(lock, ["KinBook"]) == ["ipython", "kinbook", "matplotlib-inline"]
+    with pytest.raises(SystemExit, match="package 'pandas' is neither in Pyodide"):
+        pyodide_site.closure(lock, ["kinbook", "pandas"])
