@@ -11,7 +11,7 @@ from ._i18n import Msg
 from .expected import Expected
 from .misprints import book_A_of_p
 from .report import fmt
-from .values import _bad_expected, _check, _close, _expected, _failed, _name, _read, _real, _reveal_flag, _tolerances
+from .values import _check, _close, _expected, _failed, _name, _read, _real, _reveal_flag, _tolerances
 
 __all__ = ["check_rotation", "check_euler_parameters"]
 
@@ -59,8 +59,6 @@ def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name=
     name = _name(name, "A")
     reveal = _reveal_flag(reveal)
     base = _expected(expected)
-    if base is None:
-        _bad_expected(expected)
     if np.asarray(base.value).shape != (3, 3):
         raise InputError(f"`expected` must be a 3×3 matrix, got shape {np.shape(base.value)}")
     if angles is not None:
@@ -144,8 +142,6 @@ def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None,
     name = _name(name, "p")
     reveal = _reveal_flag(reveal)
     base = _expected(expected)
-    if base is None:
-        _bad_expected(expected)
     if np.asarray(base.value).size != 4:
         raise InputError(f"`expected` must be 4 Euler parameters, got shape {np.shape(base.value)}")
     value = np.asarray(base.value, float).reshape(4)

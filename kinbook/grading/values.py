@@ -223,27 +223,20 @@ def _failed(name, msg, code):
 
 
 def _expected(expected):
-    """The expected value as an :class:`Expected` (a copy: checking never changes the caller's object), or
-    None when it is not real finite numbers."""
+    """The expected value as an :class:`Expected` (a copy: checking never changes the caller's object); an
+    :class:`InputError` naming the argument when it is not real finite numbers."""
+    value = None
     if isinstance(expected, Expected):
         value = np.asarray(expected.value, dtype=float)
-        if value.size == 0 or not np.all(np.isfinite(value)):
-            return None
-        return expected.copy()
-    if isinstance(expected, (bool, np.bool_)):
-        return None
-    try:
-        value = np.asarray(expected, dtype=float)
-    except (TypeError, ValueError):
-        return None
-    if value.size == 0 or not np.all(np.isfinite(value)):
-        return None
-    return Expected(value)
-
-
-def _bad_expected(expected):
-    raise InputError(f"`expected` must be real finite numbers (computed with kinbook) or an "
-                     f"kinbook.grading.expected.Expected, got {_got_type(expected).render('en')}")
+    elif not isinstance(expected, (bool, np.bool_)):
+        try:
+            value = np.asarray(expected, dtype=float)
+        except (TypeError, ValueError):
+            pass
+    if value is None or value.size == 0 or not np.all(np.isfinite(value)):
+        raise InputError(f"`expected` must be real finite numbers (computed with kinbook) or an "
+                         f"kinbook.grading.expected.Expected, got {_got_type(expected).render('en')}")
+    return expected.copy() if isinstance(expected, Expected) else Expected(value)
 
 
 def _shape(a, e, name):
@@ -303,8 +296,6 @@ def check_value(answer, expected, *, rtol=1e-3, atol=1e-9, name=None, angles=Non
     """
     name = _name(name, Message(N_("value")))
     exp = _expected(expected)
-    if exp is None:
-        _bad_expected(expected)
     e = np.asarray(exp.value, float)
     rtol, atol = _tolerances(rtol, atol, e)
     per = _periodic(periodic, e.shape) | _periodic(tuple(exp.periodic), e.shape)
