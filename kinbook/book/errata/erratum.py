@@ -66,6 +66,7 @@ def below(err, tol=1e-12):
 
 
 def compare(samples):
-    """max |printed − reference| and max |corrected − reference| over (printed, corrected, reference) rows."""
+    """max |printed − reference| and max |corrected − reference| over (printed, corrected, reference) rows, each
+    three numbers or three arrays of one shape (the maximum is then over every entry)."""
     a = np.array(samples, dtype=float)
     return float(np.max(np.abs(a[:, 0] - a[:, 2]))), float(np.max(np.abs(a[:, 1] - a[:, 2])))
