@@ -11,9 +11,12 @@ constraint — its rows, or its reference values at the samples — the way a st
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 
 from ._i18n import Msg
+from .misprints import book_A_of_p
 
 __all__ = ["book_A_rows", "cross_term_flipped", "n2_without_dC", "length_factors"]
 
@@ -21,15 +24,9 @@ __all__ = ["book_A_rows", "cross_term_flipped", "n2_without_dC", "length_factors
 def book_A_rows(c, Q, t):
     """The rows of spatial constraint ``c`` at body symbols ``Q`` with every A(p) replaced by the book's printed
     matrix (no factor 2, symmetric): what a student who copies §14.3's A(p) into a joint writes."""
-    from ..spatial import constraints as SC
-    from .misprints import book_A_of_p
-
-    kinbook_A = SC._sym_A
-    SC._sym_A = lambda Qb: book_A_of_p(list(Qb[3:7]))
-    try:
-        return list(c.phi(Q, t))
-    finally:
-        SC._sym_A = kinbook_A
+    printed = copy.copy(c)
+    printed.rotation = lambda Qb: book_A_of_p(list(Qb[3:7]))  # the constraint's rotation hook, on a copy
+    return list(printed.phi(Q, t))
 
 
 def cross_term_flipped(tape, row, s, expected, factor=1.0, bodies=()):

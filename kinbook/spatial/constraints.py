@@ -85,22 +85,6 @@ def _sym_r(Qb):
     return sp.Matrix(Qb[0:3])
 
 
-def _sym_A(Qb):
-    return _A_sym(list(Qb[3:7]))
-
-
-def _sym_vec(Qb, a):
-    return _sym_A(Qb) * sp.Matrix(a)
-
-
-def _sym_point(Qb, a):
-    return _sym_r(Qb) + _sym_A(Qb) * sp.Matrix(a)
-
-
-def _sym_d(Q, Pi, Pj):
-    return _sym_point(Q[1], Pj) - _sym_point(Q[0], Pi)
-
-
 def _sym_dot(u, v):
     return (u.T * v)[0]
 
@@ -157,11 +141,21 @@ class Constraint(ConstraintBase):
     def _read_vector(self, role_index, spec, key):
         return self._vector(role_index, spec, key)
 
+    def rotation(self, Qb):
+        """The rotation matrix A(p) of a body from its symbols ``Qb`` = (x, y, z, e0, e1, e2, e3): kinbook's
+        :func:`~kinbook.spatial.rotations.A_from_p`. Every row of Φ reads A through this hook, so a subclass (or
+        the mistake catalogue, on a copy) may build Φ with another matrix without re-typing it."""
+        return _A_sym(list(Qb[3:7]))
+
     def _global_point(self, Qb, s):
-        return _sym_point(Qb, _sym3(s))
+        return _sym_r(Qb) + self.rotation(Qb) * sp.Matrix(_sym3(s))
 
     def _global_vector(self, Qb, s):
-        return _sym_vec(Qb, _sym3(s))
+        return self.rotation(Qb) * sp.Matrix(_sym3(s))
+
+    def _distance(self, Q, Pi, Pj):
+        """d = r_j^P − r_i^P (global), between local points P_i of the first body and P_j of the second."""
+        return self._global_point(Q[1], Pj) - self._global_point(Q[0], Pi)
 
     def _point(self, role, spec, what="point"):
         """Local coordinates (floats, shape (3,)) of a point: a point name or a triple (ξ, η, ζ)."""
@@ -332,7 +326,7 @@ class Normal1(Constraint):
     kernel = staticmethod(K.kernel(K.rows_n1))
 
     def phi(self, Q, t=t_symbol):
-        return [_sym_dot(_sym_vec(Q[0], _sym3(self.a_i)), _sym_vec(Q[1], _sym3(self.a_j)))]
+        return [_sym_dot(self._global_vector(Q[0], self.a_i), self._global_vector(Q[1], self.a_j))]
 
     def params(self):
         return {"ai": self.a_i, "aj": self.a_j}
@@ -360,8 +354,8 @@ class Normal2(Constraint):
     kernel = staticmethod(K.kernel(K.rows_n2))
 
     def phi(self, Q, t=t_symbol):
-        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
-        return [_sym_dot(_sym_vec(Q[0], _sym3(self.a_i)), d)]
+        d = self._distance(Q, self.P_i, self.P_j)
+        return [_sym_dot(self._global_vector(Q[0], self.a_i), d)]
 
     def params(self):
         return {"ai": self.a_i, "Pi": self.P_i, "Pj": self.P_j}
@@ -397,8 +391,8 @@ class Parallel1(_ParallelMixin, Constraint):
     kernel = staticmethod(K.kernel(K.rows_p1))
 
     def phi(self, Q, t=t_symbol):
-        sj = _sym_vec(Q[1], _sym3(self.a_j))
-        return [_sym_dot(_sym_vec(Q[0], _sym3(h)), sj) for h in (self.h1, self.h2)]
+        sj = self._global_vector(Q[1], self.a_j)
+        return [_sym_dot(self._global_vector(Q[0], h), sj) for h in (self.h1, self.h2)]
 
     def params(self):
         return {"h1": self.h1, "h2": self.h2, "sj": self.a_j}
@@ -421,8 +415,8 @@ class Parallel2(_ParallelMixin, Constraint):
     kernel = staticmethod(K.kernel(K.rows_p2))
 
     def phi(self, Q, t=t_symbol):
-        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
-        return [_sym_dot(_sym_vec(Q[0], _sym3(h)), d) for h in (self.h1, self.h2)]
+        d = self._distance(Q, self.P_i, self.P_j)
+        return [_sym_dot(self._global_vector(Q[0], h), d) for h in (self.h1, self.h2)]
 
     def params(self):
         return {"h1": self.h1, "h2": self.h2, "Pi": self.P_i, "Pj": self.P_j}
@@ -451,7 +445,7 @@ class Spherical(Constraint):
     kernel = staticmethod(K.kernel(K.rows_s))
 
     def phi(self, Q, t=t_symbol):
-        return list(_sym_point(Q[0], _sym3(self.P_i)) - _sym_point(Q[1], _sym3(self.P_j)))
+        return list(self._global_point(Q[0], self.P_i) - self._global_point(Q[1], self.P_j))
 
     def params(self):
         return {"Pi": self.P_i, "Pj": self.P_j}
@@ -568,7 +562,7 @@ class SphericalSpherical(Constraint):
             raise ModelError(f"{self.describe()}: length must be a positive number, got {self.specs['length']!r}")
 
     def phi(self, Q, t=t_symbol):
-        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
+        d = self._distance(Q, self.P_i, self.P_j)
         return [_sym_dot(d, d) - _num(self.l) ** 2]
 
     def params(self):
@@ -622,9 +616,9 @@ class RevoluteDriver(Constraint):
             self.f_j = self.ref_j
 
     def phi(self, Q, t=t_symbol):
-        fj = _sym_vec(Q[1], _sym3(self.f_j))
-        c = _sym_dot(_sym_vec(Q[0], _sym3(self.f_i)), fj)
-        s = _sym_dot(_sym_vec(Q[0], _sym3(self.g_i)), fj)
+        fj = self._global_vector(Q[1], self.f_j)
+        c = _sym_dot(self._global_vector(Q[0], self.f_i), fj)
+        s = _sym_dot(self._global_vector(Q[0], self.g_i), fj)
         return [sp.atan2(s, c) - self._f_expr(t)]
 
     def params(self):
@@ -653,8 +647,8 @@ class DistanceDriver(Constraint):
         self.u = self.a_i / np.linalg.norm(self.a_i)
 
     def phi(self, Q, t=t_symbol):
-        d = _sym_d(Q, _sym3(self.P_i), _sym3(self.P_j))
-        return [_sym_dot(_sym_vec(Q[0], _sym3(self.u)), d) - self._f_expr(t)]
+        d = self._distance(Q, self.P_i, self.P_j)
+        return [_sym_dot(self._global_vector(Q[0], self.u), d) - self._f_expr(t)]
 
     def params(self):
         return {"u": self.u, "Pi": self.P_i, "Pj": self.P_j}
