@@ -48,7 +48,6 @@ from .notebook import (
     student_notebook,
 )
 from .options import check_options
-from .parts import CHECKS
 from .reference_use import exercise_calls, reference_use
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, ungraded_notice, worst
 from .sanitize import clean, clean_result
@@ -84,7 +83,7 @@ def _too_large(p, decoded):
     from ..grading.target import NotATarget, target_for
 
     try:
-        if CHECKS[p.check][1]:
+        if p.checker.against == "target":
             target = target_for(p.target)
             own = len(target.rows)
             reference = own * (len(target.cols) if p.check == "jacobian" else 1)

@@ -33,30 +33,20 @@ import sys
 from dataclasses import dataclass, field
 
 from ..errors import GradingError
+from ..grading.item import CHECKERS, Item
 
-__all__ = ["Part", "part", "parameters", "reference_calls", "check_parameters", "CHECKS", "recording",
-           "MAX_POINTS"]
+__all__ = ["Part", "part", "parameters", "reference_calls", "check_parameters", "recording", "MAX_POINTS"]
 
 #: The most points one part can carry.
 MAX_POINTS = 1e6
 #: Bounds of a parameters(...) declaration: parameters, values of one list, magnitude of a number.
 MAX_PARAMETERS, MAX_CHOICES, MAX_PARAMETER = 100, 10_000, 1e15
 
-#: check name → (function name in kinbook.grading, needs a target (True) or an expected value (False))
-CHECKS = {
-    "phi": ("check_phi", True),
-    "jacobian": ("check_jacobian", True),
-    "nu": ("check_nu", True),
-    "gamma": ("check_gamma", True),
-    "value": ("check_value", False),
-    "rotation": ("check_rotation", False),
-    "euler_parameters": ("check_euler_parameters", False),
-}
-
-
 @dataclass
 class Part:
-    """One graded part of an exercise.
+    """One graded part of an exercise: a :class:`~kinbook.grading.item.Item` with points and a place among the
+    hidden checks. Its reference is computed by the instructor's code once per student (the source's cells run
+    with the student's parameters), so the item's data are fixed here.
 
     Attributes
     ----------
@@ -66,7 +56,7 @@ class Part:
     answer : str
         Name of the variable the student assigns.
     check : str
-        Key of :data:`CHECKS`.
+        Key of :data:`kinbook.grading.CHECKERS`.
     target : Mechanism or Constraint or None
     expected : object or None
     options : dict
@@ -84,20 +74,24 @@ class Part:
     options: dict = field(default_factory=dict)
     hidden: bool = False
 
+    @property
+    def checker(self):
+        return CHECKERS[self.check]
+
+    @property
+    def reference(self):
+        """What the checker grades against: the target, or the expected value."""
+        return self.target if self.checker.against == "target" else self.expected
+
+    @property
+    def item(self):
+        """The graded item this part is."""
+        reference = self.reference
+        return Item(self.answer, self.checker, lambda: reference, dict(self.options))
+
     def run(self, value, answers=None):
         """Grade ``value`` with the declared checker; ``answers`` resolves ``phi="Name"`` options."""
-        import kinbook.grading as grading
-
-        fname, needs_target = CHECKS[self.check]
-        fn = getattr(grading, fname)
-        options = dict(self.options)
-        if isinstance(options.get("phi"), str):
-            own = (answers or {}).get(options["phi"])
-            if own is None:
-                options.pop("phi")
-            else:
-                options["phi"] = own
-        return fn(value, self.target if needs_target else self.expected, **options)
+        return self.item.check(value, answers=answers)
 
 
 _recorder: list | None = None
@@ -123,11 +117,11 @@ def _validate(name, points, answer, check, target, expected):
         raise GradingError(f"part {name!r}: points must be a finite number from 0 to {MAX_POINTS:g}, got {points!r}"[:300])
     if not isinstance(answer, str) or not answer.isidentifier():
         raise GradingError(f"part {name!r}: answer must name a variable, got {answer!r}")
-    if check not in CHECKS:
-        raise GradingError(f"part {name!r}: unknown check {check!r} (one of {', '.join(CHECKS)})")
-    if CHECKS[check][1] and target is None:
+    if check not in CHECKERS:
+        raise GradingError(f"part {name!r}: unknown check {check!r} (one of {', '.join(CHECKERS)})")
+    if CHECKERS[check].against == "target" and target is None:
         raise GradingError(f"part {name!r}: check {check!r} needs target= (a mechanism or a constraint)")
-    if not CHECKS[check][1] and expected is None:
+    if CHECKERS[check].against == "expected" and expected is None:
         raise GradingError(f"part {name!r}: check {check!r} needs expected= (computed with kinbook)")
 
 

@@ -18,25 +18,32 @@ A check runs one way through small stages, each its own module: read (the safe r
 → match (the one equivalence rule) → diagnose (the mistake catalogue) → report (:mod:`kinbook.grading.checks`).
 """
 
-from . import expected
-from ._i18n import get_language, set_language
-from .catalogue import MISTAKES, explain
-from .checks import check_gamma, check_jacobian, check_nu, check_phi
-from .lms import assert_passed, nbgrader_score
-from .result import CheckResult, RowResult
-from .rotation_values import check_euler_parameters, check_rotation
-from .values import check_value
+import importlib
 
-CHECKERS = {
-    "phi": check_phi,
-    "jacobian": check_jacobian,
-    "nu": check_nu,
-    "gamma": check_gamma,
-    "value": check_value,
-    "rotation": check_rotation,
-    "euler_parameters": check_euler_parameters,
+from .item import CHECKERS
+
+# The names load when first used (PEP 562), as the package face's do: a module that needs only the checker
+# table or the item model (the classroom's ``part``, imported in every student's sandboxed kernel) does not load
+# the checkers, sympy and the catalogue.
+_FROM = {
+    "check_phi": "checks", "check_jacobian": "checks", "check_nu": "checks", "check_gamma": "checks",
+    "check_value": "values", "check_rotation": "rotation_values", "check_euler_parameters": "rotation_values",
+    "nbgrader_score": "lms", "assert_passed": "lms", "CheckResult": "result", "RowResult": "result",
+    "MISTAKES": "catalogue", "explain": "catalogue", "set_language": "_i18n", "get_language": "_i18n",
 }
-"""The checkers by the names exercises use for them."""
+
+
+def __getattr__(name):
+    if name in _FROM:
+        return getattr(importlib.import_module(f".{_FROM[name]}", __name__), name)
+    if name == "expected":
+        return importlib.import_module(".expected", __name__)
+    raise AttributeError(f"module 'kinbook.grading' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_FROM) | {"expected"})
+
 
 __all__ = [
     "check_phi",

@@ -21,6 +21,7 @@ import inspect
 
 import numpy as np
 
+from ...grading.item import seed_from
 from ...i18n import translate
 from .registry import TRY_ITS, TryIt, register, same_data, table_text
 
@@ -100,7 +101,7 @@ class Revealed:
 
     def __init__(self, item, data=None):
         self.item = item
-        self.data = item._data(data)
+        self.data = item.data_for(data)
         self.code = item.solution_code(self.data)
         self.uses = [p.name for p in inspect.signature(item.solution).parameters.values()
                      if p.kind != p.KEYWORD_ONLY]
@@ -196,7 +197,7 @@ MAX_DRAWS = 25
 
 def another(id, k=None):
     """Draw a fresh variant of a try-it: the same question with other data, drawn by the seeded generator
-    the exercises' per-student parameters use (:func:`kinbook.classroom.variant.draw`). :func:`try_it` and
+    the exercises' per-student parameters use (:func:`kinbook.grading.item.draw`). :func:`try_it` and
     :func:`reveal` then use it.
 
     Parameters
@@ -212,7 +213,6 @@ def another(id, k=None):
     Variant
         Shows the data (and the seed it was drawn with).
     """
-    from ...classroom.variant import draw, seed_from
     from ...errors import InputError, KinbookError
     from ...i18n import N_, Message
 
@@ -229,7 +229,7 @@ def another(id, k=None):
     last = None
     for attempt in range(MAX_DRAWS):
         seed = seed_from(f"try-it:{id}:{k}:{attempt}")
-        data = draw(item.ranges, item.data, seed)
+        data = item.variant(seed)
         if same_data(data, item.data):  # the notebook's own data: not a new variant
             continue
         try:

@@ -11,6 +11,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from ...grading.item import Item, checker_for
 from ...i18n import N_, Message, translate
 
 __all__ = ["TryIt", "TRY_ITS", "register", "same_data", "table_text", "text_message"]
@@ -19,9 +20,11 @@ TRY_ITS: dict[str, "TryIt"] = {}
 """Every try-it, by id ("13-1/try-1"), in notebook order."""
 
 
-@dataclass(frozen=True)
-class TryIt:
-    """One "Try it" exercise of a chapter notebook.
+@dataclass(frozen=True, kw_only=True)
+class TryIt(Item):
+    """One "Try it" exercise of a chapter notebook: a :class:`~kinbook.grading.item.Item` (``answer``,
+    ``checker``, ``target``, ``options``, ``data``, ``ranges``) with a worked answer, a statement, the lookalikes
+    printed nearby and the wrong forms it names.
 
     Attributes
     ----------
@@ -29,8 +32,8 @@ class TryIt:
         ``"<notebook>/try-<k>"``, e.g. ``"13-2/try-1"``: the notebook's number and the exercise's place in it.
     answer : str
         Name of the notebook variable the student fills in (``"my_Phi"``); unique in its notebook.
-    checker : callable
-        A :mod:`kinbook.grading` checker, called as ``checker(answer, target, **options)``.
+    checker : kinbook.grading.item.Checker
+        A checker of :data:`kinbook.grading.CHECKERS`, called as ``checker(answer, target(**data), **options)``.
     target : callable
         Called with the data (``target(**data)``); returns the checker's reference (an
         :class:`~kinbook.grading.expected.Expected`, a constraint or a mechanism), computed by the library.
@@ -66,29 +69,20 @@ class TryIt:
     """
 
     id: str
-    answer: str
-    checker: Callable
-    target: Callable[..., Any]
     solution: Callable
-    options: dict = field(default_factory=dict)
     context: Callable[[], dict] = field(default=dict, repr=False)
-    data: dict = field(default_factory=dict)
-    ranges: dict = field(default_factory=dict)
     statement: Any = None
     explanation: Any = None
     lookalikes: Any = None
     wrong_forms: Any = None
 
-    def _data(self, data):
-        return dict(self.data) if data is None else dict(data)
-
     def check(self, answer, data=None):
         """Run the checker on ``answer`` (a :class:`kinbook.grading.CheckResult`) for ``data`` (default: the
         notebook's)."""
-        data = self._data(data)
-        target = self.target(**data)
+        data = self.data_for(data)
+        target = self.reference(data)
         options = dict(self.options)
-        if _numeric(self.checker):
+        if self.checker.numeric:
             options.setdefault("reveal", False)
             target = self._with_lookalikes(target, data)
             return self.checker(answer, target, **options)
@@ -182,7 +176,7 @@ class TryIt:
 
     def reference_answer(self, data=None):
         """The worked answer's value, computed from the library's context."""
-        data = self._data(data)
+        data = self.data_for(data)
         return self.solution(**self.context(), **{n: data[n] for n in self._data_names()})
 
     def _data_names(self):
@@ -206,13 +200,13 @@ class TryIt:
         elif last.startswith("return "):
             indent = body[-1][: len(body[-1]) - len(body[-1].lstrip())]
             body[-1] = f"{indent}{self.answer} = {last[len('return '):]}"
-        data = self._data(data)
+        data = self.data_for(data)
         head = [f"{n} = {_literal(data[n])}" for n in self._data_names()]
         return "\n".join(head + textwrap.dedent("\n".join(body)).splitlines())
 
     def stated(self, data=None):
         """The data as the question states them (the statement filled in)."""
-        data = self._data(data)
+        data = self.data_for(data)
         if self.statement is None:
             return ", ".join(f"{k} = {_literal(v)}" for k, v in data.items())
         if callable(self.statement):
@@ -238,10 +232,6 @@ def _literal(v):
     return repr(v)
 
 
-def _numeric(checker):
-    return "reveal" in inspect.signature(checker).parameters
-
-
 def _msg(key, **fields):
     from ...grading._i18n import Msg
 
@@ -263,8 +253,9 @@ def register(id, answer, checker, target, solution, options=None, context=None, 
     """Add a :class:`TryIt` to :data:`TRY_ITS` (used by the chapter modules); returns it."""
     if id in TRY_ITS:
         raise ValueError(f"try-it {id!r} is registered twice")
-    item = TryIt(id, answer, checker, target, solution, dict(options or {}), context or dict, dict(data or {}),
-                 dict(ranges or {}), statement, explanation, lookalikes, wrong_forms)
+    item = TryIt(answer=answer, checker=checker_for(checker), target=target, options=dict(options or {}),
+                 data=dict(data or {}), ranges=dict(ranges or {}), id=id, solution=solution, context=context or dict,
+                 statement=statement, explanation=explanation, lookalikes=lookalikes, wrong_forms=wrong_forms)
     TRY_ITS[id] = item
     return item
 

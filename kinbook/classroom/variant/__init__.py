@@ -1,7 +1,7 @@
 """Per-student parameters and the grader's references.
 
 :func:`student_parameters` draws a student's values from the ranges of the source's ``parameters(...)``
-cell with a seed derived from (exercise, student), so that the same student always gets the same values;
+cell (:func:`kinbook.grading.item.draw`) with a seed derived from (exercise, student), so that the same student always gets the same values;
 a draw is kept only when the instructor's own code runs with it (the mechanism assembles, the analysis
 converges); otherwise the next draw is tried.
 
@@ -17,20 +17,16 @@ student, :func:`variant`).
 from __future__ import annotations
 
 import contextlib
-import decimal
-import hashlib
 import io
 import re
 import warnings
 
-import numpy as np
-
 from ...errors import GradingError, KinbookError
+from ...grading.item import draw, seed_from
 from ..notebook import find_parameters, grader_code, load_source, student_notebook
 from ..parts import parameters, part, recording
 
-__all__ = ["student_parameters", "variant", "references", "seed_from", "draw", "check_student_id", "STUDENT_ID",
-           "MAX_DRAWS"]
+__all__ = ["student_parameters", "variant", "references", "check_student_id", "STUDENT_ID", "MAX_DRAWS"]
 
 MAX_DRAWS = 25
 
@@ -48,35 +44,8 @@ def check_student_id(student):
     return student
 
 
-def seed_from(text):
-    """A reproducible 64-bit seed from a text (a student id, an exercise): the first 8 bytes of its sha256."""
-    return int.from_bytes(hashlib.sha256(str(text).encode("utf-8")).digest()[:8], "little")
-
-
 def _seed(exercise, student, attempt):
     return seed_from(f"{exercise}:{student}:{attempt}")
-
-
-def draw(ranges, defaults, seed):
-    """One draw of parameter values from ``ranges`` (as in ``parameters(...)``) with a seeded generator: the
-    rule per-student parameters use, shared with the notebooks' ``kb.another``."""
-    return _draw(ranges, defaults, np.random.default_rng(seed))
-
-
-def _draw(ranges, defaults, rng):
-    out = dict(defaults)
-    for name, spec in sorted(ranges.items()):
-        if isinstance(spec, tuple) and len(spec) == 2:
-            lo, hi = spec
-            # the decimals of low (1e-05 has 5, 0.125 three), at least 2, at most 15
-            exponent = decimal.Decimal(repr(float(lo))).as_tuple().exponent
-            digits = min(15, max(2, -exponent if isinstance(exponent, int) else 0))
-            out[name] = round(float(rng.uniform(lo, hi)), digits)
-        elif isinstance(spec, list) and spec:
-            out[name] = spec[int(rng.integers(len(spec)))]
-        else:
-            raise GradingError(f"parameters(): {name}= must be (low, high) or a list of values, got {spec!r}")
-    return out
 
 
 def student_parameters(source, student):
@@ -88,7 +57,7 @@ def student_parameters(source, student):
     _, _, ranges, defaults = found
     last = None
     for attempt in range(MAX_DRAWS):
-        values = _draw(ranges, defaults, np.random.default_rng(_seed(source.exercise, student, attempt)))
+        values = draw(ranges, defaults, _seed(source.exercise, student, attempt))
         try:
             references(source, values)
             return values
