@@ -86,7 +86,7 @@ def _too_large(p, decoded):
         if p.checker.against == "target":
             target = target_for(p.target)
             own = len(target.rows)
-            reference = own * (len(target.cols) if p.check == "jacobian" else 1)
+            reference = own * (len(target.cols) if p.checker.quantity.per_coordinate else 1)
         else:
             reference, own = _entries(np.asarray(p.expected, dtype=object)), None
     except (NotATarget, KinbookError, ValueError, TypeError):  # a reference the checker will reject itself

@@ -20,8 +20,9 @@ import numbers
 
 import numpy as np
 
-from . import diagnose, evaluate, match, report, sample, witness
+from . import aftermatch, diagnose, evaluate, match, report, sample, witness
 from ._i18n import Msg
+from .quantities import quantity_of
 from .read import Refused, as_numbers, read
 from .target import NotATarget, target_for
 
@@ -186,6 +187,9 @@ def check_gamma(answer, mechanism, *, phi=None, order=None, rtol=None, at=None, 
 
 
 def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
+    """The pipeline of a derived quantity: read → sample → evaluate → match → the quantity's after-match steps →
+    diagnose → (without the student's Φ) the quantity's last steps → witness → report."""
+    Q = quantity_of(quantity)
     target, bad = _target(mechanism, quantity)
     if bad is not None:
         return bad
@@ -210,28 +214,17 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
         data = evaluate.derived_data(target, A, quantity, s, target.reference("assembled"), rtol)
     except Refused as exc:
         return _refused(quantity, exc)
-    if quantity == "Phi_q" and not data.transposed and data.S.shape[1] == data.S.shape[2] > 1:
+    if Q.per_coordinate and not data.transposed and data.S.shape[1] == data.S.shape[2] > 1:
         St = np.swapaxes(data.S, 1, 2)
         if match.same(St, data.R, rtol) and not match.same(data.S, data.R, rtol):
             data.S, data.transposed = St, True  # a square matrix given transposed
     own = _own(target, phi, quantity, data, rtol, notes) if phi is not None else None
     if own is not None:
-        m = match.match_rows(data.S, data.R, rtol, order, quantity == "Phi_q", own["factors"],
+        m = match.match_rows(data.S, data.R, rtol, order, Q.per_coordinate, own["factors"],
                              _own_rows(own, quantity, data))
     else:
-        m = match.match_rows(data.S, data.R, rtol, order, quantity == "Phi_q")
-    if quantity == "Phi_q":
-        diagnose.eg_rows(target, data, m, rtol)  # 2Eā without 2apᵀ: named before equivalents are sought
-        F = target.reference("assembled")["free_q"][:, :, data.cols]
-        blocks = [target.block(c) for c in target.constraints]
-
-        def book(block):
-            from .mistakes import book_form
-
-            c = target.constraints[blocks.index(block)]
-            return book_form(target, c, "assembled", jacobian=data.cols)
-
-        match.jacobian_equivalents(m, data.S, data.R, blocks, rtol, F, book)
+        m = match.match_rows(data.S, data.R, rtol, order, Q.per_coordinate)
+    aftermatch.run(Q.after_match, target, quantity, data, m, rtol)
     if data.transposed:
         notes.insert(0, Msg("transposed", expected=f"({target.m}, {len(data.cols)})",
                             got=f"({data.S.shape[2]}, {data.S.shape[1]})"))
@@ -241,49 +234,18 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
         if all(r.status == "ok" for r in m.rows) and not m.missing and not data.transposed:
             return report.derived_result(target, quantity, m, data, rtol, notes=notes)
         R = np.asarray(data.R, float)
-        if quantity == "Phi_q" or R.size == 0 or np.ptp(R, axis=0).max() > rtol * max(np.abs(R).max(), 1.0):
+        if not Q.right_hand_side or R.size == 0 or np.ptp(R, axis=0).max() > rtol * max(np.abs(R).max(), 1.0):
             return _refused(quantity, Refused("malformed", "needs_configuration"))
         # ν or γ constant (a constant-speed driver): the numbers are an answer, diagnosed as one
-        # (a wrong ν = [0 … 0, −100] was called "malformed … give at=" while the right numbers passed; issue 25)
     diagnose.derived(target, quantity, A, data, m, rtol, own)
-    if quantity == "Phi_q" and own is None:
-        _factored_rows(target, m)
-    if own is None and quantity in ("nu", "gamma"):
-        _exchanged_rows(target, m, quantity)
+    if own is None:
+        aftermatch.run(Q.without_own, target, quantity, data, m, rtol)
     witness.derived(target, quantity, A, data, m, rtol, w)
     result = report.derived_result(target, quantity, m, data, rtol, notes=notes,
                                    extra_codes=["transposed"] if data.transposed else [])
     if symbolic and A.kind == "symbolic":
         result = _confirm(result, target, A, m, quantity)
     return result
-
-
-def _factored_rows(target, m):
-    """A Φ_q row that is c × the reference row with c ≠ ±1 is the Jacobian of c·Φ_k: Φ_k is given (the book's
-    form), so its derivative keeps every factor — a forgotten 2 of ∂(dᵀd)/∂q is a mistake, not a
-    reformulation (issue 25; −1, the sign of Φ_k, stays free). With ``phi=`` the student's own factor rules."""
-    from .report import fmt
-
-    for r in m.rows:
-        c = r.factor
-        if r.status == "ok" and r.how == "multiple" and c is not None and abs(abs(c) - 1.0) > 1e-6:
-            r.status, r.code, r.score = "wrong", "scaled", 0.0
-            r.detail = Msg("d.jacobian_of", c=fmt(c), ref=target.label(r.ref))
-
-
-def _exchanged_rows(target, m, quantity):
-    """Rows of ν and γ are tied to the rows of Φ they come from: the right rows in each other's places (sin and
-    cos exchanged between the x and y rows of γ) are a mistake of those rows — named as exchanged, no credit —
-    not the half-credit "rows out of the book's order" of a Φ (issue 25). Φ_q keeps that half credit: its rows
-    show which coordinate each entry belongs to."""
-    from . import mistakes as M
-
-    for r in m.rows:
-        if r.status == "moved" and r.k is not None and r.k < target.m:
-            other = r.ref
-            r.status, r.code, r.score, r.ref = "wrong", "swapped_entries", 0.0, r.k
-            r.detail = Msg("d.row_of", other=target.label(other), row=target.label(r.k))
-            r.context = M.contexts_of(target.owner(r.k), quantity)
 
 
 def _own(target, phi, quantity, data, rtol, notes):
@@ -312,10 +274,10 @@ def _own(target, phi, quantity, data, rtol, notes):
 
 
 def _own_rows(own, quantity, data):
-    v = own["values"]
-    if quantity == "Phi_q":
-        return v["Phi_q"][:, :, data.cols] if data.cols else v["Phi_q"]
-    return v[quantity][:, :, None]
+    v = own["values"][quantity]
+    if quantity_of(quantity).per_coordinate:
+        return v[:, :, data.cols] if data.cols else v
+    return v[:, :, None]
 
 
 # ================================================================================================ numbers
@@ -332,10 +294,10 @@ def _numbers(quantity, A, target, at, rtol, order):
     rtol = match.RTOL_NUMBERS if rtol is None else rtol
     ref = target.evaluate(s)
     V = A.values(target, s)
-    if quantity == "Phi_q":
+    if quantity_of(quantity).per_coordinate:
         V, transposed = evaluate.orient(V, target, quantity)
         cols = list(range(target.n)) if V.shape[2] == target.n else list(target.cols)
-        data = evaluate.DerivedData(V, ref["Phi_q"][:, :, cols], cols, transposed)
+        data = evaluate.DerivedData(V, ref[quantity][:, :, cols], cols, transposed)
     else:
         S = evaluate.column(V, target, quantity)
         data = evaluate.DerivedData(S[:, :, None], ref[quantity][:, :, None], [])
@@ -346,21 +308,21 @@ def _numbers(quantity, A, target, at, rtol, order):
 
 
 def _numbers_diagnosis(quantity, data, m, rtol):
-    sign = {"Phi": "sign_flip", "Phi_q": "sign_flip", "nu": "nu_sign", "gamma": "gamma_sign"}[quantity]
+    Q = quantity_of(quantity)
     for r in m.rows:
         if r.status != "wrong" or r.ref is None:
             continue
         S, E = data.S[:, r.k], data.R[:, r.ref]
         if scale_of_nonzero(E) and match.same(S, -E, rtol):
-            r.code = sign
-        elif quantity == "nu" and scale_of_nonzero(E) and match.same(S, E * 180 / np.pi, rtol):
+            r.code = Q.sign_code
+        elif Q.degrees and scale_of_nonzero(E) and match.same(S, E * 180 / np.pi, rtol):
             r.code = "degrees"
-        elif quantity == "nu" and np.all(S == 0):
-            r.code = "nu_missing"
+        elif Q.zero_code and np.all(S == 0):
+            r.code = Q.zero_code
         else:
             r.code = "wrong_value"
-        if quantity == "Phi_q":
-            r.entries, r.score = diagnose._entries(S, E, rtol, None, [])
+        if Q.per_coordinate:
+            r.entries, r.score = diagnose.entries(S, E, rtol, None, [])
 
 
 def scale_of_nonzero(E):
@@ -378,17 +340,18 @@ def _confirm(result, target, A, m, quantity="Phi"):
 
     from .result import CheckResult
 
+    Q = quantity_of(quantity)
     pairs, skipped = [], 0
     for r in m.rows:
         if r.status != "ok" or r.how != "multiple" or r.ref is None:
             continue
         ref = target.symbolic_row(r.ref)
-        if quantity == "Phi":
+        if not Q.derived:
             pairs.append((A.entry(target, r.k), r.factor * ref))
         else:
             mech = target.mech
             cols = [mech.q[c] for c in target.cols] if A.shape[1] == len(target.cols) else list(mech.q)
-            if quantity == "Phi_q":
+            if Q.per_coordinate:
                 for i, x in enumerate(cols):
                     pairs.append((A.entry(target, r.k, i), (r.factor or 1.0) * sp.diff(ref, x)))
             else:

@@ -16,8 +16,10 @@ from . import mistakes as M
 from . import slips
 from ._i18n import Msg
 from .compare import same, scale_match, scale_of
+from .equivalence import in_span
+from .quantities import applies, quantity_of
 
-__all__ = ["phi", "derived", "MAX_TERMS"]
+__all__ = ["phi", "derived", "eg_rows", "entries", "term_variants", "where", "MAX_TERMS"]
 
 MAX_TERMS = 16
 """Rows with more terms than this are not searched term by term (a size budget, not a time limit)."""
@@ -76,7 +78,7 @@ def _book_name(name):
     return name.replace("phi", "φ")
 
 
-def _where(target, Q, names):
+def where(target, Q, names):
     """"φ2 = 1.5708 (90°), x1 = 0.3" for the coordinates ``names`` at the configuration Q (n,)."""
     idx = {n: i for i, n in enumerate(target.names)}
     out = []
@@ -115,12 +117,12 @@ def _vanishing_detail(target, answer, r):
         names = [str(x) for x in mech.q if x in factor.free_symbols]
         factor = factor.xreplace({f: sp.Float(f, 6) for f in factor.atoms(sp.Float)})  # 0.509, not 0.509000229762094
         text = sp.sstr(factor).replace("**", "^")
-        return Msg("d.vanishing", factor=_book_name(text), where=_where(target, Q, names), ref=target.label(j),
+        return Msg("d.vanishing", factor=_book_name(text), where=where(target, Q, names), ref=target.label(j),
                    value=f"{value:.3g}")
     owner = target.owner(j)
     ncoord = len(mech.COORDS)
     names = [target.names[ncoord * (b.number - 1) + k] for b in owner.bodies for k in range(ncoord)]
-    return Msg("d.vanishing_at", where=_where(target, Q, names), ref=target.label(j), value=f"{value:.3g}")
+    return Msg("d.vanishing_at", where=where(target, Q, names), ref=target.label(j), value=f"{value:.3g}")
 
 
 def _variant_values(target, v, which, quantity="Phi"):
@@ -128,7 +130,7 @@ def _variant_values(target, v, which, quantity="Phi"):
     if key not in v.cache:
         s = target.samples(which)
         tape = target.tape(v.exprs)
-        if quantity == "Phi":
+        if not quantity_of(quantity).derived:
             v.cache[key] = tape(s.Q, s.QD, s.T)["value"]
         else:
             d = tape.derived(s.Q, s.QD, s.T)
@@ -339,8 +341,8 @@ class _Expected:
     def pick(self, d, row):
         """Row ``row`` of a derived dict, in the answer's columns: (N, w)."""
         q = self.quantity
-        if q == "Phi_q":
-            return d["Phi_q"][:, row, :][:, self.data.cols]
+        if quantity_of(q).per_coordinate:
+            return d[q][:, row, :][:, self.data.cols]
         return d[q][:, row][:, None]
 
 
@@ -358,6 +360,7 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
     quantities at the samples) — derivation mistakes are then made on it as well.
     """
     s = target.samples("assembled")
+    Q = quantity_of(quantity)
     ex = _Expected(target, quantity, data, s)
     wrong = [r for r in matching.rows if r.status == "wrong"]
     if not wrong:
@@ -386,24 +389,24 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
             by_owner.setdefault(target.owner(r.ref), []).append(r)
     for c, rows in by_owner.items():
         _structural_derived(target, ex, c, rows, rtol)
-        if quantity == "Phi_q":
+        if Q.per_coordinate:
             _variant_spans(target, ex, c, [r for r in rows if r.code is None], rtol)
     for r in wrong:
         expected, cand = cands[r.k]
         S = data.S[:, r.k]
-        if quantity != "Phi_q":
+        if not Q.per_coordinate:
             if r.code is None:
                 hit = _terms_derived(target, ex, r, own, S, expected, rtol)
                 r.code, r.detail, r.erratum = hit if hit is not None else ("wrong_value", None, None)
             r.score = 0.0
             continue
-        r.entries, r.score = _entries(S, expected, rtol, r.code, cand)
+        r.entries, r.score = entries(S, expected, rtol, r.code, cand)
         if r.code is None:
             named = [e for e in r.entries if e not in ("ok", "wrong_value")]
             hit = None if named else _terms_derived(target, ex, r, own, S, expected, rtol)
             if hit is not None:  # the Jacobian of Φ with a term's sign flipped or a term dropped
                 r.code, r.detail, r.erratum = hit
-                r.entries, r.score = _entries(S, expected, rtol, r.code, cand)
+                r.entries, r.score = entries(S, expected, rtol, r.code, cand)
             else:
                 r.code = named[0] if named else "wrong_value"
 
@@ -434,7 +437,7 @@ def eg_rows(target, data, matching, rtol):
             rest[:, pc] -= coef[:, None] * p
         if scale_of(rest) <= 1e2 * rtol * scale:
             r.code, r.erratum = "eg_jacobian", None  # the book prints 2(Eā + apᵀ): a student slip, not a misprint
-            r.entries, r.score = _entries(data.S[:, r.k], f * data.R[:, r.ref], rtol, "eg_jacobian", [])
+            r.entries, r.score = entries(data.S[:, r.k], f * data.R[:, r.ref], rtol, "eg_jacobian", [])
 
 
 def _finite(V):
@@ -443,8 +446,8 @@ def _finite(V):
 
 def _expected_row(ex, r, own):
     if r.how in ("own",) or (own is not None and r.ref is None):
-        return own["values"][ex.quantity][:, r.k][:, None] if ex.quantity != "Phi_q" else \
-            own["values"]["Phi_q"][:, r.k, :][:, ex.data.cols]
+        return own["values"][ex.quantity][:, r.k][:, None] if not quantity_of(ex.quantity).per_coordinate else \
+            own["values"][ex.quantity][:, r.k, :][:, ex.data.cols]
     f = 1.0 if r.factor is None or (isinstance(r.factor, float) and np.isnan(r.factor)) else r.factor
     return f * ex.data.R[:, r.ref]
 
@@ -452,10 +455,10 @@ def _expected_row(ex, r, own):
 def _candidates(target, ex, r, own, expected):
     """(code, values (N, w), detail, erratum) of the derivation mistakes for row r, most specific first."""
     q = ex.quantity
+    Q = quantity_of(q)
     out = []
-    sign_code = {"nu": "nu_sign", "gamma": "gamma_sign", "Phi_q": "sign_flip"}[q]
-    late = [(sign_code, -expected, None, None)]
-    if q != "Phi_q":  # a plausible factor: a link length of the row's constraint (multiplied through), a
+    late = [(Q.sign_code, -expected, None, None)]
+    if Q.right_hand_side:  # a plausible factor: a link length of the row's constraint (multiplied through), a
         # forgotten 2 (a Φ row halved, −ṗᵀṗ for −2ṗᵀṗ) — without phi= the factor is 1; any other is "wrong value"
         owner = target.owner(r.ref) if r.ref is not None and not isinstance(r.ref, tuple) else None
         lengths = M.length_factors(owner) if owner is not None else []
@@ -473,26 +476,30 @@ def _candidates(target, ex, r, own, expected):
             sources.append((("phi", c.name), ex.ref_tape(c), target.block(c).index(r.ref), f))
         except Exception:  # pragma: no cover - a reference that cannot be taped
             pass
-    if r.ref is not None and not isinstance(r.ref, tuple) and q in ("Phi_q", "gamma"):
+    if r.ref is not None and not isinstance(r.ref, tuple) and Q.q_derivative:
         c = target.owner(r.ref)
         pos = target.block(c).index(r.ref)
         ref = target.reference("assembled")
         for book in M.spec_of(c).derived_book:
+            if not applies(book, q):
+                continue
             try:
                 made = book(target, c, ex.s, ref, q)
             except Exception:  # pragma: no cover - a misprint that cannot be made here
                 made = []
             for row, values, erratum in made:
                 if row == pos:
-                    V = values[:, ex.data.cols] if q == "Phi_q" else values[:, None]
+                    V = values[:, ex.data.cols] if Q.per_coordinate else values[:, None]
                     out.append(("book_misprint", f * V, None, erratum))
         for slip in M.spec_of(c).derived_slips:
+            if not applies(slip, q):
+                continue
             for row, values, code, detail in slip(target, c, ex.s, ref, q):
                 if row == pos:
-                    V = values[:, ex.data.cols] if q == "Phi_q" else values[:, None]
+                    V = values[:, ex.data.cols] if Q.per_coordinate else values[:, None]
                     out.append((code, f * V, Msg("d.dC_missing") if detail == "dC" else None, None))
     owner = target.owner(r.ref) if r.ref is not None and not isinstance(r.ref, tuple) else None
-    if owner is not None and owner.kind == "normalization" and q != "Phi_q":
+    if owner is not None and owner.kind == "normalization" and Q.right_hand_side:
         # pᵀp − 1: γ = −2ṗᵀṗ, nothing of A in it — its zero γ is the term forgotten, not a chain rule
         out.append(("missing_term", np.zeros_like(expected), Msg("d.missing_term", term="−2ṗᵀṗ"), None))
         sources = []
@@ -502,9 +509,9 @@ def _candidates(target, ex, r, own, expected):
         for rule, code, frozen in rules:
             d = ex.rule_values(key, tape, rule, frozen)
             out.append((code, factor * ex.pick(d, row), None, None))
-        if q == "nu":
-            out.append(("nu_missing", np.zeros_like(expected), None, None))
-        if q == "gamma":
+        if Q.zero_code:
+            out.append((Q.zero_code, np.zeros_like(expected), None, None))
+        if Q.velocities:
             quad = factor * exact["quad"][:, row][:, None]
             qt = factor * exact["qt"][:, row][:, None]
             tt = factor * exact["tt"][:, row][:, None]
@@ -585,8 +592,6 @@ def _variant_spans(target, ex, c, rows, rtol):
     normalization rows of a joint graded alone) — e.g. Aᵀ for A in the book's cross-product rows."""
     if not rows:
         return
-    from .equivalence import _in_span
-
     F = target.reference("assembled")["free_q"][:, :, ex.data.cols]
     blocks = []
     tape = ex.ref_tape(c)
@@ -611,7 +616,7 @@ def _variant_spans(target, ex, c, rows, rtol):
             s = ex.data.S[:, r.k]
             if scale_of(s) == 0:
                 continue
-            _, ok = _in_span(s, basis, rtol)
+            _, ok = in_span(s, basis, rtol)
             if ok:
                 r.code, r.detail, r.erratum = v.code, v.detail, v.erratum
 
@@ -632,13 +637,14 @@ def _terms_derived(target, ex, r, own, S, expected, rtol):
     D = lambda e: sum(sp.diff(e, x) * qd[q.index(x)] for x in syms) + sp.diff(e, t)  # noqa: E731
     f = 1.0 if r.factor is None or np.isnan(r.factor) else r.factor
     s = ex.s
-    if ex.quantity == "Phi_q":  # the terms of Φ's row: their Jacobians
+    Q = quantity_of(ex.quantity)
+    if Q.per_coordinate:  # the terms of Φ's row: their Jacobians
         cands = term_variants(f * Phi)
         if not cands:
             return None
-        vals = target.tape([e for _, e, _ in cands]).derived(s.Q, s.QD, s.T)["Phi_q"][:, :, ex.data.cols]
+        vals = target.tape([e for _, e, _ in cands]).derived(s.Q, s.QD, s.T)[Q.name][:, :, ex.data.cols]
     else:
-        expr = -sp.diff(Phi, t) if ex.quantity == "nu" else -D(D(Phi))
+        expr = Q.expression(Phi, D, t)
         cands = term_variants(f * expr)
         if not cands:
             return None
@@ -650,7 +656,7 @@ def _terms_derived(target, ex, r, own, S, expected, rtol):
     return None
 
 
-def _entries(S, E, rtol, row_code, cands):
+def entries(S, E, rtol, row_code, cands):
     """Per entry of a Φ_q row: "ok", or the code of the candidate that reproduces it; and the row's credit
     (the fraction of its nonzero entries that are right)."""
     w = S.shape[1]

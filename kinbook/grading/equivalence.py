@@ -15,10 +15,10 @@ import numpy as np
 
 from .compare import scale_match, scale_of, zero_tol
 
-__all__ = ["vanishing", "jacobian_equivalents"]
+__all__ = ["vanishing", "jacobian_equivalents", "equivalents", "still_missing", "in_span"]
 
 
-def _equivalents(data, rest, blocks, owner_of, taken, rtol):
+def equivalents(data, rest, blocks, owner_of, taken, rtol):
     """Rows that are no multiple of a reference row: right when, where one constraint alone holds (its own
     assembled samples), they vanish and their gradient lies in the span of that constraint's rows' gradients
     (and of the bodies' normalization rows). A row that is right only where the *whole* mechanism is assembled
@@ -68,7 +68,7 @@ def _whole(data, k, magnitude, gscale, rtol):
     if np.all(gnorm <= zero_tol(rtol) * max(gscale, float(np.max(gnorm)))):
         return True
     basis = np.concatenate([data.gR_M, data.F_M], axis=1) if data.F_M is not None and data.F_M.size else data.gR_M
-    return _in_span(g, basis, rtol)[1]
+    return in_span(g, basis, rtol)[1]
 
 
 def _judge(B, k, magnitude, gscale, S_G, R_G, rtol):
@@ -86,7 +86,7 @@ def _judge(B, k, magnitude, gscale, S_G, R_G, rtol):
         return "function", (_function_of(S_G[:, k], R_G[:, B.refs], rtol, B.refs)
                             or [("ref", j) for j in B.refs])
     basis = np.concatenate([B.gR, B.F], axis=1) if B.F is not None and B.F.size else B.gR
-    alpha, inspan = _in_span(g, basis, rtol)
+    alpha, inspan = in_span(g, basis, rtol)
     if not inspan:
         return None
     contrib = np.abs(alpha[:, : len(B.refs)]) * np.linalg.norm(B.gR, axis=2)
@@ -108,7 +108,7 @@ def _masked(data, r, blocks, owner_of, cands, magnitude, gscale, rtol):
     if np.all(gnorm <= zero_tol(rtol) * max(gscale, float(np.max(gnorm)))):
         return
     basis = np.concatenate([data.gR_M, data.F_M], axis=1) if data.F_M is not None and data.F_M.size else data.gR_M
-    alpha, inspan = _in_span(g, basis, rtol)
+    alpha, inspan = in_span(g, basis, rtol)
     if not inspan:
         return
     m = data.gR_M.shape[1]
@@ -133,7 +133,7 @@ def _masked(data, r, blocks, owner_of, cands, magnitude, gscale, rtol):
     r.masked = r.masked or [None]
 
 
-def _still_missing(B, refs, lack, multiples, eq, rtol):
+def still_missing(B, refs, lack, multiples, eq, rtol):
     """Reference rows of one constraint that the accepted rows do not span where it holds; as many as the rank
     lacks (one cross-product row for two h-rows lacks one)."""
     pos = {j: i for i, j in enumerate(refs)}
@@ -145,7 +145,7 @@ def _still_missing(B, refs, lack, multiples, eq, rtol):
     if B.F is not None and B.F.size:
         parts.append(B.F)
     basis = np.concatenate(parts, axis=1)
-    still = [j for j in lack if not _in_span(B.gR[:, pos[j], :], basis, rtol)[1]]
+    still = [j for j in lack if not in_span(B.gR[:, pos[j], :], basis, rtol)[1]]
     nf = 0 if B.F is None else B.F.shape[1]
     tol = 1e-8 * max(np.abs(basis[0]).max(), 1e-300)
     acc = np.linalg.matrix_rank(basis[0].T, tol=tol) - (np.linalg.matrix_rank(B.F[0].T) if nf else 0)
@@ -233,7 +233,7 @@ def jacobian_equivalents(matching, S, R, blocks, rtol, F=None, book=None):
             if len(block) < 2 and r.ref not in block:
                 pass
             basis = R[:, block, :] if F is None or not F.size else np.concatenate([R[:, block, :], F], axis=1)
-            alpha, ok = _in_span(s, basis, rtol)
+            alpha, ok = in_span(s, basis, rtol)
             alpha = alpha[:, : len(block)]
             if not ok:
                 continue
@@ -258,7 +258,7 @@ def jacobian_equivalents(matching, S, R, blocks, rtol, F=None, book=None):
     for j in sorted(set(matching.missing) | {j for b in touched for j in b} - multiples):
         if j in multiples or j in held:
             continue
-        _, ok = _in_span(R[:, j, :], basis, rtol)
+        _, ok = in_span(R[:, j, :], basis, rtol)
         if not ok:
             still.append(j)
     for r in matching.rows:  # wrong rows paired with a reference row that turned out covered
@@ -285,7 +285,7 @@ def _singular_combinations(matching, S, R, touched, rtol, F, book):
             if not eq:
                 continue
         basis = R[:, block, :] if F is None or not F.size else np.concatenate([R[:, block, :], F], axis=1)
-        M = np.stack([_in_span(S[:, r.k, :], basis, rtol)[0][:, : len(block)] for r in mine], axis=1)
+        M = np.stack([in_span(S[:, r.k, :], basis, rtol)[0][:, : len(block)] for r in mine], axis=1)
         det = np.linalg.det(M)
         size = np.prod(np.linalg.norm(M, axis=2), axis=1)
         rel = det / np.maximum(size, 1e-300)
@@ -305,7 +305,7 @@ def _regular_samples(gn):
     return gn >= 1e-3 * max(float(np.max(gn, initial=0.0)), 1e-300)
 
 
-def _in_span(g, basis, rtol):
+def in_span(g, basis, rtol):
     """Per sample, the least-squares coefficients of g (N, n) on the rows of basis (N, b, n), and whether
     the residual is at rounding level at every sample."""
     if basis.shape[1] == 0:

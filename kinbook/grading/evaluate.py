@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .quantities import quantity_of
 from .read import Refused
 
 __all__ = ["PhiData", "DerivedData", "phi_data", "derived_data", "orient"]
@@ -209,11 +210,11 @@ def best_columns(target, S, R_full, rtol):
 def derived_data(target, answer, quantity, samples, reference, rtol):
     """Evaluate an answer Φ_q, ν or γ at ``samples`` beside the reference values there."""
     V = answer.values(target, samples)
-    if quantity == "Phi_q":
+    if quantity_of(quantity).per_coordinate:
         V, transposed = orient(V, target, quantity)
         _finite(V, target, quantity)
-        cols = best_columns(target, V, reference["Phi_q"], rtol)
-        return DerivedData(V, reference["Phi_q"][:, :, cols], cols, transposed)
+        cols = best_columns(target, V, reference[quantity], rtol)
+        return DerivedData(V, reference[quantity][:, :, cols], cols, transposed)
     S = column(V, target, quantity)
     _finite(S[:, :, None], target, quantity)
     return DerivedData(S[:, :, None], reference[quantity][:, :, None], [])

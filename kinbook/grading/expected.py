@@ -479,9 +479,10 @@ def constraint_values(constraint, quantity, q, qd=None, t=0.0, rows=None):
     """
     from ..errors import InputError
     from . import mistakes as M
+    from .quantities import QUANTITIES
     from .target import target_for
 
-    if quantity not in ("Phi", "Phi_q", "nu", "gamma"):
+    if not isinstance(quantity, str) or quantity not in QUANTITIES:
         raise InputError(f"`quantity` must be 'Phi', 'Phi_q', 'nu' or 'gamma', got {quantity!r}")
     target = target_for(constraint)
     mech = target.mech
@@ -490,23 +491,22 @@ def constraint_values(constraint, quantity, q, qd=None, t=0.0, rows=None):
     Q, QD, T = q[None, :], qd[None, :], np.array([float(t)])
     block = list(range(len(target.block(constraint)))) if rows is None else rows  # an int: one number
     sl = slice(constraint.rows.start, constraint.rows.stop)
-    own = {"Phi": lambda: mech.Phi(q, t)[sl], "Phi_q": lambda: mech.Phi_q(q, t)[sl],
-           "nu": lambda: mech.nu(q, t)[sl], "gamma": lambda: mech.gamma(q, qd, t)[sl]}[quantity]()
-    value = _v(own)[block]
+    Qty = QUANTITIES[quantity]
+    value = _v(Qty.value(mech, q, qd, t)[sl])[block]
 
     def pick(d):
         return _v(d[quantity][0])[block]
 
     out = Expected(value, kind="value", context=M.contexts_of(constraint, quantity))
-    if quantity in ("nu", "gamma"):  # the whole right-hand side negated first: a variant that negates a
-        out.add(f"{quantity}_sign", -value)  # one-row constraint (a vector's sign) is the same number
+    if Qty.right_hand_side:  # the whole right-hand side negated first: a variant that negates a
+        out.add(Qty.sign_code, -value)  # one-row constraint (a vector's sign) is the same number
     for v in M.structural(target, constraint):
         try:
             d = target.tape(v.exprs).derived(Q, QD, T)
         except Exception:  # noqa: BLE001 — a variant the tape cannot evaluate is not offered
             continue
         out.add(v.code, pick(d), v.detail, v.erratum)
-    if quantity in ("Phi_q", "gamma"):
+    if Qty.q_derivative:
         tape = target.tape(list(target.symbolic_phi()))
         if target.kind == "planar":
             rules = [("chain_dropped", "missing_chain_rule", ()), ("A_for_B", "A_for_B", ())]
@@ -516,12 +516,12 @@ def constraint_values(constraint, quantity, q, qd=None, t=0.0, rows=None):
         for rule, code, frozen in rules:
             d = tape.derived(Q, QD, T, rule=rule, frozen=frozen)
             out.add(code, pick(d))
-        if quantity == "gamma":
+        if Qty.velocities:
             d = tape.derived(Q, QD, T, parts=True)
             printed = None if target.kind == "spatial" else "13.8-gamma-sign"
             out.add("gamma_sign", _v(-d["quad"][0] + d["qt"][0] + d["tt"][0])[block], None, printed)
             out.add("missing_qt_term", _v(d["quad"][0] + d["tt"][0])[block])
             out.add("missing_tt_term", _v(d["quad"][0] + d["qt"][0])[block])
-    if quantity == "nu":
-        out.add("nu_missing", np.zeros_like(value))
+    if Qty.zero_code:
+        out.add(Qty.zero_code, np.zeros_like(value))
     return out

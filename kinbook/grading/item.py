@@ -27,6 +27,7 @@ from typing import Any, Callable
 import numpy as np
 
 from ..errors import GradingError
+from .quantities import GAMMA, NU, PHI, PHI_Q, Quantity
 
 __all__ = ["Checker", "CHECKERS", "checker_for", "Item", "seed_from", "draw", "draw_with"]
 
@@ -45,11 +46,14 @@ class Checker:
     against : {"target", "expected"}
         What the reference is: a mechanism or constraint (``target=``), or a value computed with kinbook
         (``expected=``).
+    quantity : Quantity or None
+        The quantity it grades (:mod:`kinbook.grading.quantities`), for a checker against a target.
     """
 
     name: str
     module: str
     against: str
+    quantity: Quantity | None = None
 
     @property
     def function(self):
@@ -70,10 +74,10 @@ class Checker:
 
 
 CHECKERS = {c.name: c for c in (
-    Checker("phi", "checks", "target"),
-    Checker("jacobian", "checks", "target"),
-    Checker("nu", "checks", "target"),
-    Checker("gamma", "checks", "target"),
+    Checker("phi", "checks", "target", PHI),
+    Checker("jacobian", "checks", "target", PHI_Q),
+    Checker("nu", "checks", "target", NU),
+    Checker("gamma", "checks", "target", GAMMA),
     Checker("value", "values", "expected"),
     Checker("rotation", "rotation_values", "expected"),
     Checker("euler_parameters", "rotation_values", "expected"),

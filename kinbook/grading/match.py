@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .compare import RTOL, RTOL_NUMBERS, atol_of, nice, same, scale_match, scale_matrix, scale_of, zero_tol
-from .equivalence import _equivalents, _still_missing, jacobian_equivalents, vanishing
+from .equivalence import equivalents, jacobian_equivalents, still_missing, vanishing
 
 __all__ = ["RTOL", "RTOL_NUMBERS", "Row", "Matching", "scale_of", "scale_matrix", "match_phi", "match_rows",
            "nice", "same", "scale_match", "atol_of", "zero_tol", "vanishing", "jacobian_equivalents"]
@@ -117,7 +117,7 @@ def match_phi(data, rtol, order="any", wrap=None):
     # 2. the other rows: an equivalent formulation of one constraint, judged where that constraint alone holds
     rest = [r for r in rows if r.status == "wrong"]
     if rest:
-        _equivalents(data, rest, blocks, owner_of, taken, rtol)
+        equivalents(data, rest, blocks, owner_of, taken, rtol)
     _combinations(rows, S_G, rtol)
     _redundant(rows, blocks)
     missing = _coverage(data, rows, blocks, rtol)
@@ -196,7 +196,7 @@ def _coverage(data, rows, blocks, rtol):
         lack = [j for j in refs if j not in covered]
         eq = [r.k for r in accepted if r.how == "equivalent" and r.owner == b]
         if lack and eq:
-            lack = _still_missing(data.block(b), refs, lack, [r.ref for r in accepted if r.how == "multiple" and
+            lack = still_missing(data.block(b), refs, lack, [r.ref for r in accepted if r.how == "multiple" and
                                                               r.owner == b], eq, rtol)
         missing += lack
     return missing

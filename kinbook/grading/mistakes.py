@@ -31,6 +31,7 @@ import numpy as np
 from . import slips
 from ._i18n import Msg
 from .misprints import EX4_PHI8, book_n1_acceleration
+from .quantities import for_quantities, quantity_of
 from .slips import book_A_rows, n2_without_dC
 
 __all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "alternative_variants", "contexts_of", "register",
@@ -75,11 +76,12 @@ class Spec:
         ``f(c, Q) -> rows``: the book's own formulation when kinbook writes the constraint another way (the
         cross-product rows s̃_i s_j of a parallel constraint); its mistakes are recognised too.
     derived_book : tuple of callables
-        ``f(target, c, samples, reference) -> [(quantity, row in c's block, values, erratum)]``: the book's
-        misprinted Jacobian entries and γ rows, made from kinbook's own reference values at the samples.
+        ``f(target, c, samples, reference, quantity) -> [(row in c's block, values, erratum)]``: the book's
+        misprinted Jacobian entries and γ rows, made from kinbook's own reference values at the samples; each
+        declares the quantities it is made for (:func:`kinbook.grading.quantities.for_quantities`).
     derived_slips : tuple of callables
         ``f(target, c, samples, reference, quantity) -> [(row in c's block, values, code, detail)]``: a student's
-        slips in deriving Φ_q, ν or γ made the same way (n2's dᵀC_i left out).
+        slips in deriving Φ_q, ν or γ made the same way (n2's dᵀC_i left out), declared the same way.
     """
 
     points: tuple = ()
@@ -142,10 +144,9 @@ def contexts_of(c, quantity=None):
                                               else "planar")
     if chapter == "spatial":  # the speed and acceleration hints write planar formulas (eqs. 10, 13)
         ctx.append(chapter)
-    if quantity == "nu":
-        ctx.append("speed")
-    elif quantity == "gamma":
-        ctx.append("accel")
+    hint = quantity_of(quantity).hint_context if quantity is not None else None
+    if hint:
+        ctx.append(hint)
     if chapter != "spatial":
         ctx.append(chapter)
     return tuple(ctx)
@@ -547,10 +548,9 @@ def _cols(target, c):
     return [[ncoord * (b.number - 1) + k for k in range(ncoord)] for b in c.bodies]
 
 
+@for_quantities("Phi_q")
 def _book_table_13_2(target, c, s, ref, quantity):
     """Table 13.2 prints ∂Φ_1/∂φ_j of the translational joint with x_i, y_i for x_j, y_j."""
-    if quantity != "Phi_q":
-        return []
     P = _planar_points(target, c, s, (("s_Pi", 0), ("s_Qi", 0), ("s_Pj", 1)))
     ci, cj = _cols(target, c)
     sx, sy = (P["s_Pi"] - P["s_Qi"]).T
@@ -561,10 +561,9 @@ def _book_table_13_2(target, c, s, ref, quantity):
     return [(0, row, "13.6-table-13.2")]
 
 
+@for_quantities("Phi_q")
 def _book_table_13_3(target, c, s, ref, quantity):
     """Table 13.3 prints the r-r joint's ∂/∂φ_i and ∂/∂φ_j as expressions that reduce to zero."""
-    if quantity != "Phi_q":
-        return []
     ci, cj = _cols(target, c)
     row = ref["Phi_q"][:, target.block(c)[0]].copy()
     row[:, ci[2]] = 0.0
@@ -572,10 +571,9 @@ def _book_table_13_3(target, c, s, ref, quantity):
     return [(0, row, "13.6-table-13.3")]
 
 
+@for_quantities("Phi_q")
 def _book_table_13_4(target, c, s, ref, quantity):
     """Tables 13.4 and 13.5 print the r-t joint's ∂Φ/∂φ_j with x_i, y_i for x_j, y_j."""
-    if quantity != "Phi_q":
-        return []
     P = _planar_points(target, c, s, (("s_Pi", 0), ("s_Pj", 1), ("s_Qj", 1)))
     ci, cj = _cols(target, c)
     sx, sy = (P["s_Pj"] - P["s_Qj"]).T
@@ -586,19 +584,17 @@ def _book_table_13_4(target, c, s, ref, quantity):
     return [(0, row, "13.6-table-13.4")]
 
 
+@for_quantities("gamma")
 def _book_gamma_rr(target, c, s, ref, quantity):
     """Table 13.5 prints the r-r joint's γ with −2(ẏ_i − ẏ_j) for −2(ẏ_i − ẏ_j)²."""
-    if quantity != "gamma":
-        return []
     ci, cj = _cols(target, c)
     dy = s.QD[:, ci[1]] - s.QD[:, cj[1]]
     return [(0, ref["gamma"][:, target.block(c)[0]] + 2 * dy**2 - 2 * dy, "13.8-table-13.5-rr")]
 
 
+@for_quantities("gamma")
 def _book_gamma_t(target, c, s, ref, quantity):
     """Table 13.5 prints γ_1 of the translational joint with +2[…]φ̇_i for −2[…]φ̇_i."""
-    if quantity != "gamma":
-        return []
     P = _planar_points(target, c, s, (("s_Pi", 0), ("s_Qi", 0)))
     ci, cj = _cols(target, c)
     a, b = (P["s_Pi"] - P["s_Qi"]).T
@@ -606,11 +602,10 @@ def _book_gamma_t(target, c, s, ref, quantity):
     return [(0, ref["gamma"][:, target.block(c)[0]] + 4 * vel * s.QD[:, ci[2]], "13.8-table-13.5-t")]
 
 
+@for_quantities("gamma")
 def _book_gamma_n1(target, c, s, ref, quantity):
     """§14.5's γ of Φ^(n1,1): without −2(s_jᵀs'_i)ṗ_iᵀṗ_i − 2(s_iᵀs'_j)ṗ_jᵀṗ_j (its printed misprints
     corrected: 14.5-gamma-n1-table), and as printed (14.5-gamma-n1)."""
-    if quantity != "gamma":
-        return []
     ci, cj = _cols(target, c)
     row = c.n_eq - 1  # the n1 row: a normal-1 constraint's only row, a universal joint's last
     _, _, rhs, extra = book_n1_acceleration(np.asarray(c.a_i, float), s.Q[:, ci[3:]], s.QD[:, ci[3:]],

@@ -30,8 +30,9 @@ import numbers
 import numpy as np
 
 from ._i18n import Msg
+from .quantities import quantity_of
 
-__all__ = ["Answer", "Refused", "read", "as_numbers"]
+__all__ = ["Answer", "Refused", "read", "as_numbers", "numbers_of"]
 
 MAX_OUTPUT = 100_000
 """The most numbers a student's function may return per call (a guard, not a time limit)."""
@@ -75,7 +76,7 @@ def as_numbers(A):
     ``at=`` like numbers; any other answer as it is."""
     if A.kind != "symbolic" or any(e.free_symbols for e in A.matrix):
         return A
-    return Answer("numbers", array=_as_numbers(A.matrix, "answer"))
+    return Answer("numbers", array=numbers_of(A.matrix, "answer"))
 
 
 class Answer:
@@ -216,7 +217,7 @@ class Answer:
             except Exception:
                 raise Refused("malformed", "callable_failed", error=f"{type(exc).__name__}: {exc}",
                               signature=sig) from None
-        return _as_numbers(out, "callable_result", signature=sig)
+        return numbers_of(out, "callable_result", signature=sig)
 
 
 def tree_size(expr):
@@ -255,7 +256,7 @@ def read(answer, target, quantity):
     if isinstance(answer, (bool, np.bool_)):
         raise Refused("malformed", "bool_answer")
     if _plain_numbers(answer):
-        return Answer("numbers", array=_as_numbers(answer, "answer"))
+        return Answer("numbers", array=numbers_of(answer, "answer"))
     if not isinstance(answer, (str, list, tuple, np.ndarray)) and not _is_sympy(answer):
         raise Refused("malformed", "bad_type", expected=Msg(f"expect_{quantity}"), type=type(answer).__name__)
     symbols = target.symbols()
@@ -263,7 +264,7 @@ def read(answer, target, quantity):
 
 
 def _signature(quantity):
-    return "f(q, qd, t)" if quantity == "gamma" else "f(q, t)"
+    return "f(q, qd, t)" if quantity_of(quantity).velocities else "f(q, t)"
 
 
 def _nargs(f, quantity):
@@ -272,7 +273,7 @@ def _nargs(f, quantity):
                   if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
         return max(1, len(params))
     except (TypeError, ValueError):
-        return 3 if quantity == "gamma" else 2
+        return 3 if quantity_of(quantity).velocities else 2
 
 
 def _is_sympy(x):
@@ -311,7 +312,7 @@ def _plain_numbers(a):
     return False
 
 
-def _as_numbers(value, what, **fields):
+def numbers_of(value, what, **fields):
     """Real finite-or-not numbers as a 2-D float array; refuses bools, complex values, ragged or huge data."""
     where = what if isinstance(what, Msg) else Msg(what)
     if _is_sympy(value):
@@ -400,7 +401,7 @@ def _matrix(answer, symbols, quantity):
 
     if isinstance(answer, sp.MatrixBase):
         M = _sympy_matrix(answer)
-        return M.T if M.rows == 1 and M.cols > 1 and quantity != "Phi_q" else M
+        return M.T if M.rows == 1 and M.cols > 1 and not quantity_of(quantity).per_coordinate else M
     if isinstance(answer, np.ndarray):
         rows = _rows(answer.tolist())
     elif isinstance(answer, (list, tuple)):
@@ -415,7 +416,7 @@ def _matrix(answer, symbols, quantity):
             out.append(_entry(e, symbols, where))
         entries.append(out)
     M = sp.Matrix(entries)
-    if M.rows == 1 and M.cols > 1 and quantity != "Phi_q":
+    if M.rows == 1 and M.cols > 1 and not quantity_of(quantity).per_coordinate:
         M = M.T  # a row vector for a column quantity
     return M
 

@@ -13,11 +13,11 @@ import numpy as np
 
 from ._i18n import Msg, both, constraint_label
 from .catalogue import MISTAKES, explain
+from .quantities import label_of, quantity_of
 from .result import CheckResult, RowResult
 
 __all__ = ["phi_result", "derived_result", "failed", "hints", "fmt"]
 
-QUANTITY = {"Phi": "Φ", "Phi_q": "Φ_q", "nu": "ν", "gamma": "γ"}
 PRINTED = {"book_misprint", "gamma_sign", "factor_2_missing"}
 """Codes whose erratum means: the answer is the book's printed (wrong) formula."""
 
@@ -32,7 +32,7 @@ def fmt(x):
 
 def failed(quantity, message, code):
     """A failed result with one message and one code (an answer that cannot be graded)."""
-    return CheckResult(False, 0.0, [message], [code] if code else [], (), QUANTITY.get(quantity, quantity))
+    return CheckResult(False, 0.0, [message], [code] if code else [], (), label_of(quantity))
 
 
 def owner_text(target, j):
@@ -209,7 +209,7 @@ def _free_what(target, lang):
 
 def _finish(quantity, rows, messages, codes, contexts, target, matching=None, entries=False, transposed=False,
             columns=(), notes_after=()):
-    what = QUANTITY[quantity]
+    what = quantity_of(quantity).label
     total = len(rows)
     score = sum(r.score for r in rows) / total if total else 0.0
     codes = _unique(codes)
@@ -242,7 +242,8 @@ def _finish(quantity, rows, messages, codes, contexts, target, matching=None, en
 def derived_result(target, quantity, matching, data, rtol, transposed=False, notes=(), extra_codes=()):
     """The CheckResult of a Φ_q, ν or γ check."""
     rows, messages, codes, contexts = [], [], list(extra_codes), {}
-    columns = tuple(_book(target.names[c]) for c in data.cols) if quantity == "Phi_q" else ()
+    per_coordinate = quantity_of(quantity).per_coordinate
+    columns = tuple(_book(target.names[c]) for c in data.cols) if per_coordinate else ()
     e_ok = e_n = 0
     for r in matching.rows:
         label = target.label(r.ref) if r.ref is not None and not isinstance(r.ref, tuple) else Msg("your_row", k=r.k + 1)
@@ -255,12 +256,12 @@ def derived_result(target, quantity, matching, data, rtol, transposed=False, not
                 msg = Msg("consistent_correct")
             elif r.how == "equivalent":
                 msg = Msg("row_equivalent_jacobian", refs=", ".join(target.label(j) for j in r.covers), N=data.S.shape[0])
-            elif quantity == "Phi_q" and r.factor not in (None, 1.0):
+            elif per_coordinate and r.factor not in (None, 1.0):
                 msg = Msg("row_ok_jacobian_scaled", c=fmt(r.factor), ref=target.label(r.ref))
             else:
                 msg = ""
-            entries = ("ok",) * width if quantity == "Phi_q" else ()
-            if quantity == "Phi_q":
+            entries = ("ok",) * width if per_coordinate else ()
+            if per_coordinate:
                 nz = _nonzero(data.R[:, r.ref] if r.ref is not None else data.S[:, r.k])
                 e_ok += nz
                 e_n += nz
@@ -277,7 +278,7 @@ def derived_result(target, quantity, matching, data, rtol, transposed=False, not
             msg = mistake_message(r) if r.code else Msg("row_wrong", ref=target.label(r.ref) if r.ref is not None
                                                         else "?", owner=owner_text(target, r.ref)
                                                         if r.ref is not None else "")
-            if quantity == "Phi_q" and r.entries:
+            if per_coordinate and r.entries:
                 bad = [f"∂/∂{columns[i]}" for i, e in enumerate(r.entries) if e != "ok"]
                 msg = Msg("row_with_entries", text=msg, entries=", ".join(bad))
                 expected = data.R[:, r.ref] if r.ref is not None else None
@@ -311,7 +312,7 @@ def derived_result(target, quantity, matching, data, rtol, transposed=False, not
         codes.insert(0, "transposed")
         rows = [RowResult(r._label, "wrong", Msg("transposed_right"), "transposed", r.entries, 0.5) for r in rows]
         messages = [Msg("transposed_right")]
-    with_entries = quantity == "Phi_q" and any(r.entries and r.status == "wrong" for r in rows) and not transposed
+    with_entries = per_coordinate and any(r.entries and r.status == "wrong" for r in rows) and not transposed
     return _finish(quantity, rows, messages, codes, contexts, target, matching,
                    entries=(e_ok, e_n) if with_entries else False, transposed=transposed, columns=columns,
                    notes_after=notes)

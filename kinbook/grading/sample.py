@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["Samples", "generic", "assembled", "at", "zeros", "N_GENERIC", "N_ASSEMBLED", "N_SEARCH", "SEED"]
+__all__ = ["Samples", "generic", "assembled", "at", "zeros", "spread", "perturbed", "project", "regular", "velocities", "N_GENERIC", "N_ASSEMBLED", "N_SEARCH", "SEED"]
 
 N_GENERIC = 16
 N_ASSEMBLED = 16
@@ -75,14 +75,14 @@ def assembled(target):
     """Configurations on the target's constraint manifold with consistent velocities (see the module)."""
     rng = np.random.default_rng(SEED + 1)
     q0 = target.mech.q0
-    base, _, ok = _project(target, q0[None], np.zeros(1))
+    base, _, ok = project(target, q0[None], np.zeros(1))
     base = base if ok.all() else q0[None]
     found_Q, found_T = [], []
     for size in ((None,) if getattr(target, "partial", False) else ()) + (0.25, 0.6):
         idx = rng.integers(0, len(base), 2 * N_ASSEMBLED)
-        starts = _spread(target, rng, 2 * N_ASSEMBLED) if size is None else _perturbed(target, rng, base[idx], size)
-        Q, T, ok = _project(target, starts, rng.uniform(0.0, 0.3, len(starts)))
-        Q, T = _regular(target, Q[ok], T[ok])
+        starts = spread(target, rng, 2 * N_ASSEMBLED) if size is None else perturbed(target, rng, base[idx], size)
+        Q, T, ok = project(target, starts, rng.uniform(0.0, 0.3, len(starts)))
+        Q, T = regular(target, Q[ok], T[ok])
         found_Q.append(Q)
         found_T.append(T)
         if sum(len(x) for x in found_Q) >= N_ASSEMBLED:
@@ -94,7 +94,7 @@ def assembled(target):
         return generic(target)
     pick = np.linspace(0, len(Q) - 1, min(N_ASSEMBLED, len(Q))).round().astype(int)
     Q, T = Q[pick], T[pick]
-    QD = _velocities(target, Q, T, rng)
+    QD = velocities(target, Q, T, rng)
     return Samples(Q, QD, T, on_manifold=True)
 
 
@@ -113,9 +113,9 @@ def zeros(target, F, count=N_SEARCH):
     Q (K, n), T (K,) : the starts that converged.
     """
     rng = np.random.default_rng(SEED + 2)
-    starts = [_spread(target, rng, count // 2)]
+    starts = [spread(target, rng, count // 2)]
     base = target.samples("assembled").Q
-    starts.append(_perturbed(target, rng, base[rng.integers(0, len(base), count - count // 2)], 0.8))
+    starts.append(perturbed(target, rng, base[rng.integers(0, len(base), count - count // 2)], 0.8))
     Q = np.vstack(starts)
     T = rng.uniform(0.0, 1.0, len(Q))
     norm = np.array([r for c in target.mech.constraints if c.kind == "normalization"
@@ -158,12 +158,12 @@ def at(target, configuration):
     if "qd" in conf:
         qd = np.asarray(conf["qd"], float)
     else:
-        qd = _velocities(target, q[None], np.array([t]), np.random.default_rng(SEED))[0]
+        qd = velocities(target, q[None], np.array([t]), np.random.default_rng(SEED))[0]
     return Samples(q[None], qd[None], np.array([t]), on_manifold=False)
 
 
 # ---------------------------------------------------------------------------------------------- helpers
-def _spread(target, rng, count):
+def spread(target, rng, count):
     """Starts anywhere in the configuration space (a joint graded alone: its bodies may be anywhere)."""
     n = target.n
     Q = rng.uniform(-3.0, 3.0, (count, n))
@@ -174,7 +174,7 @@ def _spread(target, rng, count):
     return Q
 
 
-def _perturbed(target, rng, base, size):
+def perturbed(target, rng, base, size):
     count, n = base.shape
     Q = base + rng.normal(0.0, size, (count, n))
     if target.kind == "spatial":
@@ -183,7 +183,7 @@ def _perturbed(target, rng, base, size):
     return Q
 
 
-def _project(target, Q, T, steps=_NEWTON_STEPS):
+def project(target, Q, T, steps=_NEWTON_STEPS):
     """Minimum-norm Newton steps onto the manifold rows, in (q, t) when they depend on time."""
     Q, T = Q.copy(), T.copy()
     with_t = target.time_dependent
@@ -234,7 +234,7 @@ def _min_norm_step(J, F):
     return step
 
 
-def _regular(target, Q, T):
+def regular(target, Q, T):
     """Keep the configurations where Φ_q of the manifold rows has the largest rank found, well conditioned."""
     if len(Q) == 0:
         return Q, T
@@ -250,7 +250,7 @@ def _regular(target, Q, T):
     return Q[good], T[good]
 
 
-def _velocities(target, Q, T, rng):
+def velocities(target, Q, T, rng):
     """q̇ with Φ_q q̇ = ν on the manifold rows: the minimum-norm solution plus a random allowed motion."""
     ev = target.mech.evaluate(Q, T)
     rows = target.manifold_rows

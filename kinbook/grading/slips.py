@@ -17,6 +17,7 @@ import numpy as np
 
 from ._i18n import Msg
 from .misprints import book_A_of_p
+from .quantities import for_quantities
 
 __all__ = ["book_A_rows", "cross_term_flipped", "n2_without_dC", "length_factors"]
 
@@ -47,11 +48,10 @@ def cross_term_flipped(tape, row, s, expected, factor=1.0, bodies=()):
     return expected - 2 * cross[:, None]
 
 
+@for_quantities("Phi_q")
 def n2_without_dC(target, c, s, ref, quantity):
     """Φ_q of Φ^(n2,1) = s_iᵀd with the derivative of s_i = A_i a'_i left out of its p_i columns: the row minus
     dᵀ ∂(A_i a'_i)/∂p_i (Table 14.1's dᵀC_i)."""
-    if quantity != "Phi_q":
-        return []
     from ..spatial.rotations import dAa_dp
 
     mech = target.mech

@@ -23,6 +23,8 @@ from . import mistakes as M
 from . import sample
 from ._i18n import Msg
 from .compare import scale_match
+from .diagnose import where
+from .quantities import quantity_of
 
 __all__ = ["phi", "derived", "samples", "N_WITNESS"]
 
@@ -39,7 +41,7 @@ def _seed(answer, target):
 
 def _generic(target, seed):
     rng = np.random.default_rng(seed)
-    Q = sample._spread(target, rng, N_WITNESS)
+    Q = sample.spread(target, rng, N_WITNESS)
     return sample.Samples(Q, rng.normal(0.0, 2.0, Q.shape), rng.uniform(0.0, 1.0, N_WITNESS))
 
 
@@ -50,19 +52,17 @@ def _assembled(target, seed):
         return None
     rng = np.random.default_rng(seed)
     idx = rng.integers(0, base.N, 2 * N_WITNESS)
-    starts = sample._perturbed(target, rng, base.Q[idx], 0.05)
+    starts = sample.perturbed(target, rng, base.Q[idx], 0.05)
     T = rng.uniform(0.0, 2.0, len(idx))  # the projection moves t too where the rows depend on it (a driver)
-    Q, T, ok = sample._project(target, starts, T, steps=10)
-    Q, T = sample._regular(target, Q[ok], T[ok])
+    Q, T, ok = sample.project(target, starts, T, steps=10)
+    Q, T = sample.regular(target, Q[ok], T[ok])
     if len(Q) < 2:
         return None
     Q, T = Q[:N_WITNESS], T[:N_WITNESS]
-    return sample.Samples(Q, sample._velocities(target, Q, T, rng), T, on_manifold=True)
+    return sample.Samples(Q, sample.velocities(target, Q, T, rng), T, on_manifold=True)
 
 
 def _where(target, s, i, names):
-    from .diagnose import _where as where
-
     text = where(target, s.Q[i], names)
     if target.time_dependent or names == []:
         text = f"{text}, t = {s.T[i]:.6g}" if text else f"t = {s.T[i]:.6g}"
@@ -78,8 +78,7 @@ def _names_of(target, k):
 def _reject(target, r, s, i, quantity):
     r.status, r.code, r.score, r.how = "wrong", "only_at_samples", 0.0, "multiple"
     r.detail = Msg("d.only_at_samples", ref=target.label(r.ref), where=_where(target, s, i, _names_of(target, r.ref)))
-    r.context = M.contexts_of(target.owner(r.ref), quantity) if quantity != "Phi" else \
-        M.contexts_of(target.owner(r.ref))
+    r.context = M.contexts_of(target.owner(r.ref), quantity)
 
 
 def phi(target, answer, matching, rtol):
@@ -121,10 +120,11 @@ def derived(target, quantity, answer, data, matching, rtol, s):
         return
     V = answer.values(target, s)
     ref = target.evaluate(s)
-    if quantity == "Phi_q":
+    per_coordinate = quantity_of(quantity).per_coordinate
+    if per_coordinate:
         if data.transposed:
             V = np.swapaxes(V, 1, 2)
-        S, R = V, ref["Phi_q"][:, :, data.cols]
+        S, R = V, ref[quantity][:, :, data.cols]
     else:
         S = V[:, :, 0] if V.shape[2] == 1 else V[:, 0, :]
         R = ref[quantity]
@@ -137,6 +137,6 @@ def derived(target, quantity, answer, data, matching, rtol, s):
         if np.max(np.abs(a - b)) > rtol * max(float(np.abs(a).max()), float(np.abs(b).max())) + rtol * scale:
             i = int(np.argmax(np.abs(a - b).reshape(len(a), -1).max(axis=1)))
             _reject(target, r, s, i, quantity)
-            if quantity == "Phi_q":
+            if per_coordinate:
                 r.entries = tuple("ok" if np.allclose(a[:, j], b[:, j], rtol=rtol, atol=rtol * scale) else
                                   "only_at_samples" for j in range(a.shape[1]))

@@ -102,13 +102,14 @@ class TryIt(Item):
         its generic name replaced. The answer is read by the checkers' own reader, evaluated on their samples."""
         quantity = result._quantity
         from ...grading.match import scale_match
+        from ...grading.quantities import PHI, quantity_of
         from ...grading.read import Refused, read
         from ...grading.report import hints
         from ...grading.result import CheckResult
         from ...grading.target import target_for
 
         t = target_for(target)
-        q_name = {"Φ": "Phi", "Φ_q": "Phi_q", "ν": "nu", "γ": "gamma"}.get(str(quantity), "Phi")
+        q_name = quantity_of(quantity, PHI).name
         try:
             A = read(answer, t, q_name)
         except Refused:
