@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import InputError, KinbookError
 from ..i18n import N_, Np_
 from ._i18n import Msg, add_texts
+from .numbers import failed, read_numbers, real_option
 from .report import fmt, hints
 from .result import CheckResult, RowResult
 
@@ -85,29 +86,27 @@ def check_iterates(answer, problem, *, tol=1e-8, rtol=1e-6, reveal=False, name=N
         One row per step; mistakes ``newton_step``, ``degrees``, ``not_converged``, ``assembly_mode``,
         ``wrong_data`` (the guess is not the given one), ``wrong_shape``.
     """
-    from .values import _read, _real
-
     if not isinstance(problem, Problem):
         raise InputError(f"`problem` must be a kinbook.grading.newton.Problem, got {type(problem).__name__}")
-    tol, rtol = _real(tol, "tol", positive=True), _real(rtol, "rtol", low=0.0, high=0.1)
+    tol, rtol = real_option(tol, "tol", positive=True), real_option(rtol, "rtol", low=0.0, high=0.1)
     name = Msg("n.name") if name is None else name
     mech, t, guess = problem.mechanism, float(problem.t), np.asarray(problem.guess, float)
     n = guess.size
     if isinstance(answer, (list, tuple)) and len(answer) > MAX_ITERATES:
-        return _fail(name, Msg("n.too_many", limit=MAX_ITERATES, got=len(answer)), "malformed")
-    a, refused = _read(answer, name)
+        return failed(name, Msg("n.too_many", limit=MAX_ITERATES, got=len(answer)), "malformed")
+    a, refused = read_numbers(answer, name)
     if refused is not None:
-        return _fail(name, Msg(refused.key, **refused.fields), refused.code)
+        return failed(name, Msg(refused.key, **refused.fields), refused.code)
     if a.ndim < 2 or a.shape[0] < 2:
-        return _fail(name, Msg("n.need_list", n=n), "wrong_shape")
+        return failed(name, Msg("n.need_list", n=n), "wrong_shape")
     if a.shape[1] != n:
-        return _fail(name, Msg("n.width", n=n, got=a.shape[1]), "wrong_shape")
+        return failed(name, Msg("n.width", n=n, got=a.shape[1]), "wrong_shape")
     if not np.all(np.isfinite(a)):
-        return _fail(name, Msg("not_finite", where=name), "not_finite")
+        return failed(name, Msg("not_finite", where=name), "not_finite")
     notes, codes = [], []
     angles = [k for k, c in enumerate(mech.coordinate_names()) if c.startswith("phi")]
     if not np.allclose(a[0], guess, rtol=1e-9, atol=1e-9):
-        return _fail(name, Msg("n.start"), "wrong_data")
+        return failed(name, Msg("n.start"), "wrong_data")
     rows, first_bad = _steps(mech, a, t, guess, rtol, angles)
     if first_bad is not None:
         j, code, why = first_bad
@@ -197,6 +196,4 @@ def _why(mech, a, j, t, guess, dq, rtol, angles):
     return "newton_step", Msg("n.step_bad", j=j)
 
 
-def _fail(name, msg, code):
-    return CheckResult(False, 0.0, [msg], [code], (), name)
 

@@ -10,8 +10,18 @@ from ..errors import InputError
 from ._i18n import Msg
 from .expected import Expected
 from .misprints import book_A_of_p
+from .numbers import (
+    close,
+    compare,
+    expected_of,
+    failed,
+    name_option,
+    read_numbers,
+    real_option,
+    reveal_option,
+    tolerances,
+)
 from .report import fmt
-from .values import _check, _close, _expected, _failed, _name, _read, _real, _reveal_flag, _tolerances
 
 __all__ = ["check_rotation", "check_euler_parameters"]
 
@@ -56,23 +66,23 @@ def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name=
     """
     from .expected import A_from_euler
 
-    name = _name(name, "A")
-    reveal = _reveal_flag(reveal)
-    base = _expected(expected)
+    name = name_option(name, "A")
+    reveal = reveal_option(reveal)
+    base = expected_of(expected)
     if np.asarray(base.value).shape != (3, 3):
         raise InputError(f"`expected` must be a 3×3 matrix, got shape {np.shape(base.value)}")
     if angles is not None:
         triple = _triple(angles, "angles")
         if not isinstance(expected, Expected):
             exp = A_from_euler(*triple)
-            if not _close(np.asarray(exp.value), np.asarray(base.value, float), 1e-6, 1e-9):
+            if not close(np.asarray(exp.value), np.asarray(base.value, float), 1e-6, 1e-9):
                 raise InputError("`angles` do not give `expected`: A_from_euler(*angles) differs from it")
             exp.value = np.asarray(base.value, float)
         else:
             exp = base
     else:
         exp = base
-    rtol, atol = _tolerances(rtol, atol, exp.value)
+    rtol, atol = tolerances(rtol, atol, exp.value)
     exp.kind = "rotation"
     if not any(v[0] == "book_misprint" for v in exp.variants):
         exp.variants = list(exp.variants) + _from_matrix(exp.value)
@@ -88,10 +98,10 @@ def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name=
             return "not_orthogonal", Msg("orthogonal_fail", err=fmt(orth)), None, None
         return None
 
-    a, refused = _read(answer, name)
+    a, refused = read_numbers(answer, name)
     if refused is None and a.shape != (3, 3):
-        return _failed(name, Msg("wrong_shape", expected="(3, 3)", got=a.shape), "wrong_shape")
-    return _check(answer, exp, rtol, atol, name, True, None, properties, reveal=reveal)
+        return failed(name, Msg("wrong_shape", expected="(3, 3)", got=a.shape), "wrong_shape")
+    return compare(answer, exp, rtol, atol, name, True, None, properties, reveal=reveal)
 
 
 def _from_matrix(A_):
@@ -139,22 +149,22 @@ def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None,
     """
     from .expected import p_from_axis_angle
 
-    name = _name(name, "p")
-    reveal = _reveal_flag(reveal)
-    base = _expected(expected)
+    name = name_option(name, "p")
+    reveal = reveal_option(reveal)
+    base = expected_of(expected)
     if np.asarray(base.value).size != 4:
         raise InputError(f"`expected` must be 4 Euler parameters, got shape {np.shape(base.value)}")
     value = np.asarray(base.value, float).reshape(4)
     if abs(value @ value - 1.0) > 1e-6:
         raise InputError(f"`expected` must be unit Euler parameters (pᵀp = 1), got pᵀp = {value @ value:.6g}")
-    rtol, atol = _tolerances(rtol, atol, value)
+    rtol, atol = tolerances(rtol, atol, value)
     if (axis is None) != (angle is None):
         raise InputError("`axis` and `angle` go together: give both (the rotation the exercise gave) or neither")
     if axis is not None:
         axis = _triple(axis, "axis")
         if np.linalg.norm(axis) == 0:
             raise InputError("`axis` must not be the zero vector")
-        angle = _real(angle, "angle")
+        angle = real_option(angle, "angle")
     if isinstance(expected, Expected):
         exp = base
     else:
@@ -165,7 +175,7 @@ def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None,
             angle = chi
         exp = p_from_axis_angle(axis, angle)
         given = np.asarray(exp.value, float)
-        if not (_close(given, value, 1e-6, 1e-9) or _close(-given, value, 1e-6, 1e-9)):
+        if not (close(given, value, 1e-6, 1e-9) or close(-given, value, 1e-6, 1e-9)):
             raise InputError("`axis` and `angle` do not give `expected`: p_from_axis_angle(axis, angle) differs "
                              "from it (and from −expected)")
         exp.value = value
@@ -179,10 +189,10 @@ def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None,
             return "not_normalized", Msg("norm_fail", norm=fmt(norm)), None, None
         return None
 
-    a, refused = _read(answer, name)
+    a, refused = read_numbers(answer, name)
     if refused is None and a.size != 4:
-        return _failed(name, Msg("wrong_shape", expected="(4,)", got=a.shape), "wrong_shape")
+        return failed(name, Msg("wrong_shape", expected="(4,)", got=a.shape), "wrong_shape")
     if refused is None:
         answer = a.reshape(4)
     exp.value = value
-    return _check(answer, exp, rtol, atol, name, True, None, normalization, reveal=reveal)
+    return compare(answer, exp, rtol, atol, name, True, None, normalization, reveal=reveal)

@@ -24,7 +24,7 @@ from kinbook.planar import (  # noqa: E402
     Revolute,
     plotting,  # noqa: E402
 )
-from kinbook.planar.plotting._common import _point_text  # noqa: E402
+from kinbook.planar.plotting._common import point_text  # noqa: E402
 
 from .zoo import zoo  # noqa: E402
 
@@ -108,7 +108,7 @@ def test_body_with_three_points_is_its_convex_hull():
     polys = [p for p in ax.patches if isinstance(p, Polygon) and p.get_fill() and len(p.get_xy()) == 4]
     matches = [p for p in polys if all(np.isclose(p.get_xy()[:3], v, atol=1e-12).all(axis=1).any() for v in hull)]
     assert len(matches) == 1
-    assert _point_text("OA") == "$O_{A}$"
+    assert point_text("OA") == "$O_{A}$"
 
 
 def test_slider_box_is_centred_on_the_slider_point():

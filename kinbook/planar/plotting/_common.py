@@ -10,28 +10,30 @@ import numpy as np
 
 from ...errors import InputError
 
-_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22")
-_GROUND = "#555555"
-_TRACES = ("#6a3d9a", "#b15928", "#000000", "#e7298a")
-_RHO = 0.025
+__all__ = ["COLOURS", "GROUND", "TRACES", "RHO", "SUBSCRIPTS", "pyplot", "new_axes", "math_text", "point_text", "rotate", "unit_vector", "body_q", "convex_hull", "pt", "all_points", "coordinate_label", "point_label", "set_axes_limits", "fit_figure", "style_axes"]
+
+COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22")
+GROUND = "#555555"
+TRACES = ("#6a3d9a", "#b15928", "#000000", "#e7298a")
+RHO = 0.025
 """Radius of the joint circles, as a fraction of the drawing's size."""
 _GREEK = {"ξ": r"\xi", "η": r"\eta", "φ": r"\varphi", "Φ": r"\Phi"}
-_SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
-def _plt():
+def pyplot():
     import matplotlib.pyplot as plt
 
     return plt
 
 
-def _new_axes(ax, figsize=(6.4, 4.8)):
+def new_axes(ax, figsize=(6.4, 4.8)):
     if ax is not None:
         return ax
-    _, ax = _plt().subplots(figsize=figsize)
+    _, ax = pyplot().subplots(figsize=figsize)
     return ax
 
 
-def _math(text):
+def math_text(text):
     """'ξ_2' → '$\\xi_{2}$'; plain words and text already in $…$ pass through."""
     text = str(text)
     if text.startswith("$") or not (set(text) & set(_GREEK) or "_" in text or "^" in text):
@@ -44,30 +46,30 @@ def _math(text):
     return f"${out.replace(' _', '_').replace(' ^', '^').strip()}$"
 
 
-def _point_text(name):
+def point_text(name):
     """Point names as the book writes them: 'OA' → O_A (reference points O_i), others unchanged."""
     m = re.fullmatch(r"O([A-Za-z0-9]+)", str(name))
     return rf"$O_{{{m.group(1)}}}$" if m else str(name)
 
 
-def _rotate(phi, v):
+def rotate(phi, v):
     c, s = math.cos(phi), math.sin(phi)
     v = np.asarray(v, dtype=float)
     return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)
 
 
-def _unit(v):
+def unit_vector(v):
     v = np.asarray(v, dtype=float)
     n = float(np.hypot(*v))
     return v / n if n > 0 else np.array([1.0, 0.0])
 
 
-def _body_q(mech, q, body):
+def body_q(mech, q, body):
     k = 3 * (mech.body(body).number - 1)
     return q[k : k + 3]
 
 
-def _convex_hull(points):
+def convex_hull(points):
     """Indices of the convex hull of 2-D points, counter-clockwise (Andrew's monotone chain)."""
     order = sorted(range(len(points)), key=lambda k: (points[k][0], points[k][1]))
 
@@ -86,24 +88,24 @@ def _convex_hull(points):
     return lower[:-1] + upper[:-1]
 
 
-def _pt(mech, q, body, s):
-    x, y, phi = _body_q(mech, q, body.name)
-    return np.array([x, y]) + _rotate(phi, np.array([float(v) for v in s]))
+def pt(mech, q, body, s):
+    x, y, phi = body_q(mech, q, body.name)
+    return np.array([x, y]) + rotate(phi, np.array([float(v) for v in s]))
 
 
-def _all_points(mech, q):
+def all_points(mech, q):
     """Global positions of every body point and reference point at q, shape (k, 2)."""
     out = []
     for b in mech.bodies:
-        x, y, phi = _body_q(mech, q, b.name)
+        x, y, phi = body_q(mech, q, b.name)
         out.append([[x, y]])
         if b.points:
             s = np.array([[float(v) for v in p] for p in b.points.values()])
-            out.append(np.array([x, y]) + _rotate(phi, s))
+            out.append(np.array([x, y]) + rotate(phi, s))
     return np.concatenate([np.asarray(o, dtype=float) for o in out])
 
 
-def _coordinate_label(mech, name, derivative=0):
+def coordinate_label(mech, name, derivative=0):
     """'phi3' → φ₃ in mathtext, with dots for derivatives."""
     if isinstance(name, tuple):
         body, coord = name
@@ -118,14 +120,14 @@ def _coordinate_label(mech, name, derivative=0):
     return rf"${base}_{{{number}}}$"
 
 
-def _point_label(mech, body, point, component, derivative=0):
+def point_label(mech, body, point, component, derivative=0):
     base = (component, rf"\dot{{{component}}}", rf"\ddot{{{component}}}")[derivative]
     name = point if isinstance(point, str) else "P"
-    sup = _point_text(name).strip("$")
+    sup = point_text(name).strip("$")
     return rf"${base}_{{{mech.body(body).number}}}^{{{sup}}}$"
 
 
-def _set_limits(ax, box, margin=0.1):
+def set_axes_limits(ax, box, margin=0.1):
     """Limits covering ``box`` with a margin, widened to the axes' shape so that equal aspect cuts nothing."""
     x0, x1, y0, y1 = (float(v) for v in box)
     m = margin * max(x1 - x0, y1 - y0, 1e-9)
@@ -145,7 +147,7 @@ def _set_limits(ax, box, margin=0.1):
     ax.set_aspect("equal", adjustable="box")
 
 
-def _fit_figure(ax, box, width=6.4):
+def fit_figure(ax, box, width=6.4):
     """Give a figure made for one drawing a height that suits the drawing's proportions."""
     x0, x1, y0, y1 = box
     ratio = (y1 - y0 + 0.2 * max(x1 - x0, y1 - y0)) / max(x1 - x0 + 0.2 * max(x1 - x0, y1 - y0), 1e-9)
@@ -156,7 +158,7 @@ def _fit_figure(ax, box, width=6.4):
     fig.subplots_adjust(left=0.75 / width, right=1 - 0.2 / width, bottom=0.6 / height, top=1 - 0.75 / height)
 
 
-def _style_axes(ax, title=None):
+def style_axes(ax, title=None):
     ax.set_xlabel("x")
     ax.set_ylabel("y")
     ax.grid(True, lw=0.4, alpha=0.4)

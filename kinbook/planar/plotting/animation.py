@@ -10,9 +10,9 @@ import sympy as sp
 
 from ...core._animation import Animation, degrees_as_read
 from ...errors import InputError
-from ._common import _TRACES, _plt, _style_axes
+from ._common import TRACES, pyplot, style_axes
 from .joints import drawing_size, driver_symbol
-from .scene import _Scene
+from .scene import Scene
 
 __all__ = ["animate", "animation_png", "MAX_FRAMES"]
 
@@ -62,13 +62,13 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
         raise InputError("the sweep has no solved instant to animate")
     every = max(1, int(every), math.ceil(N / max(1, int(max_frames))))
     idx = np.arange(0, N, every)
-    fig, ax = _plt().subplots(figsize=figsize, dpi=dpi)
+    fig, ax = pyplot().subplots(figsize=figsize, dpi=dpi)
     qs = result.q[idx]
-    scene = _Scene(ax, mech, qs[0], frames=frames, labels=labels, size=drawing_size(mech, qs))
+    scene = Scene(ax, mech, qs[0], frames=frames, labels=labels, size=drawing_size(mech, qs))
     traces = _traces(ax, result, trace, idx)
     box = scene.observe(qs)
     scene.set_limits(box)
-    _style_axes(ax, getattr(mech, "title", None))
+    style_axes(ax, getattr(mech, "title", None))
     sym, values, unit = _driver_values(result, idx)
     clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, zorder=10,
                     bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="#bbbbbb", alpha=0.9))
@@ -98,7 +98,7 @@ def _traces(ax, result, trace, idx):
     for k, (body, point) in enumerate(trace or []):
         xy = result.position(body, point)[idx]
         ax.plot(xy[:, 0], xy[:, 1], ":", color="#888888", lw=1.0, zorder=1)
-        (line,) = ax.plot([], [], "-", color=_TRACES[k % len(_TRACES)], lw=1.5, zorder=1)
+        (line,) = ax.plot([], [], "-", color=TRACES[k % len(TRACES)], lw=1.5, zorder=1)
         traces.append((line, xy))
     return traces
 
@@ -144,5 +144,5 @@ def animation_png(result, colors=256, **kwargs):
     kwargs.setdefault("dpi", 72)
     kwargs.setdefault("max_frames", 72)
     anim = animate(result, **kwargs)
-    _plt().close(anim._fig)
+    pyplot().close(anim._fig)
     return Animation(anim, colors)

@@ -16,9 +16,9 @@ import numpy as np
 from ...core._animation import degrees_as_read, swings_about_zero
 from ...core.sweep import follow, follow_times
 from ...errors import InputError
-from ._common import _plt, _style_axes
+from ._common import pyplot, style_axes
 from .joints import drawing_size, driver_symbol
-from .scene import _Scene
+from .scene import Scene
 
 __all__ = ["explorer"]
 
@@ -186,7 +186,7 @@ def _explorer_static(mech, axis, values, frames, ncols):
     k = len(values)
     ncols = max(1, min(int(ncols), k))
     nrows = math.ceil(k / ncols)
-    fig, axes = _plt().subplots(nrows, ncols, figsize=(3.6 * ncols, 3.3 * nrows), squeeze=False)
+    fig, axes = pyplot().subplots(nrows, ncols, figsize=(3.6 * ncols, 3.3 * nrows), squeeze=False)
     L = drawing_size(mech, good) if good else drawing_size(mech, [mech.q0])
     box = None
     scenes = []
@@ -198,7 +198,7 @@ def _explorer_static(mech, axis, values, frames, ncols):
             ax.set_xticks([])
             ax.set_yticks([])
             continue
-        scene = _Scene(ax, mech, at.q, frames=frames, labels=True, size=L)
+        scene = Scene(ax, mech, at.q, frames=frames, labels=True, size=L)
         b = scene.observe([at.q])
         scene.update(at.q)
         box = b if box is None else (min(box[0], b[0]), max(box[1], b[1]), min(box[2], b[2]), max(box[3], b[3]))
@@ -217,7 +217,7 @@ def _explorer_static(mech, axis, values, frames, ncols):
         ax.set_visible(False)
     fig.suptitle(getattr(mech, "title", mech.name), fontsize=10)
     fig.tight_layout()
-    _plt().close(fig)  # returned, not also shown by pyplot
+    pyplot().close(fig)  # returned, not also shown by pyplot
     return fig
 
 
@@ -239,9 +239,9 @@ def _explorer_widget(mech, axis, values, frames):
     FigureCanvasAgg(fig)
     ax = fig.add_subplot()
     qs = sweep + [q0]
-    scene = _Scene(ax, mech, q0, frames=frames, labels=True, size=drawing_size(mech, qs))
+    scene = Scene(ax, mech, q0, frames=frames, labels=True, size=drawing_size(mech, qs))
     scene.set_limits(scene.observe(qs))
-    _style_axes(ax, getattr(mech, "title", mech.name))
+    style_axes(ax, getattr(mech, "title", mech.name))
     state = {"t": t0, "q": q0}
 
     def render(q):

@@ -20,8 +20,8 @@ import math
 import numpy as np
 
 from .. import constraints as planar
-from ._artists import _Glyph, _PinGlyph
-from ._common import _GROUND, _RHO, _SUBSCRIPTS, _all_points, _body_q, _pt, _rotate, _unit
+from ._artists import Glyph, PinGlyph
+from ._common import GROUND, RHO, SUBSCRIPTS, all_points, body_q, pt, rotate, unit_vector
 
 __all__ = ["JointDrawing", "drawing_for", "drawing_class", "drawing_size", "driver_symbol", "symbol_for"]
 
@@ -47,7 +47,7 @@ def drawing_class(constraint):
     return PointsDrawing
 
 
-class JointDrawing(_Glyph):
+class JointDrawing(Glyph):
     """How one constraint is drawn: artists created in ``__init__(ax, constraint, scene)`` (the scene gives
     ``mech``, the size ``L``, the bodies' ``colours`` and the ``fixed`` bodies) and moved by ``update(q)``."""
 
@@ -98,7 +98,7 @@ class RevoluteDrawing(JointDrawing):
         return [(c.bodies[0], c.s_i), (c.bodies[1], c.s_j)]
 
     def __init__(self, ax, c, scene):
-        self.pin = _PinGlyph(ax, scene.mech, c.bodies[0], c.s_i, _RHO * scene.L)
+        self.pin = PinGlyph(ax, scene.mech, c.bodies[0], c.s_i, RHO * scene.L)
         self.artists = self.pin.artists
 
     def observe(self, q):
@@ -118,8 +118,8 @@ class _Guide:
         self.lo, self.hi = min(0.0, length), max(0.0, length)
 
     def frame(self, q):
-        P, Q = _pt(self.mech, q, self.body, self.sP), _pt(self.mech, q, self.body, self.sQ)
-        u = _unit(Q - P)
+        P, Q = pt(self.mech, q, self.body, self.sP), pt(self.mech, q, self.body, self.sQ)
+        u = unit_vector(Q - P)
         return P, u, np.array([-u[1], u[0]])
 
     def cover(self, q, point):
@@ -146,7 +146,7 @@ class TranslationalDrawing(JointDrawing):
         mech, L, colours, fixed = scene.mech, scene.L, scene.colours, scene.fixed
         self.mech, self.c = mech, c
         bi, bj = c.bodies
-        rho = _RHO * L
+        rho = RHO * L
         self.a, self.b = 2.4 * rho, 1.4 * rho
         self.guide = _Guide(mech, bi, c.s_Pi, c.s_Qi, margin=self.a + 2 * rho)
         self.hatched = bi.name in fixed
@@ -160,7 +160,7 @@ class TranslationalDrawing(JointDrawing):
         self.artists = [self.rail, self.hatch, self.box]
 
     def _geometry(self, q):
-        Pj = _pt(self.mech, q, self.c.bodies[1], self.c.s_Pj)
+        Pj = pt(self.mech, q, self.c.bodies[1], self.c.s_Pj)
         P, u, n = self.guide.frame(q)
         corners = np.array([Pj + sa * self.a * u + sb * self.b * n for sa, sb in ((-1, -1), (1, -1), (1, 1), (-1, 1))])
         return Pj, u, n, corners
@@ -194,13 +194,13 @@ class RevoluteTranslationalDrawing(JointDrawing):
         mech, L, colours, fixed = scene.mech, scene.L, scene.colours, scene.fixed
         self.mech, self.c = mech, c
         bi, bj = c.bodies
-        rho = _RHO * L
+        rho = RHO * L
         self.w = 1.25 * rho
         self.guide = _Guide(mech, bj, c.s_Pj, c.s_Qj, margin=3 * rho)
-        cj = _GROUND if bj.name in fixed else colours[bj.name]
+        cj = GROUND if bj.name in fixed else colours[bj.name]
         self.slot = Polygon(np.zeros((4, 2)), closed=True, fc="#f2f2f2", ec=cj, lw=1.5, zorder=1)
         ax.add_patch(self.slot)
-        self.pin = _PinGlyph(ax, mech, bi, c.s_Pi, rho, zorder=5)
+        self.pin = PinGlyph(ax, mech, bi, c.s_Pi, rho, zorder=5)
         self.artists = [self.slot] + self.pin.artists
 
     def observe(self, q):
@@ -227,9 +227,9 @@ class PointsDrawing(JointDrawing):
 
     def __init__(self, ax, c, scene):
         self.mech, self.c = scene.mech, c
-        rho = _RHO * scene.L
+        rho = RHO * scene.L
         (self.line,) = ax.plot([], [], "-", color="#444444", lw=2.2, zorder=3, solid_capstyle="round")
-        self.pin_glyphs = [_PinGlyph(ax, scene.mech, body, s, rho) for body, s in self.pins(c)]
+        self.pin_glyphs = [PinGlyph(ax, scene.mech, body, s, rho) for body, s in self.pins(c)]
         self.artists = [self.line] + [a for p in self.pin_glyphs for a in p.artists]
 
     def observe(self, q):
@@ -251,7 +251,7 @@ class LinkDrawing(PointsDrawing):
         return [(c.bodies[0], c.s_i), (c.bodies[1], c.s_j)]
 
 
-class _WheelGlyph(_Glyph):
+class _WheelGlyph(Glyph):
     """A dashed pitch circle of radius |ρ| about a body's reference point, with a spoke along its ξ axis."""
 
     def __init__(self, ax, mech, body, radius, colour):
@@ -265,13 +265,13 @@ class _WheelGlyph(_Glyph):
         self.artists = [self.circle, self.spoke, self.hub]
 
     def observe(self, q):
-        x, y, _ = _body_q(self.mech, q, self.body.name)
+        x, y, _ = body_q(self.mech, q, self.body.name)
         return np.array([[x - self.r, y - self.r], [x + self.r, y + self.r]])
 
     def update(self, q):
-        x, y, phi = _body_q(self.mech, q, self.body.name)
+        x, y, phi = body_q(self.mech, q, self.body.name)
         self.circle.center = (x, y)
-        tip = np.array([x, y]) + _rotate(phi, np.array([self.r, 0.0]))
+        tip = np.array([x, y]) + rotate(phi, np.array([self.r, 0.0]))
         self.spoke.set_data([x, tip[0]], [y, tip[1]])
         self.hub.set_data([x], [y])
 
@@ -318,14 +318,14 @@ class RackDrawing(JointDrawing):
         self.artists = self.wheel.artists + [self.line, self.teeth]
 
     def observe(self, q):
-        x, y, _ = _body_q(self.mech, q, self.c.bodies[0].name)
+        x, y, _ = body_q(self.mech, q, self.c.bodies[0].name)
         self.lo, self.hi = min(self.lo, x - 2.5 * self.r), max(self.hi, x + 2.5 * self.r)
         return np.concatenate([self.wheel.observe(q), [[self.lo, y - 1.4 * self.r], [self.hi, y - self.r]]])
 
     def update(self, q):
         self.wheel.update(q)
-        x, y, _ = _body_q(self.mech, q, self.c.bodies[0].name)
-        xj = _body_q(self.mech, q, self.c.bodies[1].name)[0]
+        x, y, _ = body_q(self.mech, q, self.c.bodies[0].name)
+        xj = body_q(self.mech, q, self.c.bodies[1].name)[0]
         lo, hi = (self.lo, self.hi) if np.isfinite(self.lo) else (x - 2.5 * self.r, x + 2.5 * self.r)
         yl = y - self.r
         self.line.set_data([lo, hi], [yl, yl])
@@ -349,7 +349,7 @@ def symbol_for(*classes):
 
 
 def _sub(k):
-    return str(k).translate(_SUBSCRIPTS)
+    return str(k).translate(SUBSCRIPTS)
 
 
 @symbol_for(planar.Driver)
@@ -383,7 +383,7 @@ def driver_symbol(mech, driver, unicode=False):
 def drawing_size(mech, qs):
     """A length scale of the drawing: the largest side of the bounding box of the points over ``qs``, or of
     what a joint drawing adds around its bodies (a pitch circle)."""
-    pts = np.concatenate([_all_points(mech, q) for q in qs])
+    pts = np.concatenate([all_points(mech, q) for q in qs])
     span = float(np.max(np.ptp(pts, axis=0))) if len(pts) > 1 else 0.0
     for c in mech.constraints:
         span = max(span, drawing_class(c).span(c))

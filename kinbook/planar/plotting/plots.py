@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import InputError
-from ._common import _coordinate_label, _new_axes, _point_label, _point_text, _set_limits
-from .scene import _Scene
+from ._common import coordinate_label, new_axes, point_label, point_text, set_axes_limits
+from .scene import Scene
 
 __all__ = ["plot_trajectories", "plot_history"]
 
@@ -33,14 +33,14 @@ def plot_trajectories(result, points, ax=None, *, mechanism=True):
     -------
     matplotlib.axes.Axes
     """
-    ax = _new_axes(ax)
+    ax = new_axes(ax)
     mech = result.mechanism
     if len(result.t) == 0:
         raise InputError("the sweep has no solved instant to plot")
     x0 = y0 = np.inf
     x1 = y1 = -np.inf
     if mechanism:
-        scene = _Scene(ax, mech, result.q[0], labels=False)
+        scene = Scene(ax, mech, result.q[0], labels=False)
         x0, x1, y0, y1 = scene.observe([result.q[0]])
         scene.update(result.q[0])
         for a in scene.artists:
@@ -51,10 +51,10 @@ def plot_trajectories(result, points, ax=None, *, mechanism=True):
         xy = result.position(body, point)
         lo, hi = np.minimum(lo, xy.min(axis=0)), np.maximum(hi, xy.max(axis=0))
         n = mech.body(body).number
-        name = _point_text(point if isinstance(point, str) else "P").strip("$")
+        name = point_text(point if isinstance(point, str) else "P").strip("$")
         (line,) = ax.plot(xy[:, 0], xy[:, 1], "-", lw=1.8, label=rf"${name}_{{{n}}}$ (body {n})", zorder=9)
         ax.plot(xy[:1, 0], xy[:1, 1], "o", color=line.get_color(), ms=4, zorder=9)
-    _set_limits(ax, (min(lo[0], x0), max(hi[0], x1), min(lo[1], y0), max(hi[1], y1)), margin=0.05)
+    set_axes_limits(ax, (min(lo[0], x0), max(hi[0], x1), min(lo[1], y0), max(hi[1], y1)), margin=0.05)
     ax.set_xlabel("x")
     ax.set_ylabel("y")
     ax.legend(fontsize=9, loc="best")
@@ -69,9 +69,9 @@ def _history(result, name, derivative):
         if comp not in ("x", "y"):
             raise InputError(f"a point quantity is (body, point, 'x' or 'y'), got component {comp!r}")
         data = (result.position, result.velocity, result.acceleration)[derivative](body, point)
-        return data[:, "xy".index(comp)], _point_label(mech, body, point, comp, derivative)
+        return data[:, "xy".index(comp)], point_label(mech, body, point, comp, derivative)
     name = tuple(name) if isinstance(name, list) else name
-    return result.coordinate(name, derivative), _coordinate_label(mech, name, derivative)
+    return result.coordinate(name, derivative), coordinate_label(mech, name, derivative)
 
 
 def plot_history(result, names, derivative=0, ax=None):
@@ -97,7 +97,7 @@ def plot_history(result, names, derivative=0, ax=None):
     if isinstance(names, str) or (isinstance(names, tuple) and len(names) in (2, 3)
                                   and isinstance(names[-1], str) and names[-1] in ("x", "y", "phi")):
         names = [names]
-    ax = _new_axes(ax)
+    ax = new_axes(ax)
     labels = []
     for name in names:
         y, label = _history(result, name, derivative)

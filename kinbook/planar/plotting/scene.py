@@ -7,14 +7,14 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import InputError
-from ._artists import _BodyFrame, _BodyGlyph, _FrameGlyph, _GlobalFrame, _GroundGlyph, _PointLabels, _VectorGlyph
-from ._common import _COLOURS, _GROUND, _fit_figure, _new_axes, _set_limits, _style_axes
+from ._artists import BodyFrame, BodyGlyph, FrameGlyph, GlobalFrame, GroundGlyph, PointLabels, VectorGlyph
+from ._common import COLOURS, GROUND, fit_figure, new_axes, set_axes_limits, style_axes
 from .joints import drawing_class, drawing_size
 
 __all__ = ["draw", "draw_frame", "draw_point_vectors"]
 
 
-class _Scene:
+class Scene:
     """Every glyph of a mechanism drawing; :meth:`update` moves them all to a new q."""
 
     def __init__(self, ax, mech, q, *, frames=False, labels=True, joints=True, vectors=None, size=None,
@@ -30,9 +30,9 @@ class _Scene:
         colours, k = {}, 0
         for b in mech.bodies:
             if b.name in fixed:
-                colours[b.name] = _GROUND
+                colours[b.name] = GROUND
             else:
-                colours[b.name] = _COLOURS[k % len(_COLOURS)]
+                colours[b.name] = COLOURS[k % len(COLOURS)]
                 k += 1
         self.colours = colours
         glyphs = []
@@ -48,21 +48,21 @@ class _Scene:
             supports = list(dict.fromkeys(supports))
             others = [tuple(float(v) for v in s) for s in b.points.values()]
             others = [s for s in dict.fromkeys(others) if s not in supports and s not in used]
-            glyphs.append(_GroundGlyph(ax, mech, b, L, labels, supports, others))
+            glyphs.append(GroundGlyph(ax, mech, b, L, labels, supports, others))
         for b in mech.bodies:
             if b.name not in fixed:
-                glyphs.append(_BodyGlyph(ax, mech, b, colours[b.name], L, labels))
+                glyphs.append(BodyGlyph(ax, mech, b, colours[b.name], L, labels))
         if joints:
             glyphs += [drawing(ax, c, self) for c, drawing in drawings]
         if frames:
             for b in mech.bodies:
-                glyphs.append(_BodyFrame(ax, mech, b, 0.12 * L))
+                glyphs.append(BodyFrame(ax, mech, b, 0.12 * L))
         if vectors:
-            glyphs.append(_GlobalFrame(ax, 0.15 * L))
+            glyphs.append(GlobalFrame(ax, 0.15 * L))
             for body, point in vectors:
-                glyphs.append(_VectorGlyph(ax, mech, body, point, L, projections=projections))
+                glyphs.append(VectorGlyph(ax, mech, body, point, L, projections=projections))
         if labels:
-            glyphs.append(_PointLabels(ax, mech, q, L, fixed))
+            glyphs.append(PointLabels(ax, mech, q, L, fixed))
         self.glyphs = glyphs
         self.q = q
 
@@ -77,7 +77,7 @@ class _Scene:
         return pts[:, 0].min(), pts[:, 0].max(), pts[:, 1].min(), pts[:, 1].max()
 
     def set_limits(self, box, margin=0.1):
-        _set_limits(self.ax, box, margin)
+        set_axes_limits(self.ax, box, margin)
 
     def update(self, q):
         for g in self.glyphs:
@@ -118,14 +118,14 @@ def draw(mech, q, ax=None, *, frames=False, labels=True, joints=True, vectors=No
     Textbook §13.5. Equal aspect; the limits cover the drawing with a 10 % margin.
     """
     fit = ax is None
-    ax = _new_axes(ax)
-    scene = _Scene(ax, mech, q, frames=frames, labels=labels, joints=joints, vectors=vectors,
+    ax = new_axes(ax)
+    scene = Scene(ax, mech, q, frames=frames, labels=labels, joints=joints, vectors=vectors,
                    projections=projections)
     box = scene.observe([scene.q])  # first: it sizes the guides
     scene.update(scene.q)
-    _style_axes(ax, title if title is not None else getattr(mech, "title", None))
+    style_axes(ax, title if title is not None else getattr(mech, "title", None))
     if fit:
-        _fit_figure(ax, box)
+        fit_figure(ax, box)
     scene.set_limits(box)
     return ax
 
@@ -160,7 +160,7 @@ def draw_frame(ax, r, phi, label=None, *, axes=("ξ", "η"), length=1.0, color="
     >>> [a.get_text() for a in arrows_and_names[2:]]
     ['x', 'y', 'O']
     """
-    g = _FrameGlyph(ax, length, label=label, axes=axes, color=color)
+    g = FrameGlyph(ax, length, label=label, axes=axes, color=color)
     r = np.asarray(r, dtype=float)
     g.place(r, float(phi))
     ax.update_datalim(g.extent(r, float(phi)))
@@ -196,7 +196,7 @@ def draw_point_vectors(ax, mech, q, body, point, *, projections=False, origin=(0
     """
     q = np.asarray(mech.check_q(q), dtype=float)
     L = drawing_size(mech, [q])
-    g = _VectorGlyph(ax, mech, body, point, L, origin=origin, projections=projections)
+    g = VectorGlyph(ax, mech, body, point, L, origin=origin, projections=projections)
     g.update(q)
     ax.update_datalim(g.observe(q))
     ax.autoscale_view()
