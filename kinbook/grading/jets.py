@@ -78,7 +78,6 @@ class Tape:
         self._symbols[t] = ("t", 0)
         self._aliases = {name: self._symbols[sym] for name, sym in (aliases or {}).items() if sym in self._symbols}
         self.outputs = [self._compile(e if isinstance(e, sp.Basic) else sp.Float(float(e))) for e in exprs]
-        self.uses_qd = any(op[0] == "qd" for op in self.ops)
 
     # ------------------------------------------------------------------------------------------- compiling
     def _add(self, key, op):
@@ -87,7 +86,11 @@ class Tape:
         return len(self.ops) - 1
 
     def _dep(self, slots):
-        return any(self.ops[s][2] for s in slots)
+        ops = self.ops
+        for s in slots:
+            if ops[s][2]:
+                return True
+        return False
 
     def _compile(self, expr):
         """Slot of ``expr``; its sub-expressions are compiled first (iteratively: no recursion limit)."""
@@ -103,7 +106,9 @@ class Tape:
                 continue
             if not ready:
                 stack.append((node, True))
-                stack.extend((a, False) for a in node.args if a not in self._slots)
+                for a in node.args:
+                    if a not in self._slots:
+                        stack.append((a, False))
                 continue
             self._node(node)
         return self._slots[expr]
@@ -130,7 +135,7 @@ class Tape:
         raise UnsupportedExpression(f"{type(node).__name__} is not a number, a coordinate or t")
 
     def _node(self, node):
-        args = [self._slots[a] for a in node.args]
+        args = list(map(self._slots.__getitem__, node.args))
         dep = self._dep(args)
         if node.is_Add:
             return self._add(node, ("add", args, dep))
@@ -230,10 +235,10 @@ class Tape:
             if order and dt:
                 a = np.full(N, float(dt))
         elif kind == "add":
-            v = sum(V[s] for s in payload)
-            g = _sum([G[s] for s in payload])
-            a = _sum([D1[s] for s in payload])
-            b = _sum([D2[s] for s in payload])
+            v = 0
+            for s in payload:  # a loop, not sum(generator): the tape's hot path (the same additions, in order)
+                v = v + V[s]
+            g, a, b = _sum_of(G, payload), _sum_of(D1, payload), _sum_of(D2, payload)
         elif kind == "mul":
             s0 = payload[0]
             v, g, a, b = V[s0], G[s0], D1[s0], D2[s0]
@@ -291,12 +296,21 @@ class Tape:
 
 # ================================================================================================ jet algebra
 def _sum(parts):
-    parts = [p for p in parts if p is not None]
-    if not parts:
-        return None
-    out = parts[0]
-    for p in parts[1:]:
-        out = out + p
+    """The sum of the parts that are not None, left to right (None when all are)."""
+    out = None
+    for p in parts:
+        if p is not None:
+            out = p if out is None else out + p
+    return out
+
+
+def _sum_of(values, slots):
+    """:func:`_sum` of ``values[s]`` over the slots."""
+    out = None
+    for s in slots:
+        p = values[s]
+        if p is not None:
+            out = p if out is None else out + p
     return out
 
 
