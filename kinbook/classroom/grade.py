@@ -47,14 +47,14 @@ from .notebook import (
     parse_submission,
     student_notebook,
 )
-from .options import check_options
 from .reference_use import exercise_calls, reference_use
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, ungraded_notice, worst
 from .sanitize import clean, clean_result
 from .serialize import decode_answers
 from .variant import references, student_parameters
 
-__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "grade_submission", "grade", "NO_ISOLATION_WARNING"]
+__all__ = ["STATUSES", "PartGrade", "SubmissionResult", "grade_submission", "grade", "check_options",
+           "NO_ISOLATION_WARNING"]
 
 #: Entries an answer may have beyond twice its reference's before it is refused unchecked (see _too_large).
 MAX_EXTRA_ENTRIES = 16
@@ -112,6 +112,25 @@ def check_memory(memory):
     if have is not None and memory > have:
         raise GradingError(f"--memory {memory:g} MB is more than this machine has ({have:,} MB): each notebook "
                            f"may use at most {have:,} MB (and --jobs N runs N notebooks at once)")
+
+
+def check_options(*, timeout=None, memory=None, jobs=None, **flags):
+    """The grading options as the command line checks them, for callers of the library too: ``timeout`` and
+    ``memory`` positive finite numbers, ``jobs`` a whole number from 1 to 1024, every flag True or False (a
+    truthy text such as ``"no"`` would switch it on). Raises :class:`~kinbook.errors.GradingError` naming the
+    option."""
+    for name, value in (("timeout", timeout), ("memory", memory)):
+        if value is None:
+            continue
+        ok = not isinstance(value, (bool, np.bool_)) and isinstance(value, (int, float, np.integer, np.floating))
+        if not ok or not np.isfinite(value) or value <= 0:
+            raise GradingError(f"`{name}` must be a positive finite number, got {value!r}"[:200])
+    if jobs is not None and (isinstance(jobs, (bool, np.bool_)) or not isinstance(jobs, (int, np.integer))
+                             or not 1 <= jobs <= 1024):
+        raise GradingError(f"`jobs` must be a whole number from 1 to 1024, got {jobs!r}"[:200])
+    for name, value in flags.items():
+        if not isinstance(value, (bool, np.bool_)):
+            raise GradingError(f"`{name}` must be True or False, got {value!r}"[:200])
 
 
 def _release_kind(data):

@@ -14,8 +14,27 @@ catalogue (:data:`MISTAKES`, :func:`explain`), the feedback language (:func:`set
 :func:`nbgrader_score` and :func:`assert_passed` for nbgrader and otter-grader tests (:mod:`.lms`). Exercises
 (graded parts, per-student parameters) are declared in notebooks with :mod:`kinbook.classroom`.
 
-A check runs one way through small stages, each its own module: read (the safe reader) → sample → evaluate
-→ match (the one equivalence rule) → diagnose (the mistake catalogue) → report (:mod:`kinbook.grading.checks`).
+A check runs one way through small stages, each one concept in one module. The modules, in pipeline order:
+
+* the face — ``checks`` (check_phi, check_jacobian, check_nu, check_gamma: the pipeline of Φ, Φ_q, ν, γ),
+  ``item`` (one graded item and the table of checkers), ``quantities`` (Φ, Φ_q, ν, γ declared once);
+* target — ``target`` (what is graded against: a mechanism or one constraint, its cached reference);
+* read — ``read`` (the safe reader of answers: text, sympy, a function, numbers);
+* sample — ``sample`` (seeded configurations on the manifold);
+* evaluate — ``evaluate`` (answer and reference at the samples), ``jets`` (values and derivatives of an
+  expression without deriving it);
+* match — ``match`` (the one equivalence rule), ``compare`` (the tolerances and the constant-multiple rule),
+  ``equivalence`` (equivalent formulations and vanishing factors);
+* after-match — ``aftermatch`` (the steps a quantity declares);
+* diagnose — ``diagnose`` (naming the mistake), ``mistakes`` (wrong answers generated from the reference),
+  ``slips`` (more of them), ``misprints`` (the book's misprinted formulas);
+* witness — ``witness`` (rows checked again where no one could have looked);
+* report — ``report`` (the verdict written), ``result`` (CheckResult, RowResult), ``catalogue`` (every mistake's
+  code, title and hint), ``_i18n`` (sentences written when shown);
+* numbers — ``numbers`` (read, tolerances, compare entry by entry, name the slip), under ``values``
+  (check_value), ``rotation_values`` (check_rotation, check_euler_parameters), ``newton`` (check_iterates) and
+  ``expected`` (expected numbers that know their mistakes);
+* outside tools — ``lms`` (nbgrader and otter-grader tests).
 """
 
 import importlib

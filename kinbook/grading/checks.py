@@ -3,8 +3,11 @@ pipeline, each stage its own module:
 
 read (:mod:`~kinbook.grading.read`, the safe reader) → sample (:mod:`~kinbook.grading.sample`, configurations
 on the manifold) → evaluate (:mod:`~kinbook.grading.evaluate`, answer and reference) → match
-(:mod:`~kinbook.grading.match`, the one equivalence rule) → diagnose (:mod:`~kinbook.grading.diagnose`, the
-mistake catalogue) → report (:mod:`~kinbook.grading.report`, a CheckResult translated when shown).
+(:mod:`~kinbook.grading.match`, the one equivalence rule) → after-match (the steps the quantity declares,
+:mod:`~kinbook.grading.quantities`, :mod:`~kinbook.grading.aftermatch`) → diagnose
+(:mod:`~kinbook.grading.diagnose`, the mistake catalogue) → witness (:mod:`~kinbook.grading.witness`, rows checked
+again at configurations drawn from the answer) → report (:mod:`~kinbook.grading.report`, a CheckResult translated
+when shown).
 
 No verdict depends on the clock: there is no time budget anywhere; answers are bounded in size by the
 reader, and evaluated by jets (:mod:`~kinbook.grading.jets`), numerically and deterministically.
