@@ -40,29 +40,34 @@ class Checker:
     ----------
     name : str
         The name exercises use (``part(..., check="phi")``).
-    module : str
-        The grading module that defines the function (loaded when the checker first runs: the table costs
-        nothing to import).
+    module : str or None
+        The grading module that defines ``check_<name>`` (loaded when the checker first runs: the table costs
+        nothing to import); None for a checker given as ``implementation``.
     against : {"target", "expected"}
         What the reference is: a mechanism or constraint (``target=``), or a value computed with kinbook
         (``expected=``).
     quantity : Quantity or None
         The quantity it grades (:mod:`kinbook.grading.quantities`), for a checker against a target.
+    implementation : callable or None
+        The function itself (a checker declared outside kinbook.grading, docs/extending.md).
     """
 
     name: str
-    module: str
+    module: str | None
     against: str
     quantity: Quantity | None = None
+    implementation: Callable | None = None
 
     @property
     def function(self):
-        """The checker function, ``check_<name>`` of its module."""
+        """The checker function: ``implementation``, or ``check_<name>`` of its module."""
+        if self.implementation is not None:
+            return self.implementation
         return getattr(importlib.import_module(f"{__package__}.{self.module}"), self.function_name)
 
     @property
     def function_name(self):
-        return "check_" + self.name
+        return self.implementation.__name__ if self.implementation is not None else "check_" + self.name
 
     def __call__(self, answer, reference, **options):
         return self.function(answer, reference, **options)
