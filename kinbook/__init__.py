@@ -7,23 +7,10 @@ parameters (chapter 14) in :mod:`kinbook.spatial`; mechanism files are read by
 
 import importlib
 
-from .errors import (
-    AnalysisError,
-    AssemblyError,
-    ConvergenceError,
-    DeadPointError,
-    DriverCountError,
-    DriverValueError,
-    ExpressionError,
-    InputError,
-    KinbookError,
-    MechanismFileError,
-    ModelError,
-    RedundantConstraintsError,
-    SingularJacobianError,
-    UnknownBodyError,
-    UnknownPointError,
-)
+from . import errors
+
+# The error names, exported from their one list (kinbook.errors.__all__): `from kinbook import GradingError`.
+globals().update((name, getattr(errors, name)) for name in errors.__all__)
 
 __version__ = "0.1.0"
 
@@ -33,7 +20,7 @@ __version__ = "0.1.0"
 _SUBMODULES = ("examples", "exercises", "planar", "spatial", "grading", "core", "book", "files", "classroom")
 
 
-_FROM = {"load": "files", "loads": "files", "notebook_setup": "book.display", "try_it": "book.tryits",
+_FROM = {"load": "files", "loads": "files", "set_language": "i18n", "get_language": "i18n", "notebook_setup": "book.display", "try_it": "book.tryits",
          "reveal": "book.tryits", "another": "book.tryits"}
 _RENAMED = {"notebook_setup": "setup"}
 
@@ -50,13 +37,6 @@ def __dir__():
     return sorted(set(globals()) | set(_SUBMODULES) | set(_FROM))
 
 
-def set_language(lang):
-    """Choose the language of grading feedback ("en" or "es"): see :func:`kinbook.grading.set_language`."""
-    from .grading._i18n import set_language as _set
-
-    _set(lang)
-
-
 __all__ = [
     "load",
     "loads",
@@ -66,19 +46,5 @@ __all__ = [
     "set_language",
     "notebook_setup",
     "spatial",
-    "KinbookError",
-    "ModelError",
-    "UnknownBodyError",
-    "UnknownPointError",
-    "MechanismFileError",
-    "InputError",
-    "ExpressionError",
-    "DriverValueError",
-    "DriverCountError",
-    "AnalysisError",
-    "ConvergenceError",
-    "SingularJacobianError",
-    "RedundantConstraintsError",
-    "DeadPointError",
-    "AssemblyError",
+    *errors.__all__,
 ]

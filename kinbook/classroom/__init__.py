@@ -1,4 +1,4 @@
-"""The instructor's side of kinbook: author, release, grade (issue #7).
+"""The instructor's side of kinbook: author, release, grade.
 
 * :func:`part` and :func:`parameters` — what an exercise notebook declares (:mod:`.parts`);
 * :func:`release` — students' versions of source notebooks (:mod:`.release`);

@@ -206,11 +206,6 @@ class Gradebook:
         return self.db.execute("SELECT id, source_sha256, status FROM attempts WHERE exercise = ? AND student = ? AND "
                                "sha256 = ? ORDER BY id DESC LIMIT 1", (exercise, student, sha256)).fetchone()
 
-    def note_changed(self, exercise, student, sha256):
-        """A file different from the graded one was seen for this student (not graded again without --force)."""
-        self.db.execute("UPDATE submissions SET changed_sha256 = ? WHERE exercise = ? AND student = ?",
-                        (sha256, exercise, student))
-
     def record(self, result, run=None, replace=None):
         """Store one attempt's result (in place of attempt ``replace``, a regrade, or as a new attempt), then choose
         the attempt that counts for the student under the exercise's policy; one transaction. Returns the attempt's

@@ -1,6 +1,6 @@
 """What a grading run does with each entry of ``collected/`` before any notebook runs.
 
-:func:`intake` checks the source against the gradebook's pin (issue 20: a changed source stops the run unless
+:func:`intake` checks the source against the gradebook's pin (a changed source stops the run unless
 ``regrade``), lists every entry (:func:`kinbook.classroom.files.collect`), and decides for each one: grade it, skip
 it (this very file was graded already with this source), keep it as history (an earlier attempt), or record why it
 is not graded. Every entry becomes a row of the gradebook's ``files`` table and of ``collection.csv``; the lines

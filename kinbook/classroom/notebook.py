@@ -84,10 +84,6 @@ class Source:
         except OSError:
             return True
 
-    @property
-    def parameters_cell(self):
-        """(index, variable name, ranges, defaults) of the parameters cell, or None."""
-        return find_parameters(self.nb)
 
 
 def load_source(path):

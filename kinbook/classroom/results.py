@@ -149,13 +149,6 @@ class SubmissionResult:
     def to_dict(self):
         return asdict(self)
 
-    @classmethod
-    def from_dict(cls, d):
-        d = dict(d)
-        d["parts"] = [PartGrade(**p) for p in d.get("parts", [])]
-        d["signals"] = [tuple(x) for x in d.get("signals", [])]
-        return cls(**d)
-
     def __repr__(self):
         return (f"SubmissionResult({self.student!r}, {self.exercise!r}: {self.status}, "
                 f"{self.score:g}/{self.max_score:g})")

@@ -121,11 +121,6 @@ def constraint_label(c, lang=None):
     return render(Msg("constraint_rows", what=what, rows=rows_name(rows), n=len(rows)), lang)
 
 
-def constraint_labels(c):
-    """constraint_label in every language (a dict rendered when shown)."""
-    return both(lambda lang: constraint_label(c, lang))
-
-
 _TEXT = {
     "constraint_rows": Np_("{what} (row {rows})", "{what} (rows {rows})"),
     "h.row": N_("row"),

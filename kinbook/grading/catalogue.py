@@ -240,7 +240,7 @@ _ENTRIES = [
        N_("A maps local to global components (s = A s'); the local components of a global vector are s' = Aᵀ s")),
 ]
 
-# ------------------------------------------------------------- numeric answers (try-its, exercise parts; issue 25)
+# ------------------------------------------------------------- numeric answers (try-its, exercise parts)
 _ENTRIES += [
     _m("wrong_data",
        N_("computed for other data"),

@@ -189,7 +189,7 @@ def _structural_phi(target, data, wrong, free, rtol):
 
 def _also_a_sign(target, data, r, j, rtol):
     """Aᵀ for A that changes one row only can be the same expression as one term's sign slipped (a translational
-    joint's cross product written with + for −): both readings are given, not only Aᵀ (issue 25)."""
+    joint's cross product written with + for −): both readings are given, not only Aᵀ."""
     import sympy as sp
 
     G = target.samples("generic")
@@ -322,7 +322,6 @@ class _Expected:
 
     def __init__(self, target, quantity, data, samples):
         self.target, self.quantity, self.data, self.s = target, quantity, data, samples
-        self._ref_rules = None
         self._hdiag = {}
 
     def ref_tape(self, c):

@@ -88,10 +88,6 @@ class Expected:
         self.variants.append((code, _v(value), detail, erratum))
         return self
 
-    def also_right(self, value, why):
-        """Append another right answer and why it is right; returns self."""
-        self.equivalents.append((_v(value), why))
-        return self
 
 
 def _v(x):

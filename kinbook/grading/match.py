@@ -1,7 +1,7 @@
 """The one equivalence rule (fourth stage of a check): which rows of an answer stand for which rows of
 kinbook's reference, which are dependent on others, which reference rows are missing.
 
-The rule, for all four checkers (issue #14 item 2, issue #13 item 4):
+The rule, for all four checkers:
 
 * An answer **row is right** when it is a reference row multiplied by a nonzero constant — the same
   constant at every sample. For Φ any constant (Φ is a set of equations: −Φ_4 or 2Φ_4 is the same
@@ -84,8 +84,6 @@ class Matching:
     missing: list  # reference rows (0-based) nobody stands for
     searched: dict = field(default_factory=dict)  # constraint index -> zeros found by the search (vanishing)
 
-    def answer_rows(self, status=None):
-        return [r for r in self.rows if r.k is not None and (status is None or r.status == status)]
 
 
 def match_phi(data, rtol, order="any", wrap=None):

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._i18n import Msg, both, constraint_label
-from .catalogue import MISTAKES, explain
+from .catalogue import explain
 from .quantities import label_of, quantity_of
 from .result import CheckResult, RowResult
 
@@ -329,8 +329,3 @@ def _relevant(s, e):
 def _book(name):
     """Coordinate names in the book's notation: phi2 → φ2."""
     return name.replace("phi", "φ")
-
-
-def context_codes():
-    """Every code the report can emit (for the catalogue's tests)."""
-    return set(MISTAKES)

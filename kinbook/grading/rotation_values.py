@@ -185,7 +185,7 @@ def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None,
     def normalization(a, e):
         a = a.reshape(-1)
         norm = float(a @ a)
-        if norm > 0 and abs(norm - 1.0) > 1e3 * rtol:  # no Euler parameters at all: say so, with pᵀp (issue 22)
+        if norm > 0 and abs(norm - 1.0) > 1e3 * rtol:  # no Euler parameters at all: say so, with pᵀp
             return "not_normalized", Msg("norm_fail", norm=fmt(norm)), None, None
         return None
 

@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..spatial.random import random_p
+
 __all__ = ["Samples", "generic", "assembled", "at", "zeros", "spread", "perturbed", "project", "regular", "velocities", "N_GENERIC", "N_ASSEMBLED", "N_SEARCH", "SEED"]
 
 N_GENERIC = 16
@@ -51,11 +53,6 @@ class Samples:
         return Samples(self.Q[idx], self.QD[idx], self.T[idx], self.on_manifold)
 
 
-def _unit_p(rng, N, nb):
-    p = rng.normal(size=(N, nb, 4))
-    return p / np.linalg.norm(p, axis=2, keepdims=True)
-
-
 def generic(target):
     """Random configurations (Euler parameters of unit norm), velocities and times."""
     rng = np.random.default_rng(SEED)
@@ -65,7 +62,7 @@ def generic(target):
         Q[:, 2::3] = rng.uniform(-np.pi, np.pi, (N, n // 3))
     else:
         nb = n // 7
-        Q.reshape(N, nb, 7)[:, :, 3:] = _unit_p(rng, N, nb)
+        Q.reshape(N, nb, 7)[:, :, 3:] = random_p(N * nb, rng).reshape(N, nb, 4)
     QD = rng.normal(0.0, 2.0, (N, n))
     T = rng.uniform(0.0, 1.0, N)
     return Samples(Q, QD, T)
@@ -170,7 +167,7 @@ def spread(target, rng, count):
     if target.kind == "planar":
         Q[:, 2::3] = rng.uniform(-np.pi, np.pi, (count, n // 3))
     else:
-        Q.reshape(count, n // 7, 7)[:, :, 3:] = _unit_p(rng, count, n // 7)
+        Q.reshape(count, n // 7, 7)[:, :, 3:] = random_p(count * (n // 7), rng).reshape(count, n // 7, 4)
     return Q
 
 

@@ -20,7 +20,7 @@ import weakref
 import numpy as np
 
 from . import sample
-from ._i18n import constraint_label, row_name
+from ._i18n import row_name
 
 __all__ = ["Target", "target_for", "group_target", "NotATarget"]
 
@@ -153,10 +153,6 @@ class Target:
             if c.rows.start <= r < c.rows.stop:
                 return c
         return None  # pragma: no cover
-
-    def owner_label(self, k):
-        """"revolute joint 3 (rows Φ_8–Φ_9)", in the current language."""
-        return constraint_label(self.owner(k))
 
     def own_target(self, c):
         """The Target of constraint ``c`` graded alone (its own samples: only its rows and the bodies'

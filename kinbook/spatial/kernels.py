@@ -28,10 +28,6 @@ _ABAR_IDX = np.array([0, 1, 2, 3, 1, 0, 3, 2, 2, 3, 0, 1, 3, 2, 1, 0])
 _ABAR_SIGN = np.array([0.0, -1, -1, -1, 1, 0, 1, -1, 1, -1, 0, 1, 1, 1, -1, 0])
 
 
-def _E_np(p):
-    return (p[..., _E_IDX] * _E_SIGN).reshape(p.shape[:-1] + (3, 4))
-
-
 def _abar_np(a):
     a4 = np.concatenate([np.zeros(a.shape[:-1] + (1,)), a], -1)
     return (a4[..., _ABAR_IDX] * _ABAR_SIGN).reshape(a.shape[:-1] + (4, 4))

@@ -185,7 +185,7 @@ def test_gamma_equals_second_derivative_along_trajectory(type_name):
     mech = two_bodies(type_name, seed=5)
     rng = np.random.default_rng(6)
     q0, v, a, c = (rng.uniform(-1, 1, mech.n) for _ in range(4))
-    q0.reshape(-1, 7)[:, 3:] = random_p(rng, mech.n // 7)
+    q0.reshape(-1, 7)[:, 3:] = random_p(mech.n // 7, rng)
 
     def q_of(t):
         return q0 + v * t + 0.5 * a * t * t + c * np.sin(t)
@@ -274,7 +274,7 @@ def test_book_cross_product_form_of_parallel_blocks_equals_sympy():
                     "numpy", cse=True)
     for _ in range(2):
         qv = rng.uniform(-2, 2, 14)
-        qv[3:7], qv[10:14] = random_p(rng), random_p(rng)
+        qv[3:7], qv[10:14] = random_p(rng=rng), random_p(rng=rng)
         _, J1, J2 = (np.array(v, dtype=float) for v in f(qv))
         ri, pi, rj, pj = qv[0:3], qv[3:7], qv[7:10], qv[10:14]
         si_, sj_ = _A(pi) @ ai, _A(pj) @ aj
@@ -299,7 +299,7 @@ def test_parallel_rows_are_well_conditioned_in_every_orientation(axis):
     m.add_body("a", vectors={"s": tuple(axis)})
     m.add_body("b", vectors={"s": tuple(2 * axis)})
     m.add(Parallel1("a", "b", vector_i="s", vector_j="s"))
-    for p in random_p(np.random.default_rng(10), 3):
+    for p in random_p(3, np.random.default_rng(10)):
         q = np.r_[0, 0, 0, p, 1, 2, 3, p]  # same orientation: s_j ∥ s_i
         c = m.constraints[-1]
         Jpj = m.Phi_q(q)[c.rows][:, 10:14]
@@ -326,7 +326,7 @@ def test_normal1_gamma_has_the_closed_form_of_section_14_5():
     f = sp.lambdify([list(d.q), list(d.qd)], d.gamma, "numpy")
     rng = np.random.default_rng(12)
     for _ in range(3):
-        p = random_p(rng, 2)
+        p = random_p(2, rng)
         pd = rng.normal(size=(2, 4))
         pd -= p * np.sum(p * pd, 1)[:, None]  # tangent: pᵀṗ = 0
         q = np.hstack([rng.normal(size=(2, 3)), p]).ravel()

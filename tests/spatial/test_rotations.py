@@ -29,15 +29,11 @@ from kinbook.spatial import (
     p_dot_from_omega,
     p_from_A,
     p_from_axis_angle,
+    random_p,
     skew,
 )
 
 RNG_SEED = 20241121
-
-
-def random_p(rng, n):
-    p = rng.normal(size=(n, 4))
-    return p / np.linalg.norm(p, axis=1, keepdims=True)
 
 
 def quat_wxyz(rot):
@@ -229,7 +225,7 @@ def test_EEt_and_GGt_are_ptp_times_identity():
 def test_A_equals_EGt_on_the_unit_sphere():
     # A = 2[(e0² − ½)I + eeᵀ + e0ẽ] and EGᵀ differ by (1 − pᵀp) I
     assert zero(E_SYM * G_SYM.T - A_SYM - (1 - PTP) * sp.eye(3))
-    p = random_p(np.random.default_rng(RNG_SEED), 10)
+    p = random_p(10, np.random.default_rng(RNG_SEED))
     np.testing.assert_allclose(np.einsum("kij,klj->kil", E(p), G(p)), A_from_p(p), atol=1e-14)
     np.testing.assert_allclose(np.einsum("kji,kjl->kil", A_from_p(p), A_from_p(p)), np.broadcast_to(np.eye(3), (10, 3, 3)),
                                atol=1e-14)

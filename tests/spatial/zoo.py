@@ -20,6 +20,7 @@ from kinbook.spatial import (
     SphericalSpherical,
     Translational,
     Universal,
+    random_p,
 )
 
 FACTORIES = {
@@ -37,11 +38,6 @@ FACTORIES = {
     "revolute-driver": lambda: RevoluteDriver("a", "b", axis_i="u", ref_i="v", ref_j="v", f="0.3 + 2*t + t**2"),
     "distance-driver": lambda: DistanceDriver("a", "b", axis_i="v", point_i="P", point_j="Q", f="0.5*sin(3*t)"),
 }
-
-
-def random_p(rng, size=None):
-    p = rng.normal(size=(4,) if size is None else (size, 4))
-    return p / np.linalg.norm(p, axis=-1, keepdims=True)
 
 
 def two_bodies(type_name, seed=0, simple=False):
@@ -62,7 +58,7 @@ def two_bodies(type_name, seed=0, simple=False):
 
     m = Mechanism(f"{type_name}-{seed}")
     for b in ("a", "b"):
-        q0 = trip() + tuple(random_p(rng))
+        q0 = trip() + tuple(random_p(rng=rng))
         m.add_body(b, points={"P": trip(), "Q": trip()}, vectors={"u": trip(), "v": trip()}, q0=q0)
     m.add(FACTORIES[type_name]())
     return m
@@ -75,6 +71,6 @@ def states(mech, count=4, seed=7):
     nb = mech.n // 7
     for k in range(count):
         q = rng.uniform(-2, 2, (nb, 7))
-        q[:, 3:] = random_p(rng, nb) * (1.0 if k % 2 == 0 else rng.uniform(0.7, 1.3, (nb, 1)))
+        q[:, 3:] = random_p(nb, rng) * (1.0 if k % 2 == 0 else rng.uniform(0.7, 1.3, (nb, 1)))
         qd = rng.uniform(-3, 3, (nb, 7))
         yield q.ravel(), qd.ravel(), float(rng.uniform(-1, 1))
