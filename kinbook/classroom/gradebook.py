@@ -41,18 +41,31 @@ from __future__ import annotations
 import csv
 import io
 import json
+import os
 import sqlite3
 import time
 from pathlib import Path
 
+from ..errors import (
+    GradebookError,
+    GradebookFullError,
+    GradebookLockedError,
+    GradebookReadOnlyError,
+    NewerGradebookError,
+    NotAGradebookError,
+)
 from .files import atomic_write
 from .results import UNGRADED, PartGrade, SubmissionResult
 from .sanitize import csv_field
 from .scores import Final, Rule, final
 
-__all__ = ["Gradebook", "COLUMNS", "TOTALS", "DATABASE", "FILES"]
+__all__ = ["Gradebook", "COLUMNS", "TOTALS", "DATABASE", "FILES", "SCHEMA_VERSION", "LOCK_WAIT", "gradebook_error"]
 
 DATABASE = "gradebook.sqlite"
+#: The gradebook's schema (SQLite's ``user_version``): a gradebook of a higher one was written by a newer kinbook.
+SCHEMA_VERSION = 2
+#: Seconds a command waits for another kinbook run that holds the gradebook.
+LOCK_WAIT = 30.0
 COLUMNS = ["student", "exercise", "part", "score", "max_score", "status", "message", "reference"]
 TOTALS = ["student", "exercise", "score", "max_score", "status", "isolation", "sha256", "note"]
 FILES = ["exercise", "path", "student", "outcome", "reason", "sha256", "submitted"]
@@ -118,6 +131,82 @@ _ADDED = {
 }
 
 
+def _must_exist(outdir, path):
+    """A command that reads a gradebook refuses a missing one instead of creating it empty."""
+    if not outdir.exists():
+        raise NotAGradebookError(f"no grading directory {str(outdir)!r} (a mistyped -g?): give the directory kinbook "
+                                 "grade wrote, which holds gradebook.sqlite; nothing was created")
+    if not outdir.is_dir():
+        raise NotAGradebookError(f"the grading directory {str(outdir)!r} is a file, not a directory: give the "
+                                 "directory that holds gradebook.sqlite (-g)")
+    if not path.is_file() or path.stat().st_size == 0:
+        raise NotAGradebookError(f"{str(outdir)!r} holds no gradebook ({DATABASE}): give the directory kinbook grade "
+                                 "wrote (-g), or grade first; nothing was created")
+
+
+def _held(book, notify):
+    """Wait, a bounded time and saying so, while another run holds the gradebook's write lock."""
+    deadline = time.monotonic() + book.wait
+    said = False
+    while True:
+        try:
+            book.db.execute("BEGIN IMMEDIATE")
+            book.db.execute("ROLLBACK")
+            return
+        except sqlite3.OperationalError as exc:
+            if "locked" not in str(exc) and "busy" not in str(exc):
+                raise
+            if time.monotonic() >= deadline:
+                raise GradebookLockedError(
+                    f"the gradebook {str(book.path)!r} is in use by another kinbook run (a grading still going on, "
+                    f"or a command that hangs) — waited {book.wait:g} s; let it finish, or stop it, and run this "
+                    "command again (nothing was changed)") from None
+            if not said:
+                (notify or _stderr)(f"kinbook: the gradebook {str(book.path)!r} is in use by another kinbook run; "
+                                    f"waiting up to {book.wait:g} s for it …")
+                said = True
+            time.sleep(0.2)
+
+
+def _stderr(line):
+    import sys
+
+    print(line, file=sys.stderr, flush=True)
+
+
+def gradebook_error(exc, path):
+    """The :class:`~kinbook.errors.GradebookError` for an ``sqlite3.Error`` or ``OSError`` met on the gradebook
+    ``path``: in the instructor's words, naming the file and what to do. Nothing recorded before is lost (every
+    result is its own transaction)."""
+    import errno
+
+    if isinstance(exc, GradebookError):
+        return exc
+    path = str(path)
+    text = str(exc).lower()
+    code = getattr(exc, "errno", None)
+    if "full" in text or code in (errno.ENOSPC, getattr(errno, "EDQUOT", errno.ENOSPC)):
+        return GradebookFullError(f"the gradebook {path!r} cannot grow: the disk (or the quota) is full; every result "
+                                  "recorded before is kept — free some space and run the command again", path=path)
+    if "readonly" in text or "read-only" in text or code in (errno.EACCES, errno.EPERM, errno.EROFS) or (
+            "unable to open" in text and not os.access(os.path.dirname(path) or ".", os.W_OK)):
+        return GradebookReadOnlyError(f"the gradebook {path!r} cannot be written: it or its directory is read-only "
+                                      "(permissions, a read-only disk); kinbook needs to write beside it (its journal) "
+                                      "— make the directory writable, or work on a copy")
+    if "locked" in text or "busy" in text:
+        return GradebookLockedError(f"the gradebook {path!r} is in use by another kinbook run; let it finish, or stop "
+                                    "it, and run this command again (nothing was changed)")
+    if "not a database" in text or "malformed" in text or "encrypted" in text:
+        return NotAGradebookError(f"{path!r} is not a kinbook gradebook (another file, or a damaged one): "
+                                  f"{exc}; it was not changed — restore it from a backup, or move it away to start a "
+                                  "new one")
+    if "disk i/o" in text:
+        return GradebookFullError(f"the gradebook {path!r} could not be written (disk I/O error: a full or failing "
+                                  "disk?); every result recorded before is kept — check the disk and run the command "
+                                  "again", path=path)
+    return GradebookError(f"the gradebook {path!r} cannot be used: {type(exc).__name__}: {exc}")
+
+
 def _cell(text):
     """A CSV field a spreadsheet will not read as a formula or split into rows (messages can quote students'
     answers): :func:`kinbook.classroom.sanitize.csv_field`."""
@@ -140,15 +229,20 @@ def _score(row):
     return "" if row.status in UNGRADED else f"{row.score:g}"
 
 
-def write_csv(path, header, rows):
-    """A CSV export, written atomically; every field quoted and every text field sanitized and guarded against
-    spreadsheet formulas (:func:`kinbook.classroom.sanitize.csv_field`)."""
+def csv_text(header, rows):
+    """The text of a CSV export: every field quoted and every text field sanitized and guarded against spreadsheet
+    formulas (:func:`kinbook.classroom.sanitize.csv_field`)."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n", quoting=csv.QUOTE_ALL)
     w.writerow(header)
     for row in rows:
         w.writerow([_cell(v) if isinstance(v, str) else v for v in row])
-    return atomic_write(path, buf.getvalue())
+    return buf.getvalue()
+
+
+def write_csv(path, header, rows):
+    """A CSV export (:func:`csv_text`), written atomically."""
+    return atomic_write(path, csv_text(header, rows))
 
 
 class Gradebook:
@@ -157,28 +251,92 @@ class Gradebook:
     Parameters
     ----------
     outdir : path
-        Created if missing; holds ``gradebook.sqlite`` and the exports.
+        Holds ``gradebook.sqlite`` and the exports.
+    create : bool
+        Create the directory and the gradebook when they are missing (``kinbook grade``'s job). False (every other
+        command): a missing directory or gradebook is a :class:`~kinbook.errors.NotAGradebookError` — a mistyped
+        ``-g`` never makes an empty gradebook.
+    wait : float
+        Seconds to wait for another kinbook run that holds the gradebook (a message is given when waiting starts,
+        through ``notify``) before :class:`~kinbook.errors.GradebookLockedError`.
+    notify : callable, optional
+        Called with a line when the gradebook is busy and kinbook waits (default: printed on stderr).
+
+    Raises
+    ------
+    GradebookError
+        Its subclasses name the file and what to do: :class:`~kinbook.errors.NotAGradebookError` (missing, another
+        file, damaged), :class:`~kinbook.errors.GradebookReadOnlyError`, :class:`~kinbook.errors.GradebookLockedError`,
+        :class:`~kinbook.errors.NewerGradebookError`, :class:`~kinbook.errors.GradebookFullError`. The same errors
+        (never a raw ``sqlite3`` one) come out of a ``with Gradebook(...)`` block.
     """
 
-    def __init__(self, outdir):
+    def __init__(self, outdir, create=True, *, wait=LOCK_WAIT, notify=None):
         self.outdir = Path(outdir)
-        self.outdir.mkdir(parents=True, exist_ok=True)
         self.path = self.outdir / DATABASE
-        self.db = sqlite3.connect(str(self.path), timeout=30, isolation_level=None)
+        self.wait = float(wait)
+        self.db = None
+        if not create:
+            _must_exist(self.outdir, self.path)
+        try:
+            self.outdir.mkdir(parents=True, exist_ok=True)
+        except FileExistsError:
+            raise NotAGradebookError(f"the grading directory {str(self.outdir)!r} is a file, not a directory: give "
+                                     "the directory that holds gradebook.sqlite (-g)") from None
+        except OSError as exc:
+            raise self._failure(exc) from None
+        try:
+            self._open(notify)
+        except sqlite3.Error as exc:
+            if self.db is not None:
+                self.db.close()
+            raise self._failure(exc) from None
+
+    def _open(self, notify):
+        """Connect, wait (bounded) for another run's lock, check the schema's version, create or migrate it."""
+        existed = self.path.exists() and self.path.stat().st_size > 0
+        self.db = sqlite3.connect(str(self.path), timeout=min(self.wait, 1.0), isolation_level=None)
+        _held(self, notify)
+        self.db.execute(f"PRAGMA busy_timeout = {int(self.wait * 1000)}")
+        version = self.db.execute("PRAGMA user_version").fetchone()[0]
+        tables = {r[0] for r in self.db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+        if version > SCHEMA_VERSION:
+            raise NewerGradebookError(f"the gradebook {str(self.path)!r} was written by a newer kinbook (schema "
+                                      f"{version}, this kinbook knows {SCHEMA_VERSION}): upgrade kinbook (pip install "
+                                      "-U kinbook) to use it; it was not changed")
+        if existed and tables and not {"submissions", "runs"} <= tables:
+            raise NotAGradebookError(f"{str(self.path)!r} is an SQLite database but not a kinbook gradebook (its "
+                                     f"tables: {', '.join(sorted(tables)[:8])}); it was not changed — move it away or "
+                                     "give the grading directory kinbook grade wrote (-g)")
         self.db.execute("PRAGMA journal_mode=WAL")
         self.db.execute("PRAGMA synchronous=FULL")
         self.db.executescript(_SCHEMA)
         self._migrate()
+        if version < SCHEMA_VERSION:
+            self.db.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
         self._import_json_results()
 
+    def inputs(self):
+        """``(label, path)`` of the gradebook's files, which no export, report or page may be written over
+        (:func:`kinbook.core.atomic.protect`)."""
+        return [("the gradebook", self.path)] + [("the gradebook's journal", Path(f"{self.path}{x}"))
+                                                 for x in ("-wal", "-shm")]
+
+    def _failure(self, exc):
+        """The :class:`~kinbook.errors.GradebookError` for an ``sqlite3`` or ``OSError`` met on this gradebook."""
+        return gradebook_error(exc, self.path)
+
     def close(self):
-        self.db.close()
+        if self.db is not None:
+            self.db.close()
 
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, kind, exc, tb):
         self.close()
+        if isinstance(exc, sqlite3.Error):
+            raise self._failure(exc) from exc
 
     # ----------------------------------------------------------------------------------------- recording
     def begin_run(self, source, isolation):
@@ -543,4 +701,4 @@ class Gradebook:
                 continue
 
 
-__all__ += ["Final", "write_csv"]
+__all__ += ["Final", "write_csv", "csv_text"]

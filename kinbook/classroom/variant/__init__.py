@@ -20,32 +20,23 @@ import contextlib
 import decimal
 import hashlib
 import io
-import re
 import warnings
 
 import numpy as np
 
 from ...errors import GradingError, KinbookError
+from ..ids import check_id
 from ..notebook import find_parameters, grader_code, load_source, student_notebook
 from ..parts import parameters, part, recording
 
-__all__ = ["student_parameters", "variant", "references", "seed_from", "draw", "check_student_id", "STUDENT_ID",
-           "MAX_DRAWS"]
+__all__ = ["student_parameters", "variant", "references", "seed_from", "draw", "check_student_id", "MAX_DRAWS"]
 
 MAX_DRAWS = 25
 
-STUDENT_ID = re.compile(r"[A-Za-z0-9][A-Za-z0-9._@+-]{0,127}")
-"""A student identifier a variant is written for: letters, digits and ``. _ @ + -``, starting with a letter or
-digit, at most 128 characters — so that it is always one safe file name (no ``/``, no ``..`` on its own, no
-hidden file)."""
-
-
 def check_student_id(student):
-    """Return ``student`` if it matches :data:`STUDENT_ID`, else raise :class:`~kinbook.errors.GradingError`."""
-    if not isinstance(student, str) or not STUDENT_ID.fullmatch(student):
-        raise GradingError(f"a student id must be letters, digits and . _ @ + - (starting with a letter or digit, at "
-                           f"most 128 characters), got {str(student)[:80]!r}")
-    return student
+    """Return ``student`` (NFC) if it is a student id by the one rule (:func:`kinbook.classroom.ids.check_id`), else
+    raise :class:`~kinbook.errors.GradingError`."""
+    return check_id(student)
 
 
 def seed_from(text):
@@ -100,7 +91,7 @@ def student_parameters(source, student):
 
 def variant(source, student):
     """The student's own notebook (solutions removed, their parameters written in)."""
-    check_student_id(student)
+    student = check_student_id(student)
     source = load_source(source)
     return student_notebook(source, student_parameters(source, student), student)
 
