@@ -444,8 +444,11 @@ def _cmd_exercises_list(args):
 def _cmd_exercises_copy(args):
     from . import exercises
 
-    for name in args.names:  # every name checked before anything is copied
-        exercises.path(name)
+    for name in args.names:  # every name and target checked before anything is copied
+        target = os.path.join(args.directory, exercises.path(name).name)
+        if os.path.lexists(target):
+            raise KinbookError(f"{target!r} already exists: not overwritten (remove it, or copy into another "
+                               "directory); nothing was copied")
     for name in args.names:
         print(exercises.copy(name, args.directory))
 
@@ -532,7 +535,10 @@ def main(argv=None):
     argv = [a for a in argv if a != "--debug"]  # accepted anywhere on the line
     try:
         args = build_parser().parse_args(argv)
-        args.func(args)
+        from .core.atomic import protect
+
+        with protect(*_inputs(args)):  # no file a command writes may be one it reads
+            args.func(args)
     except _UsageError as exc:
         print(exc, file=sys.stderr)
         return 2
@@ -562,6 +568,22 @@ def main(argv=None):
               "traceback, and please report it)", file=sys.stderr)
         return 1
     return 0
+
+
+def _inputs(args):
+    """``(label, path)`` of the files a command reads (its source, roster, submissions, mechanism, the gradebook's
+    database): :func:`kinbook.core.atomic.protect` refuses any output that is one of them."""
+    out = []
+    for name, label in (("source", "the source"), ("roster", "the roster"), ("submissions", "a submission"),
+                        ("mechanism", "the mechanism file")):
+        given = getattr(args, name, None)
+        for p in ([given] if isinstance(given, str) else given or []):
+            if isinstance(p, str) and os.path.isfile(p):
+                out.append((label, p))
+    book = getattr(args, "gradebook", None) or (args.output if getattr(args, "command", "") == "grade" else None)
+    if book:
+        out += [("the gradebook", os.path.join(book, f"gradebook.sqlite{x}")) for x in ("", "-wal", "-shm")]
+    return out
 
 
 def _silence_stdout():

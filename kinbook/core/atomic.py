@@ -148,16 +148,29 @@ def _stage(path, data, mode, dir_mode):
     return tmp
 
 
-def _commit(tmp, path):
+def _commit(tmp, path, overwrite=True):
     try:
-        os.replace(tmp, path)
+        if overwrite:
+            os.replace(tmp, path)
+        else:  # no-clobber and still atomic: a second name for the whole file, made only if none exists
+            try:
+                os.link(tmp, path)
+            finally:
+                os.unlink(tmp)
+    except FileExistsError:
+        raise _exists(path) from None
     except OSError as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise write_error(exc, path) from None
 
 
-def atomic_write(path, data, mode=None, dir_mode=None):
+def _exists(path):
+    return WriteError(f"{str(path)!r} already exists: not overwritten (remove it, or write into another directory)",
+                      path=str(path))
+
+
+def atomic_write(path, data, mode=None, dir_mode=None, *, overwrite=True):
     """Write ``data`` (str, as UTF-8, or bytes) to ``path`` whole or not at all.
 
     Parameters
@@ -169,6 +182,8 @@ def atomic_write(path, data, mode=None, dir_mode=None):
         The file's permissions (default: what ``open`` would give, 0666 less the umask).
     dir_mode : int, optional
         The permissions of the directories this call creates (default: ``mkdir``'s).
+    overwrite : bool
+        False: an existing ``path`` is kept and a :class:`~kinbook.errors.WriteError` says so.
 
     Returns
     -------
@@ -181,7 +196,9 @@ def atomic_write(path, data, mode=None, dir_mode=None):
     WriteError, DiskFullError
         The directory cannot be written, or the disk is full; the old file (or none) is left as it was.
     """
-    _commit(_stage(path, data, mode, dir_mode), path)
+    if not overwrite and os.path.lexists(path):
+        raise _exists(path)  # said before anything is written
+    _commit(_stage(path, data, mode, dir_mode), path, overwrite)
     return Path(path)
 
 

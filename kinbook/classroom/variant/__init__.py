@@ -96,6 +96,26 @@ def variant(source, student):
     return student_notebook(source, student_parameters(source, student), student)
 
 
+def declared_parts(code):
+    """The names of the parts a compiled cell declares, ``part("name", …)`` with the name written out (read from
+    the code object's constants: the calls are there whether or not they ran)."""
+    import dis
+
+    names, last = [], None
+    for ins in dis.get_instructions(code):
+        if ins.opname in ("LOAD_NAME", "LOAD_GLOBAL", "LOAD_ATTR", "LOAD_METHOD") and ins.argval == "part":
+            last = "part"
+        elif last == "part" and ins.opname == "LOAD_CONST" and isinstance(ins.argval, str):
+            names.append(ins.argval)
+            last = None
+        elif ins.opname not in ("PUSH_NULL", "PRECALL", "CACHE"):
+            last = None
+    for const in code.co_consts:
+        if hasattr(const, "co_code"):
+            names += declared_parts(const)
+    return names
+
+
 class _VariantFails(GradingError):
     """The instructor's code fails with these parameters (a KinbookError: no assembly, no convergence…)."""
 
@@ -132,8 +152,15 @@ def references(source, values=None):
                 before = len(rec)
                 try:
                     exec(compiled, ns)  # the instructor's own code (trusted), never the student's
-                except NameError:
-                    pass  # a cell that uses the student's answers: nothing to build from it
+                except NameError as exc:
+                    # a cell that uses the student's answers: nothing to build from it — unless it declares parts
+                    # (they would vanish from the exercise) or is hidden checks (which only build references)
+                    lost = sorted(set(declared_parts(compiled)) - {p.name for p in rec[before:]})
+                    if kind == "hidden" or lost:
+                        what = f"the part(s) {', '.join(lost)} it declares would be lost" if lost else (
+                            "its hidden checks stop there")
+                        raise GradingError(f"{source.exercise}: cell {index + 1} fails in the grader: NameError: {exc}"
+                                           f" — {what}; the grader cannot use the student's names here") from exc
                 except GradingError as exc:  # a declaration the instructor must fix (part(points=nan) …)
                     raise GradingError(f"{source.exercise}: cell {index + 1}: {exc}") from exc
                 except KinbookError as exc:
@@ -141,6 +168,10 @@ def references(source, values=None):
                 except Exception as exc:
                     raise GradingError(f"{source.exercise}: cell {index + 1} fails in the grader: "
                                        f"{type(exc).__name__}: {exc}") from exc
+                except SystemExit:
+                    raise GradingError(f"{source.exercise}: cell {index + 1} stops the interpreter (SystemExit: "
+                                       "sys.exit, exit() or quit()); a source's code must run "
+                                       "to its end — nothing was released, validated or graded") from None
                 for p in rec[before:]:
                     p.hidden = kind == "hidden"
             parts = list(rec)
