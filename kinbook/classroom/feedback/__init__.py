@@ -14,7 +14,7 @@ from __future__ import annotations
 import html
 from pathlib import Path
 
-from ...core.atomic import protect, write_all
+from ...core.atomic import protect, refuse_overwrite, write_all
 from ..files import PUBLIC_DIR, PUBLIC_FILE
 from ..gradebook import Gradebook
 from ..results import UNGRADED
@@ -162,6 +162,7 @@ def write_pages(book, out, students=None):
         for f, r, when in items:
             files.append((out / student / f"{f.exercise}.html", page(f, r, name=names.get(student, ""), graded=when)))
         files.append((out / student / "index.html", _index(student, names.get(student, ""), [f for f, _, _ in items])))
+    refuse_overwrite([p for p, _ in files], book.inputs(), "feedback")
     with protect(*book.inputs()):  # all pages or none: a full disk leaves the earlier pages as they were
         return write_all(files, **_PUBLIC)
 
