@@ -130,7 +130,11 @@ def read_rows(path, max_bytes=MAX_ROSTER_BYTES):
             except StopIteration:
                 break
             except csv.Error as exc:
-                raise RosterError(f"{name}, line {start}: {_why(exc)}") from None
+                why = _why(exc)
+                if reader.line_num > start and not why.startswith("a quote opened"):
+                    why = f"a quote opened on this line is never closed on it (the field runs on into line " \
+                          f"{reader.line_num})"
+                raise RosterError(f"{name}, line {start}: {why}") from None
             if reader.line_num != start:
                 raise RosterError(f"{name}, line {start}: a quoted field runs over lines {start} to {reader.line_num} "
                                   "(a quote that is not closed?); no row of a roster spans lines")
