@@ -256,8 +256,8 @@ class Gradebook:
         Create the directory and the gradebook when they are missing (``kinbook grade``'s job). False (every other
         command): a missing directory or gradebook is a :class:`~kinbook.errors.NotAGradebookError` — a mistyped
         ``-g`` never makes an empty gradebook.
-    wait : float
-        Seconds to wait for another kinbook run that holds the gradebook (a message is given when waiting starts,
+    wait : float, optional
+        Default :data:`LOCK_WAIT`. Seconds to wait for another kinbook run that holds the gradebook (a message is given when waiting starts,
         through ``notify``) before :class:`~kinbook.errors.GradebookLockedError`.
     notify : callable, optional
         Called with a line when the gradebook is busy and kinbook waits (default: printed on stderr).
@@ -271,10 +271,10 @@ class Gradebook:
         (never a raw ``sqlite3`` one) come out of a ``with Gradebook(...)`` block.
     """
 
-    def __init__(self, outdir, create=True, *, wait=LOCK_WAIT, notify=None):
+    def __init__(self, outdir, create=True, *, wait=None, notify=None):
         self.outdir = Path(outdir)
         self.path = self.outdir / DATABASE
-        self.wait = float(wait)
+        self.wait = float(LOCK_WAIT if wait is None else wait)
         self.db = None
         if not create:
             _must_exist(self.outdir, self.path)

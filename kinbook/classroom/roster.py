@@ -225,6 +225,8 @@ def read_roster(path, id_column=None):
         _check_id(path, n, sid, id_column, seen)
         values["student"] = sid = unicodedata.normalize("NFC", sid)
         students.append(Student(**{f: values.get(f, "") for f in FIELDS}))
+    if not students:
+        raise RosterError(f"roster {str(path)!r} has a header and no student (its columns: {', '.join(rows[0])})")
     roster = Roster(students, source)
     roster.path = str(path)  # an input: no command writes over it (kinbook.core.atomic.protect)
     return roster

@@ -1367,12 +1367,50 @@ def drift_cases():
     ]
 
 
+def complex_cases():
+    """A driver whose f(t), f' or f'' is complex where the analysis needs a real number (issue 31 item 7): a
+    DriverValueError naming the expression and the instant, never numpy's ComplexWarning and a real part."""
+    import kinbook
+
+    rows = [  # (label, f, what is analysed, words)
+        ("sqrt-negative-square", "3*pi/4 + 100*t + sqrt(-t^2)", ("position", 0.5), ("f(t)", "no real value",
+                                                                                 "t = 0.5")),
+        ("sqrt-negative", "3*pi/4 + sqrt(t - 5)", ("position", 1.0), ("f(t)", "no real value", "t = 1")),
+        ("log-negative", "3*pi/4 + log(t - 2)", ("position", 1.0), ("f(t)", "no real value", "t = 1")),
+        ("asin-out", "asin(t + 2)", ("position", 0.25), ("f(t)", "no real value", "t = 0.25")),
+        ("power-fraction", "3*pi/4 + (t - 3)^(1/3)", ("position", 1.0), ("f(t)", "no real value", "t = 1")),
+        ("velocity", "3*pi/4 + t*sqrt(t^2 - 4)", ("velocity", 1.0), ("f(t)", "no real value", "t = 1")),
+        ("sweep", "3*pi/4 + 100*t + sqrt(-t^2)", ("sweep", 0.0), ("f(t)", "no real value", "t = 0.1")),
+    ]
+
+    def analyse(f, what, t):
+        m = kinbook.loads(_driver_file(f), source="cx.toml")
+        if what == "position":
+            return m.solve_position(t)
+        if what == "velocity":
+            return m.solve_velocity(m.solve_position(3.0), t)  # a configuration where f is real; f' at t is not
+        return m.simulate(np.linspace(0.1, 1.0, 10))
+
+    return [Case(f"complex-{lbl}", "complex values", lambda f=f, what=what: analyse(f, *what), "DriverValueError",
+                 words, timeout=60) for lbl, f, what, words in rows]
+
+
+def course_cases():
+    """Issue 31's classes: the course commands' gradebooks, names, own inputs, rosters and sources
+    (tests/inputs/course_cases.py)."""
+    try:
+        from . import course_cases as course
+    except ImportError:  # the worker imports this file as the top-level module `corpus`
+        import course_cases as course
+    return course.cases(Case)
+
+
 def cases():
     """All cases, in a fixed order with unique ids."""
     out = (reader_cases() + driver_cases() + file_cases() + file_structure_cases() + api_cases()
            + function_cases() + singular_cases() + cli_cases() + checker_cases() + derivative_cases()
            + literal_cases() + file_kind_cases() + declaration_cases() + method_cases() + structure_cases()
-           + helper_cases() + drift_cases())
+           + helper_cases() + drift_cases() + complex_cases() + course_cases())
     ids = [c.id for c in out]
     dup = {i for i in ids if ids.count(i) > 1}
     assert not dup, f"duplicate case ids: {sorted(dup)[:5]}"

@@ -96,6 +96,12 @@ def variant(source, student):
     return student_notebook(source, student_parameters(source, student), student)
 
 
+def _exit(code=None):
+    """``exit()``/``quit()`` in a source's code: SystemExit (refused, naming the cell) without closing the grader's
+    stdin, as the interactive helpers of ``site`` do."""
+    raise SystemExit(code)
+
+
 def declared_parts(code):
     """The names of the parts a compiled cell declares, ``part("name", …)`` with the name written out (read from
     the code object's constants: the calls are there whether or not they ran)."""
@@ -141,7 +147,7 @@ def references(source, values=None):
     import matplotlib.pyplot as plt
 
     ns = {"__name__": "__kinbook_reference__", "part": part, "parameters": parameters,
-          "display": lambda *a, **k: None}
+          "display": lambda *a, **k: None, "exit": _exit, "quit": _exit}
     parts = []
     try:
         with recording() as rec, warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()):
