@@ -326,8 +326,8 @@ def _checked(f, k, expr, where):
             first = int(np.flatnonzero(~np.isfinite(v))[0])
             t_bad = float(np.broadcast_to(np.asarray(tt, dtype=float), v.shape).flat[first])
             got = float(v.flat[first])
-            why = ("has no real value (it is complex, or undefined)" if np.isnan(got) else "is infinite") + \
-                f" at t = {t_bad:.6g}"
+            why = (f"has no real value at t = {t_bad:.6g} (it is complex or undefined there)" if np.isnan(got)
+                   else f"is infinite at t = {t_bad:.6g}")
             if np.isnan(got) and k == 2:
                 why = f"does not exist at t = {t_bad:.6g} (a kink: the slope jumps there)"
             raise DriverValueError(
