@@ -29,6 +29,7 @@ from .conftest import SOURCE
 from .test_course import EX, ROSTER, result
 
 DUE = "2026-03-01T23:59+01:00"
+pytestmark = pytest.mark.filterwarnings("ignore:grading WITHOUT isolation:RuntimeWarning")
 
 
 # ------------------------------------------------------------------------------------------------- the course
@@ -45,6 +46,9 @@ def make_course(top):
     book.close()
     shutil.copy(SOURCE, os.path.join(top, "tiny.ipynb"))
     os.makedirs(os.path.join(top, "out"))
+    os.makedirs(os.path.join(top, "collected"))
+    shutil.copy(os.path.join(os.path.dirname(SOURCE), "..", "submissions", "good.ipynb"),
+                os.path.join(top, "collected", "carl.ipynb"))
     with open(os.path.join(top, "out", "export.csv"), "w") as f:
         f.write("an earlier export\n")
     return top
@@ -104,9 +108,12 @@ COMMANDS = {
 }
 #: Commands whose only output is the gradebook itself.
 IN_PLACE = {
-    "due": lambda g: ["due", EX, DUE, "--penalty", "10", "-g", g],
-    "extend": lambda g: ["extend", "ana", EX, "2026-03-05T23:59+01:00", "--why", "ill", "-g", g],
-    "override": lambda g: ["override", "ben", EX, "a", "3", "--why", "accepted", "-g", g],
+    "due": lambda top, g: ["due", EX, DUE, "--penalty", "10", "-g", g],
+    "extend": lambda top, g: ["extend", "ana", EX, "2026-03-05T23:59+01:00", "--why", "ill", "-g", g],
+    "override": lambda top, g: ["override", "ben", EX, "a", "3", "--why", "accepted", "-g", g],
+    # grading stops when the gradebook cannot record its run, before any submission is run
+    "grade": lambda top, g: ["grade", os.path.join(top, "tiny.ipynb"), os.path.join(top, "collected"), "-o", g,
+                             "--no-isolation"],
 }
 
 
@@ -193,7 +200,7 @@ def test_read_only(tmp_path, capsys, monkeypatch, name, how):
             if name in IN_PLACE:
                 _sqlite_patched(monkeypatch, "ro")
         before = snapshot(top)
-        argv = IN_PLACE[name](g) if name in IN_PLACE else COMMANDS[name](top, ro, g)
+        argv = IN_PLACE[name](top, g) if name in IN_PLACE else COMMANDS[name](top, ro, g)
         status, err = run(capsys, argv)
         after = snapshot(top)
     words = ("gradebook.sqlite", "read-only") if name in IN_PLACE else ("read-only", ro)
@@ -225,7 +232,7 @@ def test_full_disk(tmp_path, capsys, monkeypatch, name, how):
             if name in IN_PLACE:
                 _sqlite_patched(monkeypatch, "full")
         before = snapshot(top)
-        argv = IN_PLACE[name](g) if name in IN_PLACE else COMMANDS[name](top, out, g)
+        argv = IN_PLACE[name](top, g) if name in IN_PLACE else COMMANDS[name](top, out, g)
         status, err = run(capsys, argv)
         after = snapshot(top)
         leftovers = [f for d, _, fs in os.walk(top) for f in fs if f.endswith(".tmp")]
