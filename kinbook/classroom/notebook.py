@@ -131,10 +131,11 @@ def _compiles(code, where):
         compile(runnable(code), where, "exec")
     except SyntaxError as exc:
         line = f"line {exc.lineno}: " if exc.lineno else ""
-        raise GradingError(f"{where} does not compile ({line}{exc.msg}: {(exc.text or '').strip()[:80]!r}); "
-                           "fix the cell — nothing was released, validated or graded") from None
+        raise GradingError(f"{where} is not valid Python: it does not compile ({line}{exc.msg}: "
+                           f"{(exc.text or '').strip()[:80]!r}); fix the cell — nothing was released, validated or "
+                           "graded") from None
     except ValueError as exc:  # a NUL character in the code
-        raise GradingError(f"{where} does not compile ({exc})") from None
+        raise GradingError(f"{where} is not valid Python: it does not compile ({exc})") from None
 
 
 def _regions(code, where):
