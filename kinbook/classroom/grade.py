@@ -25,7 +25,6 @@ import hashlib
 import os
 import re
 import signal
-import sqlite3
 import sys
 import time
 import warnings
@@ -36,7 +35,7 @@ from ..errors import GradingError, KinbookError
 from .answers import describe, mistake_rows
 from .feedback import write_pages
 from .files import Entry, collect, read_entry, student_id
-from .gradebook import Gradebook, gradebook_error
+from .gradebook import Gradebook
 from .intake import annotate, check_pin, intake
 from .notebook import (
     MAX_NOTEBOOK_BYTES,
@@ -525,23 +524,15 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         if progress:
             progress("warning: " + NO_ISOLATION_WARNING)
     book = Gradebook(outdir)
-    try:
+    with book.failures():  # closed on any error; SQLite's (a full disk, another run's lock) in the instructor's words
         check_pin(book, src, regrade)
         run = book.begin_run(src, "bubblewrap" if isolation else "none")
-    except BaseException as exc:
-        book.close()
-        if isinstance(exc, sqlite3.Error):
-            raise gradebook_error(exc, book.path) from exc
-        raise
-    options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden))
-    try:
+        options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic),
+                       reveal_hidden=bool(reveal_hidden))
         plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
                       roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times)
         return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
                           progress=progress)
-    except sqlite3.Error as exc:  # a full disk, another run's lock …: the instructor's words, the results kept
-        book.close()
-        raise gradebook_error(exc, book.path) from exc
 
 
 def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progress):

@@ -38,23 +38,17 @@ of the last run) are exports, each written atomically (:func:`kinbook.classroom.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import json
-import os
 import sqlite3
 import time
 from pathlib import Path
 
-from ..errors import (
-    GradebookError,
-    GradebookFullError,
-    GradebookLockedError,
-    GradebookReadOnlyError,
-    NewerGradebookError,
-    NotAGradebookError,
-)
+from ..errors import NewerGradebookError, NotAGradebookError
 from .files import atomic_write
+from .gradebook_failures import gradebook_error, must_exist, wait_for_lock
 from .results import UNGRADED, PartGrade, SubmissionResult
 from .sanitize import csv_field
 from .scores import Final, Rule, final
@@ -131,82 +125,6 @@ _ADDED = {
 }
 
 
-def _must_exist(outdir, path):
-    """A command that reads a gradebook refuses a missing one instead of creating it empty."""
-    if not outdir.exists():
-        raise NotAGradebookError(f"no grading directory {str(outdir)!r} (a mistyped -g?): give the directory kinbook "
-                                 "grade wrote, which holds gradebook.sqlite; nothing was created")
-    if not outdir.is_dir():
-        raise NotAGradebookError(f"the grading directory {str(outdir)!r} is a file, not a directory: give the "
-                                 "directory that holds gradebook.sqlite (-g)")
-    if not path.is_file() or path.stat().st_size == 0:
-        raise NotAGradebookError(f"{str(outdir)!r} holds no gradebook ({DATABASE}): give the directory kinbook grade "
-                                 "wrote (-g), or grade first; nothing was created")
-
-
-def _held(book, notify):
-    """Wait, a bounded time and saying so, while another run holds the gradebook's write lock."""
-    deadline = time.monotonic() + book.wait
-    said = False
-    while True:
-        try:
-            book.db.execute("BEGIN IMMEDIATE")
-            book.db.execute("ROLLBACK")
-            return
-        except sqlite3.OperationalError as exc:
-            if "locked" not in str(exc) and "busy" not in str(exc):
-                raise
-            if time.monotonic() >= deadline:
-                raise GradebookLockedError(
-                    f"the gradebook {str(book.path)!r} is in use by another kinbook run (a grading still going on, "
-                    f"or a command that hangs) — waited {book.wait:g} s; let it finish, or stop it, and run this "
-                    "command again (nothing was changed)") from None
-            if not said:
-                (notify or _stderr)(f"kinbook: the gradebook {str(book.path)!r} is in use by another kinbook run; "
-                                    f"waiting up to {book.wait:g} s for it …")
-                said = True
-            time.sleep(0.2)
-
-
-def _stderr(line):
-    import sys
-
-    print(line, file=sys.stderr, flush=True)
-
-
-def gradebook_error(exc, path):
-    """The :class:`~kinbook.errors.GradebookError` for an ``sqlite3.Error`` or ``OSError`` met on the gradebook
-    ``path``: in the instructor's words, naming the file and what to do. Nothing recorded before is lost (every
-    result is its own transaction)."""
-    import errno
-
-    if isinstance(exc, GradebookError):
-        return exc
-    path = str(path)
-    text = str(exc).lower()
-    code = getattr(exc, "errno", None)
-    if "full" in text or code in (errno.ENOSPC, getattr(errno, "EDQUOT", errno.ENOSPC)):
-        return GradebookFullError(f"the gradebook {path!r} cannot grow: the disk (or the quota) is full; every result "
-                                  "recorded before is kept — free some space and run the command again", path=path)
-    if "readonly" in text or "read-only" in text or code in (errno.EACCES, errno.EPERM, errno.EROFS) or (
-            "unable to open" in text and not os.access(os.path.dirname(path) or ".", os.W_OK)):
-        return GradebookReadOnlyError(f"the gradebook {path!r} cannot be written: it or its directory is read-only "
-                                      "(permissions, a read-only disk); kinbook needs to write beside it (its journal) "
-                                      "— make the directory writable, or work on a copy")
-    if "locked" in text or "busy" in text:
-        return GradebookLockedError(f"the gradebook {path!r} is in use by another kinbook run; let it finish, or stop "
-                                    "it, and run this command again (nothing was changed)")
-    if "not a database" in text or "malformed" in text or "encrypted" in text:
-        return NotAGradebookError(f"{path!r} is not a kinbook gradebook (another file, or a damaged one): "
-                                  f"{exc}; it was not changed — restore it from a backup, or move it away to start a "
-                                  "new one")
-    if "disk i/o" in text:
-        return GradebookFullError(f"the gradebook {path!r} could not be written (disk I/O error: a full or failing "
-                                  "disk?); every result recorded before is kept — check the disk and run the command "
-                                  "again", path=path)
-    return GradebookError(f"the gradebook {path!r} cannot be used: {type(exc).__name__}: {exc}")
-
-
 def _cell(text):
     """A CSV field a spreadsheet will not read as a formula or split into rows (messages can quote students'
     answers): :func:`kinbook.classroom.sanitize.csv_field`."""
@@ -277,7 +195,7 @@ class Gradebook:
         self.wait = float(LOCK_WAIT if wait is None else wait)
         self.db = None
         if not create:
-            _must_exist(self.outdir, self.path)
+            must_exist(self.outdir, self.path)
         try:
             self.outdir.mkdir(parents=True, exist_ok=True)
         except FileExistsError:
@@ -296,7 +214,7 @@ class Gradebook:
         """Connect, wait (bounded) for another run's lock, check the schema's version, create or migrate it."""
         existed = self.path.exists() and self.path.stat().st_size > 0
         self.db = sqlite3.connect(str(self.path), timeout=min(self.wait, 1.0), isolation_level=None)
-        _held(self, notify)
+        wait_for_lock(self, notify)
         self.db.execute(f"PRAGMA busy_timeout = {int(self.wait * 1000)}")
         version = self.db.execute("PRAGMA user_version").fetchone()[0]
         tables = {r[0] for r in self.db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
@@ -325,6 +243,18 @@ class Gradebook:
     def _failure(self, exc):
         """The :class:`~kinbook.errors.GradebookError` for an ``sqlite3`` or ``OSError`` met on this gradebook."""
         return gradebook_error(exc, self.path)
+
+    @contextlib.contextmanager
+    def failures(self):
+        """Within the block, an error closes the gradebook, and SQLite's errors are the instructor's words
+        (:func:`~kinbook.classroom.gradebook_failures.gradebook_error`); every result recorded before is kept."""
+        try:
+            yield self
+        except BaseException as exc:
+            self.close()
+            if isinstance(exc, sqlite3.Error):
+                raise self._failure(exc) from exc
+            raise
 
     def close(self):
         if self.db is not None:
