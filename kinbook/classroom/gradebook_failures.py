@@ -54,14 +54,27 @@ def wait_for_lock(book, notify):
                 raise
             if time.monotonic() >= deadline:
                 raise GradebookLockedError(
-                    f"the gradebook {str(book.path)!r} is in use by another kinbook run (a grading still going on, "
-                    f"or a command that hangs) — waited {book.wait:g} s; let it finish, or stop it, and run this "
-                    "command again (nothing was changed)") from None
+                    f"the gradebook {str(book.path)!r} is in use by another kinbook run ({_holder(book)}) — waited "
+                    f"{book.wait:g} s; let it finish, or stop it, and run this command again (nothing was "
+                    "changed)") from None
             if not said:
-                (notify or _stderr)(f"kinbook: the gradebook {str(book.path)!r} is in use by another kinbook run; "
-                                    f"waiting up to {book.wait:g} s for it …")
+                (notify or _stderr)(f"kinbook: the gradebook {str(book.path)!r} is in use by another kinbook run "
+                                    f"({_holder(book)}); waiting up to {book.wait:g} s for it …")
                 said = True
             time.sleep(0.2)
+
+
+def _holder(book):
+    """Which run holds the gradebook, as far as it says: the latest grading run not finished (a reader sees it while
+    the other run writes, in WAL mode), else a command that hangs."""
+    try:
+        row = book.db.execute("SELECT exercise, started FROM runs WHERE finished IS NULL ORDER BY id DESC "
+                              "LIMIT 1").fetchone()
+    except sqlite3.Error:
+        row = None
+    if row:
+        return f"probably the grading of {row[0]} started {row[1]}, not finished"
+    return "a grading still going on, or a command that hangs"
 
 
 def _stderr(line):
