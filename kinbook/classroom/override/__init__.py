@@ -22,9 +22,9 @@ __all__ = ["override", "due", "extend", "known_exercise", "known_student"]
 
 def _unknown(lead, name, known):
     near = closest(name, known)
-    hint = f"did you mean {near!r}? " if near else ""
+    hint = f": did you mean {near!r}?" if near else ""
     shown = ", ".join(sorted(known)[:12]) + (" …" if len(known) > 12 else "") if known else "none"
-    return UnknownNameError(f"{lead}: {hint}(known: {shown})", name=name, closest=near)
+    return UnknownNameError(f"{lead}{hint} (known: {shown})", name=name, closest=near)
 
 
 def known_exercise(book, exercise):
