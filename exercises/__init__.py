@@ -14,7 +14,6 @@ the notebooks out with ``kinbook exercises copy NAME DIR`` â€” or :func:`copy` â
 from __future__ import annotations
 
 import os
-import shutil
 from importlib import resources
 
 # absolute imports: pytest's doctest collection imports this file as the top-level module ``exercises`` too
@@ -56,16 +55,19 @@ def copy(name, directory):
     An existing file of that name is never overwritten (it may be the instructor's edited copy): it is an
     :class:`~kinbook.errors.InputError`.
     """
+    from kinbook.core.atomic import atomic_write
+    from kinbook.errors import WriteError
+
     source = path(name)
     directory = os.fspath(directory)
     if os.path.exists(directory) and not os.path.isdir(directory):
         raise InputError(f"cannot copy exercise {source.name!r} into {directory!r}: it is not a directory")
-    os.makedirs(directory, exist_ok=True)
     target = os.path.join(directory, source.name)
-    try:
-        with source.open("rb") as src, open(target, "xb") as dst:
-            shutil.copyfileobj(src, dst)
-    except FileExistsError:
-        raise InputError(f"{target!r} already exists: not overwritten (remove it, or copy into another "
-                         "directory)") from None
+    try:  # whole or not at all (a full disk leaves no 0-byte notebook that a retry would refuse to overwrite)
+        atomic_write(target, source.read_bytes(), overwrite=False)
+    except WriteError as exc:
+        if "already exists" in str(exc):
+            raise InputError(f"{target!r} already exists: not overwritten (remove it, or copy into another "
+                             "directory)") from None
+        raise
     return target

@@ -19,7 +19,6 @@ import sys
 import numpy as np
 
 from . import examples
-from .classroom.variant import STUDENT_ID  # (one definition: the library's)
 from .errors import KinbookError
 from .files import load
 
@@ -78,12 +77,24 @@ def count(text):
 
 
 def student_id(text):
-    """A student identifier that is one safe file name (see :data:`STUDENT_ID`)."""
-    if not STUDENT_ID.fullmatch(text):
-        raise argparse.ArgumentTypeError(
-            f"a student id must be letters, digits and . _ @ + - (starting with a letter or digit, at most 128 "
-            f"characters), got {text[:80]!r}")
-    return text
+    """A student id by the one rule (:func:`kinbook.classroom.ids.check_id`): Unicode letters and digits, NFC."""
+    from .classroom.ids import check_id
+
+    try:
+        return check_id(text)
+    except KinbookError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def exercise_name(text):
+    """An exercise's name: the source notebook's file name without ``.ipynb`` (the student-id rule: one safe file
+    name)."""
+    from .classroom.ids import check_id
+
+    try:
+        return check_id(text, what="exercise name")
+    except KinbookError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def _checked(text, check):
@@ -224,7 +235,7 @@ def _cmd_due(args):
 def _cmd_extend(args):
     from .classroom.override import extend
 
-    print(extend(args.gradebook, args.student, args.exercise, args.when, args.why))
+    print(extend(args.gradebook, args.student, args.exercise, args.when, args.why, remove=args.remove))
 
 
 def _cmd_export(args):
@@ -313,7 +324,7 @@ def _course_parsers(sub):
     p.set_defaults(func=_cmd_validate)
     p = sub.add_parser("override", help="set a part's score by hand, with the reason (kept across regrades)")
     p.add_argument("student", type=student_id)
-    p.add_argument("exercise", type=student_id, help="the exercise (the source notebook's name without .ipynb)")
+    p.add_argument("exercise", type=exercise_name, help="the exercise (the source notebook's name without .ipynb)")
     p.add_argument("part")
     p.add_argument("score", type=score_arg, nargs="?", help="the part's score (omit with --remove)")
     p.add_argument("--why", default="", help="the reason, shown to the student on their feedback page (required)")
@@ -321,7 +332,7 @@ def _course_parsers(sub):
     gradebook(p)
     p.set_defaults(func=_cmd_override)
     p = sub.add_parser("due", help="set an exercise's due date, late penalty and attempt policy")
-    p.add_argument("exercise", type=student_id)
+    p.add_argument("exercise", type=exercise_name, help="the exercise (the source notebook's name without .ipynb)")
     p.add_argument("when", type=when_arg, help="due date and time with its zone: 2026-03-01T23:59+01:00")
     p.add_argument("--penalty", type=percent, help="percent of the points taken per started day late")
     p.add_argument("--cap", type=percent, help="at most this percent is taken (default 100)")
@@ -330,9 +341,11 @@ def _course_parsers(sub):
     p.set_defaults(func=_cmd_due)
     p = sub.add_parser("extend", help="give one student their own due date for an exercise")
     p.add_argument("student", type=student_id)
-    p.add_argument("exercise", type=student_id)
-    p.add_argument("when", type=when_arg, help="their due date, with its zone ('none' is refused: use --remove)")
+    p.add_argument("exercise", type=exercise_name, help="the exercise (the source notebook's name without .ipynb)")
+    p.add_argument("when", type=when_arg, nargs="?",
+                   help="their due date, with its zone (omit with --remove; 'none' is refused: use --remove)")
     p.add_argument("--why", default="", help="the reason, for the record")
+    p.add_argument("--remove", action="store_true", help="take the extension back: the exercise's due date applies")
     gradebook(p)
     p.set_defaults(func=_cmd_extend)
     p = sub.add_parser("export", help="write the scores as a file Canvas or Moodle imports, or as CSV")
@@ -340,7 +353,7 @@ def _course_parsers(sub):
     p.add_argument("-o", "--output", required=True, help="the file to write")
     gradebook(p)
     roster(p)
-    p.add_argument("--exercise", action="append", type=student_id, help="an exercise to export (repeat; default all)")
+    p.add_argument("--exercise", action="append", type=exercise_name, help="an exercise to export (repeat; default all)")
     p.add_argument("--header", action="append", default=[], type=header_arg,
                    help="EXERCISE=COLUMN: the LMS's column for an exercise, Canvas 'Exercise 1 (4242)' (repeat)")
     p.add_argument("--decimals", type=int, choices=range(7), default=2, help="decimals of the scores (default 2)")
@@ -431,8 +444,11 @@ def _cmd_exercises_list(args):
 def _cmd_exercises_copy(args):
     from . import exercises
 
-    for name in args.names:  # every name checked before anything is copied
-        exercises.path(name)
+    for name in args.names:  # every name and target checked before anything is copied
+        target = os.path.join(args.directory, exercises.path(name).name)
+        if os.path.lexists(target):
+            raise KinbookError(f"{target!r} already exists: not overwritten (remove it, or copy into another "
+                               "directory); nothing was copied")
     for name in args.names:
         print(exercises.copy(name, args.directory))
 
@@ -479,7 +495,7 @@ def build_parser():
     p.add_argument("source", type=existing_file, help="instructor source notebook")
     who = p.add_mutually_exclusive_group(required=True)
     who.add_argument("--student", type=student_id,
-                     help="student identifier (as in the collected submissions): letters, digits, . _ @ + -")
+                     help="student identifier (as in the collected submissions): letters and digits of any script, . _ @ + -")
     who.add_argument("--roster", type=existing_file, help="every student of a roster, in one run")
     p.add_argument("--roster-id", metavar="COLUMN", help="the roster's column holding the kinbook id")
     p.add_argument("-o", "--output", type=output_dir, default=_default(write_variant, "outdir"),
@@ -519,7 +535,10 @@ def main(argv=None):
     argv = [a for a in argv if a != "--debug"]  # accepted anywhere on the line
     try:
         args = build_parser().parse_args(argv)
-        args.func(args)
+        from .core.atomic import protect
+
+        with protect(*_inputs(args)):  # no file a command writes may be one it reads
+            args.func(args)
     except _UsageError as exc:
         print(exc, file=sys.stderr)
         return 2
@@ -549,6 +568,22 @@ def main(argv=None):
               "traceback, and please report it)", file=sys.stderr)
         return 1
     return 0
+
+
+def _inputs(args):
+    """``(label, path)`` of the files a command reads (its source, roster, submissions, mechanism, the gradebook's
+    database): :func:`kinbook.core.atomic.protect` refuses any output that is one of them."""
+    out = []
+    for name, label in (("source", "the source"), ("roster", "the roster"), ("submissions", "a submission"),
+                        ("mechanism", "the mechanism file")):
+        given = getattr(args, name, None)
+        for p in ([given] if isinstance(given, str) else given or []):
+            if isinstance(p, str) and os.path.isfile(p):
+                out.append((label, p))
+    book = getattr(args, "gradebook", None) or (args.output if getattr(args, "command", "") == "grade" else None)
+    if book:
+        out += [("the gradebook", os.path.join(book, f"gradebook.sqlite{x}")) for x in ("", "-wal", "-shm")]
+    return out
 
 
 def _silence_stdout():

@@ -21,6 +21,17 @@ The hierarchy::
         │   └── DeadPointError              ...because a driver cannot move the mechanism any further
         └── AssemblyError          a sweep reached a time at which the mechanism does not assemble
     GradingError                   an exercise notebook or a submission batch that cannot be processed
+    │   ├── RosterError            a roster file that cannot be read whole; names the file and the line
+    │   ├── GradebookError         a gradebook that cannot be used; names the file and what to do
+    │   │   ├── NotAGradebookError       a missing grading directory, or a file that is no gradebook
+    │   │   ├── GradebookReadOnlyError   a gradebook (or its directory) kinbook may not write
+    │   │   ├── GradebookLockedError     another kinbook run holds it longer than the bounded wait
+    │   │   ├── GradebookFullError       the disk is full (also a DiskFullError)
+    │   │   └── NewerGradebookError      written by a newer kinbook
+    │   └── UnknownNameError       an exercise, student or part the gradebook does not know (closest name given)
+    └── WriteError                 a file kinbook was asked to write cannot be written whole; names it
+        ├── OverwriteError         ...because it is one of the command's own inputs (both paths named)
+        └── DiskFullError          ...because the disk (or the quota) is full; the old file is kept
 
 Warnings::
 
@@ -47,6 +58,17 @@ __all__ = [
     "DeadPointError",
     "AssemblyError",
     "GradingError",
+    "RosterError",
+    "GradebookError",
+    "NotAGradebookError",
+    "GradebookReadOnlyError",
+    "GradebookLockedError",
+    "GradebookFullError",
+    "NewerGradebookError",
+    "UnknownNameError",
+    "WriteError",
+    "OverwriteError",
+    "DiskFullError",
     "KinbookWarning",
     "SingularityWarning",
 ]
@@ -224,6 +246,86 @@ class AssemblyError(AnalysisError):
 class GradingError(KinbookError):
     """An exercise notebook (source, release, variant) or a grading run that cannot be processed as asked.
     A bad *submission* is never an exception: it gets a status in the gradebook."""
+
+
+class RosterError(GradingError):
+    """A roster that cannot be read whole: its encoding, a malformed line (named by its number), a row without a
+    usable id. No student is ever dropped silently."""
+
+
+class GradebookError(GradingError):
+    """A gradebook (``graded/gradebook.sqlite``) that cannot be used as asked. The message names the file and what
+    to do; nothing recorded in it is lost."""
+
+
+class NotAGradebookError(GradebookError):
+    """The grading directory does not exist (a mistyped ``-g``), or its ``gradebook.sqlite`` is not a kinbook
+    gradebook (another file, a damaged one)."""
+
+
+class GradebookReadOnlyError(GradebookError):
+    """The gradebook or its directory cannot be written by this user (permissions, a read-only mount)."""
+
+
+class GradebookLockedError(GradebookError):
+    """Another kinbook run holds the gradebook for longer than the bounded wait."""
+
+
+class NewerGradebookError(GradebookError):
+    """A gradebook written by a newer kinbook, whose tables this one does not know."""
+
+
+class UnknownNameError(GradingError):
+    """An exercise, student or part a command names that the gradebook does not know; the message gives the
+    closest known name.
+
+    Attributes
+    ----------
+    name : str
+    closest : str or None
+    """
+
+    def __init__(self, message, *, name=None, closest=None):
+        super().__init__(message)
+        self.name, self.closest = name, closest
+
+
+class WriteError(KinbookError):
+    """A file kinbook was asked to write cannot be written whole. Files are written through a temporary file and
+    a rename (:func:`kinbook.core.atomic.atomic_write`): the old file, or none, is left — never half of one.
+
+    Attributes
+    ----------
+    path : str
+        The file that was to be written.
+    """
+
+    def __init__(self, message, *, path=None):
+        super().__init__(message)
+        self.path = path
+
+
+class OverwriteError(WriteError):
+    """The file to write is one of the command's own inputs (the gradebook, the roster, the source, a collected
+    file): refused before anything is written.
+
+    Attributes
+    ----------
+    input : str
+        The input it would have replaced.
+    """
+
+    def __init__(self, message, *, path=None, input=None):
+        super().__init__(message, path=path)
+        self.input = input
+
+
+class DiskFullError(WriteError):
+    """No space is left on the device (or the quota is used up) while writing; the old file is kept."""
+
+
+class GradebookFullError(GradebookError, DiskFullError):
+    """The gradebook cannot grow: the disk or the quota is full. Every result recorded before is kept."""
 
 
 class KinbookWarning(UserWarning):

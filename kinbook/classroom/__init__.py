@@ -4,9 +4,11 @@
 * :func:`release` — students' versions of source notebooks (:mod:`.release`);
 * :func:`variant` — one student's version with their own parameters (:mod:`.variant`);
 * :func:`grade` — account for every file of ``collected/`` (:mod:`.intake`, :mod:`.files`, :mod:`.naming`,
-  :mod:`.roster`), run submissions in the sandbox (:mod:`.sandbox`: bubblewrap), grade their answers, record every
-  attempt in the gradebook (:mod:`.gradebook`, SQLite) and export grades.csv, totals.csv, collection.csv and the
-  feedback pages;
+  :mod:`.roster` read through :mod:`.spreadsheet`, student ids by the one rule of :mod:`.ids`), run submissions in
+  the sandbox (:mod:`.sandbox`: bubblewrap), grade their answers, record every attempt in the gradebook
+  (:mod:`.gradebook`, SQLite; its failures in the instructor's words: :mod:`.gradebook_failures`) and export
+  grades.csv, totals.csv, collection.csv and the feedback pages (every file through
+  :mod:`kinbook.core.atomic`: whole or not at all, never over an input);
 * the course, one subpackage per command: :mod:`.override` (``override``, ``due``, ``extend``, applied by
   :mod:`.scores`), :mod:`.export` (Canvas, Moodle, CSV), :mod:`.report` (the class report), :mod:`.feedback`
   (a folder per student), :mod:`.validate` (an exercise through the real grader). They are imported where used,

@@ -1,8 +1,8 @@
 """Files of the instructor's workflow: the one atomic writer, and reading ``collected/`` as untrusted input.
 
-:func:`atomic_write` is how every file kinbook produces for an instructor is written (released notebooks,
-the manifest, the gradebook's exports): a temporary file in the same directory, flushed and synced, then
-``os.replace`` — a reader sees the old file or the new one, never half of one.
+:func:`atomic_write` (:mod:`kinbook.core.atomic`, re-exported here) is how every file kinbook produces for an
+instructor is written (released notebooks, the manifest, the gradebook's exports): a temporary file in the same
+directory, flushed and synced, then ``os.replace`` — a reader sees the old file or the new one, never half of one.
 
 :func:`collect` walks the submissions an instructor names. Whatever is inside a named directory was put
 there by students, so it is treated as hostile:
@@ -12,7 +12,7 @@ there by students, so it is treated as hostile:
 * a file is opened relative to its directory's descriptor with ``O_NOFOLLOW | O_NONBLOCK`` and must be the
   very regular file that was listed (same device and inode: a file swapped for a link, a FIFO or another file
   between listing and reading is refused), no larger than the size cap (``too-large``, before reading);
-* the student id comes from the path (:func:`student_id`): Unicode NFC, letters, digits and ``._@+-``, at most
+* the student id comes from the path (:func:`kinbook.classroom.ids.id_from_path`): Unicode NFC, letters, digits and ``._@+-``, at most
   :data:`MAX_ID_CHARS` characters; ids that are too long (``bad-id``) or that clash once case and Unicode
   compatibility forms are folded (``duplicate-id``) are reported per entry, and the batch goes on.
 """
@@ -20,66 +20,22 @@ there by students, so it is treated as hostile:
 from __future__ import annotations
 
 import datetime as _dt
-import hashlib
 import os
 import stat
-import tempfile
-import unicodedata
 from dataclasses import dataclass
-from pathlib import Path
 
+from ..core.atomic import atomic_write  # the one writer (re-exported: the classroom's callers import it from here)
+from .ids import MAX_ID_CHARS, id_key
+from .ids import id_from_path as student_id  # the one id rule (kinbook.classroom.ids); this name kept for callers
 from .results import Refused
 
 __all__ = ["atomic_write", "PUBLIC_FILE", "PUBLIC_DIR", "Entry", "collect", "read_entry", "shown", "student_id", "MAX_ID_CHARS"]
 
-MAX_ID_CHARS = 64
-_ID_EXTRA = "._@+-"
 
 
 #: Files and directories an instructor hands out (releases, feedback pages): readable by everyone, as nbgrader
 #: makes them, whatever the umask.
 PUBLIC_FILE, PUBLIC_DIR = 0o644, 0o755
-
-
-def _umask():
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith("Umask:"):
-                    return int(line.split()[1], 8)
-    except (OSError, ValueError):
-        pass
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
-
-
-def atomic_write(path, data, mode=None, dir_mode=None):
-    """Write ``data`` (str or bytes) to ``path`` through a temporary file in the same directory and
-    ``os.replace``.
-
-    ``mode``: the file's permissions (default: what ``open`` would give, 0666 less the umask); ``dir_mode``: the
-    permissions of the directories this call creates (default: ``mkdir``'s). Releases and feedback are written
-    with :data:`PUBLIC_FILE` and :data:`PUBLIC_DIR`."""
-    path = Path(path)
-    missing = [p for p in reversed(path.parents) if not p.exists()]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if dir_mode is not None:
-        for d in missing:
-            os.chmod(d, dir_mode)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        os.fchmod(fd, (0o666 & ~_umask()) if mode is None else mode)
-        with os.fdopen(fd, "wb") as f:
-            f.write(data.encode("utf-8") if isinstance(data, str) else data)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
 
 
 def shown(path):
@@ -92,32 +48,6 @@ def shown(path):
     """
     text = os.fsencode(path).decode("utf-8", "backslashreplace")
     return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
-
-
-def student_id(name):
-    """The student id for a name taken from a path: ``(id, problem)`` with problem None or a message.
-
-    NFC-normalized; characters other than letters, digits and ``._@+-`` become ``_``; no leading dot.
-    Longer than :data:`MAX_ID_CHARS`: the id is shortened (with a hash of the whole name, so that it stays
-    unique) and the problem says why it is not graded.
-
-    >>> student_id("José")
-    ('José', None)
-    >>> student_id("a b/c")
-    ('a_b_c', None)
-    """
-    name = unicodedata.normalize("NFC", str(name))
-    sid = "".join(c if (c.isalnum() or c in _ID_EXTRA) else "_" for c in name).lstrip(".") or "unknown"
-    if len(sid) > MAX_ID_CHARS:
-        digest = hashlib.sha256(name.encode("utf-8", "surrogateescape")).hexdigest()[:8]
-        return f"{sid[:40]}…{digest}", (f"the student id taken from the path has {len(sid)} characters (at most "
-                                        f"{MAX_ID_CHARS}): rename the file or directory and grade again")
-    return sid, None
-
-
-def id_key(sid):
-    """Ids with the same key are the same student for a file system or a spreadsheet (case, Unicode forms)."""
-    return unicodedata.normalize("NFKC", sid).casefold()
 
 
 @dataclass

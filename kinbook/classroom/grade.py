@@ -542,17 +542,15 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         if progress:
             progress("warning: " + NO_ISOLATION_WARNING)
     book = Gradebook(outdir)
-    try:
+    with book.failures():  # closed on any error; SQLite's (a full disk, another run's lock) in the instructor's words
         check_pin(book, src, regrade)
-    except BaseException:
-        book.close()
-        raise
-    run = book.begin_run(src, "bubblewrap" if isolation else "none")
-    options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden))
-    plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
-                  roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times)
-    return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
-                      progress=progress)
+        run = book.begin_run(src, "bubblewrap" if isolation else "none")
+        options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic),
+                       reveal_hidden=bool(reveal_hidden))
+        plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
+                      roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times)
+        return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
+                          progress=progress)
 
 
 def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progress):

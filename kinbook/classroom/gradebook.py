@@ -38,6 +38,7 @@ of the last run) are exports, each written atomically (:func:`kinbook.classroom.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import json
@@ -45,14 +46,20 @@ import sqlite3
 import time
 from pathlib import Path
 
+from ..errors import NewerGradebookError, NotAGradebookError
 from .files import atomic_write
+from .gradebook_failures import gradebook_error, must_exist, wait_for_lock
 from .results import UNGRADED, PartGrade, SubmissionResult
 from .sanitize import csv_field
 from .scores import Final, Rule, final
 
-__all__ = ["Gradebook", "COLUMNS", "TOTALS", "DATABASE", "FILES"]
+__all__ = ["Gradebook", "COLUMNS", "TOTALS", "DATABASE", "FILES", "SCHEMA_VERSION", "LOCK_WAIT", "gradebook_error"]
 
 DATABASE = "gradebook.sqlite"
+#: The gradebook's schema (SQLite's ``user_version``): a gradebook of a higher one was written by a newer kinbook.
+SCHEMA_VERSION = 2
+#: Seconds a command waits for another kinbook run that holds the gradebook.
+LOCK_WAIT = 30.0
 COLUMNS = ["student", "exercise", "part", "score", "max_score", "status", "message", "reference"]
 TOTALS = ["student", "exercise", "score", "max_score", "status", "isolation", "sha256", "note"]
 FILES = ["exercise", "path", "student", "outcome", "reason", "sha256", "submitted"]
@@ -140,15 +147,20 @@ def _score(row):
     return "" if row.status in UNGRADED else f"{row.score:g}"
 
 
-def write_csv(path, header, rows):
-    """A CSV export, written atomically; every field quoted and every text field sanitized and guarded against
-    spreadsheet formulas (:func:`kinbook.classroom.sanitize.csv_field`)."""
+def csv_text(header, rows):
+    """The text of a CSV export: every field quoted and every text field sanitized and guarded against spreadsheet
+    formulas (:func:`kinbook.classroom.sanitize.csv_field`)."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n", quoting=csv.QUOTE_ALL)
     w.writerow(header)
     for row in rows:
         w.writerow([_cell(v) if isinstance(v, str) else v for v in row])
-    return atomic_write(path, buf.getvalue())
+    return buf.getvalue()
+
+
+def write_csv(path, header, rows):
+    """A CSV export (:func:`csv_text`), written atomically."""
+    return atomic_write(path, csv_text(header, rows))
 
 
 class Gradebook:
@@ -157,28 +169,104 @@ class Gradebook:
     Parameters
     ----------
     outdir : path
-        Created if missing; holds ``gradebook.sqlite`` and the exports.
+        Holds ``gradebook.sqlite`` and the exports.
+    create : bool
+        Create the directory and the gradebook when they are missing (``kinbook grade``'s job). False (every other
+        command): a missing directory or gradebook is a :class:`~kinbook.errors.NotAGradebookError` — a mistyped
+        ``-g`` never makes an empty gradebook.
+    wait : float, optional
+        Default :data:`LOCK_WAIT`. Seconds to wait for another kinbook run that holds the gradebook (a message is given when waiting starts,
+        through ``notify``) before :class:`~kinbook.errors.GradebookLockedError`.
+    notify : callable, optional
+        Called with a line when the gradebook is busy and kinbook waits (default: printed on stderr).
+
+    Raises
+    ------
+    GradebookError
+        Its subclasses name the file and what to do: :class:`~kinbook.errors.NotAGradebookError` (missing, another
+        file, damaged), :class:`~kinbook.errors.GradebookReadOnlyError`, :class:`~kinbook.errors.GradebookLockedError`,
+        :class:`~kinbook.errors.NewerGradebookError`, :class:`~kinbook.errors.GradebookFullError`. The same errors
+        (never a raw ``sqlite3`` one) come out of a ``with Gradebook(...)`` block.
     """
 
-    def __init__(self, outdir):
+    def __init__(self, outdir, create=True, *, wait=None, notify=None):
         self.outdir = Path(outdir)
-        self.outdir.mkdir(parents=True, exist_ok=True)
         self.path = self.outdir / DATABASE
-        self.db = sqlite3.connect(str(self.path), timeout=30, isolation_level=None)
+        self.wait = float(LOCK_WAIT if wait is None else wait)
+        self.db = None
+        if not create:
+            must_exist(self.outdir, self.path)
+        try:
+            self.outdir.mkdir(parents=True, exist_ok=True)
+        except FileExistsError:
+            raise NotAGradebookError(f"the grading directory {str(self.outdir)!r} is a file, not a directory: give "
+                                     "the directory that holds gradebook.sqlite (-g)") from None
+        except OSError as exc:
+            raise self._failure(exc) from None
+        try:
+            self._open(notify)
+        except sqlite3.Error as exc:
+            if self.db is not None:
+                self.db.close()
+            raise self._failure(exc) from None
+
+    def _open(self, notify):
+        """Connect, wait (bounded) for another run's lock, check the schema's version, create or migrate it."""
+        existed = self.path.exists() and self.path.stat().st_size > 0
+        self.db = sqlite3.connect(str(self.path), timeout=min(self.wait, 1.0), isolation_level=None)
+        wait_for_lock(self, notify)
+        self.db.execute(f"PRAGMA busy_timeout = {int(self.wait * 1000)}")
+        version = self.db.execute("PRAGMA user_version").fetchone()[0]
+        tables = {r[0] for r in self.db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+        if version > SCHEMA_VERSION:
+            raise NewerGradebookError(f"the gradebook {str(self.path)!r} was written by a newer kinbook (schema "
+                                      f"{version}, this kinbook knows {SCHEMA_VERSION}): upgrade kinbook (pip install "
+                                      "-U kinbook) to use it; it was not changed")
+        if existed and tables and not {"submissions", "runs"} <= tables:
+            raise NotAGradebookError(f"{str(self.path)!r} is an SQLite database but not a kinbook gradebook (its "
+                                     f"tables: {', '.join(sorted(tables)[:8])}); it was not changed — move it away or "
+                                     "give the grading directory kinbook grade wrote (-g)")
         self.db.execute("PRAGMA journal_mode=WAL")
         self.db.execute("PRAGMA synchronous=FULL")
         self.db.executescript(_SCHEMA)
         self._migrate()
+        if version < SCHEMA_VERSION:
+            self.db.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
         self._import_json_results()
 
+    def inputs(self):
+        """``(label, path)`` of the gradebook's files, which no export, report or page may be written over
+        (:func:`kinbook.core.atomic.protect`)."""
+        return [("the gradebook", self.path)] + [("the gradebook's journal", Path(f"{self.path}{x}"))
+                                                 for x in ("-wal", "-shm")]
+
+    def _failure(self, exc):
+        """The :class:`~kinbook.errors.GradebookError` for an ``sqlite3`` or ``OSError`` met on this gradebook."""
+        return gradebook_error(exc, self.path)
+
+    @contextlib.contextmanager
+    def failures(self):
+        """Within the block, an error closes the gradebook, and SQLite's errors are the instructor's words
+        (:func:`~kinbook.classroom.gradebook_failures.gradebook_error`); every result recorded before is kept."""
+        try:
+            yield self
+        except BaseException as exc:
+            self.close()
+            if isinstance(exc, sqlite3.Error):
+                raise self._failure(exc) from exc
+            raise
+
     def close(self):
-        self.db.close()
+        if self.db is not None:
+            self.db.close()
 
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, kind, exc, tb):
         self.close()
+        if isinstance(exc, sqlite3.Error):
+            raise self._failure(exc) from exc
 
     # ----------------------------------------------------------------------------------------- recording
     def begin_run(self, source, isolation):
@@ -538,4 +626,4 @@ class Gradebook:
                 continue
 
 
-__all__ += ["Final", "write_csv"]
+__all__ += ["Final", "write_csv", "csv_text"]

@@ -107,11 +107,31 @@ def load_source(path):
         seen.add(cell["id"])
         if cell.cell_type == "code":
             _regions(cell.source, f"{path.name}, cell {i + 1}")  # validates the markers
+            _compiles(cell.source, f"source notebook {str(path)!r}, cell {i + 1}")
     try:
         find_parameters(nb)  # validated once, here, with the file named
     except GradingError as exc:
         raise GradingError(f"{path.name}: {exc}") from None
     return Source(path, nb, path.stem, hashlib.sha256(data).hexdigest())
+
+
+def runnable(code):
+    """A cell's code as Python runs it: IPython's ``%magic`` and ``!shell`` lines left out."""
+    return "\n".join(line for line in code.splitlines() if not line.lstrip().startswith(("%", "!")))
+
+
+def _compiles(code, where):
+    """A source cell must compile whole (its solution included): a cell that does not — a missing ``)`` in the
+    hidden checks — would silently lose the parts it declares."""
+    try:
+        compile(runnable(code), where, "exec")
+    except SyntaxError as exc:
+        line = f"line {exc.lineno}: " if exc.lineno else ""
+        raise GradingError(f"{where} is not valid Python: it does not compile ({line}{exc.msg}: "
+                           f"{(exc.text or '').strip()[:80]!r}); fix the cell — nothing was released, validated or "
+                           "graded") from None
+    except ValueError as exc:  # a NUL character in the code
+        raise GradingError(f"{where} is not valid Python: it does not compile ({exc})") from None
 
 
 def _regions(code, where):
@@ -345,7 +365,14 @@ def grader_code(source, values=None):
         if key not in source.compiled:
             try:
                 source.compiled[key] = compile(code, f"<{source.exercise} cell {index + 1}>", "exec")
-            except SyntaxError:
+            except SyntaxError as exc:
+                if kind == "hidden":  # the hidden checks stand alone: their parts must not vanish
+                    raise GradingError(f"{source.exercise}: the hidden checks of cell {index + 1} do not compile on "
+                                       f"their own (line {exc.lineno}: {exc.msg})") from None
+                if re.search(r"\bpart\s*\(", code):  # a declaration the grader would never see
+                    raise GradingError(f"{source.exercise}: cell {index + 1} declares part(...) in code that does not "
+                                       f"stand alone without its solution region (line {exc.lineno}: {exc.msg}); put "
+                                       "the declaration in a cell, or a region, of its own") from None
                 source.compiled[key] = None
         out.append((index, kind, source.compiled[key]))
     return out
@@ -365,7 +392,7 @@ def grader_segments(source, values=None):
         for kind, lines in _regions(cell.source, f"cell {i + 1}"):
             if kind == "solution":
                 continue
-            code = "\n".join(l for l in lines if not l.lstrip().startswith(("%", "!")))
+            code = runnable("\n".join(lines))
             if code.strip():
                 out.append((i, kind, code))
     return out

@@ -27,17 +27,16 @@
 
 from __future__ import annotations
 
-import csv
-import io
 import re
+import unicodedata
 from dataclasses import dataclass, fields
 
-from ..errors import GradingError
-from .files import id_key, student_id
+from ..errors import RosterError
+from .ids import RULE, id_key, id_problem
+from .spreadsheet import MAX_ROSTER_BYTES, read_rows
 
 __all__ = ["Student", "Roster", "read_roster", "MAX_ROSTER_BYTES"]
 
-MAX_ROSTER_BYTES = 20 * 1024 * 1024
 MAX_FIELD = 200
 
 
@@ -171,14 +170,15 @@ def _values(source, cols, row, n):
 
 def _check_id(path, n, sid, id_column, seen):
     if not sid:
-        raise GradingError(f"roster {str(path)!r}, row {n}: no student id"
-                           + (f" in column {id_column!r}" if id_column else ""))
-    fixed, problem = student_id(sid)
-    if problem or fixed != sid:
-        raise GradingError(f"roster {str(path)!r}, row {n}: the id {sid!r} is not a safe file name (letters, "
-                           f"digits and ._@+- only, at most 64 characters); choose another column with --roster-id")
+        raise RosterError(f"roster {str(path)!r}, line {n}: no student id"
+                          + (f" in column {id_column!r}" if id_column else ""))
+    problem = id_problem(unicodedata.normalize("NFC", sid))
+    if problem:
+        raise RosterError(f"roster {str(path)!r}, line {n}: {problem}, got {sid[:80]!r} — a student id must be {RULE}; "
+                          "choose another column with --roster-id")
     if id_key(sid) in seen:
-        raise GradingError(f"roster {str(path)!r}: rows {seen[id_key(sid)]} and {n} have the same id {sid!r}")
+        raise RosterError(f"roster {str(path)!r}: lines {seen[id_key(sid)]} and {n} have the same id {sid!r} (ids that "
+                          "differ only in case or Unicode form are one student)")
     seen[id_key(sid)] = n
 
 
@@ -187,28 +187,13 @@ def read_roster(path, id_column=None):
 
     Raises
     ------
-    GradingError
+    RosterError
         Naming the file, the row and the column of what cannot be used (no id, an id that is not a safe file name,
         two rows with one id).
     """
-    try:
-        with open(path, "rb") as f:
-            data = f.read(MAX_ROSTER_BYTES + 1)
-    except OSError as exc:
-        raise GradingError(f"roster {str(path)!r} cannot be read: {exc.strerror}") from None
-    if len(data) > MAX_ROSTER_BYTES:
-        raise GradingError(f"roster {str(path)!r} is larger than {MAX_ROSTER_BYTES:,} bytes")
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        text = data.decode("cp1252", "replace")  # a spreadsheet's "CSV" in the old Windows encoding
-    try:
-        dialect = csv.Sniffer().sniff(text[:4096], delimiters=",;\t")
-    except csv.Error:
-        dialect = csv.excel
-    rows = list(csv.reader(io.StringIO(text), dialect))
+    rows = read_rows(path)
     if not rows:
-        raise GradingError(f"roster {str(path)!r} is empty")
+        raise RosterError(f"roster {str(path)!r} is empty")
     header = [_canonical(h) for h in rows[0]]
     source, mapping = _format(header)
     cols = {}
@@ -220,11 +205,11 @@ def read_roster(path, id_column=None):
     if id_column is not None:
         want = _canonical(id_column)
         if want not in header:
-            raise GradingError(f"roster {str(path)!r} has no column {id_column!r} (--roster-id); its columns: "
+            raise RosterError(f"roster {str(path)!r} has no column {id_column!r} (--roster-id); its columns: "
                                f"{', '.join(rows[0])}")
         chosen = header.index(want)
     elif source == "kinbook" and "student" not in cols:
-        raise GradingError(f"roster {str(path)!r} has no 'student' column (the kinbook id); its columns: "
+        raise RosterError(f"roster {str(path)!r} has no 'student' column (the kinbook id); its columns: "
                            f"{', '.join(rows[0])} — see docs/instructors.md, or name the id column with --roster-id")
     students, seen = [], {}
     for n, row in enumerate(rows[1:], start=2):
@@ -238,6 +223,10 @@ def read_roster(path, id_column=None):
                    "canvas": values.get("login") or values.get("sis_id") or values.get("lms_id", "")}.get(
                 source, values.get("sis_id") or values.get("login") or values.get("email", ""))
         _check_id(path, n, sid, id_column, seen)
-        values["student"] = sid
+        values["student"] = sid = unicodedata.normalize("NFC", sid)
         students.append(Student(**{f: values.get(f, "") for f in FIELDS}))
-    return Roster(students, source)
+    if not students:
+        raise RosterError(f"roster {str(path)!r} has a header and no student (its columns: {', '.join(rows[0])})")
+    roster = Roster(students, source)
+    roster.path = str(path)  # an input: no command writes over it (kinbook.core.atomic.protect)
+    return roster

@@ -15,6 +15,7 @@ It imports nothing above it (no chapter, no grading, no book); each name has one
 - :mod:`~kinbook.core.sweep` — sweeps over many instants and continuation along one assembly branch
 - :mod:`~kinbook.core._linalg` — the linear solve and the scaled conditioning the analyses share
 - :mod:`~kinbook.core._animation` — the animation writer both chapters' plotting uses
+- :mod:`~kinbook.core.atomic` — the one writer of files: whole or not at all, never over a command's own inputs
 """
 
 __all__ = []  # nothing is imported from the package itself: each name from its module

@@ -172,9 +172,10 @@ class Animation:
         return self._png
 
     def save(self, path):
-        """Write the animated PNG to ``path`` (a ``.png`` file any browser plays)."""
-        with open(path, "wb") as f:
-            f.write(self.to_png())
+        """Write the animated PNG to ``path`` (a ``.png`` file any browser plays), whole or not at all."""
+        from .atomic import atomic_write
+
+        atomic_write(path, self.to_png())
 
     def _repr_png_(self):
         return self.to_png()

@@ -7,9 +7,9 @@ import functools
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, KinbookError
 
-__all__ = ["real_array", "no_overflow", "symbolic_leaves"]
+__all__ = ["real_array", "no_overflow", "shapes", "symbolic_leaves"]
 
 
 def real_array(value, name, what="numeric", finite=True):
@@ -18,12 +18,16 @@ def real_array(value, name, what="numeric", finite=True):
     Refused: text, booleans, complex numbers, ragged nesting, objects that are not numbers, and (with
     ``finite``) NaN and inf.
     """
+    if value is None:  # not "nan" (numpy's reading of None): the argument was not given
+        raise InputError(f"`{name}` must be {what}, got None")
     try:
         a = np.asarray(value)
     except (TypeError, ValueError):  # ragged nesting (numpy ≥ 1.24)
         raise InputError(f"`{name}` must be {what}, got {_show(value)}") from None
     kind = a.dtype.kind
     if kind == "O":
+        if any(x is None for x in a.flat):
+            raise InputError(f"`{name}` must be {what}, got None in {_show(value)}")
         try:
             a = a.astype(float)
         except (TypeError, ValueError):
@@ -56,6 +60,24 @@ def no_overflow(func):
                 return func(*args, **kwargs)
         except FloatingPointError:
             raise InputError(f"{func.__name__}: the arguments are too large, the result overflows") from None
+
+    return wrapper
+
+
+def shapes(func):
+    """Decorator: numpy's broadcasting errors (arguments of incompatible shapes) become an :class:`InputError`
+    naming the function and the shapes; overflow as :func:`no_overflow`."""
+
+    @functools.wraps(func)
+    @no_overflow
+    def wrapper(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except KinbookError:
+            raise
+        except ValueError as exc:
+            shown = ", ".join(str(np.shape(a)) for a in args if isinstance(a, (np.ndarray, list, tuple, float, int)))
+            raise InputError(f"{func.__name__}: arguments of incompatible shapes {shown} ({exc})") from None
 
     return wrapper
 

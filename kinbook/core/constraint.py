@@ -171,7 +171,9 @@ class ConstraintBase(abc.ABC):
         if self.owner is not None:
             return self.owner.describe()
         kind = {"joint": "joint", "driver": "driver", "simple": "constraint", "normalization": "equation"}
-        what = f"{self.type_name} {kind.get(self.kind, self.kind)} '{self.name}'"
+        noun = kind.get(self.kind, self.kind)
+        title = self.type_name if self.type_name.split("_")[-1] == noun else f"{self.type_name} {noun}"
+        what = f"{title} '{self.name}'"  # "driver 'driver 1'", not "driver driver …"
         if self.rows is not None:
             a, b = self.rows.start + 1, self.rows.stop
             what += f" (row {a} of Φ)" if a == b else f" (rows {a}-{b} of Φ)"

@@ -228,6 +228,9 @@ class MechanismBase:
     def index(self, coordinate):
         """Position in q of a coordinate given by name ('phi2') or as (body name, 'phi')."""
         if isinstance(coordinate, tuple):
+            if len(coordinate) != 2:
+                raise InputError(f"a coordinate is a name ('{self.coordinate_names()[-1]}') or a pair (body name, "
+                                 f"one of {', '.join(self.COORDS)}), got the tuple {coordinate!r}")
             body, c = coordinate
             if c not in self.COORDS:
                 raise InputError(f"coordinate must be one of {', '.join(self.COORDS)}, got {c!r}")

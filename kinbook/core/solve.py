@@ -21,6 +21,7 @@ from ._linalg import (
     SPARSE_ABOVE,
     column_scale,
     condition_number,
+    describe_rows,
     evaluate_jacobian,
     row_owner,
     scalar_time,
@@ -47,9 +48,11 @@ def check_drivers(mech):
     dof = n - m_geo
     names = ", ".join(f"'{c.name}'" for c in mech.drivers) or "none"
     if dof < 0:
+        repeated = _repeated(mech)
         raise DriverCountError(
             f"mechanism '{mech.name}' has {m_geo} geometric constraint equations for only n = {n} coordinates: "
             f"it is overconstrained by {-dof} equation(s) before any driver (drivers: {names})"
+            + (f"; these repeat what each other impose: {repeated}" if repeated else "")
         )
     hints = _free_motions(mech) if k < dof else []
     raise DriverCountError(
@@ -58,6 +61,28 @@ def check_drivers(mech):
         + ("add" if k < dof else "remove") + f" {abs(dof - k)} driver(s) so that Φ has as many rows as q"
         + "".join(f"; {h}" for h in hints)
     )
+
+
+def _repeated(mech):
+    """The geometric constraints whose rows of Φ_q at q0 depend on each other (a joint written twice), described;
+    "" when it cannot be told (a hint only: the count is the error)."""
+    if not mech.bodies or mech.n > 2000:
+        return ""
+    try:
+        with np.errstate(all="ignore"):
+            J = np.asarray(mech.evaluate(mech.q0, 0.0)["Phi_q"], dtype=float)
+        geo = [r for c in mech.constraints if c.kind != "driver" for r in range(c.rows.start, c.rows.stop)]
+        Jg = J[geo]
+        if not np.all(np.isfinite(Jg)):
+            return ""
+        U, sv, _ = np.linalg.svd(Jg, full_matrices=True)
+        rank = int(np.sum(sv > 1e-9 * max(sv[0], 1e-300))) if sv.size else 0
+        if rank == len(geo):
+            return ""
+        weight = np.linalg.norm(U[:, rank:], axis=1)
+        return describe_rows(mech, [geo[i] for i in np.nonzero(weight > 1e-6)[0]])
+    except Exception:  # noqa: BLE001 - a hint only
+        return ""
 
 
 def _free_motions(mech):

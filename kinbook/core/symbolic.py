@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-__all__ = ["Derivation", "derive", "time_function", "time_derivatives", "derivative_sizes", "DERIVATIVE_PARTS",
+__all__ = ["Derivation", "derive", "time_function", "time_derivatives", "real_or_nan", "derivative_sizes", "DERIVATIVE_PARTS",
            "lambdify_vector"]
 
 t = sp.Symbol("t", real=True)
@@ -326,7 +326,8 @@ def _checked(f, k, expr, where):
             first = int(np.flatnonzero(~np.isfinite(v))[0])
             t_bad = float(np.broadcast_to(np.asarray(tt, dtype=float), v.shape).flat[first])
             got = float(v.flat[first])
-            why = ("has no real value" if np.isnan(got) else "is infinite") + f" at t = {t_bad:.6g}"
+            why = (f"has no real value at t = {t_bad:.6g} (it is complex or undefined there)" if np.isnan(got)
+                   else f"is infinite at t = {t_bad:.6g}")
             if np.isnan(got) and k == 2:
                 why = f"does not exist at t = {t_bad:.6g} (a kink: the slope jumps there)"
             raise DriverValueError(
@@ -337,10 +338,20 @@ def _checked(f, k, expr, where):
     return call
 
 
+def real_or_nan(value):
+    """``value`` as a float array; an entry with a nonzero imaginary part (``sqrt(-t**2)``, ``I*t``) becomes NaN — no
+    real value — instead of losing its imaginary part with numpy's ComplexWarning, so that the caller names it."""
+    v = np.asarray(value)
+    if np.iscomplexobj(v):
+        with np.errstate(all="ignore"):
+            return np.where(v.imag == 0, v.real, np.nan)
+    return v.astype(float, copy=False)
+
+
 def _broadcasting(f, free):
     if free:
-        return lambda tt: np.asarray(f(tt), dtype=float) + np.zeros_like(tt, dtype=float)
-    value = f(0.0)
+        return lambda tt: real_or_nan(f(tt)) + np.zeros_like(tt, dtype=float)
+    value = real_or_nan(f(0.0))
     return lambda tt: np.full(np.shape(tt), value, dtype=float)
 
 

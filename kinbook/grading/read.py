@@ -333,8 +333,12 @@ def numbers_of(value, what, **fields):
     except (ValueError, TypeError):
         raise Refused("wrong_shape", "ragged") from None
     if arr.dtype == object:
+        if any(x is None for x in arr.flat):  # not "complex numbers" (what None becomes on the way)
+            raise Refused("malformed", "not_numbers", what=what, got=describe(value), **fields)
         try:
             arr = arr.astype(complex)
+        except OverflowError:  # an integer beyond every float: 10**400
+            raise Refused("not_finite", "not_finite", where=where) from None
         except (TypeError, ValueError):
             raise Refused("malformed", "not_numbers", what=what, got=describe(value), **fields) from None
     if arr.dtype.kind == "b":
@@ -495,7 +499,10 @@ def _entry(e, symbols, where):
             if e.imag != 0:
                 raise Refused("malformed", "complex_answer")
             e = e.real
-        value = float(e)
+        try:
+            value = float(e)
+        except OverflowError:  # an integer beyond every float: 10**400
+            raise Refused("not_finite", "not_finite", where=where) from None
         if not np.isfinite(value):
             raise Refused("not_finite", "not_finite", where=where)
         return sp.Integer(int(e)) if isinstance(e, (numbers.Integral, np.integer)) else sp.Float(value)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from ..core.arrays import no_overflow, real_array, symbolic_leaves
+from ..core.arrays import no_overflow, real_array, shapes, symbolic_leaves
 from ..errors import InputError
 
 __all__ = ["A", "B", "point_position", "point_velocity", "point_acceleration"]
@@ -83,7 +83,7 @@ def _matvec(M, v):
     return np.einsum("...ij,...j->...i", M, v)
 
 
-@no_overflow
+@shapes
 def point_position(r, phi, s_local):
     """Global position of a body point, eq. 5: r^P = r + A s'^P.
 
@@ -104,7 +104,7 @@ def point_position(r, phi, s_local):
     return _vec(r, "r") + _matvec(A(phi), _vec(s_local, "s_local"))
 
 
-@no_overflow
+@shapes
 def point_velocity(r_dot, phi, phi_dot, s_local):
     """Global velocity of a body point, eq. 10: ṙ^P = ṙ + B s'^P φ̇."""
     sym = _is_symbolic(r_dot, phi, phi_dot, s_local)
@@ -112,7 +112,7 @@ def point_velocity(r_dot, phi, phi_dot, s_local):
     return _vec(r_dot, "r_dot") + _matvec(B(phi), _vec(s_local, "s_local")) * phi_dot
 
 
-@no_overflow
+@shapes
 def point_acceleration(r_ddot, phi, phi_dot, phi_ddot, s_local):
     """Global acceleration of a body point, eq. 13: r̈^P = r̈ + B s'^P φ̈ − A s'^P φ̇²."""
     sym = _is_symbolic(r_ddot, phi, phi_dot, phi_ddot, s_local)

@@ -5,12 +5,10 @@ unit Euler parameters, numpy's broadcasting errors named, and products of stacks
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 
-from ..core.arrays import no_overflow, real_array, symbolic_leaves
-from ..errors import InputError, KinbookError
+from ..core.arrays import no_overflow, real_array, shapes, symbolic_leaves  # noqa: F401 (shapes: re-exported)
+from ..errors import InputError
 
 __all__ = ["P_TOL", "symbolic", "array", "show", "unit_p", "vec3", "shapes", "parts", "stack_rows", "mm", "mv",
            "transpose"]
@@ -51,23 +49,6 @@ def unit_p(p, name="p", check=True):
 
 def vec3(v, name):
     return array(v, name, (3,))
-
-
-def shapes(func):
-    """Turn numpy's broadcasting errors (arguments of incompatible shapes) into InputError."""
-
-    @functools.wraps(func)
-    @no_overflow
-    def wrapper(*args, **kwargs):
-        try:
-            return func(*args, **kwargs)
-        except KinbookError:
-            raise
-        except ValueError as exc:
-            shapes = ", ".join(str(np.shape(a)) for a in args if isinstance(a, (np.ndarray, list, tuple, float, int)))
-            raise InputError(f"{func.__name__}: arguments of incompatible shapes {shapes} ({exc})") from None
-
-    return wrapper
 
 
 def parts(p):

@@ -149,7 +149,7 @@ def test_moodle_worksheet_and_kinbook_rosters(tmp_path):
     assert (e.student, e.attempt, e.on_roster) == ("ben-1", 0, True)
     bad = tmp_path / "bad.csv"
     bad.write_text("student,name\nana,A\nANA,B\n")
-    with pytest.raises(Exception, match="rows 2 and 3 have the same id"):
+    with pytest.raises(Exception, match="lines 2 and 3 have the same id"):
         read_roster(bad)
 
 

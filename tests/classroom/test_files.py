@@ -1,5 +1,6 @@
 """Reading collected/ as untrusted input (kinbook.classroom.files) and the one atomic writer."""
 
+import errno
 import os
 import unicodedata
 
@@ -7,6 +8,7 @@ import pytest
 
 from kinbook.classroom.files import atomic_write, collect, read_entry, student_id
 from kinbook.classroom.results import Refused
+from kinbook.errors import DiskFullError
 
 
 def test_links_fifos_and_devices_are_refused_and_never_opened(tmp_path):
@@ -72,9 +74,9 @@ def test_atomic_write_leaves_the_old_file_or_the_new_one(tmp_path, monkeypatch):
     atomic_write(path, "old")
 
     def broken(fd):
-        raise OSError("disk full")
+        raise OSError(errno.ENOSPC, "No space left on device")
 
     monkeypatch.setattr(os, "fsync", broken)
-    with pytest.raises(OSError):
+    with pytest.raises(DiskFullError, match="grades.csv.*no space left"):
         atomic_write(path, "new")
     assert path.read_text() == "old" and os.listdir(tmp_path) == ["grades.csv"]

@@ -5,6 +5,8 @@ import json
 import os
 import sqlite3
 
+import pytest
+
 from kinbook.classroom import grade
 from kinbook.classroom.gradebook import COLUMNS, Gradebook
 from kinbook.classroom.results import PartGrade, SubmissionResult
@@ -153,3 +155,43 @@ def test_a_gradebook_of_an_earlier_kinbook_is_migrated(tmp_path):
     assert book.pin("ex01")[0] == "aaaa" and book.stale("ex01") == []
     book.close()
     assert len(Gradebook(tmp_path).attempts()) == 1  # migrated once
+
+
+def test_a_gradebook_held_by_another_run_is_waited_for_saying_which_then_refused(tmp_path):
+    from kinbook.errors import GradebookLockedError
+
+    book = Gradebook(tmp_path)
+    book.db.execute("INSERT INTO runs (started, source, source_sha256, exercise, isolation, kinbook) VALUES "
+                    "('2026-03-01T10:00:00+0100', 'ex01.ipynb', 'x', 'ex01', 'none', '0')")
+    book.close()
+    other = sqlite3.connect(str(tmp_path / "gradebook.sqlite"), isolation_level=None)
+    other.execute("BEGIN IMMEDIATE")  # another run, in the middle of recording a result
+    said = []
+    with pytest.raises(GradebookLockedError, match=r"in use by another kinbook run \(probably the grading of ex01 "
+                                                   r"started 2026-03-01T10:00:00\+0100.*waited 2.5 s"):
+        Gradebook(tmp_path, create=False, wait=2.5, notify=said.append)
+    assert len(said) == 1 and "waiting up to 2.5 s" in said[0]
+    other.execute("ROLLBACK")
+    other.close()
+    with Gradebook(tmp_path, create=False) as again:  # free again: nothing was lost
+        assert again.db.execute("SELECT COUNT(*) FROM runs").fetchone()[0] == 1
+
+
+def test_a_newer_or_foreign_database_is_refused_unchanged(tmp_path):
+    from kinbook.errors import NewerGradebookError, NotAGradebookError
+
+    Gradebook(tmp_path / "newer").close()
+    db = sqlite3.connect(str(tmp_path / "newer" / "gradebook.sqlite"))
+    db.execute("PRAGMA user_version = 99")
+    db.close()
+    with pytest.raises(NewerGradebookError, match="newer kinbook.*schema 99"):
+        Gradebook(tmp_path / "newer", create=False)
+    (tmp_path / "foreign").mkdir()
+    db = sqlite3.connect(str(tmp_path / "foreign" / "gradebook.sqlite"))
+    db.execute("CREATE TABLE moz_places (id INTEGER)")
+    db.close()
+    with pytest.raises(NotAGradebookError, match="not a kinbook gradebook.*moz_places"):
+        Gradebook(tmp_path / "foreign")  # not even grade adds its tables to another application's database
+    db = sqlite3.connect(str(tmp_path / "foreign" / "gradebook.sqlite"))
+    assert [r[0] for r in db.execute("SELECT name FROM sqlite_master")] == ["moz_places"]
+    db.close()

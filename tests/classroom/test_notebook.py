@@ -15,7 +15,7 @@ from kinbook.classroom.notebook import load_source, locked_checksums, student_no
 from kinbook.classroom.serialize import DecodeError, decode, dumps, encode
 from kinbook.classroom.variant import references
 from kinbook.cli import main
-from kinbook.errors import GradingError
+from kinbook.errors import GradingError, OverwriteError
 
 from .conftest import BWRAP, SOURCE
 
@@ -40,8 +40,10 @@ def test_release_refuses_to_overwrite_its_source(tmp_path):
 
     src = tmp_path / "tiny.ipynb"
     shutil.copy(SOURCE, src)
-    with pytest.raises(GradingError, match="overwrite its source"):
+    before = src.read_bytes()
+    with pytest.raises(OverwriteError, match="release would write over its own input.*is the source"):
         release([src], tmp_path)
+    assert src.read_bytes() == before and sorted(os.listdir(tmp_path)) == ["tiny.ipynb"]
 
 
 def test_references_come_from_kinbook_in_the_grader():

@@ -1367,12 +1367,89 @@ def drift_cases():
     ]
 
 
+def older_cases():
+    """The earlier corpora's cases still open at issue 31: a tuple that is no (body, coordinate) pair, point kinematics
+    with shapes that do not broadcast, None given for a number, an integer beyond every float in a try-it, a joint
+    written twice."""
+    import kinbook
+    from kinbook.planar import transforms
+
+    ex = functools.lru_cache(maxsize=1)(lambda: kinbook.examples.load("ch13_example1"))
+    text = _example_file("ch13_example1")
+    joint = next(b for b in text.split("[[constraints]]") if 'type = "revolute"' in b)
+    rows = [
+        ("index-one", lambda: ex().index(("crank",)), "InputError", ("('crank',)", "pair")),
+        ("index-three", lambda: ex().index(("crank", "phi", "x")), "InputError", ("pair",)),
+        ("point_position-shapes", lambda: transforms.point_position(np.zeros((3, 2)), np.zeros(4), np.zeros((5, 2))),
+         "InputError", ("point_position", "incompatible shapes", "(3, 2), (4,), (5, 2)")),
+        ("point_velocity-shapes", lambda: transforms.point_velocity(np.zeros((3, 2)), np.zeros(4), np.zeros(4),
+                                                                    np.zeros((5, 2))), "InputError",
+         ("point_velocity", "incompatible shapes")),
+        ("point_position-none", lambda: transforms.point_position(None, 0.0, [1.0, 0.0]), "InputError",
+         ("`r`", "got None")),
+        ("A-none", lambda: transforms.A(None), "InputError", ("`phi`", "got None")),
+        ("solve-t-none", lambda: ex().solve_position(None), "InputError", ("`t`", "got None")),
+        ("joint-twice", lambda: kinbook.loads(text + "\n[[constraints]]" + joint, source="twice.toml")
+         .solve_position(0.0), "DriverCountError", ("overconstrained", "revolute joint '1'", "revolute joint '5'")),
+    ]
+    out = [Case(f"older-{lbl}", "older open cases", fn, expect, words, timeout=30) for lbl, fn, expect, words in rows]
+
+    def try_it(answer):
+        return kinbook.try_it("13-1/try-1", answer)
+
+    for lbl, answer, word in (("huge-int", 10**400, "not_finite"), ("huge-int-list", [[10**400, 0], [0, 1]],
+                                                                      "not_finite"),
+                              ("none", None, "malformed"), ("none-in-list", [[None, 0], [0, 1]], "malformed")):
+        out.append(Case(f"older-try_it-{lbl}", "older open cases", lambda a=answer: try_it(a), "ok",
+                        check=lambda r, word=word: (not r.passed and word in r.mistakes
+                                                    and "has complex numbers" not in str(r)), timeout=30))
+    return out
+
+
+def complex_cases():
+    """A driver whose f(t), f' or f'' is complex where the analysis needs a real number (issue 31 item 7): a
+    DriverValueError naming the expression and the instant, never numpy's ComplexWarning and a real part."""
+    import kinbook
+
+    rows = [  # (label, f, what is analysed, words)
+        ("sqrt-negative-square", "3*pi/4 + 100*t + sqrt(-t^2)", ("position", 0.5), ("f(t)", "no real value",
+                                                                                 "t = 0.5")),
+        ("sqrt-negative", "3*pi/4 + sqrt(t - 5)", ("position", 1.0), ("f(t)", "no real value", "t = 1")),
+        ("log-negative", "3*pi/4 + log(t - 2)", ("position", 1.0), ("f(t)", "no real value", "t = 1")),
+        ("asin-out", "asin(t + 2)", ("position", 0.25), ("f(t)", "no real value", "t = 0.25")),
+        ("power-fraction", "3*pi/4 + (t - 3)^(1/3)", ("position", 1.0), ("f(t)", "no real value", "t = 1")),
+        ("velocity", "3*pi/4 + t*sqrt(t^2 - 4)", ("velocity", 1.0), ("f(t)", "no real value", "t = 1")),
+        ("sweep", "3*pi/4 + 100*t + sqrt(-t^2)", ("sweep", 0.0), ("f(t)", "no real value", "t = 0.1")),
+    ]
+
+    def analyse(f, what, t):
+        m = kinbook.loads(_driver_file(f), source="cx.toml")
+        if what == "position":
+            return m.solve_position(t)
+        if what == "velocity":
+            return m.solve_velocity(m.solve_position(3.0), t)  # a configuration where f is real; f' at t is not
+        return m.simulate(np.linspace(0.1, 1.0, 10))
+
+    return [Case(f"complex-{lbl}", "complex values", lambda f=f, what=what: analyse(f, *what), "DriverValueError",
+                 words, timeout=60) for lbl, f, what, words in rows]
+
+
+def course_cases():
+    """Issue 31's classes: the course commands' gradebooks, names, own inputs, rosters and sources
+    (tests/inputs/course_cases.py)."""
+    try:
+        from . import course_cases as course
+    except ImportError:  # the worker imports this file as the top-level module `corpus`
+        import course_cases as course
+    return course.cases(Case)
+
+
 def cases():
     """All cases, in a fixed order with unique ids."""
     out = (reader_cases() + driver_cases() + file_cases() + file_structure_cases() + api_cases()
            + function_cases() + singular_cases() + cli_cases() + checker_cases() + derivative_cases()
            + literal_cases() + file_kind_cases() + declaration_cases() + method_cases() + structure_cases()
-           + helper_cases() + drift_cases())
+           + helper_cases() + drift_cases() + older_cases() + complex_cases() + course_cases())
     ids = [c.id for c in out]
     dup = {i for i in ids if ids.count(i) > 1}
     assert not dup, f"duplicate case ids: {sorted(dup)[:5]}"

@@ -103,7 +103,8 @@ def test_the_corpus_is_large_seeded_and_covers_every_group():
     groups = {c.group for c in CASES}
     assert groups >= {"code execution", "hang", "syntax and names", "wrong types", "sympy trees", "drivers",
                       "file keys", "file structure", "python api", "public functions", "singular configurations",
-                      "command line", "checkers"}
+                      "command line", "checkers", "complex values", "older open cases", "course gradebook", "course names",
+                      "course own inputs", "course rosters", "course sources"}
 
 
 @pytest.mark.parametrize("case", [

@@ -27,6 +27,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from ...core.atomic import protect, refuse_overwrite
 from ...errors import GradingError
 from ..gradebook import Gradebook, write_csv
 from ..results import UNGRADED
@@ -79,7 +80,7 @@ def export(gradebook, out, fmt="csv", *, exercises=None, decimals=2, missing="ze
     if missing not in ("zero", "blank"):
         raise GradingError(f"missing must be 'zero' or 'blank', got {missing!r}")
     headers = dict(headers or {})
-    with Gradebook(gradebook) as book:
+    with Gradebook(gradebook, create=False) as book:
         known = book.exercises()
         exercises = list(exercises) if exercises else known
         unknown = [e for e in exercises if e not in known]
@@ -91,6 +92,13 @@ def export(gradebook, out, fmt="csv", *, exercises=None, decimals=2, missing="ze
             raise GradingError(f"a header is given for {', '.join(map(repr, bad))}, which is not exported")
         roster = roster if roster is not None else book.roster()
         finals = {e: {f.student: f for f in book.finals(e, roster)} for e in exercises}
+        inputs = book.inputs() + [("the roster", getattr(roster, "path", None))]
+    refuse_overwrite([out], inputs, "export")
+    with protect(*inputs):
+        return _write(out, fmt, exercises, finals, roster, headers, decimals, missing)
+
+
+def _write(out, fmt, exercises, finals, roster, headers, decimals, missing):
     students = list(roster) if roster is not None else []
     on_roster = {s.student for s in students}
     graded = sorted({s for e in exercises for s in finals[e]} - on_roster)

@@ -14,7 +14,8 @@ from __future__ import annotations
 import html
 from pathlib import Path
 
-from ..files import PUBLIC_DIR, PUBLIC_FILE, atomic_write
+from ...core.atomic import protect, refuse_overwrite, write_all
+from ..files import PUBLIC_DIR, PUBLIC_FILE
 from ..gradebook import Gradebook
 from ..results import UNGRADED
 
@@ -156,17 +157,17 @@ def write_pages(book, out, students=None):
             if wanted is not None and f.student not in wanted:
                 continue
             mine.setdefault(f.student, []).append((f, results.get(f.student), graded.get(f.student, "")))
-    written = []
+    files = []
     for student, items in sorted(mine.items()):
         for f, r, when in items:
-            written.append(atomic_write(out / student / f"{f.exercise}.html",
-                                        page(f, r, name=names.get(student, ""), graded=when), **_PUBLIC))
-        written.append(atomic_write(out / student / "index.html",
-                                    _index(student, names.get(student, ""), [f for f, _, _ in items]), **_PUBLIC))
-    return written
+            files.append((out / student / f"{f.exercise}.html", page(f, r, name=names.get(student, ""), graded=when)))
+        files.append((out / student / "index.html", _index(student, names.get(student, ""), [f for f, _, _ in items])))
+    refuse_overwrite([p for p, _ in files], book.inputs(), "feedback")
+    with protect(*book.inputs()):  # all pages or none: a full disk leaves the earlier pages as they were
+        return write_all(files, **_PUBLIC)
 
 
 def feedback(gradebook, out):
     """``kinbook feedback``: every student's pages from the gradebook directory ``gradebook`` into ``out``."""
-    with Gradebook(gradebook) as book:
+    with Gradebook(gradebook, create=False) as book:
         return write_pages(book, out)

@@ -6,20 +6,26 @@ import json
 import os
 from pathlib import Path
 
+from ...core.atomic import refuse_overwrite, write_all
 from ...errors import GradingError
 from ..files import PUBLIC_DIR, PUBLIC_FILE, atomic_write
+from ..ids import id_key
 from ..notebook import load_source, locked_checksums, student_notebook
 from ..variant import check_student_id, references, student_parameters
 
 __all__ = ["release", "write_variant", "write_variants", "write_notebook"]
 
 
+def _text(nb):
+    import nbformat
+
+    return nbformat.writes(nb) + "\n"
+
+
 def write_notebook(nb, path):
     """Write a notebook atomically (:func:`kinbook.classroom.files.atomic_write`), readable by everyone (0644;
     the directories it creates 0755), like nbgrader's releases."""
-    import nbformat
-
-    return atomic_write(path, nbformat.writes(nb) + "\n", mode=PUBLIC_FILE, dir_mode=PUBLIC_DIR)
+    return atomic_write(path, _text(nb), mode=PUBLIC_FILE, dir_mode=PUBLIC_DIR)
 
 
 def release(sources, outdir="release"):
@@ -29,6 +35,10 @@ def release(sources, outdir="release"):
     locked cells are marked read-only and their checksums recorded in the notebook's metadata and in
     ``outdir/manifest.json`` (the grader recomputes them from the source: the manifest is for the record).
     Parameters keep their defaults; use :func:`write_variant` for per-student versions.
+
+    Every source is read and checked (its cells compile, its own code runs, :func:`references`) before anything
+    is written, and the notebooks and the manifest are written all or none; a release that would write over one of
+    its sources is refused (:class:`~kinbook.errors.OverwriteError`, naming both).
 
     Returns
     -------
@@ -40,35 +50,53 @@ def release(sources, outdir="release"):
         sources = [sources]
     outdir = Path(outdir)
     manifest_path = outdir / "manifest.json"
-    manifest = json.loads(manifest_path.read_text()) if manifest_path.exists() else {}
-    written = []
+    try:
+        manifest = json.loads(manifest_path.read_text(encoding="utf-8")) if manifest_path.exists() else {}
+    except (OSError, ValueError) as exc:
+        raise GradingError(f"the release's manifest {str(manifest_path)!r} cannot be read ({exc}): move it away and "
+                           "release again") from None
+    if not isinstance(manifest, dict):
+        raise GradingError(f"the release's manifest {str(manifest_path)!r} is not kinbook's: move it away")
+    files, inputs = [], []
     for src in sources:
         source = load_source(src)
         parts = references(source)  # fails early on an exercise that cannot be graded
         nb = student_notebook(source)
-        if Path(src).resolve() == (outdir / f"{source.exercise}.ipynb").resolve():
-            raise GradingError(f"release would overwrite its source {src!r}: choose another -o directory")
-        written.append(write_notebook(nb, outdir / f"{source.exercise}.ipynb"))
+        inputs.append(("the source", source.path))
+        files.append((outdir / f"{source.exercise}.ipynb", _text(nb)))
         manifest[source.exercise] = {
             "locked": locked_checksums(nb),
             "parts": [{"part": p.name, "points": p.points, "answer": p.answer, "check": p.check,
                        "hidden": p.hidden} for p in parts],
         }
-    atomic_write(manifest_path, json.dumps(manifest, indent=1, sort_keys=True), mode=PUBLIC_FILE, dir_mode=PUBLIC_DIR)
-    return written
+    files.append((manifest_path, json.dumps(manifest, indent=1, sort_keys=True)))
+    refuse_overwrite([p for p, _ in files], inputs, "release")
+    return write_all(files, mode=PUBLIC_FILE, dir_mode=PUBLIC_DIR)[:-1]
 
 
 def write_variant(source, student, outdir="."):
     """Write ``student``'s own version of ``source`` as ``outdir/<exercise>-<student>.ipynb``; ``student`` must be
-    a safe file name (:func:`~kinbook.classroom.variant.check_student_id`)."""
-    check_student_id(student)
-    source = load_source(source)
-    values = student_parameters(source, student)
-    return write_notebook(student_notebook(source, values, student), Path(outdir) / f"{source.exercise}-{student}.ipynb")
+    a student id (:func:`~kinbook.classroom.ids.check_id`)."""
+    return write_variants(source, [student], outdir)[0]
 
 
 def write_variants(source, students, outdir="."):
     """Write every student's own version of ``source`` into ``outdir`` (``<exercise>-<student>.ipynb``), in one
-    process: the source is read and compiled once (``kinbook variant --roster``; benchmarks/variants.py)."""
+    process: the source is read and compiled once (``kinbook variant --roster``; benchmarks/variants.py).
+
+    All or none: every id is checked (the one rule, :mod:`kinbook.classroom.ids`; two ids that are one student under
+    its key are refused), every variant is made, and only then are the files written, together
+    (:func:`kinbook.core.atomic.write_all`)."""
     source = load_source(source)
-    return [write_variant(source, s, outdir) for s in students]
+    ids, seen = [], {}
+    for s in students:
+        sid = check_student_id(s)
+        if id_key(sid) in seen:
+            raise GradingError(f"the students {seen[id_key(sid)]!r} and {sid!r} are one student under the id rule "
+                               "(case and Unicode forms): their variants would be one file; nothing was written")
+        seen[id_key(sid)] = sid
+        ids.append(sid)
+    files = [(Path(outdir) / f"{source.exercise}-{sid}.ipynb",
+              _text(student_notebook(source, student_parameters(source, sid), sid))) for sid in ids]
+    refuse_overwrite([p for p, _ in files], [("the source", source.path)], "variant")
+    return write_all(files, mode=PUBLIC_FILE, dir_mode=PUBLIC_DIR)

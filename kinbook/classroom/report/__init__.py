@@ -24,8 +24,8 @@ import html
 import io
 from pathlib import Path
 
-from ..files import atomic_write
-from ..gradebook import Gradebook, write_csv
+from ...core.atomic import protect, refuse_overwrite, write_all
+from ..gradebook import Gradebook, csv_text
 from . import tables
 
 __all__ = ["report", "FORMATS"]
@@ -199,8 +199,8 @@ def report(gradebook, out=None, fmt="html", *, exercises=None, roster=None):
 
         raise GradingError(f"report format must be one of {', '.join(FORMATS)}, got {fmt!r}")
     out = Path(out) if out is not None else Path(gradebook) / "report"
-    written = []
-    with Gradebook(gradebook) as book:
+    files = []
+    with Gradebook(gradebook, create=False) as book:
         roster = roster if roster is not None else book.roster()
         exercises = list(exercises) if exercises else book.exercises()
         summary = tables.summary(book, exercises, roster)
@@ -211,7 +211,7 @@ def report(gradebook, out=None, fmt="html", *, exercises=None, roster=None):
             for r in t["scores"]:
                 totals[r["student"]] = totals.get(r["student"], 0.0) + r["score"]
             if fmt == "html":
-                written.append(atomic_write(out / f"{e}.html", _exercise_page(e, t)))
+                files.append((out / f"{e}.html", _exercise_page(e, t)))
                 continue
             for name in ("scores", "parts", "mistakes", "reference", "copying"):
                 rows = t[name]
@@ -219,10 +219,13 @@ def report(gradebook, out=None, fmt="html", *, exercises=None, roster=None):
                                                    "mistakes": ["part", "code", "students"],
                                                    "reference": ["student", "part", "how"],
                                                    "copying": ["kind", "students", "what"]}[name]
-                written.append(write_csv(out / f"{e}-{name}.csv", cols, [[r[c] for c in cols] for r in rows]))
+                files.append((out / f"{e}-{name}.csv", csv_text(cols, [[r[c] for c in cols] for r in rows])))
         if fmt == "html":
-            written.append(atomic_write(out / "index.html", _course_page(summary, totals, top)))
+            files.append((out / "index.html", _course_page(summary, totals, top)))
         else:
             cols = list(summary[0]) if summary else ["exercise"]
-            written.append(write_csv(out / "course.csv", cols, [[r[c] for c in cols] for r in summary]))
-    return written
+            files.append((out / "course.csv", csv_text(cols, [[r[c] for c in cols] for r in summary])))
+        inputs = book.inputs() + [("the roster", getattr(roster, "path", None))]
+    refuse_overwrite([p for p, _ in files], inputs, "report")
+    with protect(*inputs):  # every page or none
+        return write_all(files)

@@ -18,30 +18,22 @@ from __future__ import annotations
 
 import contextlib
 import io
-import re
 import warnings
 
 from ...errors import GradingError, KinbookError
 from ...grading.item import draw, seed_from
+from ..ids import check_id
 from ..notebook import find_parameters, grader_code, load_source, student_notebook
 from ..parts import parameters, part, recording
 
-__all__ = ["student_parameters", "variant", "references", "check_student_id", "STUDENT_ID", "MAX_DRAWS"]
+__all__ = ["student_parameters", "variant", "references", "check_student_id", "MAX_DRAWS"]
 
 MAX_DRAWS = 25
 
-STUDENT_ID = re.compile(r"[A-Za-z0-9][A-Za-z0-9._@+-]{0,127}")
-"""A student identifier a variant is written for: letters, digits and ``. _ @ + -``, starting with a letter or
-digit, at most 128 characters — so that it is always one safe file name (no ``/``, no ``..`` on its own, no
-hidden file)."""
-
-
 def check_student_id(student):
-    """Return ``student`` if it matches :data:`STUDENT_ID`, else raise :class:`~kinbook.errors.GradingError`."""
-    if not isinstance(student, str) or not STUDENT_ID.fullmatch(student):
-        raise GradingError(f"a student id must be letters, digits and . _ @ + - (starting with a letter or digit, at "
-                           f"most 128 characters), got {str(student)[:80]!r}")
-    return student
+    """Return ``student`` (NFC) if it is a student id by the one rule (:func:`kinbook.classroom.ids.check_id`), else
+    raise :class:`~kinbook.errors.GradingError`."""
+    return check_id(student)
 
 
 def _seed(exercise, student, attempt):
@@ -69,9 +61,35 @@ def student_parameters(source, student):
 
 def variant(source, student):
     """The student's own notebook (solutions removed, their parameters written in)."""
-    check_student_id(student)
+    student = check_student_id(student)
     source = load_source(source)
     return student_notebook(source, student_parameters(source, student), student)
+
+
+def _exit(code=None):
+    """``exit()``/``quit()`` in a source's code: SystemExit (refused, naming the cell) without closing the grader's
+    stdin, as the interactive helpers of ``site`` do."""
+    raise SystemExit(code)
+
+
+def declared_parts(code):
+    """The names of the parts a compiled cell declares, ``part("name", …)`` with the name written out (read from
+    the code object's constants: the calls are there whether or not they ran)."""
+    import dis
+
+    names, last = [], None
+    for ins in dis.get_instructions(code):
+        if ins.opname in ("LOAD_NAME", "LOAD_GLOBAL", "LOAD_ATTR", "LOAD_METHOD") and ins.argval == "part":
+            last = "part"
+        elif last == "part" and ins.opname == "LOAD_CONST" and isinstance(ins.argval, str):
+            names.append(ins.argval)
+            last = None
+        elif ins.opname not in ("PUSH_NULL", "PRECALL", "CACHE"):
+            last = None
+    for const in code.co_consts:
+        if hasattr(const, "co_code"):
+            names += declared_parts(const)
+    return names
 
 
 class _VariantFails(GradingError):
@@ -99,7 +117,7 @@ def references(source, values=None):
     import matplotlib.pyplot as plt
 
     ns = {"__name__": "__kinbook_reference__", "part": part, "parameters": parameters,
-          "display": lambda *a, **k: None}
+          "display": lambda *a, **k: None, "exit": _exit, "quit": _exit}
     parts = []
     try:
         with recording() as rec, warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()):
@@ -110,8 +128,15 @@ def references(source, values=None):
                 before = len(rec)
                 try:
                     exec(compiled, ns)  # the instructor's own code (trusted), never the student's
-                except NameError:
-                    pass  # a cell that uses the student's answers: nothing to build from it
+                except NameError as exc:
+                    # a cell that uses the student's answers: nothing to build from it — unless it declares parts
+                    # (they would vanish from the exercise) or is hidden checks (which only build references)
+                    lost = sorted(set(declared_parts(compiled)) - {p.name for p in rec[before:]})
+                    if kind == "hidden" or lost:
+                        what = f"the part(s) {', '.join(lost)} it declares would be lost" if lost else (
+                            "its hidden checks stop there")
+                        raise GradingError(f"{source.exercise}: cell {index + 1} fails in the grader: NameError: {exc}"
+                                           f" — {what}; the grader cannot use the student's names here") from exc
                 except GradingError as exc:  # a declaration the instructor must fix (part(points=nan) …)
                     raise GradingError(f"{source.exercise}: cell {index + 1}: {exc}") from exc
                 except KinbookError as exc:
@@ -119,6 +144,10 @@ def references(source, values=None):
                 except Exception as exc:
                     raise GradingError(f"{source.exercise}: cell {index + 1} fails in the grader: "
                                        f"{type(exc).__name__}: {exc}") from exc
+                except SystemExit:
+                    raise GradingError(f"{source.exercise}: cell {index + 1} stops the interpreter (SystemExit: "
+                                       "sys.exit, exit() or quit()); a source's code must run "
+                                       "to its end — nothing was released, validated or graded") from None
                 for p in rec[before:]:
                     p.hidden = kind == "hidden"
             parts = list(rec)
