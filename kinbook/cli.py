@@ -395,7 +395,7 @@ def _course_options(args):
 
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     return dict(regrade=args.regrade, policy=args.policy, id_pattern=args.id_pattern, roster=roster,
-                file_times=args.file_times)
+                file_times=args.file_times, released_from=args.released_from)
 
 
 def _course_arguments(p):
@@ -413,6 +413,10 @@ def _course_arguments(p):
                    "file's modification time when its name has none — only where the download kept the times")
     p.add_argument("--regrade", action="store_true", help="the source changed since the gradebook's results were "
                    "graded: grade every submission again with it (without this, such a run stops)")
+    p.add_argument("--released-from", metavar="SOURCE", action="append", default=[], type=existing_file,
+                   help="an earlier version of the source that students' notebooks were released from (the "
+                   "gradebook keeps those it graded with): each submission is checked against its own release and "
+                   "graded under the current source")
 
 
 # ------------------------------------------------------------------------------------- kinbook exercises

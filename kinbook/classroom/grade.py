@@ -33,6 +33,7 @@ import numpy as np
 
 from ..errors import GradingError, KinbookError
 from .answers import describe, mistake_rows
+from .editions import carry_over, class_would_be_tampered, edition_of, editions
 from .feedback import write_pages
 from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
@@ -43,9 +44,7 @@ from .notebook import (
     find_parameters,
     grader_segments,
     load_source,
-    missing_locked,
     parse_submission,
-    student_notebook,
 )
 from .options import check_options
 from .parts import CHECKS
@@ -150,6 +149,31 @@ def _same_release_as_graded(kinds, per_student, exercise):
                        "`kinbook variant`): grade them without --generic. Nothing was graded.")
 
 
+def _same_edition_as_released(source, todo, earlier, generic):
+    """Stop before any grading when most submissions hold the locked cells of no edition of the source: the source
+    was edited after its release (:func:`kinbook.classroom.editions.class_would_be_tampered`)."""
+    per_student = find_parameters(source.nb) is not None and not generic
+    checks = []
+    for entry in todo:
+        data, refused = _read_again(entry)
+        if refused is not None:
+            continue
+        try:
+            cells, meta = parse_submission(data, metadata=True)
+        except Refused:
+            continue
+        if _released_for(meta, cells, entry.student, per_student)[0]:
+            continue
+        # the students' own parameters cells are left out (drawing them costs the instructor's code per student)
+        candidates = editions(source, earlier, None, entry.student)
+        params = {e.source.nb.cells[find_parameters(e.source.nb)[0]]["id"] for e in candidates} if per_student else ()
+        misses = [[m for m in e.missing_code(cells) if m not in params] for e in candidates]
+        checks.append((entry.student, [] if not all(misses) else misses[0], candidates[0]))
+    why = class_would_be_tampered(checks)
+    if why:
+        raise GradingError(f"{source.exercise}: {why}")
+
+
 def _refused(source, entry, status, message, isolation=""):
     parts = references(source)
     return SubmissionResult(entry.student, source.exercise, entry.path, "", status, message,
@@ -225,7 +249,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
                                      reveal_hidden=reveal_hidden, sandbox=sandbox))
 
 
-def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden, sandbox):
+def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden, sandbox, earlier=()):
     """Grade the bytes of one submission (read already) with a running sandbox."""
     t0 = time.monotonic()
     student = entry.student
@@ -253,12 +277,10 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         if named is not None:  # a copying signal, for the instructor's report
             res.signals = [("released-for", clean(named, 80))]
         return res
-    released = student_notebook(source, values, student if values is not None else None)
-    locked = [c for c in released.cells if c.get("metadata", {}).get("kinbook", {}).get("locked")]
-    code_locked = [c for c in locked if c.cell_type == "code"]
-    missing = set(missing_locked([(c["id"], checksum(c)) for c in code_locked], cells))
+    candidates = editions(source, earlier, values, student)
+    edition, missing = edition_of(cells, candidates)
     if missing:
-        where = [_released_cell(released, c) for c in code_locked if c["id"] in missing]
+        where = [_released_cell(edition, c) for c in edition.code_locked if c["id"] in missing]
         shown = "; ".join(where[:3]) + (f"; and {len(where) - 3} more" if len(where) > 3 else "")
         msg = (f"{len(where)} locked code cell(s) of the released notebook were changed, moved or deleted "
                f"({shown}); the notebook was not run. Start again from the released notebook and only edit the "
@@ -266,7 +288,11 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         return done("tampered", msg, _all_parts(parts, "tampered", msg))
     # locked text (markdown) cells a student edited are restored from the release, as nbgrader does: they are
     # never run, so only the code cells are checked, and the text they read is the release's
-    restored = missing_locked([(c["id"], checksum(c)) for c in locked if c.cell_type != "code"], cells)
+    restored = edition.missing_text(cells)
+    if not edition.current:  # released from an earlier source: its locked cells become the current source's
+        cells = carry_over(cells, edition, candidates[0])
+        edition = candidates[0]
+    code_locked = edition.code_locked
 
     code = [c["source"] for c in cells if c["cell_type"] == "code"]
     names = sorted({p.answer for p in parts} | {p.options["phi"] for p in parts if isinstance(p.options.get("phi"), str)})
@@ -378,11 +404,10 @@ def _raised(cells, errors, only=None):
     return f"{_cell_name(cells, e['cell'])} raised {clean(e['ename'], 100)}" + (f": {evalue}" if evalue else "") + more
 
 
-def _released_cell(released, cell):
-    """A locked cell of the released notebook, as the student saw it there: its position and first line."""
-    position = next(i for i, c in enumerate(released.cells, 1) if c is cell)
+def _released_cell(edition, cell):
+    """A locked cell of the release the student got, as they saw it there: its position and first line."""
     first = _first_line(cell.source)
-    return f"cell {position}" + (f" “{first}”" if first else "")
+    return f"cell {edition.position(cell['id'])}" + (f" “{first}”" if first else "")
 
 
 def _hidden_verdict(result):
@@ -461,7 +486,7 @@ def _grade_task(args):
 
 def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jobs=1, force=False,
           generic=False, reveal_hidden=False, isolation=True, progress=None, regrade=False, policy=None,
-          id_pattern=None, roster=None, file_times=False):
+          id_pattern=None, roster=None, file_times=False, released_from=()):
     """Grade a batch of submissions of one exercise and record them in the gradebook.
 
     Parameters
@@ -495,6 +520,10 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     file_times : bool
         Take a submission's time from its file's modification time when its name gives none (for the late rule);
         only where the download kept the times.
+    released_from : list of paths
+        Earlier sources of the exercise that students' notebooks may have been released from (beside those the
+        gradebook kept): each submission is checked against the release its student got and graded under
+        ``source`` (:mod:`kinbook.classroom.editions`).
     generic, reveal_hidden : bool
         See :func:`grade_submission`.
     isolation : bool
@@ -529,10 +558,28 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     except BaseException:
         book.close()
         raise
+    earlier = []
+    for path in released_from or ():
+        old = load_source(path)
+        old.exercise = src.exercise  # a copy of the earlier source, under any name
+        earlier.append(old)
+    seen = {src.sha256} | {e.sha256 for e in earlier}
+    earlier += [e for e in book.sources(src.exercise) if e.sha256 not in seen]
+    for old in earlier:
+        book.keep_source(old)
     run = book.begin_run(src, "bubblewrap" if isolation else "none")
-    options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden))
+    options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden),
+                   earlier=tuple(earlier))
+    pinned = book.pin(src.exercise)
     plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
                   roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times)
+    try:
+        _same_edition_as_released(src, plan.todo, options["earlier"], generic)
+    except GradingError:  # nothing graded: the pin stays the source the results were graded with
+        book.unpin(src.exercise, pinned)
+        book.end_run(run)
+        book.close()
+        raise
     return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
                       progress=progress)
 

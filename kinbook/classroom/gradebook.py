@@ -28,6 +28,9 @@ Tables
 ``sources``
     The source notebook each exercise is pinned to (its sha256): a run with another source stops unless it
     regrades everything (``--regrade``).
+``source_texts``
+    The bytes of every source an exercise was graded with: the editions a regrade after an edit checks each
+    submission against (:mod:`kinbook.classroom.editions`).
 ``roster``, ``rules``, ``extensions``, ``overrides``
     The course: students and their LMS ids, each exercise's due date, late penalty and policy, per-student
     extensions, and the instructor's per-part overrides (kept across regrades and ``--force``).
@@ -95,6 +98,8 @@ CREATE TABLE IF NOT EXISTS files (
     reason TEXT NOT NULL, sha256 TEXT NOT NULL, submitted TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS sources (
     exercise TEXT PRIMARY KEY, sha256 TEXT NOT NULL, path TEXT NOT NULL, pinned TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS source_texts (
+    sha256 TEXT PRIMARY KEY, exercise TEXT NOT NULL, path TEXT NOT NULL, data BLOB NOT NULL, first TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS roster (
     position INTEGER NOT NULL, student TEXT PRIMARY KEY, name TEXT NOT NULL, first TEXT NOT NULL,
     last TEXT NOT NULL, lms_id TEXT NOT NULL, sis_id TEXT NOT NULL, login TEXT NOT NULL, email TEXT NOT NULL,
@@ -301,6 +306,30 @@ class Gradebook:
     def set_pin(self, source):
         self.db.execute("INSERT OR REPLACE INTO sources (exercise, sha256, path, pinned) VALUES (?,?,?,?)",
                         (source.exercise, source.sha256, _utf8(str(source.path)), _now()))
+        self.keep_source(source)
+
+    def unpin(self, exercise, pin):
+        """Put back the pin ``pin`` (:meth:`pin`'s row, or None) of a run that graded nothing."""
+        if pin is None:
+            self.db.execute("DELETE FROM sources WHERE exercise = ?", (exercise,))
+        else:
+            self.db.execute("INSERT OR REPLACE INTO sources (exercise, sha256, path, pinned) VALUES (?,?,?,?)",
+                            (exercise, *pin))
+
+    def keep_source(self, source):
+        """Keep a source's bytes (once per sha256): a later edit of it is graded against this edition."""
+        if source.data:
+            self.db.execute("INSERT OR IGNORE INTO source_texts (sha256, exercise, path, data, first) VALUES "
+                            "(?,?,?,?,?)", (source.sha256, source.exercise, _utf8(str(source.path)), source.data,
+                                            _now()))
+
+    def sources(self, exercise):
+        """Every source of ``exercise`` kept (:meth:`keep_source`), most recent first: [Source]."""
+        from .notebook import source_from_bytes
+
+        rows = self.db.execute("SELECT path, data FROM source_texts WHERE exercise = ? ORDER BY rowid DESC",
+                               (exercise,)).fetchall()
+        return [source_from_bytes(bytes(data), path) for path, data in rows]
 
     def stale(self, exercise):
         """Students whose counting result was graded with another source than the pinned one."""

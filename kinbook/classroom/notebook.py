@@ -36,7 +36,8 @@ from .parts import check_parameters
 from .results import Refused
 
 __all__ = [
-    "BEGIN_SOLUTION", "END_SOLUTION", "BEGIN_HIDDEN", "END_HIDDEN", "Source", "load_source", "checksum",
+    "BEGIN_SOLUTION", "END_SOLUTION", "BEGIN_HIDDEN", "END_HIDDEN", "Source", "load_source", "source_from_bytes",
+    "checksum",
     "student_notebook", "locked_checksums", "locked_sequence", "missing_locked", "grader_segments", "grader_code",
     "find_parameters", "parse_submission", "MAX_NOTEBOOK_BYTES", "MAX_CELLS",
 ]
@@ -66,6 +67,8 @@ class Source:
         The exercise's identifier: the file name without ``.ipynb``.
     sha256 : str
         Of the bytes read (once) from ``path``.
+    data : bytes
+        Those bytes (kept in the gradebook, so that a later edit can be graded against this edition).
     """
 
     path: Path
@@ -73,6 +76,7 @@ class Source:
     exercise: str
     sha256: str = ""
     compiled: dict = field(default_factory=dict, repr=False, compare=False)
+    data: bytes = field(default=b"", repr=False, compare=False)
 
     def __getstate__(self):  # code objects do not pickle: a copy in another process compiles again
         return {**self.__dict__, "compiled": {}}
@@ -92,16 +96,25 @@ class Source:
 
 def load_source(path):
     """Read (once) and validate a source notebook; cells get stable ids (``kb-NN``) when they have none."""
-    import nbformat
-
     if isinstance(path, Source):
         return path
     path = Path(path)
     try:
         data = path.read_bytes()
-        nb = nbformat.reads(data.decode("utf-8"), as_version=4)
     except FileNotFoundError:
         raise GradingError(f"source notebook {str(path)!r} does not exist") from None
+    except OSError as exc:
+        raise GradingError(f"source notebook {str(path)!r} cannot be read: {exc.strerror}") from None
+    return source_from_bytes(data, path)
+
+
+def source_from_bytes(data, path):
+    """:func:`load_source` of bytes read already (an earlier source the gradebook kept); ``path`` names it."""
+    import nbformat
+
+    path = Path(path)
+    try:
+        nb = nbformat.reads(data.decode("utf-8"), as_version=4)
     except Exception as exc:
         raise GradingError(f"source notebook {str(path)!r} cannot be read: {exc}") from None
     seen = set()
@@ -115,7 +128,7 @@ def load_source(path):
         find_parameters(nb)  # validated once, here, with the file named
     except GradingError as exc:
         raise GradingError(f"{path.name}: {exc}") from None
-    return Source(path, nb, path.stem, hashlib.sha256(data).hexdigest())
+    return Source(path, nb, path.stem, hashlib.sha256(data).hexdigest(), data=bytes(data))
 
 
 def _regions(code, where):
