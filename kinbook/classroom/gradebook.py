@@ -262,14 +262,17 @@ class Gradebook:
 
     def _select(self, exercise, student):
         """Make the attempt that counts under the policy the student's result (``submissions`` and ``parts``)."""
-        rows = self.db.execute("SELECT id FROM attempts WHERE exercise = ? AND student = ? AND status != 'superseded' "
-                               "ORDER BY id", (exercise, student)).fetchall()
+        rows = self.db.execute("SELECT id, run FROM attempts WHERE exercise = ? AND student = ? AND status != "
+                               "'superseded' ORDER BY id", (exercise, student)).fetchall()
         if not rows:
             return
         ids = [r[0] for r in rows]
         rule = self.rule(exercise)
         chosen = ids[-1]
-        if rule.policy == "best" and len(ids) > 1:
+        if rule.policy == "latest":  # the latest run's files: several notebooks of one submission, the best counts
+            last = rows[-1][1]
+            ids = [i for i, run in rows if run == last] if last is not None else ids[-1:]
+        if len(ids) > 1:
             ext = self.extension(exercise, student)
             finals = {i: final(student, exercise, self._attempt_result(i), rule, ext).score for i in ids}
             chosen = max(ids, key=lambda i: (finals[i], i))
@@ -421,6 +424,19 @@ class Gradebook:
             return []
         return [tuple(r) for r in self.db.execute("SELECT part, max_score FROM attempt_parts WHERE attempt = ? "
                                                    "ORDER BY position", (row[0],))]
+
+    def files_of(self, exercise):
+        """``{student: [(path, outcome, reason, run)]}``: every entry of ``collected/`` tied to a student (notebooks,
+        and files that are not: a PDF, a zip), as the latest run that saw it left it."""
+        latest = {}
+        for student, path, outcome, reason, run in self.db.execute(
+                "SELECT student, path, outcome, reason, run FROM files WHERE exercise = ? AND student != '' ORDER BY "
+                "rowid", (exercise,)):
+            latest[student, path] = (outcome, reason, run)
+        out = {}
+        for (student, path), (outcome, reason, run) in sorted(latest.items()):
+            out.setdefault(student, []).append((path, outcome, reason, run))
+        return out
 
     # ------------------------------------------------------------------------------------------- reading
     def _attempt_result(self, attempt):

@@ -13,6 +13,7 @@ import hashlib
 from dataclasses import dataclass, field
 
 from ..errors import GradingError
+from .choice import several_line
 from .files import collect, read_entry
 from .results import UNGRADED, Refused, SubmissionResult
 
@@ -99,6 +100,12 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
             plan.off_roster.append(e.student)
         _decide(book, run, src, e, plan, force or regrade, say)
     plan.entries = {e.path: e for e in entries}
+    by_student = {}
+    for e in plan.todo:
+        by_student.setdefault(e.student, []).append(e)
+    for student, mine in by_student.items():
+        if several_line(student, mine, policy):
+            say(several_line(student, mine, policy))
     graded_now = {e.student for e in plan.todo} | {e.student for e in plan.refused}
     plan.stale = [s for s in book.stale(src.exercise) if s not in graded_now]
     if plan.skipped:
