@@ -31,6 +31,9 @@ Tables
 ``source_texts``
     The bytes of every source an exercise was graded with: the editions a regrade after an edit checks each
     submission against (:mod:`kinbook.classroom.editions`).
+``reattached``
+    Ids a newer roster mapped to one of its students (a student enrolled after the first roster): their results
+    moved to the student, and the old id is dropped from the feedback folders.
 ``roster``, ``rules``, ``extensions``, ``overrides``
     The course: students and their LMS ids, each exercise's due date, late penalty and policy, per-student
     extensions, and the instructor's per-part overrides (kept across regrades and ``--force``).
@@ -100,6 +103,7 @@ CREATE TABLE IF NOT EXISTS sources (
     exercise TEXT PRIMARY KEY, sha256 TEXT NOT NULL, path TEXT NOT NULL, pinned TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS source_texts (
     sha256 TEXT PRIMARY KEY, exercise TEXT NOT NULL, path TEXT NOT NULL, data BLOB NOT NULL, first TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS reattached (old TEXT PRIMARY KEY, student TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS roster (
     position INTEGER NOT NULL, student TEXT PRIMARY KEY, name TEXT NOT NULL, first TEXT NOT NULL,
     last TEXT NOT NULL, lms_id TEXT NOT NULL, sis_id TEXT NOT NULL, login TEXT NOT NULL, email TEXT NOT NULL,
@@ -250,7 +254,7 @@ class Gradebook:
                 [[attempt] + [_utf8(str(v)) for v in (r.exercise, r.student, kind, detail)]
                  for kind, detail in r.signals])
             if r.status != "superseded":
-                self._select(r.exercise, r.student)
+                self.select(r.exercise, r.student)
         return attempt
 
     def record_file(self, run, exercise, entry, outcome, reason="", sha256=""):
@@ -260,7 +264,7 @@ class Gradebook:
                                                                         outcome, reason or "", sha256,
                                                                         entry.submitted)])
 
-    def _select(self, exercise, student):
+    def select(self, exercise, student):
         """Make the attempt that counts under the policy the student's result (``submissions`` and ``parts``)."""
         rows = self.db.execute("SELECT id, run FROM attempts WHERE exercise = ? AND student = ? AND status != "
                                "'superseded' ORDER BY id", (exercise, student)).fetchall()
@@ -294,7 +298,7 @@ class Gradebook:
             self.db.execute("BEGIN IMMEDIATE")
             for (student,) in self.db.execute("SELECT DISTINCT student FROM attempts WHERE exercise = ?",
                                               (exercise,)).fetchall():
-                self._select(exercise, student)
+                self.select(exercise, student)
 
     # ---------------------------------------------------------------------------------------- the source pin
     def pin(self, exercise):
@@ -344,7 +348,9 @@ class Gradebook:
 
     # ------------------------------------------------------------------------------------------- the course
     def set_roster(self, roster):
-        """Replace the stored roster (:class:`kinbook.classroom.roster.Roster`)."""
+        """Replace the stored roster (:class:`kinbook.classroom.roster.Roster`); results graded under an id it maps to
+        one of its students move to that student (:func:`kinbook.classroom.enrolment.reattach`): returns [(old id,
+        student)]."""
         from .roster import FIELDS
 
         with self.db:
@@ -353,6 +359,14 @@ class Gradebook:
             self.db.executemany(f"INSERT INTO roster (position, {', '.join(FIELDS)}) VALUES "
                                 f"(?, {', '.join('?' * len(FIELDS))})",
                                 [[i] + [_utf8(getattr(s, f)) for f in FIELDS] for i, s in enumerate(roster)])
+
+        from .enrolment import reattach
+
+        return reattach(self, roster)
+
+    def reattached(self):
+        """``{old id: student}``: ids a newer roster mapped to one of its students (:func:`.enrolment.reattach`)."""
+        return dict(self.db.execute("SELECT old, student FROM reattached"))
 
     def roster(self):
         """The stored roster, or None."""
@@ -387,7 +401,7 @@ class Gradebook:
         if self.rule(exercise).policy == "best":
             with self.db:
                 self.db.execute("BEGIN IMMEDIATE")
-                self._select(exercise, student)
+                self.select(exercise, student)
 
     def extension(self, exercise, student):
         row = self.db.execute("SELECT due FROM extensions WHERE exercise = ? AND student = ?",

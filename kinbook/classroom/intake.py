@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 from ..errors import GradingError
 from .choice import several_line
+from .enrolment import adopt
 from .files import collect, read_entry
 from .results import UNGRADED, Refused, SubmissionResult
 
@@ -83,7 +84,9 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
     """
     check_pin(book, src, regrade)
     if roster is not None:
-        book.set_roster(roster)
+        for old, new in book.set_roster(roster):
+            (progress or (lambda item: None))(f"re-attached  {old} → {new}: on the new roster, so every result of "
+                                              f"{old} is now {new}'s (report, exports and feedback drop {old})")
     else:
         roster = book.roster()
     if policy is not None and policy != book.rule(src.exercise).policy:
@@ -96,6 +99,14 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
                       file_times=file_times)
     for e in entries:
         _digest(e, src, max_bytes)
+        if e.on_roster is False and e.sha256:
+            try:
+                old = adopt(e, roster, read_entry(e, max_bytes))
+            except Refused:  # replaced since it was read: refused when its turn comes
+                old = None
+            if old is not None:
+                say(f"enrolled  {e.path}: {old} is not on the roster, and this notebook was released for "
+                    f"{e.student}, who is not either: graded as {e.student} (not on the roster; not a copying signal)")
         if e.on_roster is False and e.student and e.student not in plan.off_roster and e.result:
             plan.off_roster.append(e.student)
         _decide(book, run, src, e, plan, force or regrade, say)

@@ -189,6 +189,12 @@ def write_pages(book, out, students=None):
                 continue
             mine.setdefault(f.student, []).append((f, results.get(f.student), graded.get(f.student, ""),
                                                    files.get(f.student, [])))
+    for old in book.reattached():  # an id a newer roster gave to one of its students: its pages are theirs now
+        folder = out / old
+        if folder.is_dir() and all(p.suffix == ".html" and p.is_file() for p in folder.iterdir()):
+            for p in folder.iterdir():
+                p.unlink()
+            folder.rmdir()
     written = []
     for student, items in sorted(mine.items()):
         for f, r, when, fs in items:
