@@ -234,7 +234,8 @@ def _cmd_export(args):
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     headers = dict(h.split("=", 1) for h in args.header)
     path, left = export(args.gradebook, args.output, args.format, exercises=args.exercise or None,
-                        decimals=args.decimals, missing=args.missing, headers=headers, roster=roster)
+                        decimals=args.decimals, missing=args.missing, headers=headers, roster=roster,
+                        scale=args.scale)
     print(f"wrote {path}")
     if left:
         print(f"not in the file: {len(left)} student(s) graded but not on the roster: {', '.join(left[:20])}"
@@ -346,6 +347,8 @@ def _course_parsers(sub):
     p.add_argument("--decimals", type=int, choices=range(7), default=2, help="decimals of the scores (default 2)")
     p.add_argument("--missing", choices=("zero", "blank"), default="zero",
                    help="a roster student with no submission gets 0 (default) or an empty cell")
+    p.add_argument("--scale", action="store_true", help="Canvas: where the roster's Points Possible differ from the "
+                   "exercise's points, write the scores scaled to Canvas's points (without it, the export stops)")
     p.set_defaults(func=_cmd_export)
     p = sub.add_parser("report", help="the class report: scores, parts, most common mistakes, copying signals")
     gradebook(p)

@@ -34,6 +34,8 @@ Tables
 ``reattached``
     Ids a newer roster mapped to one of its students (a student enrolled after the first roster): their results
     moved to the student, and the old id is dropped from the feedback folders.
+``lms_points``
+    What the LMS says each assignment column is worth (Canvas's ``Points Possible`` row of the roster).
 ``roster``, ``rules``, ``extensions``, ``overrides``
     The course: students and their LMS ids, each exercise's due date, late penalty and policy, per-student
     extensions, and the instructor's per-part overrides (kept across regrades and ``--force``).
@@ -103,6 +105,7 @@ CREATE TABLE IF NOT EXISTS sources (
     exercise TEXT PRIMARY KEY, sha256 TEXT NOT NULL, path TEXT NOT NULL, pinned TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS source_texts (
     sha256 TEXT PRIMARY KEY, exercise TEXT NOT NULL, path TEXT NOT NULL, data BLOB NOT NULL, first TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS lms_points (header TEXT PRIMARY KEY, points REAL NOT NULL);
 CREATE TABLE IF NOT EXISTS reattached (old TEXT PRIMARY KEY, student TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS roster (
     position INTEGER NOT NULL, student TEXT PRIMARY KEY, name TEXT NOT NULL, first TEXT NOT NULL,
@@ -359,6 +362,9 @@ class Gradebook:
             self.db.executemany(f"INSERT INTO roster (position, {', '.join(FIELDS)}) VALUES "
                                 f"(?, {', '.join('?' * len(FIELDS))})",
                                 [[i] + [_utf8(getattr(s, f)) for f in FIELDS] for i, s in enumerate(roster)])
+            self.db.execute("DELETE FROM lms_points")
+            self.db.executemany("INSERT INTO lms_points (header, points) VALUES (?, ?)",
+                                [(_utf8(c), float(p)) for c, p in getattr(roster, "points", {}).items()])
 
         from .enrolment import reattach
 
@@ -373,7 +379,8 @@ class Gradebook:
         from .roster import FIELDS, Roster, Student
 
         rows = self.db.execute(f"SELECT {', '.join(FIELDS)} FROM roster ORDER BY position").fetchall()
-        return Roster([Student(*r) for r in rows]) if rows else None
+        points = dict(self.db.execute("SELECT header, points FROM lms_points"))
+        return Roster([Student(*r) for r in rows], points=points) if rows else None
 
     def set_rule(self, exercise, *, due=None, penalty=None, cap=None, policy=None):
         """Change an exercise's due date, late penalty, cap or policy (the others are kept); the counting attempts

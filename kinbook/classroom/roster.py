@@ -81,11 +81,15 @@ class Roster:
     students : list of Student
     source : str
         What it was read from (``kinbook``, ``canvas``, ``moodle``), for messages.
+    points : dict
+        ``{assignment column: points}``: what the LMS says each assignment is worth (Canvas's ``Points Possible``
+        row, under columns such as ``Exercise 9 (40109)``), for the export to compare with kinbook's points.
     """
 
-    def __init__(self, students, source="kinbook"):
+    def __init__(self, students, source="kinbook", points=None):
         self.students = list(students)
         self.source = source
+        self.points = dict(points or {})
         self.by_id = {s.student: s for s in self.students}
         lookup, clash = {}, set()
         for s in self.students:
@@ -227,6 +231,7 @@ def read_roster(path, id_column=None):
         raise GradingError(f"roster {str(path)!r} has no 'student' column (the kinbook id); its columns: "
                            f"{', '.join(rows[0])} — see docs/instructors.md, or name the id column with --roster-id")
     students, seen = [], {}
+    points = _points_possible(rows, header, mapping) if source == "canvas" else {}
     for n, row in enumerate(rows[1:], start=2):
         values = _values(source, cols, row, n)
         if values is None:
@@ -240,4 +245,24 @@ def read_roster(path, id_column=None):
         _check_id(path, n, sid, id_column, seen)
         values["student"] = sid
         students.append(Student(**{f: values.get(f, "") for f in FIELDS}))
-    return Roster(students, source)
+    return Roster(students, source, points)
+
+
+_ASSIGNMENT = re.compile(r"^.+ \(\d+\)$")
+
+
+def _points_possible(rows, header, mapping):
+    """``{assignment column: points}`` from the ``Points Possible`` row of a Canvas export (``10.00``, or ``10,00``
+    in a decimal-comma locale's export)."""
+    for row in rows[1:4]:
+        if row and "points possible" in row[0].casefold():
+            out = {}
+            for i, h in enumerate(rows[0]):
+                if header[i] in mapping or not _ASSIGNMENT.match(h.strip()) or i >= len(row):
+                    continue
+                try:
+                    out[_clean(h)] = float(row[i].strip().replace(",", "."))
+                except ValueError:
+                    continue
+            return out
+    return {}
