@@ -39,12 +39,13 @@ from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
 from .intake import annotate, check_pin, intake
 from .notebook import (
-    MAX_NOTEBOOK_BYTES,
+    MAX_FILE_BYTES,
     checksum,
     find_parameters,
     grader_segments,
     load_source,
     parse_submission,
+    readable,
 )
 from .options import check_options
 from .parts import CHECKS
@@ -226,7 +227,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     _needs_a_real_machine()
     check_memory(memory)
     source = load_source(source)
-    entries = collect([submission], source.exercise, max_bytes=MAX_NOTEBOOK_BYTES)
+    entries = collect([submission], source.exercise, max_bytes=MAX_FILE_BYTES)
     entry = entries[0] if entries else Entry(str(submission), ".", (os.path.basename(str(submission)),), None,
                                              "unknown", "refused", "not found")
     if student is not None:
@@ -236,7 +237,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     if entry.status:
         return _refused(source, entry, entry.status, entry.message)
     try:
-        data = read_entry(entry, MAX_NOTEBOOK_BYTES)
+        data = read_entry(entry, MAX_FILE_BYTES)
     except Refused as exc:
         return _refused(source, entry, exc.status, exc.message)
     if sandbox is None:
@@ -268,6 +269,7 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         msg = "the file is the exercise's source notebook itself, not a submission: not run"
         return done("refused", msg, _all_parts(parts, "refused", msg))
     try:
+        data = readable(data)  # what the sandbox gets too: nbformat 4, no 50 MB of saved output
         cells, meta = parse_submission(data, metadata=True)
     except Refused as exc:
         return done(exc.status, exc.message, _all_parts(parts, exc.status, exc.message))
@@ -572,7 +574,7 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
                    earlier=tuple(earlier))
     pinned = book.pin(src.exercise)
     plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
-                  roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times)
+                  roster=roster, max_bytes=MAX_FILE_BYTES, progress=progress, file_times=file_times)
     try:
         _same_edition_as_released(src, plan.todo, options["earlier"], generic)
     except GradingError:  # nothing graded: the pin stays the source the results were graded with
@@ -655,7 +657,7 @@ def _on_sigterm(signum, frame):
 def _read_again(entry):
     """The entry's bytes, read now (a file replaced since it was listed is refused)."""
     try:
-        return read_entry(entry, MAX_NOTEBOOK_BYTES), None
+        return read_entry(entry, MAX_FILE_BYTES), None
     except Refused as exc:
         return None, exc
 
