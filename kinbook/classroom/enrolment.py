@@ -19,7 +19,7 @@ from .files import id_key, student_id
 from .notebook import parse_submission
 from .results import Refused
 
-__all__ = ["adopt", "reattach", "STUDENT_TABLES"]
+__all__ = ["adopt", "reattach", "check_matches", "STUDENT_TABLES"]
 
 #: The gradebook's tables with a ``student`` column.
 STUDENT_TABLES = ("attempts", "submissions", "parts", "mistakes", "signals", "files", "overrides", "extensions")
@@ -44,6 +44,24 @@ def adopt(entry, roster, data):
         return None
     old, entry.student, entry._raw = entry.student, sid, sid
     return old
+
+
+def check_matches(entries, roster):
+    """Stop (:class:`~kinbook.errors.GradingError`) when a roster knows none of the students the files name (at least
+    two): the wrong roster, or the wrong ``--roster-id`` column — grading on would make everyone "not on the roster"
+    and, for variants, every notebook "released for another student"."""
+    from ..errors import GradingError
+
+    named = sorted({e.student for e in entries if e.student and e.status in (None, "superseded")})
+    if len(named) < 2 or any(e.on_roster for e in entries):
+        return
+    sample = ", ".join(named[:5]) + (" …" if len(named) > 5 else "")
+    ids = ", ".join(f"{s.student}" + (f" (LMS id {s.lms_id})" if s.lms_id else "") for s in roster.students[:3])
+    raise GradingError(f"the roster ({roster.source}, {len(roster)} students) matches none of the {len(named)} "
+                       f"students the files name ({sample}); its ids look like {ids or 'nothing'}. Nothing was "
+                       "graded: give the roster of this course, or the column that holds the ids the files are "
+                       "named with (--roster-id; a Moodle download is named with the worksheet's Identifier, a "
+                       "Canvas one with its ID).")
 
 
 def reattach(book, roster):

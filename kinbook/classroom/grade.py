@@ -573,9 +573,9 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden),
                    earlier=tuple(earlier))
     pinned = book.pin(src.exercise)
-    plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
-                  roster=roster, max_bytes=MAX_FILE_BYTES, progress=progress, file_times=file_times)
     try:
+        plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
+                      roster=roster, max_bytes=MAX_FILE_BYTES, progress=progress, file_times=file_times)
         _same_edition_as_released(src, plan.todo, options["earlier"], generic)
     except GradingError:  # nothing graded: the pin stays the source the results were graded with
         book.unpin(src.exercise, pinned)

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from ..errors import GradingError
 from .choice import several_line
-from .enrolment import adopt
+from .enrolment import adopt, check_matches
 from .files import collect, read_entry
 from .results import UNGRADED, Refused, SubmissionResult
 
@@ -83,20 +83,20 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
         Stored in the gradebook when given; else the stored one (if any) maps the ids.
     """
     check_pin(book, src, regrade)
-    if roster is not None:
-        for old, new in book.set_roster(roster):
-            (progress or (lambda item: None))(f"re-attached  {old} → {new}: on the new roster, so every result of "
-                                              f"{old} is now {new}'s (report, exports and feedback drop {old})")
-    else:
-        roster = book.roster()
+    say = progress or (lambda item: None)
+    given, roster = roster, roster if roster is not None else book.roster()
+    entries = collect(submissions, src.exercise, max_bytes=max_bytes, pattern=pattern, roster=roster,
+                      policy=policy or book.rule(src.exercise).policy, file_times=file_times)
+    if given is not None:
+        check_matches(entries, given)  # a roster whose ids match no file stops here, before anything is stored
+        for old, new in book.set_roster(given):
+            say(f"re-attached  {old} → {new}: on the new roster, so every result of {old} is now {new}'s (report, "
+                f"exports and feedback drop {old})")
     if policy is not None and policy != book.rule(src.exercise).policy:
         book.set_rule(src.exercise, policy=policy)
     policy = book.rule(src.exercise).policy
     book.set_pin(src)
     plan = Intake()
-    say = progress or (lambda item: None)
-    entries = collect(submissions, src.exercise, max_bytes=max_bytes, pattern=pattern, roster=roster, policy=policy,
-                      file_times=file_times)
     for e in entries:
         _digest(e, src, max_bytes)
         if e.on_roster is False and e.sha256:

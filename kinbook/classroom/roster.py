@@ -30,6 +30,7 @@ from __future__ import annotations
 import csv
 import io
 import re
+import unicodedata
 from dataclasses import dataclass, fields
 
 from ..errors import GradingError
@@ -134,26 +135,58 @@ def _clean(value):
     return value[:MAX_FIELD]
 
 
-def _canonical(header):
-    return re.sub(r"[^a-z0-9]+", " ", header.casefold()).strip()
-
-
 _KINBOOK = {"student": "student", "id": "student", "kinbook id": "student", "name": "name", "display name": "name",
             "first": "first", "first name": "first", "last": "last", "last name": "last", "lms id": "lms_id",
             "lms": "lms_id", "sis id": "sis_id", "sis": "sis_id", "login": "login", "username": "login",
             "email": "email", "e mail": "email", "email address": "email", "section": "section", "group": "section"}
-_CANVAS = {"student": "name", "id": "lms_id", "sis user id": "sis_id", "sis login id": "login", "section": "section",
-           "integration id": None}
-_MOODLE = {"identifier": "lms_id", "full name": "name", "first name": "first", "last name": "last",
-           "id number": "sis_id", "username": "login", "email address": "email", "group": "section",
-           "groups": "section"}
+# Canvas writes its gradebook export's headers in English whatever the user's language (lib/gradebook_exporter.rb:
+# literal "Student", "ID", "SIS User ID", "SIS Login ID", "Section", "    Points Possible"; "LastName", "FirstName"
+# instead of "Student" with the "show first and last names" setting); only its numbers follow the locale ("10,00").
+_CANVAS = {"student": "name", "lastname": "last", "firstname": "first", "id": "lms_id", "sis user id": "sis_id",
+           "sis login id": "login", "section": "section", "integration id": None}
+
+# Moodle writes its headers in the user's language, from its language strings: the grading worksheet's
+# get_string('recordid', 'assign'), get_string('fullname'), and the identity fields' names ('email', 'idnumber',
+# 'username'); the grade export's 'firstname', 'lastname'. English (moodle/moodle lang/en), and es, ca, gl, pt, fr,
+# it, de, nl, eu as their language packs have them (projectestac/moodle-langpacks, moodle.php and assign.php).
+_MOODLE_WORDS = {
+    "lms_id": ["Identifier", "Identificador", "Identifiant", "Identificativo", "Identificatie", "Identifikatzailea",
+               "ID"],
+    "name": ["Full name", "Nombre completo", "Nom complet", "Nome completo", "Vollständiger Name", "Volledige naam",
+             "Izen osoa"],
+    "first": ["First name", "Nombre", "Nom", "Nome", "Prénom", "Vorname", "Voornaam", "Izena"],
+    "last": ["Last name", "Surname", "Apellido(s)", "Cognoms", "Apelido", "Apelidos", "Nom de famille", "Cognome",
+             "Nachname", "Achternaam", "Abizena(k)"],
+    "sis_id": ["ID number", "Número de ID", "Número ID", "Número de identificação (ID)", "Numéro d’identification",
+               "Codice identificativo", "ID-Nummer", "Nummer (ID)", "ID zenbakia"],
+    "login": ["Username", "Nombre de usuario", "Nom d'usuari", "Nome de usuario", "Nome de utilizador",
+              "Nom d’utilisateur", "Anmeldename", "Gebruikersnaam", "Erabiltzaile-izena"],
+    "email": ["Email address", "Dirección de correo", "Adreça electrònica", "Enderezo de correo", "E-mail",
+              "Adresse de courriel", "Indirizzo email", "E-Mail-Adresse", "E-mailadres", "Helbide elektronikoa"],
+    "section": ["Group", "Groups", "Grupo", "Grupos", "Grup", "Grups", "Groupe", "Groupes", "Gruppo", "Gruppi",
+                "Gruppe", "Gruppen", "Groep", "Groepen", "Taldea", "Taldeak"],
+}
+
+
+def _canonical(header):
+    text = unicodedata.normalize("NFKD", header.casefold())
+    text = "".join(c for c in text if not unicodedata.combining(c))
+    return re.sub(r"[^a-z0-9]+", " ", text).strip()
+
+
+_MOODLE = {_canonical(w): f for f, words in _MOODLE_WORDS.items() for w in words}
+#: Headers that say "Moodle" on their own (German's bare "ID" does not: kinbook's own roster may have one).
+_MOODLE_MARKS = {_canonical(w) for f in ("lms_id", "name") for w in _MOODLE_WORDS[f] if w != "ID"}
 
 
 def _format(header):
-    """(source, column mapping) of a roster's header: Canvas's, Moodle's or kinbook's."""
-    if {"sis user id", "sis login id"} & set(header) and "student" in header:
+    """(source, column mapping) of a roster's header: Canvas's, Moodle's (in any of its languages above) or
+    kinbook's."""
+    if "sis login id" in header and ({"student", "lastname"} & set(header) or "sis user id" in header):
         return "canvas", _CANVAS
-    if "identifier" in header or ("email address" in header and "first name" in header) or "full name" in header:
+    firsts = {_canonical(w) for w in _MOODLE_WORDS["first"]}
+    emails = {_canonical(w) for w in _MOODLE_WORDS["email"]}
+    if _MOODLE_MARKS & set(header) or (emails & set(header) and firsts & set(header)):
         return "moodle", _MOODLE
     return "kinbook", _KINBOOK
 
@@ -164,12 +197,15 @@ def _values(source, cols, row, n):
         return None
     values = {f: _clean(row[i]) if i < len(row) else "" for f, i in cols.items()}
     if source == "canvas":
-        if "points possible" in values.get("name", "").casefold() or (not values.get("lms_id") and n <= 3):
+        if "points possible" in row[0].casefold() or (not values.get("lms_id") and n <= 3):
             return None  # the 'Points Possible' (and posting policy) rows under the header
-        if values.get("name", "").casefold() in ("student, test", "test student"):
+        if (values.get("name", "").casefold() in ("student, test", "test student")
+                or (values.get("last", ""), values.get("first", "")) == ("Student", "Test")):
             return None  # Canvas's own test student
-    if source == "moodle" and values.get("lms_id", "").casefold().startswith("participant"):
-        values["lms_id"] = values["lms_id"].split()[-1]
+    if source == "moodle":  # "Participant 123", "Participante 123", "Teilnehmer/in 123": the number
+        m = re.fullmatch(r"\D*?(\d+)", values.get("lms_id", ""))
+        if m:
+            values["lms_id"] = m.group(1)
     return values
 
 
