@@ -40,7 +40,8 @@ Tables
     The course: students and their LMS ids, each exercise's due date, late penalty and policy, per-student
     extensions, and the instructor's per-part overrides (kept across regrades and ``--force``).
 
-``grades.csv`` (one row per part), ``totals.csv`` (one row per submission) and ``collection.csv`` (one row per file
+``grades.csv`` (one row per part), ``totals.csv`` (one row per submission; its ``score`` is the one that counts,
+with the instructor's overrides and the late penalty, beside the grader's) and ``collection.csv`` (one row per file
 of the last run) are exports, each written atomically (:func:`kinbook.classroom.files.atomic_write`).
 """
 
@@ -61,8 +62,14 @@ from .scores import Final, Rule, final
 __all__ = ["Gradebook", "COLUMNS", "TOTALS", "DATABASE", "FILES"]
 
 DATABASE = "gradebook.sqlite"
-COLUMNS = ["student", "exercise", "part", "score", "max_score", "status", "message", "reference"]
-TOTALS = ["student", "exercise", "score", "max_score", "status", "isolation", "sha256", "note"]
+#: grades.csv: ``score`` is the part's score that counts (the instructor's override, when there is one);
+#: ``grader_score`` the grader's, ``override`` the instructor's reason.
+COLUMNS = ["student", "exercise", "part", "score", "max_score", "status", "message", "reference", "grader_score",
+           "override"]
+#: totals.csv: ``score`` is the score that counts — overrides and the late penalty applied, as the report, the
+#: feedback and the LMS files show it (2 decimals); ``grader_score`` the grader's sum of the parts.
+TOTALS = ["student", "exercise", "score", "max_score", "status", "isolation", "sha256", "note", "grader_score",
+          "late_days", "penalty", "overridden"]
 FILES = ["exercise", "path", "student", "outcome", "reason", "sha256", "submitted"]
 _PART_COLS = "part, score, max_score, status, message, html, reference, answer, cell"
 _SCHEMA = """
@@ -150,6 +157,11 @@ def _score(row):
     """A score for the exports: blank for a part or submission the grader could not grade (never a 0 the student
     did not earn)."""
     return "" if row.status in UNGRADED else f"{row.score:g}"
+
+
+def _points(x):
+    """A score as the report, the feedback and the LMS files show it: at most 2 decimals."""
+    return f"{round(float(x), 2):g}"
 
 
 def write_csv(path, header, rows):
@@ -550,12 +562,25 @@ class Gradebook:
         kept for callers of an earlier kinbook; the feedback pages are :mod:`kinbook.classroom.feedback`'s.)"""
         results = self.results()
         notes = self.notes()
-        write_csv(self.outdir / "grades.csv", COLUMNS,
-                  [[r.student, r.exercise, p.part, _score(p), f"{p.max_score:g}", p.status, p.message,
-                    p.reference] for r in results for p in r.parts])
-        write_csv(self.outdir / "totals.csv", TOTALS,
-                  [[r.student, r.exercise, _score(r), f"{r.max_score:g}", r.status, r.isolation or "", r.sha256,
-                    notes.get((r.exercise, r.student), "")] for r in results])
+        finals = {}
+        for e in {r.exercise for r in results}:
+            finals.update({(e, f.student): f for f in self.finals(e) if f.status != "missing"})
+        grades, totals = [], []
+        for r in results:
+            f = finals.get((r.exercise, r.student))
+            overrides = {p: o for p, _, _, o in f.parts if o} if f is not None else {}
+            for p in r.parts:
+                o = overrides.get(p.part)
+                shown = _score(p) if o is None else _points(o[0])
+                grades.append([r.student, r.exercise, p.part, shown, f"{p.max_score:g}", p.status, p.message,
+                               p.reference, _score(p), o[1] if o else ""])
+            final_score = _score(r) if f is None or r.status in UNGRADED else _points(f.score)
+            totals.append([r.student, r.exercise, final_score, f"{r.max_score:g}", r.status, r.isolation or "",
+                           r.sha256, notes.get((r.exercise, r.student), ""), _score(r),
+                           f.late_days if f is not None else 0, _points(f.penalty) if f is not None else "0",
+                           ";".join(sorted(overrides))])
+        write_csv(self.outdir / "grades.csv", COLUMNS, grades)
+        write_csv(self.outdir / "totals.csv", TOTALS, totals)
         last = {e: run for e, run in self.db.execute("SELECT exercise, MAX(run) FROM files GROUP BY exercise")}
         rows = []
         for e in sorted(last):
