@@ -254,6 +254,15 @@ def _cmd_report(args):
 def _cmd_feedback(args):
     from .classroom.feedback import feedback
 
+    if args.lms:
+        written, left = feedback(args.gradebook, args.out, lms=args.lms)
+        for path in written:
+            print(f"wrote {path} (upload it in {args.lms.capitalize()}: "
+                  + ("Assignment → Re-Upload Submissions)" if args.lms == "canvas" else
+                     "View all submissions → Grading action → Upload multiple feedback files in a zip)"))
+        if left:
+            print(f"not in the zips ({len(left)}): " + "; ".join(left[:20]) + (" …" if len(left) > 20 else ""))
+        return
     written = feedback(args.gradebook, args.out)
     print(f"wrote {len(written)} page(s) into {os.path.join(args.out, '')} (one folder per student)")
 
@@ -359,6 +368,9 @@ def _course_parsers(sub):
     p = sub.add_parser("feedback", help="write every student's feedback pages, one folder per student")
     gradebook(p)
     p.add_argument("--out", type=output_dir, required=True, help="directory: OUT/<student>/<exercise>.html")
+    p.add_argument("--lms", choices=("canvas", "moodle"), help="instead, one zip per exercise for the LMS's bulk "
+                   "feedback upload: OUT/<exercise>-canvas.zip (Re-Upload Submissions) or OUT/<exercise>-moodle.zip "
+                   "(Upload multiple feedback files in a zip)")
     p.set_defaults(func=_cmd_feedback)
 
 

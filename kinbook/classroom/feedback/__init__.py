@@ -5,7 +5,8 @@ handed in and graded, the total (with the instructor's overrides and the late pe
 for every part its score, its status in words, the checker's message next to the student's own answer, and the cell
 the answer was assigned in, as the student sees their notebook (its position among all cells, its first line and its
 code). ``kinbook feedback --out DIR`` lays them out as ``DIR/<student>/<exercise>.html`` with a
-``DIR/<student>/index.html`` per student: a folder per student for an LMS's per-student upload or a shared drive.
+``DIR/<student>/index.html`` per student: a folder per student for a shared drive; ``kinbook feedback --lms canvas``
+or ``--lms moodle`` writes one zip per exercise named as the LMS's bulk feedback upload reads names (:mod:`.upload`).
 Copying signals and the other students are never on a student's page.
 """
 
@@ -206,7 +207,32 @@ def write_pages(book, out, students=None):
     return written
 
 
-def feedback(gradebook, out):
-    """``kinbook feedback``: every student's pages from the gradebook directory ``gradebook`` into ``out``."""
+def feedback(gradebook, out, lms=None):
+    """``kinbook feedback``: every student's pages from the gradebook directory ``gradebook`` into ``out`` — one folder
+    per student, or with ``lms`` (``canvas``, ``moodle``) one zip per exercise that the LMS's bulk feedback upload
+    takes (:mod:`.upload`). Returns the files written (and, with ``lms``, the pages left out: ``(written, left)``)."""
     with Gradebook(gradebook) as book:
-        return write_pages(book, out)
+        if lms is None:
+            return write_pages(book, out)
+        from .upload import LAYOUTS, upload_zip
+
+        if lms not in LAYOUTS:
+            from ...errors import GradingError
+
+            raise GradingError(f"feedback for an LMS: one of {', '.join(LAYOUTS)}, got {lms!r}")
+        return upload_zip(book, out, lms, _pages(book))
+
+
+def _pages(book):
+    """``{(exercise, student): html}`` of every student's page."""
+    roster = book.roster()
+    names = {s.student: s.display for s in roster} if roster is not None else {}
+    out = {}
+    for exercise in book.exercises():
+        results = {r.student: r for r in book.results(exercise=exercise)}
+        graded = dict(book.db.execute("SELECT student, graded FROM submissions WHERE exercise = ?", (exercise,)))
+        files = book.files_of(exercise)
+        for f in book.finals(exercise, roster):
+            out[exercise, f.student] = page(f, results.get(f.student), name=names.get(f.student, ""),
+                                            graded=graded.get(f.student, ""), files=files.get(f.student, []))
+    return out
