@@ -626,6 +626,14 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
                     record(_one(src, entry, options, sb))
         else:
             _run_pool(src, todo, options, int(jobs), isolation, record)
+    except (KeyboardInterrupt, SystemExit) as exc:
+        how = "SIGTERM" if isinstance(exc, SystemExit) and exc.code == 128 + signal.SIGTERM else "Ctrl-C"
+        if isinstance(exc, KeyboardInterrupt) or how == "SIGTERM":
+            sys.stderr.write(f"kinbook: stopped by {how}: {len(results)} of {len(todo) + len(plan.refused)} "
+                             f"submission(s) graded in this run are kept in {book.path} (with every earlier "
+                             "result); the exports are written now. Run the same command again to grade the rest.\n")
+            sys.stderr.flush()
+        raise
     finally:
         if previous_handler is not None:
             signal.signal(signal.SIGTERM, previous_handler)
