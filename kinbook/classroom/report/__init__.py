@@ -40,6 +40,7 @@ td,th{border:1px solid #ccd;padding:.3rem .6rem;text-align:left;vertical-align:t
 td.n{text-align:right;font-variant-numeric:tabular-nums}.flag{background:#f8d7da;color:#721c24;font-weight:600}
 .muted{color:#666}img{max-width:100%;height:auto;border:1px solid #eee}code,pre{font-size:.85rem}
 pre{margin:0;white-space:pre}td.nowrap{white-space:nowrap}nav a{margin-right:1rem}
+table{max-width:100%}td{overflow-wrap:anywhere}td pre{max-width:20rem;overflow-x:auto}
 """
 
 
