@@ -610,6 +610,7 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
     if find_parameters(src.nb) is not None:
         _same_release_as_graded([_release_kind(d) for d in _contents(plan.todo)],
                                 not generic, src.exercise)
+    touched.update(e.student for e in plan.entries.values() if e.student)  # a PDF's student gets a page too
     for entry in plan.refused:
         record(_refused(src, entry, entry.status, entry.message))
     todo = plan.todo

@@ -341,8 +341,9 @@ def readable(data):
     for c in cells if isinstance(cells, list) else []:
         if isinstance(c, dict) and "outputs" in c:
             c["outputs"] = []
+            if "execution_count" in c:
+                c["execution_count"] = None
             c.pop("prompt_number", None)
-            c["execution_count"] = None if nb.get("nbformat") == 4 else c.get("execution_count")
     if nb.get("nbformat") == 3:
         if len(cells or ()) > MAX_CELLS:
             raise Refused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")

@@ -158,7 +158,7 @@ def several(book, exercise):
             continue
         shown = []
         for p, outcome, reason in notebooks:
-            what = "counts" if p == counting.get(student) else (outcome if outcome in ("graded", "skipped")
+            what = "counts" if p == counting.get(student) else ("graded" if outcome in ("graded", "skipped")
                                                                  else f"{outcome}: {reason}")
             shown.append(f"{os.path.basename(p)} ({what})")
         out.append({"student": student, "files": "; ".join(shown)})
