@@ -690,3 +690,46 @@ def test_lms_sigterm_says_what_was_kept(lms_term, tmp_path, capsys):
     assert "Run the same command again to grade the rest." in err
     rows = list(csv.DictReader(open(tmp_path / "g" / "totals.csv")))
     assert [r["score"] for r in rows] == [number(lms_term["full01"])]
+
+
+def test_totals_and_grades_carry_overrides_and_late_penalties(term):
+    """totals.csv's score is the one that counts — the same number as the LMS files — beside the grader's."""
+    course, expected = term["course"], term["expected"]
+    totals = {(r["student"], r["exercise"]): r for r in csv.DictReader(open(course / "graded" / "totals.csv"))}
+    for ex in (EX01, EX11):
+        for s in IDS:
+            if s in MISSING[ex]:
+                continue
+            row = totals[s, ex]
+            raw = sum(v[0] for v in expected[ex, s].values())
+            assert (row["score"], row["grader_score"]) == (number(finals(ex, s, expected)), f"{round(raw, 4):g}"), s
+            late = s in LATE[ex] and s != "s12"
+            assert (row["late_days"], row["penalty"] != "0") == (str(int(late)), late), s
+    assert totals["s05", EX01]["overridden"] == "revolute_OA"
+    grades = {(r["student"], r["exercise"], r["part"]): r for r in csv.DictReader(open(course / "graded" / "grades.csv"))}
+    row = grades["s05", EX01, "revolute_OA"]
+    assert (row["score"], row["override"]) == ("3", "sign convention of the sketch accepted")
+    assert row["grader_score"] == f"{expected[EX01, 's05']['revolute_OA'][0]:g}"
+
+
+def test_feedback_zip_for_canvas_reupload(term):
+    """docs' `kinbook feedback --lms canvas`: one zip per exercise; each page's name gives Canvas the student's user id
+    and an attachment id of their own submission (the download's name), as generate_comments_from_files reads it."""
+    course = term["course"]
+    for ex, folder in ((EX01, "ex01"), (EX11, "ex11")):
+        attachments = {}
+        for name in os.listdir(course / "collected" / folder):
+            digits = [x for x in name.split("_") if x.isdigit()]
+            if len(digits) >= 2:
+                attachments.setdefault(digits[0], set()).add(digits[1])
+        with zipfile.ZipFile(course / "upload" / f"{ex}-canvas.zip") as z:
+            names = z.namelist()
+            page = z.read(next(n for n in names if f"_{CANVAS_ID['s11']}_" in n)).decode("utf-8") if ex == EX01 else ""
+        users = {}
+        for name in names:
+            user, attachment = [x for x in name.split("_") if x.isdigit()][:2]
+            assert attachment in attachments[user], name
+            users[user] = name
+        assert sorted(users) == sorted([CANVAS_ID[s] for s in IDS if s not in MISSING[ex]] + [STRANGER])
+        if page:
+            assert "1 day(s) after the due date" in page
