@@ -14,15 +14,22 @@ A submission that matches no edition is ``tampered``, and its message quotes the
 cell of an edit the student cannot have seen. When most of a class matches none (:func:`class_would_be_tampered`),
 the source changed since the release and nothing is graded: the message names the source's cells that changed
 (:func:`edited_cells`), in the source, not in the students' notebooks.
+
+Whose release a notebook is comes first (:func:`released_for`): a notebook released for another student is
+``wrong-release`` (a copying signal for the instructor), never matched against editions.
 """
 
 from __future__ import annotations
 
 import difflib
+import re
 
-from .notebook import checksum, missing_locked, student_notebook
+from .notebook import checksum, find_parameters, load_source, missing_locked, parse_submission, student_notebook
+from .results import Refused
+from .sanitize import clean
 
-__all__ = ["Edition", "editions", "edition_of", "carry_over", "edited_cells", "class_would_be_tampered"]
+__all__ = ["Edition", "editions", "edition_of", "carry_over", "edited_cells", "class_would_be_tampered",
+           "earlier_sources", "released_for"]
 
 
 class Edition:
@@ -53,6 +60,11 @@ class Edition:
     def position(self, cell_id):
         """The position (from 1) of a cell in this release, as the student saw it."""
         return next(i for i, c in enumerate(self.nb.cells, 1) if c["id"] == cell_id)
+
+    def cell_name(self, cell):
+        """A cell of this release as the student saw it: "cell 6 “part("revolute_OA", …”"."""
+        first = next((line.strip() for line in cell.source.splitlines() if line.strip()), "")
+        return f"cell {self.position(cell['id'])}" + (f" “{clean(first, 60)}”" if first else "")
 
 
 def editions(source, earlier, values, student):
@@ -133,8 +145,6 @@ def edited_cells(current, missing_ids):
     """The cells of ``current``'s source (an :class:`Edition`) whose released text is not in the students'
     notebooks (``missing_ids``: release cell ids, most common first), as "cell 12 (“part("whole_phi", 5, …”)" —
     numbered as in the source notebook, the instructor's file."""
-    from .sanitize import clean
-
     out = []
     by_id = {c["id"]: i for i, c in enumerate(current.source.nb.cells, 1)}
     for cid in missing_ids:
@@ -144,23 +154,74 @@ def edited_cells(current, missing_ids):
     return out
 
 
-def class_would_be_tampered(checks):
-    """Given ``checks``: [(student, missing ids against every edition — [] when an edition matched — and the current
-    edition)], the sentence that stops the run when most submissions (at least 2) match no edition, else None."""
-    tampered = [(s, m, cur) for s, m, cur in checks if m]
+def class_would_be_tampered(source, submissions, earlier, per_student):
+    """The sentence that stops a run when most ``submissions`` ((student, bytes), at least 2) hold the locked cells of
+    no edition of ``source`` (``earlier``: the other sources), else None. The students' own parameters cells are
+    left out (drawing them costs the instructor's code per student); notebooks that are not readable or are another
+    student's release are the grader's to report."""
+    checks = []
+    for student, data in submissions:
+        try:
+            cells, meta = parse_submission(data, metadata=True)
+        except Refused:
+            continue
+        if released_for(meta, cells, student, per_student)[0]:
+            continue
+        candidates = editions(source, earlier, None, student)
+        params = {e.source.nb.cells[find_parameters(e.source.nb)[0]]["id"] for e in candidates} if per_student else ()
+        misses = [[m for m in e.missing_code(cells) if m not in params] for e in candidates]
+        checks.append(misses[0] if all(misses) else [])
+    tampered = [m for m in checks if m]
     if len(tampered) < 2 or 2 * len(tampered) <= len(checks):
         return None
     counts = {}
-    for _, missing, _ in tampered:
+    for missing in tampered:
         for cid in missing:
             counts[cid] = counts.get(cid, 0) + 1
     common = sorted(counts, key=lambda c: -counts[c])
-    current = tampered[0][2]
     named = [c for c in common if counts[c] * 2 > len(tampered)] or common[:1]
-    cells = edited_cells(current, named[:3])
-    return (f"{len(tampered)} of {len(checks)} submissions do not hold the locked cells of "
-            f"{current.source.path} as it is now — its {', '.join(cells)} "
-            f"{'differs' if len(cells) == 1 else 'differ'} from the notebook the students were given: the source "
-            "was edited after its release. Nothing was graded. Give the source the notebooks "
-            "were released from with --released-from FILE (kinbook then grades every submission under the edited "
-            "source, each checked against the release its student got), or undo the edit.")
+    cells = edited_cells(Edition(source, None, None, True), named[:3])
+    return (f"{len(tampered)} of {len(checks)} submissions do not hold the locked cells of {source.path} as it is "
+            f"now — its {', '.join(cells)} {'differs' if len(cells) == 1 else 'differ'} from the notebook the "
+            "students were given: the source was edited after its release. Nothing was graded. Give the source the "
+            "notebooks were released from with --released-from FILE (kinbook then grades every submission under the "
+            "edited source, each checked against the release its student got), or undo the edit.")
+
+_RELEASED_FOR = re.compile(r"#\s*parameters of student (['\"])(.{1,200}?)\1\s*$", re.MULTILINE)
+
+
+def released_for(meta, cells, student, per_student):
+    """``(why, other student)`` when the notebook is not this student's release, else ``(None, None)``: the
+    notebook released for another student (its metadata or its parameters cell name them: a copying signal for
+    the instructor, not tampering), or the generic release where each student got their own (no other student)."""
+    from .files import id_key
+
+    named = meta.get("student") if isinstance(meta.get("student"), str) else None
+    if named is None:
+        for c in cells:
+            if c["cell_type"] == "code":
+                m = _RELEASED_FOR.search(c["source"])
+                if m:
+                    named = m.group(2)
+                    break
+    if named is not None and id_key(named) != id_key(student):
+        return f"this notebook was released for {clean(named, 80)}, not for {student}", named
+    if per_student and "student" in meta and meta["student"] is None:
+        return f"this is the exercise's generic release, not the notebook released for {student}", None
+    return None, None
+
+
+def earlier_sources(book, source, released_from=()):
+    """The other sources a submission of ``source``'s exercise may have been released from: the files
+    ``released_from`` (``--released-from``, under any name), then every source the gradebook ``book`` kept, most
+    recent first; all of them kept in the gradebook from now on."""
+    earlier = []
+    for path in released_from or ():
+        old = load_source(path)
+        old.exercise = source.exercise  # a copy of the earlier source, under any name
+        earlier.append(old)
+    seen = {source.sha256} | {e.sha256 for e in earlier}
+    earlier += [e for e in book.sources(source.exercise) if e.sha256 not in seen]
+    for old in earlier:
+        book.keep_source(old)
+    return earlier

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import hashlib
 import os
-import re
 import signal
 import sys
 import time
@@ -33,7 +32,7 @@ import numpy as np
 
 from ..errors import GradingError, KinbookError
 from .answers import describe, mistake_rows
-from .editions import carry_over, class_would_be_tampered, edition_of, editions
+from .editions import carry_over, class_would_be_tampered, earlier_sources, edition_of, editions, released_for
 from .feedback import write_pages
 from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
@@ -50,7 +49,7 @@ from .notebook import (
 from .options import check_options
 from .parts import CHECKS
 from .reference_use import exercise_calls, reference_use
-from .results import STATUSES, PartGrade, Refused, SubmissionResult, ungraded_notice, worst
+from .results import STATUSES, PartGrade, Refused, SubmissionResult, stopped_notice, ungraded_notice, worst
 from .sanitize import clean, clean_result
 from .serialize import decode_answers
 from .variant import references, student_parameters
@@ -126,12 +125,13 @@ def _release_kind(data):
     return "generic" if meta["student"] is None else "student"
 
 
-def _contents(entries):
-    """The bytes of each entry that can still be read (the others are refused when their turn comes)."""
+def _contents(entries, with_entries=False):
+    """The bytes of each entry that can still be read (the others are refused when their turn comes); with
+    ``with_entries``, (student, bytes)."""
     for entry in entries:
         data, refused = _read_again(entry)
         if refused is None:
-            yield data
+            yield (entry.student, data) if with_entries else data
 
 
 def _same_release_as_graded(kinds, per_student, exercise):
@@ -148,31 +148,6 @@ def _same_release_as_graded(kinds, per_student, exercise):
                            "graded.")
     raise GradingError(f"{wrong} of {len(known)} submissions of {exercise} are per-student variants (made by "
                        "`kinbook variant`): grade them without --generic. Nothing was graded.")
-
-
-def _same_edition_as_released(source, todo, earlier, generic):
-    """Stop before any grading when most submissions hold the locked cells of no edition of the source: the source
-    was edited after its release (:func:`kinbook.classroom.editions.class_would_be_tampered`)."""
-    per_student = find_parameters(source.nb) is not None and not generic
-    checks = []
-    for entry in todo:
-        data, refused = _read_again(entry)
-        if refused is not None:
-            continue
-        try:
-            cells, meta = parse_submission(data, metadata=True)
-        except Refused:
-            continue
-        if _released_for(meta, cells, entry.student, per_student)[0]:
-            continue
-        # the students' own parameters cells are left out (drawing them costs the instructor's code per student)
-        candidates = editions(source, earlier, None, entry.student)
-        params = {e.source.nb.cells[find_parameters(e.source.nb)[0]]["id"] for e in candidates} if per_student else ()
-        misses = [[m for m in e.missing_code(cells) if m not in params] for e in candidates]
-        checks.append((entry.student, [] if not all(misses) else misses[0], candidates[0]))
-    why = class_would_be_tampered(checks)
-    if why:
-        raise GradingError(f"{source.exercise}: {why}")
 
 
 def _refused(source, entry, status, message, isolation=""):
@@ -273,7 +248,7 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         cells, meta = parse_submission(data, metadata=True)
     except Refused as exc:
         return done(exc.status, exc.message, _all_parts(parts, exc.status, exc.message))
-    other, named = _released_for(meta, cells, student, values is not None)
+    other, named = released_for(meta, cells, student, values is not None)
     if other:
         res = done("wrong-release", other, _all_parts(parts, "wrong-release", other))
         if named is not None:  # a copying signal, for the instructor's report
@@ -282,7 +257,7 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
     candidates = editions(source, earlier, values, student)
     edition, missing = edition_of(cells, candidates)
     if missing:
-        where = [_released_cell(edition, c) for c in edition.code_locked if c["id"] in missing]
+        where = [edition.cell_name(c) for c in edition.code_locked if c["id"] in missing]
         shown = "; ".join(where[:3]) + (f"; and {len(where) - 3} more" if len(where) > 3 else "")
         msg = (f"{len(where)} locked code cell(s) of the released notebook were changed, moved or deleted "
                f"({shown}); the notebook was not run. Start again from the released notebook and only edit the "
@@ -406,12 +381,6 @@ def _raised(cells, errors, only=None):
     return f"{_cell_name(cells, e['cell'])} raised {clean(e['ename'], 100)}" + (f": {evalue}" if evalue else "") + more
 
 
-def _released_cell(edition, cell):
-    """A locked cell of the release the student got, as they saw it there: its position and first line."""
-    first = _first_line(cell.source)
-    return f"cell {edition.position(cell['id'])}" + (f" “{first}”" if first else "")
-
-
 def _hidden_verdict(result):
     """A hidden check's feedback: the verdict and, for each mistake found, its name and hint from the
     catalogue — never the checker's messages, which may quote the expected value."""
@@ -428,30 +397,6 @@ def _hidden_verdict(result):
         else:
             hints.append(code)
     return out + (" — " + " | ".join(hints) if hints else "")
-
-
-_RELEASED_FOR = re.compile(r"#\s*parameters of student (['\"])(.{1,200}?)\1\s*$", re.MULTILINE)
-
-
-def _released_for(meta, cells, student, per_student):
-    """``(why, other student)`` when the notebook is not this student's release, else ``(None, None)``: the
-    notebook released for another student (its metadata or its parameters cell name them: a copying signal for
-    the instructor, not tampering), or the generic release where each student got their own (no other student)."""
-    from .files import id_key
-
-    named = meta.get("student") if isinstance(meta.get("student"), str) else None
-    if named is None:
-        for c in cells:
-            if c["cell_type"] == "code":
-                m = _RELEASED_FOR.search(c["source"])
-                if m:
-                    named = m.group(2)
-                    break
-    if named is not None and id_key(named) != id_key(student):
-        return f"this notebook was released for {clean(named, 80)}, not for {student}", named
-    if per_student and "student" in meta and meta["student"] is None:
-        return f"this is the exercise's generic release, not the notebook released for {student}", None
-    return None, None
 
 
 # ================================================================================================== batch
@@ -523,9 +468,7 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         Take a submission's time from its file's modification time when its name gives none (for the late rule);
         only where the download kept the times.
     released_from : list of paths
-        Earlier sources of the exercise that students' notebooks may have been released from (beside those the
-        gradebook kept): each submission is checked against the release its student got and graded under
-        ``source`` (:mod:`kinbook.classroom.editions`).
+        Earlier sources students' notebooks may come from, beside those kept (:mod:`kinbook.classroom.editions`).
     generic, reveal_hidden : bool
         See :func:`grade_submission`.
     isolation : bool
@@ -560,30 +503,32 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     except BaseException:
         book.close()
         raise
-    earlier = []
-    for path in released_from or ():
-        old = load_source(path)
-        old.exercise = src.exercise  # a copy of the earlier source, under any name
-        earlier.append(old)
-    seen = {src.sha256} | {e.sha256 for e in earlier}
-    earlier += [e for e in book.sources(src.exercise) if e.sha256 not in seen]
-    for old in earlier:
-        book.keep_source(old)
     run = book.begin_run(src, "bubblewrap" if isolation else "none")
     options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden),
-                   earlier=tuple(earlier))
+                   earlier=tuple(earlier_sources(book, src, released_from)))
+    plan = _plan(book, run, src, submissions, options, force=force, regrade=regrade, policy=policy,
+                 pattern=id_pattern, roster=roster, progress=progress, file_times=file_times)
+    return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
+                      progress=progress)
+
+
+def _plan(book, run, src, submissions, options, **how):
+    """:func:`kinbook.classroom.intake.intake`, then the check that the class holds a release of the source; when
+    either stops the run, nothing was graded and the pin stays the source the results were graded with."""
     pinned = book.pin(src.exercise)
     try:
-        plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
-                      roster=roster, max_bytes=MAX_FILE_BYTES, progress=progress, file_times=file_times)
-        _same_edition_as_released(src, plan.todo, options["earlier"], generic)
-    except GradingError:  # nothing graded: the pin stays the source the results were graded with
+        plan = intake(book, run, src, submissions, max_bytes=MAX_FILE_BYTES, **how)
+        per_student = find_parameters(src.nb) is not None and not options["generic"]
+        why = class_would_be_tampered(src, (d for d in _contents(plan.todo, with_entries=True)), options["earlier"],
+                                      per_student)
+        if why:
+            raise GradingError(f"{src.exercise}: {why}")
+    except GradingError:
         book.unpin(src.exercise, pinned)
         book.end_run(run)
         book.close()
         raise
-    return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
-                      progress=progress)
+    return plan
 
 
 def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progress):
@@ -628,12 +573,8 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
         else:
             _run_pool(src, todo, options, int(jobs), isolation, record)
     except (KeyboardInterrupt, SystemExit) as exc:
-        how = "SIGTERM" if isinstance(exc, SystemExit) and exc.code == 128 + signal.SIGTERM else "Ctrl-C"
-        if isinstance(exc, KeyboardInterrupt) or how == "SIGTERM":
-            sys.stderr.write(f"kinbook: stopped by {how}: {len(results)} of {len(todo) + len(plan.refused)} "
-                             f"submission(s) graded in this run are kept in {book.path} (with every earlier "
-                             "result); the exports are written now. Run the same command again to grade the rest.\n")
-            sys.stderr.flush()
+        if isinstance(exc, KeyboardInterrupt) or exc.code == 128 + signal.SIGTERM:
+            print(stopped_notice(exc, len(results), len(todo) + len(plan.refused), book.path), file=sys.stderr)
         raise
     finally:
         if previous_handler is not None:
