@@ -733,3 +733,48 @@ def test_feedback_zip_for_canvas_reupload(term):
         assert sorted(users) == sorted([CANVAS_ID[s] for s in IDS if s not in MISSING[ex]] + [STRANGER])
         if page:
             assert "1 day(s) after the due date" in page
+
+
+# Moodle's grading worksheet as its language packs write it (projectestac/moodle-langpacks: moodle.php 'fullname',
+# 'email', 'idnumber'; assign.php 'recordid', 'hiddenuser'), transcribed by hand, one language a row.
+WORKSHEETS = {
+    "en": ("Identifier", "Full name", "Email address", "Participant"),
+    "es": ("Identificador", "Nombre completo", "Dirección de correo", "Participante"),
+    "ca": ("Identificador", "Nom complet", "Adreça electrònica", "Participant"),
+    "gl": ("Identificador", "Nome completo", "Enderezo de correo", "Participante"),
+    "pt": ("Identificador", "Nome completo", "E-mail", "Participante"),
+    "fr": ("Identifiant", "Nom complet", "Adresse de courriel", "Participant"),
+    "it": ("Identificativo", "Nome", "Indirizzo email", "Partecipante"),
+    "de": ("ID", "Vollständiger Name", "E-Mail-Adresse", "Teilnehmer/in"),
+    "nl": ("Identificatie", "Volledige naam", "E-mailadres", "Deelnemer"),
+    "eu": ("Identifikatzailea", "Izen osoa", "Helbide elektronikoa", "Partaidea"),
+}
+
+
+@pytest.mark.parametrize("lang", sorted(WORKSHEETS))
+def test_moodle_worksheet_in_each_language(lang, tmp_path):
+    from kinbook.classroom.roster import read_roster
+
+    ident, name, email, participant = WORKSHEETS[lang]
+    path = tmp_path / "worksheet.csv"
+    path.write_text(f'"{ident}","{name}","{email}",Estado\n"{participant} 2387101","José Núñez",jose.nunez@uni.es,x\n'
+                    f'"{participant} 2387102","王小明",wang.xiaoming@uni.es,x\n', encoding="utf-8")
+    roster = read_roster(path)
+    assert roster.source == "moodle"
+    assert [(s.student, s.lms_id, s.display) for s in roster] == [
+        ("jose.nunez@uni.es", "2387101", "José Núñez"), ("wang.xiaoming@uni.es", "2387102", "王小明")]
+    assert roster.find("2387102", "lms").student == "wang.xiaoming@uni.es"       # how a download's folder maps
+
+
+def test_canvas_export_with_first_and_last_names_and_decimal_commas(tmp_path):
+    """Canvas's headers are English in every locale (lib/gradebook_exporter.rb); its "show first and last names"
+    setting writes LastName, FirstName; a decimal-comma locale writes 10,00 and may separate with ';'."""
+    from kinbook.classroom.roster import read_roster
+
+    path = tmp_path / "canvas.csv"
+    path.write_text('LastName;FirstName;ID;SIS User ID;SIS Login ID;Section;Ejercicio 9 (40109)\n'
+                    '"    Points Possible";;;;;;10,00\nStudent;Test;999;;;S;\nTorres;Ana;1001;20231001;atorres;A;\n',
+                    encoding="utf-8-sig")
+    roster = read_roster(path)
+    assert (roster.source, roster.points) == ("canvas", {"Ejercicio 9 (40109)": 10.0})
+    assert [(s.student, s.lms_id, s.display) for s in roster] == [("atorres", "1001", "Ana Torres")]
