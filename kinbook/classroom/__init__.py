@@ -3,13 +3,17 @@
 * :func:`part` and :func:`parameters` — what an exercise notebook declares (:mod:`.parts`);
 * :func:`release` — students' versions of source notebooks (:mod:`.release`);
 * :func:`variant` — one student's version with their own parameters (:mod:`.variant`);
-* :func:`grade` — account for every file of ``collected/`` (:mod:`.intake`, :mod:`.files`, :mod:`.naming`,
-  :mod:`.roster`), run submissions in the sandbox (:mod:`.sandbox`: bubblewrap), grade their answers, record every
+* :func:`grade` — in pipeline order: account for every file of ``collected/`` (:mod:`.intake`, :mod:`.files`,
+  :mod:`.naming`, :mod:`.roster`), choose which of a student's files is graded (:mod:`.choice`: one LMS submission
+  is a set of files), give a late enrolee's file to them and re-attach them to a newer roster (:mod:`.enrolment`),
+  check each notebook against the release its student got and carry it over to an edited source
+  (:mod:`.editions`), run submissions in the sandbox (:mod:`.sandbox`: bubblewrap), grade their answers, record every
   attempt in the gradebook (:mod:`.gradebook`, SQLite) and export grades.csv, totals.csv, collection.csv and the
   feedback pages;
 * the course, one subpackage per command: :mod:`.override` (``override``, ``due``, ``extend``, applied by
   :mod:`.scores`), :mod:`.export` (Canvas, Moodle, CSV), :mod:`.report` (the class report), :mod:`.feedback`
-  (a folder per student), :mod:`.validate` (an exercise through the real grader). They are imported where used,
+  (a folder per student, or a zip per exercise for the LMS's bulk upload: :mod:`.feedback.upload`),
+  :mod:`.validate` (an exercise through the real grader). They are imported where used,
   so that a student's kernel that imports ``part`` stays light.
 
 See docs/instructors.md (a term, step by step) and the README's "For instructors" section.
