@@ -778,3 +778,31 @@ def test_canvas_export_with_first_and_last_names_and_decimal_commas(tmp_path):
     roster = read_roster(path)
     assert (roster.source, roster.points) == ("canvas", {"Ejercicio 9 (40109)": 10.0})
     assert [(s.student, s.lms_id, s.display) for s in roster] == [("atorres", "1001", "Ana Torres")]
+
+
+def test_a_newer_roster_takes_back_a_false_copying_signal(tmp_path):
+    """A gradebook where a late enrolee's variant was graded under their Canvas id, as someone else's release (a
+    copying signal, 0): the roster that knows them moves every result to them, drops the signal and the orphan id,
+    and leaves the attempt to be graded again (its source mark cleared), while an ordinary result of theirs stays."""
+    from kinbook.classroom.gradebook import Gradebook
+    from kinbook.classroom.results import PartGrade, SubmissionResult
+    from kinbook.classroom.roster import Roster, Student
+
+    book = Gradebook(tmp_path)
+    wrong = SubmissionResult("2099", EX11, "c/mensahk_2099_1_x.ipynb", "aa" * 32, "wrong-release",
+                             "this notebook was released for kmensah, not for 2099",
+                             [PartGrade("A", 0.0, 3.0, "wrong-release", "")], signals=[("released-for", "kmensah")],
+                             source_sha256="s" * 64)
+    book.record(wrong, run=1)
+    book.record(SubmissionResult("2099", EX01, "c/mensahk_2099_2_y.ipynb", "bb" * 32, "ok", "",
+                                 [PartGrade("whole_phi", 4.0, 4.0, "ok", "")], source_sha256="t" * 64), run=1)
+    book.override(EX01, "2099", "whole_phi", 3.5, "late enrolment")
+    moved = book.set_roster(Roster([Student("atorres", lms_id="2001"), Student("kmensah", lms_id="2099")]))
+    assert moved == [("2099", "kmensah")]
+    tables = ("attempts", "submissions", "parts", "mistakes", "signals", "files", "overrides", "extensions")
+    assert [t for t in tables if book.db.execute(f"SELECT COUNT(*) FROM {t} WHERE student = '2099'").fetchone()[0]] == []
+    assert book.db.execute("SELECT COUNT(*) FROM signals").fetchone() == (0,)
+    assert book.attempt_of(EX11, "kmensah", "aa" * 32)[1] == ""            # graded again by the next run
+    assert book.attempt_of(EX01, "kmensah", "bb" * 32)[1] == "t" * 64      # an ordinary result: kept as it was
+    assert book.overrides(EX01, "kmensah") == {(EX01, "kmensah"): {"whole_phi": (3.5, "late enrolment")}}
+    assert book.reattached() == {"2099": "kmensah"}
