@@ -806,3 +806,32 @@ def test_a_newer_roster_takes_back_a_false_copying_signal(tmp_path):
     assert book.attempt_of(EX01, "kmensah", "bb" * 32)[1] == "t" * 64      # an ordinary result: kept as it was
     assert book.overrides(EX01, "kmensah") == {(EX01, "kmensah"): {"whole_phi": (3.5, "late enrolment")}}
     assert book.reattached() == {"2099": "kmensah"}
+
+
+def test_a_student_who_did_tamper_is_told_about_their_own_release():
+    """After an edit, a notebook that matches no release is tampered — and the message quotes the release the
+    student got (their cell as released), never a cell of the edit they cannot have seen."""
+    from kinbook.classroom.editions import carry_over, edition_of, editions
+    from kinbook.classroom.notebook import source_from_bytes
+
+    old = load_source(ROOT / "exercises" / f"{EX01}.ipynb")
+    new = source_from_bytes(old.data.replace(b'part(\\"whole_phi\\", points=4', b'part(\\"whole_phi\\", points=5'),
+                            old.path)
+    assert new.sha256 != old.sha256
+    honest = plant(EX01, None, old, None)
+    cells = [{"cell_type": c.cell_type, "source": c.source, "id": c["id"]} for c in honest.cells]
+    candidates = editions(new, [old], None, None)
+    edition, missing = edition_of(cells, candidates)
+    assert (edition.source is old, missing) == (True, [])                  # the release this student got
+    carried = carry_over(cells, edition, candidates[0])
+    assert candidates[0].missing_code(carried) == []                       # now a notebook of the edited source
+    assert [c["source"] for c in carried if "whole_phi" in c["source"]] == [
+        c.source for c in candidates[0].nb.cells if "whole_phi" in c.source]
+    assert [c["source"] for c in carried if c["cell_type"] == "code" and "Phi_OA =" in c["source"]] == [
+        c.source for c in honest.cells if c.cell_type == "code" and "Phi_OA =" in c.source]   # their answers kept
+    tampered = [c for c in cells if "part(\"revolute_OA\"" not in c["source"]]          # they deleted a locked cell
+    edition, missing = edition_of(tampered, candidates)
+    assert edition.source is old and len(missing) == 1
+    (cell,) = [c for c in edition.code_locked if c["id"] in missing]
+    assert edition.cell_name(cell).startswith("cell 6 “part(\"revolute_OA\", points=3")
+    assert "points=5" not in edition.cell_name(cell)
