@@ -245,7 +245,8 @@ def _cmd_export(args):
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     headers = dict(h.split("=", 1) for h in args.header)
     path, left = export(args.gradebook, args.output, args.format, exercises=args.exercise or None,
-                        decimals=args.decimals, missing=args.missing, headers=headers, roster=roster)
+                        decimals=args.decimals, missing=args.missing, headers=headers, roster=roster,
+                        scale=args.scale)
     print(f"wrote {path}")
     if left:
         print(f"not in the file: {len(left)} student(s) graded but not on the roster: {', '.join(left[:20])}"
@@ -264,6 +265,15 @@ def _cmd_report(args):
 def _cmd_feedback(args):
     from .classroom.feedback import feedback
 
+    if args.lms:
+        written, left = feedback(args.gradebook, args.out, lms=args.lms)
+        for path in written:
+            print(f"wrote {path} (upload it in {args.lms.capitalize()}: "
+                  + ("Assignment → Re-Upload Submissions)" if args.lms == "canvas" else
+                     "View all submissions → Grading action → Upload multiple feedback files in a zip)"))
+        if left:
+            print(f"not in the zips ({len(left)}): " + "; ".join(left[:20]) + (" …" if len(left) > 20 else ""))
+        return
     written = feedback(args.gradebook, args.out)
     print(f"wrote {len(written)} page(s) into {os.path.join(args.out, '')} (one folder per student)")
 
@@ -359,6 +369,8 @@ def _course_parsers(sub):
     p.add_argument("--decimals", type=int, choices=range(7), default=2, help="decimals of the scores (default 2)")
     p.add_argument("--missing", choices=("zero", "blank"), default="zero",
                    help="a roster student with no submission gets 0 (default) or an empty cell")
+    p.add_argument("--scale", action="store_true", help="Canvas: where the roster's Points Possible differ from the "
+                   "exercise's points, write the scores scaled to Canvas's points (without it, the export stops)")
     p.set_defaults(func=_cmd_export)
     p = sub.add_parser("report", help="the class report: scores, parts, most common mistakes, copying signals")
     gradebook(p)
@@ -369,6 +381,9 @@ def _course_parsers(sub):
     p = sub.add_parser("feedback", help="write every student's feedback pages, one folder per student")
     gradebook(p)
     p.add_argument("--out", type=output_dir, required=True, help="directory: OUT/<student>/<exercise>.html")
+    p.add_argument("--lms", choices=("canvas", "moodle"), help="instead, one zip per exercise for the LMS's bulk "
+                   "feedback upload: OUT/<exercise>-canvas.zip (Re-Upload Submissions) or OUT/<exercise>-moodle.zip "
+                   "(Upload multiple feedback files in a zip)")
     p.set_defaults(func=_cmd_feedback)
 
 
@@ -408,7 +423,7 @@ def _course_options(args):
 
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     return dict(regrade=args.regrade, policy=args.policy, id_pattern=args.id_pattern, roster=roster,
-                file_times=args.file_times)
+                file_times=args.file_times, released_from=args.released_from)
 
 
 def _course_arguments(p):
@@ -426,6 +441,10 @@ def _course_arguments(p):
                    "file's modification time when its name has none — only where the download kept the times")
     p.add_argument("--regrade", action="store_true", help="the source changed since the gradebook's results were "
                    "graded: grade every submission again with it (without this, such a run stops)")
+    p.add_argument("--released-from", metavar="SOURCE", action="append", default=[], type=existing_file,
+                   help="an earlier version of the source that students' notebooks were released from (the "
+                   "gradebook keeps those it graded with): each submission is checked against its own release and "
+                   "graded under the current source")
 
 
 # ------------------------------------------------------------------------------------- kinbook exercises

@@ -102,6 +102,7 @@ class Entry:
     mtime: float = 0.0
     sha256: str = ""
     replace: int | None = None
+    base: str = ""
     _raw: str = ""
     _named: bool | None = None
     _order: tuple = ()
@@ -165,7 +166,7 @@ def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="la
                 e.status, e.result = "ignored", False
                 e.message = (f"not named after the exercise {exercise!r} (other notebooks here are): not graded; "
                              "rename it, or give --id-pattern")
-    _attempts(entries, policy)
+    _attempts(entries, policy, exercise, max_bytes)
     return sorted(entries, key=lambda e: e.path)
 
 
@@ -178,12 +179,14 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
               "")
     if problem is not None and problem[0] == "ignored":
         e.status, e.message, e.result = problem[0], problem[1], False
+        if st is not None and not parts[-1].startswith(".") and not parts[-1].endswith(".ipynb"):
+            _owner(e, parts, root, exercise, rx, roster)  # a PDF, a zip: whose it is, for the report and feedback
         return e
     if st is not None:
         e.mtime = st.st_mtime
     name = read_name(parts, exercise, os.path.basename(os.path.realpath(root)), rx,
                      roster.knows if roster is not None else None)
-    e._named, e.attempt, e.late = name.exercise_named, name.attempt, name.late
+    e._named, e.attempt, e.late, e.base = name.exercise_named, name.attempt, name.late, name.base
     if name.time is not None:
         e.submitted, e.submitted_from = name.time.isoformat(), "name"
     elif st is not None and file_times:
@@ -211,9 +214,29 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
     return e
 
 
-def _attempts(entries, policy):
+def _owner(e, parts, root, exercise, rx, roster):
+    """Tie a file that is not a notebook to its student, when its path names one surely (an ``--id-pattern``, a
+    student's folder, or an id on the roster); its status stays ``ignored``."""
+    from .choice import kind_of_file
+    from .naming import read_name
+
+    name = read_name(parts, exercise, os.path.basename(os.path.realpath(root)), rx,
+                     roster.knows if roster is not None else None)
+    if name.raw is None:
+        return
+    known = roster.find(name.raw, name.key) if roster is not None else None
+    if known is None and rx is None and len(parts) < 2:
+        return  # a loose file beside the notebooks: its name is not a student's for sure
+    e.student = known.student if known is not None else student_id(name.raw)[0]
+    e.on_roster = (known is not None) if roster is not None else None
+    e.message = f"{kind_of_file(parts[-1])}, not a notebook (.ipynb): not graded"
+
+
+def _attempts(entries, policy, exercise, max_bytes):
     """Group the entries of one student: spellings that only meet once folded are a clash (``duplicate-id``);
-    several files of one id are attempts, chosen by ``policy``."""
+    several notebooks of one id are one submission's files or attempts (:func:`kinbook.classroom.choice.choose`)."""
+    from .choice import choose
+
     by_key = {}
     for e in entries:
         if e.student and e.status not in ("ignored",):
@@ -233,12 +256,8 @@ def _attempts(entries, policy):
                 if e.status is not None:
                     e.result = False
                     e.message += f" (another file of {e.student} is graded)"
-        if policy == "latest" and len(good) > 1:
-            last = good[-1]
-            for e in good[:-1]:
-                e.status, e.result = "superseded", False
-                e.message = f"an earlier attempt of {e.student} than {last.path} (policy: latest)"
-        elif not good:
+            choose(good, policy, exercise, lambda e: read_entry(e, max_bytes))
+        else:
             for e in same[:-1]:
                 e.result = False
 

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import hashlib
 import os
-import re
 import signal
 import sys
 import time
@@ -33,22 +32,22 @@ import numpy as np
 
 from ..errors import GradingError, KinbookError
 from .answers import describe, mistake_rows
+from .editions import carry_over, class_would_be_tampered, earlier_sources, edition_of, editions, released_for
 from .feedback import write_pages
 from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
 from .intake import annotate, check_pin, intake
 from .notebook import (
-    MAX_NOTEBOOK_BYTES,
+    MAX_FILE_BYTES,
     checksum,
     find_parameters,
     grader_segments,
     load_source,
-    missing_locked,
     parse_submission,
-    student_notebook,
+    readable,
 )
 from .reference_use import exercise_calls, reference_use
-from .results import STATUSES, PartGrade, Refused, SubmissionResult, ungraded_notice, worst
+from .results import STATUSES, PartGrade, Refused, SubmissionResult, stopped_notice, ungraded_notice, worst
 from .sanitize import clean, clean_result
 from .serialize import decode_answers
 from .variant import references, student_parameters
@@ -144,12 +143,13 @@ def _release_kind(data):
     return "generic" if meta["student"] is None else "student"
 
 
-def _contents(entries):
-    """The bytes of each entry that can still be read (the others are refused when their turn comes)."""
+def _contents(entries, with_entries=False):
+    """The bytes of each entry that can still be read (the others are refused when their turn comes); with
+    ``with_entries``, (student, bytes)."""
     for entry in entries:
         data, refused = _read_again(entry)
         if refused is None:
-            yield data
+            yield (entry.student, data) if with_entries else data
 
 
 def _same_release_as_graded(kinds, per_student, exercise):
@@ -220,7 +220,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     _needs_a_real_machine()
     check_memory(memory)
     source = load_source(source)
-    entries = collect([submission], source.exercise, max_bytes=MAX_NOTEBOOK_BYTES)
+    entries = collect([submission], source.exercise, max_bytes=MAX_FILE_BYTES)
     entry = entries[0] if entries else Entry(str(submission), ".", (os.path.basename(str(submission)),), None,
                                              "unknown", "refused", "not found")
     if student is not None:
@@ -230,7 +230,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     if entry.status:
         return _refused(source, entry, entry.status, entry.message)
     try:
-        data = read_entry(entry, MAX_NOTEBOOK_BYTES)
+        data = read_entry(entry, MAX_FILE_BYTES)
     except Refused as exc:
         return _refused(source, entry, exc.status, exc.message)
     if sandbox is None:
@@ -243,7 +243,7 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
                                      reveal_hidden=reveal_hidden, sandbox=sandbox))
 
 
-def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden, sandbox):
+def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden, sandbox, earlier=()):
     """Grade the bytes of one submission (read already) with a running sandbox."""
     t0 = time.monotonic()
     student = entry.student
@@ -262,21 +262,20 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         msg = "the file is the exercise's source notebook itself, not a submission: not run"
         return done("refused", msg, _all_parts(parts, "refused", msg))
     try:
+        data = readable(data)  # what the sandbox gets too: nbformat 4, no 50 MB of saved output
         cells, meta = parse_submission(data, metadata=True)
     except Refused as exc:
         return done(exc.status, exc.message, _all_parts(parts, exc.status, exc.message))
-    other, named = _released_for(meta, cells, student, values is not None)
+    other, named = released_for(meta, cells, student, values is not None)
     if other:
         res = done("wrong-release", other, _all_parts(parts, "wrong-release", other))
         if named is not None:  # a copying signal, for the instructor's report
             res.signals = [("released-for", clean(named, 80))]
         return res
-    released = student_notebook(source, values, student if values is not None else None)
-    locked = [c for c in released.cells if c.get("metadata", {}).get("kinbook", {}).get("locked")]
-    code_locked = [c for c in locked if c.cell_type == "code"]
-    missing = set(missing_locked([(c["id"], checksum(c)) for c in code_locked], cells))
+    candidates = editions(source, earlier, values, student)
+    edition, missing = edition_of(cells, candidates)
     if missing:
-        where = [_released_cell(released, c) for c in code_locked if c["id"] in missing]
+        where = [edition.cell_name(c) for c in edition.code_locked if c["id"] in missing]
         shown = "; ".join(where[:3]) + (f"; and {len(where) - 3} more" if len(where) > 3 else "")
         msg = (f"{len(where)} locked code cell(s) of the released notebook were changed, moved or deleted "
                f"({shown}); the notebook was not run. Start again from the released notebook and only edit the "
@@ -284,7 +283,11 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         return done("tampered", msg, _all_parts(parts, "tampered", msg))
     # locked text (markdown) cells a student edited are restored from the release, as nbgrader does: they are
     # never run, so only the code cells are checked, and the text they read is the release's
-    restored = missing_locked([(c["id"], checksum(c)) for c in locked if c.cell_type != "code"], cells)
+    restored = edition.missing_text(cells)
+    if not edition.current:  # released from an earlier source: its locked cells become the current source's
+        cells = carry_over(cells, edition, candidates[0])
+        edition = candidates[0]
+    code_locked = edition.code_locked
 
     code = [c["source"] for c in cells if c["cell_type"] == "code"]
     names = sorted({p.answer for p in parts} | {p.options["phi"] for p in parts if isinstance(p.options.get("phi"), str)})
@@ -396,13 +399,6 @@ def _raised(cells, errors, only=None):
     return f"{_cell_name(cells, e['cell'])} raised {clean(e['ename'], 100)}" + (f": {evalue}" if evalue else "") + more
 
 
-def _released_cell(released, cell):
-    """A locked cell of the released notebook, as the student saw it there: its position and first line."""
-    position = next(i for i, c in enumerate(released.cells, 1) if c is cell)
-    first = _first_line(cell.source)
-    return f"cell {position}" + (f" “{first}”" if first else "")
-
-
 def _hidden_verdict(result):
     """A hidden check's feedback: the verdict and, for each mistake found, its name and hint from the
     catalogue — never the checker's messages, which may quote the expected value."""
@@ -419,30 +415,6 @@ def _hidden_verdict(result):
         else:
             hints.append(code)
     return out + (" — " + " | ".join(hints) if hints else "")
-
-
-_RELEASED_FOR = re.compile(r"#\s*parameters of student (['\"])(.{1,200}?)\1\s*$", re.MULTILINE)
-
-
-def _released_for(meta, cells, student, per_student):
-    """``(why, other student)`` when the notebook is not this student's release, else ``(None, None)``: the
-    notebook released for another student (its metadata or its parameters cell name them: a copying signal for
-    the instructor, not tampering), or the generic release where each student got their own (no other student)."""
-    from .files import id_key
-
-    named = meta.get("student") if isinstance(meta.get("student"), str) else None
-    if named is None:
-        for c in cells:
-            if c["cell_type"] == "code":
-                m = _RELEASED_FOR.search(c["source"])
-                if m:
-                    named = m.group(2)
-                    break
-    if named is not None and id_key(named) != id_key(student):
-        return f"this notebook was released for {clean(named, 80)}, not for {student}", named
-    if per_student and "student" in meta and meta["student"] is None:
-        return f"this is the exercise's generic release, not the notebook released for {student}", None
-    return None, None
 
 
 # ================================================================================================== batch
@@ -479,7 +451,7 @@ def _grade_task(args):
 
 def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jobs=1, force=False,
           generic=False, reveal_hidden=False, isolation=True, progress=None, regrade=False, policy=None,
-          id_pattern=None, roster=None, file_times=False):
+          id_pattern=None, roster=None, file_times=False, released_from=()):
     """Grade a batch of submissions of one exercise and record them in the gradebook.
 
     Parameters
@@ -513,6 +485,8 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     file_times : bool
         Take a submission's time from its file's modification time when its name gives none (for the late rule);
         only where the download kept the times.
+    released_from : list of paths
+        Earlier sources students' notebooks may come from, beside those kept (:mod:`kinbook.classroom.editions`).
     generic, reveal_hidden : bool
         See :func:`grade_submission`.
     isolation : bool
@@ -546,11 +520,29 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         check_pin(book, src, regrade)
         run = book.begin_run(src, "bubblewrap" if isolation else "none")
         options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic),
-                       reveal_hidden=bool(reveal_hidden))
-        plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
-                      roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times)
+                       reveal_hidden=bool(reveal_hidden), earlier=tuple(earlier_sources(book, src, released_from)))
+        plan = _plan(book, run, src, submissions, options, force=force, regrade=regrade, policy=policy,
+                     pattern=id_pattern, roster=roster, progress=progress, file_times=file_times)
         return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
                           progress=progress)
+
+
+def _plan(book, run, src, submissions, options, **how):
+    """:func:`kinbook.classroom.intake.intake`, then the check that the class holds a release of the source; when
+    either stops the run, nothing was graded and the pin stays the source the results were graded with."""
+    pinned = book.pin(src.exercise)
+    try:
+        plan = intake(book, run, src, submissions, max_bytes=MAX_FILE_BYTES, **how)
+        per_student = find_parameters(src.nb) is not None and not options["generic"]
+        why = class_would_be_tampered(src, (d for d in _contents(plan.todo, with_entries=True)), options["earlier"],
+                                      per_student)
+        if why:
+            raise GradingError(f"{src.exercise}: {why}")
+    except GradingError:
+        book.unpin(src.exercise, pinned)
+        book.end_run(run)
+        raise  # book.failures() closes the gradebook
+    return plan
 
 
 def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progress):
@@ -577,6 +569,7 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
     if find_parameters(src.nb) is not None:
         _same_release_as_graded([_release_kind(d) for d in _contents(plan.todo)],
                                 not generic, src.exercise)
+    touched.update(e.student for e in plan.entries.values() if e.student)  # a PDF's student gets a page too
     for entry in plan.refused:
         record(_refused(src, entry, entry.status, entry.message))
     todo = plan.todo
@@ -593,6 +586,10 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
                     record(_one(src, entry, options, sb))
         else:
             _run_pool(src, todo, options, int(jobs), isolation, record)
+    except (KeyboardInterrupt, SystemExit) as exc:
+        if isinstance(exc, KeyboardInterrupt) or exc.code == 128 + signal.SIGTERM:
+            print(stopped_notice(exc, len(results), len(todo) + len(plan.refused), book.path), file=sys.stderr)
+        raise
     finally:
         if previous_handler is not None:
             signal.signal(signal.SIGTERM, previous_handler)
@@ -624,7 +621,7 @@ def _on_sigterm(signum, frame):
 def _read_again(entry):
     """The entry's bytes, read now (a file replaced since it was listed is refused)."""
     try:
-        return read_entry(entry, MAX_NOTEBOOK_BYTES), None
+        return read_entry(entry, MAX_FILE_BYTES), None
     except Refused as exc:
         return None, exc
 

@@ -28,11 +28,20 @@ Tables
 ``sources``
     The source notebook each exercise is pinned to (its sha256): a run with another source stops unless it
     regrades everything (``--regrade``).
+``source_texts``
+    The bytes of every source an exercise was graded with: the editions a regrade after an edit checks each
+    submission against (:mod:`kinbook.classroom.editions`).
+``reattached``
+    Ids a newer roster mapped to one of its students (a student enrolled after the first roster): their results
+    moved to the student, and the old id is dropped from the feedback folders.
+``lms_points``
+    What the LMS says each assignment column is worth (Canvas's ``Points Possible`` row of the roster).
 ``roster``, ``rules``, ``extensions``, ``overrides``
     The course: students and their LMS ids, each exercise's due date, late penalty and policy, per-student
     extensions, and the instructor's per-part overrides (kept across regrades and ``--force``).
 
-``grades.csv`` (one row per part), ``totals.csv`` (one row per submission) and ``collection.csv`` (one row per file
+``grades.csv`` (one row per part), ``totals.csv`` (one row per submission; its ``score`` is the one that counts,
+with the instructor's overrides and the late penalty, beside the grader's) and ``collection.csv`` (one row per file
 of the last run) are exports, each written atomically (:func:`kinbook.classroom.files.atomic_write`).
 """
 
@@ -60,8 +69,14 @@ DATABASE = "gradebook.sqlite"
 SCHEMA_VERSION = 2
 #: Seconds a command waits for another kinbook run that holds the gradebook.
 LOCK_WAIT = 30.0
-COLUMNS = ["student", "exercise", "part", "score", "max_score", "status", "message", "reference"]
-TOTALS = ["student", "exercise", "score", "max_score", "status", "isolation", "sha256", "note"]
+#: grades.csv: ``score`` is the part's score that counts (the instructor's override, when there is one);
+#: ``grader_score`` the grader's, ``override`` the instructor's reason.
+COLUMNS = ["student", "exercise", "part", "score", "max_score", "status", "message", "reference", "grader_score",
+           "override"]
+#: totals.csv: ``score`` is the score that counts — overrides and the late penalty applied, as the report, the
+#: feedback and the LMS files show it (2 decimals); ``grader_score`` the grader's sum of the parts.
+TOTALS = ["student", "exercise", "score", "max_score", "status", "isolation", "sha256", "note", "grader_score",
+          "late_days", "penalty", "overridden"]
 FILES = ["exercise", "path", "student", "outcome", "reason", "sha256", "submitted"]
 _PART_COLS = "part, score, max_score, status, message, html, reference, answer, cell"
 _SCHEMA = """
@@ -102,6 +117,10 @@ CREATE TABLE IF NOT EXISTS files (
     reason TEXT NOT NULL, sha256 TEXT NOT NULL, submitted TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS sources (
     exercise TEXT PRIMARY KEY, sha256 TEXT NOT NULL, path TEXT NOT NULL, pinned TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS source_texts (
+    sha256 TEXT PRIMARY KEY, exercise TEXT NOT NULL, path TEXT NOT NULL, data BLOB NOT NULL, first TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS lms_points (header TEXT PRIMARY KEY, points REAL NOT NULL);
+CREATE TABLE IF NOT EXISTS reattached (old TEXT PRIMARY KEY, student TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS roster (
     position INTEGER NOT NULL, student TEXT PRIMARY KEY, name TEXT NOT NULL, first TEXT NOT NULL,
     last TEXT NOT NULL, lms_id TEXT NOT NULL, sis_id TEXT NOT NULL, login TEXT NOT NULL, email TEXT NOT NULL,
@@ -145,6 +164,11 @@ def _score(row):
     """A score for the exports: blank for a part or submission the grader could not grade (never a 0 the student
     did not earn)."""
     return "" if row.status in UNGRADED else f"{row.score:g}"
+
+
+def _points(x):
+    """A score as the report, the feedback and the LMS files show it: at most 2 decimals."""
+    return f"{round(float(x), 2):g}"
 
 
 def csv_text(header, rows):
@@ -328,7 +352,7 @@ class Gradebook:
                 [[attempt] + [_utf8(str(v)) for v in (r.exercise, r.student, kind, detail)]
                  for kind, detail in r.signals])
             if r.status != "superseded":
-                self._select(r.exercise, r.student)
+                self.select(r.exercise, r.student)
         return attempt
 
     def record_file(self, run, exercise, entry, outcome, reason="", sha256=""):
@@ -338,16 +362,19 @@ class Gradebook:
                                                                         outcome, reason or "", sha256,
                                                                         entry.submitted)])
 
-    def _select(self, exercise, student):
+    def select(self, exercise, student):
         """Make the attempt that counts under the policy the student's result (``submissions`` and ``parts``)."""
-        rows = self.db.execute("SELECT id FROM attempts WHERE exercise = ? AND student = ? AND status != 'superseded' "
-                               "ORDER BY id", (exercise, student)).fetchall()
+        rows = self.db.execute("SELECT id, run FROM attempts WHERE exercise = ? AND student = ? AND status != "
+                               "'superseded' ORDER BY id", (exercise, student)).fetchall()
         if not rows:
             return
         ids = [r[0] for r in rows]
         rule = self.rule(exercise)
         chosen = ids[-1]
-        if rule.policy == "best" and len(ids) > 1:
+        if rule.policy == "latest":  # the latest run's files: several notebooks of one submission, the best counts
+            last = rows[-1][1]
+            ids = [i for i, run in rows if run == last] if last is not None else ids[-1:]
+        if len(ids) > 1:
             ext = self.extension(exercise, student)
             finals = {i: final(student, exercise, self._attempt_result(i), rule, ext).score for i in ids}
             chosen = max(ids, key=lambda i: (finals[i], i))
@@ -369,7 +396,7 @@ class Gradebook:
             self.db.execute("BEGIN IMMEDIATE")
             for (student,) in self.db.execute("SELECT DISTINCT student FROM attempts WHERE exercise = ?",
                                               (exercise,)).fetchall():
-                self._select(exercise, student)
+                self.select(exercise, student)
 
     # ---------------------------------------------------------------------------------------- the source pin
     def pin(self, exercise):
@@ -384,6 +411,30 @@ class Gradebook:
     def set_pin(self, source):
         self.db.execute("INSERT OR REPLACE INTO sources (exercise, sha256, path, pinned) VALUES (?,?,?,?)",
                         (source.exercise, source.sha256, _utf8(str(source.path)), _now()))
+        self.keep_source(source)
+
+    def unpin(self, exercise, pin):
+        """Put back the pin ``pin`` (:meth:`pin`'s row, or None) of a run that graded nothing."""
+        if pin is None:
+            self.db.execute("DELETE FROM sources WHERE exercise = ?", (exercise,))
+        else:
+            self.db.execute("INSERT OR REPLACE INTO sources (exercise, sha256, path, pinned) VALUES (?,?,?,?)",
+                            (exercise, *pin))
+
+    def keep_source(self, source):
+        """Keep a source's bytes (once per sha256): a later edit of it is graded against this edition."""
+        if source.data:
+            self.db.execute("INSERT OR IGNORE INTO source_texts (sha256, exercise, path, data, first) VALUES "
+                            "(?,?,?,?,?)", (source.sha256, source.exercise, _utf8(str(source.path)), source.data,
+                                            _now()))
+
+    def sources(self, exercise):
+        """Every source of ``exercise`` kept (:meth:`keep_source`), most recent first: [Source]."""
+        from .notebook import source_from_bytes
+
+        rows = self.db.execute("SELECT path, data FROM source_texts WHERE exercise = ? ORDER BY rowid DESC",
+                               (exercise,)).fetchall()
+        return [source_from_bytes(bytes(data), path) for path, data in rows]
 
     def stale(self, exercise):
         """Students whose counting result was graded with another source than the pinned one."""
@@ -395,7 +446,9 @@ class Gradebook:
 
     # ------------------------------------------------------------------------------------------- the course
     def set_roster(self, roster):
-        """Replace the stored roster (:class:`kinbook.classroom.roster.Roster`)."""
+        """Replace the stored roster (:class:`kinbook.classroom.roster.Roster`); results graded under an id it maps to
+        one of its students move to that student (:func:`kinbook.classroom.enrolment.reattach`): returns [(old id,
+        student)]."""
         from .roster import FIELDS
 
         with self.db:
@@ -404,13 +457,25 @@ class Gradebook:
             self.db.executemany(f"INSERT INTO roster (position, {', '.join(FIELDS)}) VALUES "
                                 f"(?, {', '.join('?' * len(FIELDS))})",
                                 [[i] + [_utf8(getattr(s, f)) for f in FIELDS] for i, s in enumerate(roster)])
+            self.db.execute("DELETE FROM lms_points")
+            self.db.executemany("INSERT INTO lms_points (header, points) VALUES (?, ?)",
+                                [(_utf8(c), float(p)) for c, p in getattr(roster, "points", {}).items()])
+
+        from .enrolment import reattach
+
+        return reattach(self, roster)
+
+    def reattached(self):
+        """``{old id: student}``: ids a newer roster mapped to one of its students (:func:`.enrolment.reattach`)."""
+        return dict(self.db.execute("SELECT old, student FROM reattached"))
 
     def roster(self):
         """The stored roster, or None."""
         from .roster import FIELDS, Roster, Student
 
         rows = self.db.execute(f"SELECT {', '.join(FIELDS)} FROM roster ORDER BY position").fetchall()
-        return Roster([Student(*r) for r in rows]) if rows else None
+        points = dict(self.db.execute("SELECT header, points FROM lms_points"))
+        return Roster([Student(*r) for r in rows], points=points) if rows else None
 
     def set_rule(self, exercise, *, due=None, penalty=None, cap=None, policy=None):
         """Change an exercise's due date, late penalty, cap or policy (the others are kept); the counting attempts
@@ -438,7 +503,7 @@ class Gradebook:
         if self.rule(exercise).policy == "best":
             with self.db:
                 self.db.execute("BEGIN IMMEDIATE")
-                self._select(exercise, student)
+                self.select(exercise, student)
 
     def extension(self, exercise, student):
         row = self.db.execute("SELECT due FROM extensions WHERE exercise = ? AND student = ?",
@@ -475,6 +540,19 @@ class Gradebook:
             return []
         return [tuple(r) for r in self.db.execute("SELECT part, max_score FROM attempt_parts WHERE attempt = ? "
                                                    "ORDER BY position", (row[0],))]
+
+    def files_of(self, exercise):
+        """``{student: [(path, outcome, reason, run)]}``: every entry of ``collected/`` tied to a student (notebooks,
+        and files that are not: a PDF, a zip), as the latest run that saw it left it."""
+        latest = {}
+        for student, path, outcome, reason, run in self.db.execute(
+                "SELECT student, path, outcome, reason, run FROM files WHERE exercise = ? AND student != '' ORDER BY "
+                "rowid", (exercise,)):
+            latest[student, path] = (outcome, reason, run)
+        out = {}
+        for (student, path), (outcome, reason, run) in sorted(latest.items()):
+            out.setdefault(student, []).append((path, outcome, reason, run))
+        return out
 
     # ------------------------------------------------------------------------------------------- reading
     def _attempt_result(self, attempt):
@@ -567,12 +645,25 @@ class Gradebook:
         kept for callers of an earlier kinbook; the feedback pages are :mod:`kinbook.classroom.feedback`'s.)"""
         results = self.results()
         notes = self.notes()
-        write_csv(self.outdir / "grades.csv", COLUMNS,
-                  [[r.student, r.exercise, p.part, _score(p), f"{p.max_score:g}", p.status, p.message,
-                    p.reference] for r in results for p in r.parts])
-        write_csv(self.outdir / "totals.csv", TOTALS,
-                  [[r.student, r.exercise, _score(r), f"{r.max_score:g}", r.status, r.isolation or "", r.sha256,
-                    notes.get((r.exercise, r.student), "")] for r in results])
+        finals = {}
+        for e in {r.exercise for r in results}:
+            finals.update({(e, f.student): f for f in self.finals(e) if f.status != "missing"})
+        grades, totals = [], []
+        for r in results:
+            f = finals.get((r.exercise, r.student))
+            overrides = {p: o for p, _, _, o in f.parts if o} if f is not None else {}
+            for p in r.parts:
+                o = overrides.get(p.part)
+                shown = _score(p) if o is None else _points(o[0])
+                grades.append([r.student, r.exercise, p.part, shown, f"{p.max_score:g}", p.status, p.message,
+                               p.reference, _score(p), o[1] if o else ""])
+            final_score = _score(r) if f is None or r.status in UNGRADED else _points(f.score)
+            totals.append([r.student, r.exercise, final_score, f"{r.max_score:g}", r.status, r.isolation or "",
+                           r.sha256, notes.get((r.exercise, r.student), ""), _score(r),
+                           f.late_days if f is not None else 0, _points(f.penalty) if f is not None else "0",
+                           ";".join(sorted(overrides))])
+        write_csv(self.outdir / "grades.csv", COLUMNS, grades)
+        write_csv(self.outdir / "totals.csv", TOTALS, totals)
         last = {e: run for e, run in self.db.execute("SELECT exercise, MAX(run) FROM files GROUP BY exercise")}
         rows = []
         for e in sorted(last):

@@ -13,6 +13,8 @@ import hashlib
 from dataclasses import dataclass, field
 
 from ..errors import GradingError
+from .choice import several_line
+from .enrolment import adopt, check_matches
 from .files import collect, read_entry
 from .results import UNGRADED, Refused, SubmissionResult
 
@@ -81,24 +83,40 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
         Stored in the gradebook when given; else the stored one (if any) maps the ids.
     """
     check_pin(book, src, regrade)
-    if roster is not None:
-        book.set_roster(roster)
-    else:
-        roster = book.roster()
+    say = progress or (lambda item: None)
+    given, roster = roster, roster if roster is not None else book.roster()
+    entries = collect(submissions, src.exercise, max_bytes=max_bytes, pattern=pattern, roster=roster,
+                      policy=policy or book.rule(src.exercise).policy, file_times=file_times)
+    if given is not None:
+        check_matches(entries, given)  # a roster whose ids match no file stops here, before anything is stored
+        for old, new in book.set_roster(given):
+            say(f"re-attached  {old} → {new}: on the new roster, so every result of {old} is now {new}'s (report, "
+                f"exports and feedback drop {old})")
     if policy is not None and policy != book.rule(src.exercise).policy:
         book.set_rule(src.exercise, policy=policy)
     policy = book.rule(src.exercise).policy
     book.set_pin(src)
     plan = Intake()
-    say = progress or (lambda item: None)
-    entries = collect(submissions, src.exercise, max_bytes=max_bytes, pattern=pattern, roster=roster, policy=policy,
-                      file_times=file_times)
     for e in entries:
         _digest(e, src, max_bytes)
+        if e.on_roster is False and e.sha256:
+            try:
+                old = adopt(e, roster, read_entry(e, max_bytes))
+            except Refused:  # replaced since it was read: refused when its turn comes
+                old = None
+            if old is not None:
+                say(f"enrolled  {e.path}: {old} is not on the roster, and this notebook was released for "
+                    f"{e.student}, who is not either: graded as {e.student} (not on the roster; not a copying signal)")
         if e.on_roster is False and e.student and e.student not in plan.off_roster and e.result:
             plan.off_roster.append(e.student)
         _decide(book, run, src, e, plan, force or regrade, say)
     plan.entries = {e.path: e for e in entries}
+    by_student = {}
+    for e in plan.todo:
+        by_student.setdefault(e.student, []).append(e)
+    for student, mine in by_student.items():
+        if several_line(student, mine, policy):
+            say(several_line(student, mine, policy))
     graded_now = {e.student for e in plan.todo} | {e.student for e in plan.refused}
     plan.stale = [s for s in book.stale(src.exercise) if s not in graded_now]
     if plan.skipped:

@@ -39,9 +39,9 @@ PATTERNS = {
     # Canvas "Download Submissions": <lastfirst>_[late_]<user id>_<submission id>_<file name as uploaded>, the file
     # name with '-1', '-2' … when the student uploaded a file of the same name again
     "canvas": r"(?:^|/)(?P<name>[^/_]+)_(?:(?P<late>late|LATE)_)?(?P<lms>\d+)_(?P<submission>\d+)_(?P<file>[^/]+)$",
-    # Moodle "Download all submissions": a folder '<Full Name>_<participant id>_assignsubmission_file_' holding the
+    # Moodle "Download all submissions": a folder '<Full Name>_<participant id>_assignsubmission_file_' (or _onlinetext_) holding the
     # files (or, flat, the files named with that prefix)
-    "moodle": r"(?:^|/)(?P<name>[^/]+?)_(?P<lms>\d+)_assignsubmission_file_(?:/(?:.*/)?)?(?P<file>[^/]*)$",
+    "moodle": r"(?:^|/)(?P<name>[^/]+?)_(?P<lms>\d+)_assignsubmission_(?:file|onlinetext)_(?:/(?:.*/)?)?(?P<file>[^/]*)$",
     # Blackboard "Download Assignment": <assignment>_<username>_attempt_<yyyy-mm-dd-hh-mm-ss>[_<file name>]
     "blackboard": r"(?:^|/)[^/]*?_(?P<student>[^_/]+)_attempt_(?P<time>\d{4}-\d{2}-\d{2}-\d{2}-\d{2}-\d{2})"
                   r"(?:_(?P<file>[^/]+))?$",

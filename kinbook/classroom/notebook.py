@@ -36,13 +36,16 @@ from .parts import check_parameters
 from .results import Refused
 
 __all__ = [
-    "BEGIN_SOLUTION", "END_SOLUTION", "BEGIN_HIDDEN", "END_HIDDEN", "Source", "load_source", "checksum",
+    "BEGIN_SOLUTION", "END_SOLUTION", "BEGIN_HIDDEN", "END_HIDDEN", "Source", "load_source", "source_from_bytes",
+    "checksum",
     "student_notebook", "locked_checksums", "locked_sequence", "missing_locked", "grader_segments", "grader_code",
-    "find_parameters", "parse_submission", "MAX_NOTEBOOK_BYTES", "MAX_CELLS",
+    "find_parameters", "parse_submission", "readable", "MAX_NOTEBOOK_BYTES", "MAX_FILE_BYTES", "MAX_CELLS",
 ]
 
-#: A submission larger than this is refused unread (``too-large``).
+#: A submission whose code and text (saved outputs left out) are larger than this is not graded (``too-large``).
 MAX_NOTEBOOK_BYTES = 8 * 1024 * 1024
+#: A file larger than this is refused unread (``too-large``), saved outputs included.
+MAX_FILE_BYTES = 128 * 1024 * 1024
 #: A submission with more cells than this is refused (``too-large``).
 MAX_CELLS = 2000
 MAX_CELL_CHARS = 1_000_000
@@ -66,6 +69,8 @@ class Source:
         The exercise's identifier: the file name without ``.ipynb``.
     sha256 : str
         Of the bytes read (once) from ``path``.
+    data : bytes
+        Those bytes (kept in the gradebook, so that a later edit can be graded against this edition).
     """
 
     path: Path
@@ -73,6 +78,7 @@ class Source:
     exercise: str
     sha256: str = ""
     compiled: dict = field(default_factory=dict, repr=False, compare=False)
+    data: bytes = field(default=b"", repr=False, compare=False)
 
     def __getstate__(self):  # code objects do not pickle: a copy in another process compiles again
         return {**self.__dict__, "compiled": {}}
@@ -88,16 +94,25 @@ class Source:
 
 def load_source(path):
     """Read (once) and validate a source notebook; cells get stable ids (``kb-NN``) when they have none."""
-    import nbformat
-
     if isinstance(path, Source):
         return path
     path = Path(path)
     try:
         data = path.read_bytes()
-        nb = nbformat.reads(data.decode("utf-8"), as_version=4)
     except FileNotFoundError:
         raise GradingError(f"source notebook {str(path)!r} does not exist") from None
+    except OSError as exc:
+        raise GradingError(f"source notebook {str(path)!r} cannot be read: {exc.strerror}") from None
+    return source_from_bytes(data, path)
+
+
+def source_from_bytes(data, path):
+    """:func:`load_source` of bytes read already (an earlier source the gradebook kept); ``path`` names it."""
+    import nbformat
+
+    path = Path(path)
+    try:
+        nb = nbformat.reads(data.decode("utf-8"), as_version=4)
     except Exception as exc:
         raise GradingError(f"source notebook {str(path)!r} cannot be read: {exc}") from None
     seen = set()
@@ -112,7 +127,7 @@ def load_source(path):
         find_parameters(nb)  # validated once, here, with the file named
     except GradingError as exc:
         raise GradingError(f"{path.name}: {exc}") from None
-    return Source(path, nb, path.stem, hashlib.sha256(data).hexdigest())
+    return Source(path, nb, path.stem, hashlib.sha256(data).hexdigest(), data=bytes(data))
 
 
 def runnable(code):
@@ -310,21 +325,82 @@ def missing_locked(expected, cells):
 
 
 # ================================================================================================ submissions
+def readable(data):
+    """The bytes the grader reads of a submitted file: an nbformat-3 notebook upgraded to nbformat 4 (nbformat's own
+    converter), and a file over :data:`MAX_NOTEBOOK_BYTES` without its saved outputs (outputs are never graded: a
+    notebook that printed 400,000 lines is graded on its code). Anything else is returned as it is, for
+    :func:`parse_submission` to read or refuse.
+
+    Raises
+    ------
+    Refused
+        ``too-large`` over :data:`MAX_FILE_BYTES`; ``corrupt-notebook`` when nbformat cannot convert it.
+    """
+    if len(data) > MAX_FILE_BYTES:
+        raise Refused("too-large", f"the file has {len(data):,} bytes (at most {MAX_FILE_BYTES:,}, saved outputs "
+                                   "included); not read")
+    big = len(data) > MAX_NOTEBOOK_BYTES
+    if not big and not re.search(rb'"nbformat"\s*:\s*3\b', data[-4096:] + data[:4096]):
+        return data
+    if data.count(b'"cell_type"') > MAX_CELLS:
+        raise Refused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
+    try:  # each cell's outputs are dropped as soon as the cell is read: at most one cell's outputs in memory
+        nb = json.loads(data.decode("utf-8"), object_pairs_hook=_without_outputs)
+    except (UnicodeDecodeError, ValueError, RecursionError):
+        return data
+    if not isinstance(nb, dict):
+        return data
+    cells = nb.get("cells")
+    if nb.get("nbformat") == 3 and isinstance(nb.get("worksheets"), list):
+        cells = [c for ws in nb["worksheets"] if isinstance(ws, dict) and isinstance(ws.get("cells"), list)
+                 for c in ws["cells"]]
+    for c in cells if isinstance(cells, list) else []:
+        if isinstance(c, dict) and "outputs" in c:
+            c["outputs"] = []
+            if "execution_count" in c:
+                c["execution_count"] = None
+            c.pop("prompt_number", None)
+    if nb.get("nbformat") == 3:
+        if len(cells or ()) > MAX_CELLS:
+            raise Refused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
+        import warnings
+
+        import nbformat
+
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                nb = nbformat.convert(nbformat.from_dict(nb), 4)
+        except Exception as exc:
+            raise Refused("corrupt-notebook", f"an nbformat-3 notebook that nbformat cannot convert to nbformat 4: "
+                                              f"{type(exc).__name__}: {str(exc)[:200]}") from None
+    return json.dumps(nb).encode("utf-8")
+
+
+def _without_outputs(pairs):
+    """A JSON object as read, less a cell's saved ``outputs`` (an object with a ``cell_type`` is a cell)."""
+    obj = dict(pairs)
+    if "cell_type" in obj and "outputs" in obj:
+        obj["outputs"] = []
+    return obj
+
+
 def parse_submission(data, metadata=False):
     """The cells of a submitted notebook (bytes): a list of ``{"cell_type", "source", "id"}`` dicts — and,
     with ``metadata``, also its ``kinbook`` metadata (a dict, empty when absent): ``(cells, metadata)``.
 
-    Refused before parsing when larger than :data:`MAX_NOTEBOOK_BYTES` or holding more than :data:`MAX_CELLS`
-    cells (``too-large``); read as JSON, which must be an nbformat-4 notebook whose cells have a type and a
+    Made :func:`readable` first (nbformat 3 upgraded; saved outputs dropped from a large file); refused when that is
+    larger than :data:`MAX_NOTEBOOK_BYTES` or holds more than :data:`MAX_CELLS` cells (``too-large``); read as JSON, which must be an nbformat-4 notebook whose cells have a type and a
     source (``corrupt-notebook``). Nothing in it is run or evaluated here.
 
     Raises
     ------
     Refused
     """
+    data = readable(data)
     if len(data) > MAX_NOTEBOOK_BYTES:
-        raise Refused("too-large", f"the notebook has {len(data):,} bytes (at most {MAX_NOTEBOOK_BYTES:,}); "
-                                "not read")
+        raise Refused("too-large", f"the notebook has {len(data):,} bytes of code and text, saved outputs left out "
+                                   f"(at most {MAX_NOTEBOOK_BYTES:,}); not read")
     if data.count(b'"cell_type"') > MAX_CELLS:
         raise Refused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
     try:

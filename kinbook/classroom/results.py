@@ -37,7 +37,7 @@ from __future__ import annotations
 import html
 from dataclasses import asdict, dataclass, field
 
-__all__ = ["STATUSES", "UNGRADED", "ungraded_notice", "PartGrade", "SubmissionResult", "Refused", "worst"]
+__all__ = ["STATUSES", "UNGRADED", "ungraded_notice", "stopped_notice", "PartGrade", "SubmissionResult", "Refused", "worst"]
 
 STATUSES = ("ok", "missing-answer", "error", "timeout", "memory", "tampered", "wrong-release", "corrupt-notebook",
             "too-large", "refused", "bad-id", "duplicate-id", "grader-error")
@@ -63,6 +63,14 @@ def ungraded_notice(results):
     return (f"not graded, through a failure of the grader's, not theirs ({len(ungraded)}; no score recorded): "
             + ", ".join(ungraded[:20]) + (" …" if len(ungraded) > 20 else "") + " — run the same command again "
             "to grade them")
+
+
+def stopped_notice(why, kept, of, where):
+    """The line of a run stopped by SIGTERM (``why`` the SystemExit its handler raised) or Ctrl-C
+    (KeyboardInterrupt): what was kept, where, and how to go on."""
+    how = "Ctrl-C" if isinstance(why, KeyboardInterrupt) else "SIGTERM"
+    return (f"kinbook: stopped by {how}: {kept} of {of} submission(s) graded in this run are kept in {where} (with "
+            "every earlier result); the exports are written now. Run the same command again to grade the rest.")
 
 
 def worst(statuses, default="ok"):

@@ -80,11 +80,15 @@ class Roster:
     students : list of Student
     source : str
         What it was read from (``kinbook``, ``canvas``, ``moodle``), for messages.
+    points : dict
+        ``{assignment column: points}``: what the LMS says each assignment is worth (Canvas's ``Points Possible``
+        row, under columns such as ``Exercise 9 (40109)``), for the export to compare with kinbook's points.
     """
 
-    def __init__(self, students, source="kinbook"):
+    def __init__(self, students, source="kinbook", points=None):
         self.students = list(students)
         self.source = source
+        self.points = dict(points or {})
         self.by_id = {s.student: s for s in self.students}
         lookup, clash = {}, set()
         for s in self.students:
@@ -129,26 +133,58 @@ def _clean(value):
     return value[:MAX_FIELD]
 
 
-def _canonical(header):
-    return re.sub(r"[^a-z0-9]+", " ", header.casefold()).strip()
-
-
 _KINBOOK = {"student": "student", "id": "student", "kinbook id": "student", "name": "name", "display name": "name",
             "first": "first", "first name": "first", "last": "last", "last name": "last", "lms id": "lms_id",
             "lms": "lms_id", "sis id": "sis_id", "sis": "sis_id", "login": "login", "username": "login",
             "email": "email", "e mail": "email", "email address": "email", "section": "section", "group": "section"}
-_CANVAS = {"student": "name", "id": "lms_id", "sis user id": "sis_id", "sis login id": "login", "section": "section",
-           "integration id": None}
-_MOODLE = {"identifier": "lms_id", "full name": "name", "first name": "first", "last name": "last",
-           "id number": "sis_id", "username": "login", "email address": "email", "group": "section",
-           "groups": "section"}
+# Canvas writes its gradebook export's headers in English whatever the user's language (lib/gradebook_exporter.rb:
+# literal "Student", "ID", "SIS User ID", "SIS Login ID", "Section", "    Points Possible"; "LastName", "FirstName"
+# instead of "Student" with the "show first and last names" setting); only its numbers follow the locale ("10,00").
+_CANVAS = {"student": "name", "lastname": "last", "firstname": "first", "id": "lms_id", "sis user id": "sis_id",
+           "sis login id": "login", "section": "section", "integration id": None}
+
+# Moodle writes its headers in the user's language, from its language strings: the grading worksheet's
+# get_string('recordid', 'assign'), get_string('fullname'), and the identity fields' names ('email', 'idnumber',
+# 'username'); the grade export's 'firstname', 'lastname'. English (moodle/moodle lang/en), and es, ca, gl, pt, fr,
+# it, de, nl, eu as their language packs have them (projectestac/moodle-langpacks, moodle.php and assign.php).
+_MOODLE_WORDS = {
+    "lms_id": ["Identifier", "Identificador", "Identifiant", "Identificativo", "Identificatie", "Identifikatzailea",
+               "ID"],
+    "name": ["Full name", "Nombre completo", "Nom complet", "Nome completo", "Vollständiger Name", "Volledige naam",
+             "Izen osoa"],
+    "first": ["First name", "Nombre", "Nom", "Nome", "Prénom", "Vorname", "Voornaam", "Izena"],
+    "last": ["Last name", "Surname", "Apellido(s)", "Cognoms", "Apelido", "Apelidos", "Nom de famille", "Cognome",
+             "Nachname", "Achternaam", "Abizena(k)"],
+    "sis_id": ["ID number", "Número de ID", "Número ID", "Número de identificação (ID)", "Numéro d’identification",
+               "Codice identificativo", "ID-Nummer", "Nummer (ID)", "ID zenbakia"],
+    "login": ["Username", "Nombre de usuario", "Nom d'usuari", "Nome de usuario", "Nome de utilizador",
+              "Nom d’utilisateur", "Anmeldename", "Gebruikersnaam", "Erabiltzaile-izena"],
+    "email": ["Email address", "Dirección de correo", "Adreça electrònica", "Enderezo de correo", "E-mail",
+              "Adresse de courriel", "Indirizzo email", "E-Mail-Adresse", "E-mailadres", "Helbide elektronikoa"],
+    "section": ["Group", "Groups", "Grupo", "Grupos", "Grup", "Grups", "Groupe", "Groupes", "Gruppo", "Gruppi",
+                "Gruppe", "Gruppen", "Groep", "Groepen", "Taldea", "Taldeak"],
+}
+
+
+def _canonical(header):
+    text = unicodedata.normalize("NFKD", header.casefold())
+    text = "".join(c for c in text if not unicodedata.combining(c))
+    return re.sub(r"[^a-z0-9]+", " ", text).strip()
+
+
+_MOODLE = {_canonical(w): f for f, words in _MOODLE_WORDS.items() for w in words}
+#: Headers that say "Moodle" on their own (German's bare "ID" does not: kinbook's own roster may have one).
+_MOODLE_MARKS = {_canonical(w) for f in ("lms_id", "name") for w in _MOODLE_WORDS[f] if w != "ID"}
 
 
 def _format(header):
-    """(source, column mapping) of a roster's header: Canvas's, Moodle's or kinbook's."""
-    if {"sis user id", "sis login id"} & set(header) and "student" in header:
+    """(source, column mapping) of a roster's header: Canvas's, Moodle's (in any of its languages above) or
+    kinbook's."""
+    if "sis login id" in header and ({"student", "lastname"} & set(header) or "sis user id" in header):
         return "canvas", _CANVAS
-    if "identifier" in header or ("email address" in header and "first name" in header) or "full name" in header:
+    firsts = {_canonical(w) for w in _MOODLE_WORDS["first"]}
+    emails = {_canonical(w) for w in _MOODLE_WORDS["email"]}
+    if _MOODLE_MARKS & set(header) or (emails & set(header) and firsts & set(header)):
         return "moodle", _MOODLE
     return "kinbook", _KINBOOK
 
@@ -159,12 +195,15 @@ def _values(source, cols, row, n):
         return None
     values = {f: _clean(row[i]) if i < len(row) else "" for f, i in cols.items()}
     if source == "canvas":
-        if "points possible" in values.get("name", "").casefold() or (not values.get("lms_id") and n <= 3):
+        if "points possible" in row[0].casefold() or (not values.get("lms_id") and n <= 3):
             return None  # the 'Points Possible' (and posting policy) rows under the header
-        if values.get("name", "").casefold() in ("student, test", "test student"):
+        if (values.get("name", "").casefold() in ("student, test", "test student")
+                or (values.get("last", ""), values.get("first", "")) == ("Student", "Test")):
             return None  # Canvas's own test student
-    if source == "moodle" and values.get("lms_id", "").casefold().startswith("participant"):
-        values["lms_id"] = values["lms_id"].split()[-1]
+    if source == "moodle":  # "Participant 123", "Participante 123", "Teilnehmer/in 123": the number
+        m = re.fullmatch(r"\D*?(\d+)", values.get("lms_id", ""))
+        if m:
+            values["lms_id"] = m.group(1)
     return values
 
 
@@ -212,6 +251,7 @@ def read_roster(path, id_column=None):
         raise RosterError(f"roster {str(path)!r} has no 'student' column (the kinbook id); its columns: "
                            f"{', '.join(rows[0])} — see docs/instructors.md, or name the id column with --roster-id")
     students, seen = [], {}
+    points = _points_possible(rows, header, mapping) if source == "canvas" else {}
     for n, row in enumerate(rows[1:], start=2):
         values = _values(source, cols, row, n)
         if values is None:
@@ -227,6 +267,26 @@ def read_roster(path, id_column=None):
         students.append(Student(**{f: values.get(f, "") for f in FIELDS}))
     if not students:
         raise RosterError(f"roster {str(path)!r} has a header and no student (its columns: {', '.join(rows[0])})")
-    roster = Roster(students, source)
+    roster = Roster(students, source, points)
     roster.path = str(path)  # an input: no command writes over it (kinbook.core.atomic.protect)
     return roster
+
+
+_ASSIGNMENT = re.compile(r"^.+ \(\d+\)$")
+
+
+def _points_possible(rows, header, mapping):
+    """``{assignment column: points}`` from the ``Points Possible`` row of a Canvas export (``10.00``, or ``10,00``
+    in a decimal-comma locale's export)."""
+    for row in rows[1:4]:
+        if row and "points possible" in row[0].casefold():
+            out = {}
+            for i, h in enumerate(rows[0]):
+                if header[i] in mapping or not _ASSIGNMENT.match(h.strip()) or i >= len(row):
+                    continue
+                try:
+                    out[_clean(h)] = float(row[i].strip().replace(",", "."))
+                except ValueError:
+                    continue
+            return out
+    return {}

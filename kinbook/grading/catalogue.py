@@ -129,7 +129,9 @@ _ENTRIES = [
        spatial=N_("one term has the opposite sign; check each term against r_i + A_i s'_i − r_j − A_j s'_j, d = r_j "
                   "+ A_j s'_j − r_i − A_i s'_i and their derivatives B_k = 2(E_k s̄'_k + s'_k p_kᵀ)"),
        speed=N_("a velocity term has the opposite sign: ṙ^P = ṙ + B s' φ̇ (eq. 10), B = dA/dφ"),
-       accel=N_("an acceleration term has the opposite sign: r̈^P = r̈ + B s' φ̈ − A s' φ̇² (eq. 13)")),
+       accel=N_("an acceleration term has the opposite sign: r̈^P = r̈ + B s' φ̈ − A s' φ̇² (eq. 13)"),
+       parameters=N_("p and −p describe the same orientation, but the question asks for e0 ≥ 0: when e0 comes out "
+                     "negative, take −p")),
     _m("missing_term",
        N_("missing term"),
        N_("one term of the reference is absent from the answer"),

@@ -405,11 +405,21 @@ def A_from_p(p):
     ], kind="rotation")
 
 
-def p_from_A(A_):
-    """Euler parameters of a rotation matrix (§14.3): −p is right too; wrong forms e0 last, p of Aᵀ."""
+def p_from_A(A_, e0_nonnegative=False):
+    """Euler parameters of a rotation matrix (§14.3): −p is right too; wrong forms e0 last, p of Aᵀ.
+
+    With ``e0_nonnegative`` (a question that asks for e0 ≥ 0), −p is not the answer asked for: a ``sign_flip``,
+    not an equivalent (when e0 = 0 both signs stay right)."""
     R = _rot()
     A_ = _v(A_)
     p = _v(R.p_from_A(A_))
+    if e0_nonnegative and p[0] > 1e-9:
+        return Expected(p, variants=[
+            ("sign_flip", -p, None, None),
+            ("scalar_last", np.r_[p[1:], p[0]], None, None),
+            ("scalar_last", -np.r_[p[1:], p[0]], None, None),
+            ("transposed", _v(R.p_from_A(A_.T)), None, None),
+        ], kind="parameters")
     return Expected(p, equivalents=[(-p, Msg("p_negated"))], variants=[
         ("scalar_last", np.r_[p[1:], p[0]], None, None),
         ("scalar_last", -np.r_[p[1:], p[0]], None, None),

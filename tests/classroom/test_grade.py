@@ -62,7 +62,7 @@ def test_good_submission_gets_full_score_among_bad_ones(batch):
     ("many_rows", "error", 2.0),             # 2,000 rows for a joint's 2: refused unchecked; the angle is right
     ("reference", "ok", FULL),               # kinbook's own Φ: correct, and reported (not penalized)
     ("old44", "ok", FULL),                   # re-saved as nbformat 4.4 (no cell ids): not tampered
-    ("giant", "too-large", 0.0),             # 20 MB, 150,000 cells: refused before reading
+    ("giant", "too-large", 0.0),             # 20 MB, 150,000 cells: refused before parsing
     ("many_cells", "too-large", 0.0),        # 2,500 cells: refused before parsing
     ("link_source", "refused", 0.0),         # a link to the instructor's source: never followed
     ("link_secret", "refused", 0.0),         # a link to a private file: never followed
@@ -96,7 +96,8 @@ def test_refused_entries_say_why_and_leak_nothing(batch):
     assert "FIFO" in results["fifo"].message
     assert "also" in results["José"].message and "none of them is graded" in results["José"].message
     assert "characters" in results[student_id(LONG_NAME)[0]].message
-    assert "bytes" in results["giant"].message and "cells" in results["many_cells"].message
+    # 20 MB is read (saved outputs do not count against the 8 MB of code and text), its 150,000 cells are not parsed
+    assert "2,000 cells" in results["giant"].message and "cells" in results["many_cells"].message
     with open(batch["out"] / "grades.csv", encoding="utf-8") as f:
         text = f.read()
     assert SECRET not in text and "BEGIN SOLUTION" not in text and "solve_position" not in text

@@ -264,3 +264,42 @@ def test_releases_and_feedback_are_readable_by_others(tmp_path):
     assert mode(out) == mode(tmp_path / "course") == mode(variant.parent) == 0o755
     assert mode(tmp_path / "graded" / "feedback") == mode(tmp_path / "graded" / "feedback" / "alice") == 0o755
     assert mode(tmp_path / "graded" / "grades.csv") == 0o600  # (umask 077: the instructor's own files stay private)
+
+
+# ------------------------------------------------------------------- readable work (issue 32 item 5)
+def _cells_of(data):
+    from kinbook.classroom.notebook import parse_submission
+
+    return [(c["cell_type"], c["source"]) for c in parse_submission(data)]
+
+
+def test_an_nbformat3_notebook_is_read_as_its_nbformat4_self():
+    nb = student_notebook(load_source(SOURCE), keep_solutions=True)
+    v4 = json.dumps(nb).encode()
+    v3 = json.dumps(nbformat.convert(nbformat.from_dict(json.loads(v4)), 3)).encode()
+    assert b'"worksheets"' in v3 and _cells_of(v3) == _cells_of(v4)
+
+
+@pytest.mark.parametrize("version", [3, 4])
+def test_saved_outputs_do_not_count_against_the_size_limit(version):
+    from kinbook.classroom.notebook import MAX_NOTEBOOK_BYTES, readable
+    from kinbook.classroom.results import Refused
+
+    nb = student_notebook(load_source(SOURCE), keep_solutions=True)
+    line = "0123456789 a line the notebook printed\n"
+    cell = nbformat.v4.new_code_cell("while True: print(k)")
+    cell.outputs = [nbformat.v4.new_output("stream", name="stdout", text=line * (MAX_NOTEBOOK_BYTES // len(line) + 9))]
+    nb.cells.append(cell)
+    small = json.loads(json.dumps(nb))
+    if version == 3:
+        nb = nbformat.convert(nbformat.from_dict(json.loads(json.dumps(nb))), 3)
+    data = json.dumps(nb).encode()
+    assert len(data) > MAX_NOTEBOOK_BYTES
+    got = readable(data)
+    assert len(got) < 100_000 and b"a line the notebook printed" not in got
+    small["cells"][-1]["outputs"] = []
+    assert _cells_of(data) == _cells_of(json.dumps(small).encode())
+    code = json.loads(json.dumps(small))
+    code["cells"][-1]["source"] = "x = 1\n" * (MAX_NOTEBOOK_BYTES // 6 + 9)     # code, not output: still too large
+    with pytest.raises(Refused, match=r"bytes of code and text, saved outputs left out \(at most 8,388,608\)"):
+        _cells_of(json.dumps(code).encode())

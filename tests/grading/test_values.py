@@ -97,6 +97,29 @@ def test_euler_parameters():
     assert check_euler_parameters([1, 0, 0, 0], P).mistakes == ["wrong_value"]
 
 
+@pytest.mark.parametrize("seed", range(8))
+def test_euler_parameters_when_the_question_asks_for_e0_nonnegative(seed):
+    """ex11 (b): "with e0 ≥ 0". −p is the same orientation and a sign error for that question; the other catalogued
+    forms keep their names; a half turn (e0 = 0) has both signs right."""
+    from kinbook.grading import expected
+
+    rotations = pytest.importorskip("kinbook.spatial.rotations")
+    rng = np.random.default_rng(seed)
+    A_ = rotations.A_from_euler(*rng.uniform(0.1, 1.4, 3))
+    p = np.asarray(rotations.p_from_A(A_))
+    assert p[0] > 0 and np.allclose(rotations.A_from_p(p), A_)                       # the e0 ≥ 0 representative
+    asked = expected.p_from_A(A_, e0_nonnegative=True)
+    assert check_euler_parameters(p, asked).passed
+    r = check_euler_parameters(-p, asked)
+    assert (r.passed, r.score, r.mistakes) == (False, 0.0, ["sign_flip"])
+    assert check_euler_parameters(np.r_[p[1:], p[0]], asked).mistakes == ["scalar_last"]
+    assert check_euler_parameters(-p, expected.p_from_A(A_)).passed                   # without the option: −p is right
+    half = rotations.A_from_p(np.r_[0.0, 0.6, 0.0, 0.8])                             # a half turn about (0.6, 0, 0.8)
+    q = np.asarray(rotations.p_from_A(half))
+    assert check_euler_parameters(q, expected.p_from_A(half, e0_nonnegative=True)).passed
+    assert check_euler_parameters(-q, expected.p_from_A(half, e0_nonnegative=True)).passed
+
+
 def test_rotation_against_kinbook_spatial():
     rotations = pytest.importorskip("kinbook.spatial.rotations")
     expected = rotations.A_from_euler(*ANGLES)

@@ -7,7 +7,9 @@ the late penalty: :func:`kinbook.classroom.scores.final`), rounded to ``decimals
     Canvas's gradebook CSV (Grades → Import): ``Student, ID, SIS User ID, SIS Login ID, Section``, then one column
     per exercise headed ``<assignment> (<assignment id>)`` — Canvas fills the assignment whose id is in the
     parentheses, and creates a new one for a header without one — and, under the header, the ``Points Possible`` row.
-    Rows come from the roster (Canvas matches them by ``ID``, its user id).
+    Rows come from the roster (Canvas matches them by ``ID``, its user id). Canvas keeps an existing assignment's
+    own points: when the roster (Canvas's export) says the assignment is worth other points than the exercise, the
+    export stops and names both — or, with ``scale``, writes the scores scaled to Canvas's points.
 ``moodle``
     Moodle's grade import CSV (Grades → Import → CSV file): the identifier columns of Moodle's own export (``First
     name, Last name, ID number, Institution, Department, Email address``), then one column per exercise headed
@@ -47,7 +49,8 @@ def _number(value, decimals):
     return text.rstrip("0").rstrip(".") if "." in text else text
 
 
-def export(gradebook, out, fmt="csv", *, exercises=None, decimals=2, missing="zero", headers=None, roster=None):
+def export(gradebook, out, fmt="csv", *, exercises=None, decimals=2, missing="zero", headers=None, roster=None,
+           scale=False):
     """Write the gradebook's scores as ``fmt`` into ``out``.
 
     Parameters
@@ -67,6 +70,9 @@ def export(gradebook, out, fmt="csv", *, exercises=None, decimals=2, missing="ze
         ``"Assignment: Exercise 11 (Real)"``.
     roster : Roster, optional
         Default: the one stored by ``kinbook grade --roster``.
+    scale : bool
+        Canvas: where the roster says an assignment is worth other points than kinbook's exercise (its ``Points
+        Possible``), write the scores scaled to the LMS's points. Without it such a mismatch stops the export.
 
     Returns
     -------
@@ -112,31 +118,48 @@ def _write(out, fmt, exercises, finals, roster, headers, decimals, missing):
                            "or Moodle's, as downloaded), or grade with --roster first")
 
     if fmt == "canvas":
-        return _canvas(out, exercises, finals, students, headers, decimals, missing), graded
+        return _canvas(out, exercises, finals, students, headers, decimals, missing, roster.points, scale), graded
     return _moodle(out, exercises, finals, students, headers, decimals, missing), graded
 
 
-def _cell(f, decimals, missing):
-    """A score cell: the final score, or "" for no row (or a missing student with ``missing="blank"``, or a
-    submission the grader could not grade)."""
+def _cell(f, decimals, missing, factor=1.0):
+    """A score cell: the final score (times ``factor``: scaled to the LMS's points), or "" for no row (or a missing
+    student with ``missing="blank"``, or a submission the grader could not grade)."""
     if f is None or (f.status == "missing" and missing == "blank") or f.status in UNGRADED:
         return ""
-    return _number(f.score, decimals)
+    return _number(f.score * factor, decimals)
 
 
-def _canvas(out, exercises, finals, students, headers, decimals, missing):
+def _canvas(out, exercises, finals, students, headers, decimals, missing, lms_points, scale):
     cols = []
     for e in exercises:
         h = headers.get(e, e)
         if not _CANVAS_HEADER.match(h):
+            offer = (f"; the roster's Canvas assignments: {', '.join(map(repr, lms_points))}" if lms_points else "")
             raise GradingError(f"Canvas header {h!r} of {e!r} has no assignment id: write it as it appears in "
-                               "Canvas's gradebook export, 'Exercise 11 (4242)' (--header EXERCISE='NAME (ID)')")
+                               "Canvas's gradebook export, 'Exercise 11 (4242)' (--header EXERCISE='NAME (ID)')"
+                               + offer)
         cols.append(h)
-    points = [_number(max((f.max_score for f in finals[e].values()), default=0), decimals) for e in exercises]
+    mine = [max((f.max_score for f in finals[e].values()), default=0) for e in exercises]
+    factors, differ = [], []
+    for e, h, kb in zip(exercises, cols, mine):
+        lms = lms_points.get(h)
+        if lms is None or abs(lms - kb) <= 1e-9 * max(1.0, kb):
+            factors.append((1.0, kb))
+            continue
+        differ.append(f"{e} is worth {_number(kb, decimals)} points in kinbook and {_number(lms, decimals)} in Canvas "
+                      f"({h!r}, its Points Possible in the roster)")
+        factors.append((lms / kb if kb else 1.0, lms))
+    if differ and not scale:
+        raise GradingError("; ".join(differ) + ". Canvas keeps its own points for an existing assignment, so full "
+                           "marks would read as less: export with --scale to write the scores scaled to Canvas's "
+                           "points, or change the assignment's points in Canvas and download the roster again. "
+                           "Nothing was written.")
+    points = [_number(top, decimals) for _, top in factors]
     rows = [["    Points Possible", "", "", "", ""] + points]
     for s in students:
         rows.append([s.name or s.display, s.lms_id, s.sis_id, s.login, s.section]
-                    + [_cell(finals[e].get(s.student), decimals, missing) for e in exercises])
+                    + [_cell(finals[e].get(s.student), decimals, missing, k) for e, (k, _) in zip(exercises, factors)])
     return write_csv(Path(out), CANVAS_IDS + cols, rows)
 
 

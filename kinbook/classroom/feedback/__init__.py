@@ -5,7 +5,8 @@ handed in and graded, the total (with the instructor's overrides and the late pe
 for every part its score, its status in words, the checker's message next to the student's own answer, and the cell
 the answer was assigned in, as the student sees their notebook (its position among all cells, its first line and its
 code). ``kinbook feedback --out DIR`` lays them out as ``DIR/<student>/<exercise>.html`` with a
-``DIR/<student>/index.html`` per student: a folder per student for an LMS's per-student upload or a shared drive.
+``DIR/<student>/index.html`` per student: a folder per student for a shared drive; ``kinbook feedback --lms canvas``
+or ``--lms moodle`` writes one zip per exercise named as the LMS's bulk feedback upload reads names (:mod:`.upload`).
 Copying signals and the other students are never on a student's page.
 """
 
@@ -36,6 +37,7 @@ STATUS_WORDS = {
     "bad-id": "the file's name gives no usable student id",
     "duplicate-id": "two files were handed in under different spellings of your name",
     "missing": "nothing was handed in",
+    "no-notebook": "no notebook was handed in (a file of another kind was)",
     "grader-error": "not graded yet: the grader failed before your notebook ran (not your doing); it will be "
                     "graded again",
 }
@@ -76,19 +78,48 @@ def _e(text):
     return html.escape(str(text))
 
 
-def page(final, result, *, name="", graded=""):
+def _handed_in(final, files):
+    """What the page says of the student's files beyond the one graded: a PDF instead of a notebook, a scratch
+    notebook or a blank download beside it — never "nothing was handed in" when something was."""
+    import os
+
+    from ..choice import kind_of_file
+
+    out = []
+    others = [(os.path.basename(p), reason) for p, outcome, reason, _ in files if outcome == "ignored"]
+    if final.status == "missing" and others:
+        names = ", ".join(n for n, _ in others)
+        kinds = sorted({kind_of_file(n) for n, _ in others if not n.endswith(".ipynb")})
+        out.append(f"<p class='note'><b>no notebook</b>: you handed in {_e(names)}"
+                   + (f" ({_e(', '.join(kinds))}), not a notebook" if kinds else "")
+                   + " — kinbook grades Jupyter notebooks (.ipynb) only: hand in the notebook itself.</p>")
+    elif others:
+        out.append("<p class='meta'>Not graded: " + "; ".join(f"{_e(n)} — {_e(r)}" for n, r in others) + ".</p>")
+    return out
+
+
+def page(final, result, *, name="", graded="", files=()):
     """The HTML page of one student's :class:`~kinbook.classroom.scores.Final` on one exercise (``result`` the
-    counting :class:`~kinbook.classroom.results.SubmissionResult`, or None when nothing was handed in)."""
+    counting :class:`~kinbook.classroom.results.SubmissionResult`, or None when nothing was handed in; ``files``
+    the student's entries of ``collected/``: (path, outcome, reason, run), :meth:`Gradebook.files_of`)."""
     who = name or final.student
     out = [f"<h1>{_e(final.exercise)}</h1>",
            f"<p class='meta'>Feedback for <b>{_e(who)}</b> ({_e(final.student)})"
            + (f" · handed in {_e(final.submitted)}" if final.submitted else "")
            + (f" · graded {_e(graded)}" if graded else "") + "</p>",
            f"<p class='total'>Total: {_score(final)} / {_pts(final.max_score)}</p>"]
-    if final.status != "ok":
+    shown = _handed_in(final, files)
+    nothing = final.status == "missing" and bool(shown)  # no notebook, but a PDF, a zip …
+    if final.status != "ok" and not nothing:
         out.append(f"<p class='note'><b>{_e(final.status)}</b>: {_e(STATUS_WORDS.get(final.status, ''))}"
                    + (f" — {_e(result.message)}" if result is not None and result.message else "") + "</p>")
-    if final.attempts > 1:
+    out += shown
+    last = max((run for *_, run in files), default=None)
+    together = sum(1 for _, outcome, _, run in files if outcome in ("graded", "skipped") and run == last)
+    if together > 1:
+        out.append(f"<p class='meta'>Your submission holds {together} notebooks; each was graded and the best "
+                   "counts.</p>")
+    elif final.attempts > 1:
         which = "the latest" if final.policy == "latest" else "the best"
         out.append(f"<p class='meta'>You handed in {final.attempts} files; {which} counts.</p>")
     if final.late_days:
@@ -102,7 +133,8 @@ def page(final, result, *, name="", graded=""):
     grades = {p.part: p for p in (result.parts if result is not None else [])}
     for p, score, mx, o in final.parts:
         shown = o[0] if o else score
-        words, cls = part_words(shown, mx, grades[p].status if p in grades else "missing")
+        words, cls = part_words(shown, mx, grades[p].status if p in grades else ("no-notebook" if nothing else
+                                                                                 "missing"))
         shown = "—" if final.status in UNGRADED and not o else _pts(shown)  # not graded: no score, not a 0
         out.append(f"<tr><td>{_e(p)}</td><td>{shown} / {_pts(mx)}{' (set by your instructor)' if o else ''}</td>"
                    f"<td class='{cls}'>{_e(words)}</td></tr>")
@@ -153,21 +185,57 @@ def write_pages(book, out, students=None):
     for exercise in book.exercises():
         results = {r.student: r for r in book.results(exercise=exercise)}
         graded = dict(book.db.execute("SELECT student, graded FROM submissions WHERE exercise = ?", (exercise,)))
+        handed = book.files_of(exercise)
         for f in book.finals(exercise, roster):
             if wanted is not None and f.student not in wanted:
                 continue
-            mine.setdefault(f.student, []).append((f, results.get(f.student), graded.get(f.student, "")))
+            mine.setdefault(f.student, []).append((f, results.get(f.student), graded.get(f.student, ""),
+                                                   handed.get(f.student, [])))
+    for old in book.reattached():  # an id a newer roster gave to one of its students: its pages are theirs now
+        folder = out / old
+        if folder.is_dir() and all(p.suffix == ".html" and p.is_file() for p in folder.iterdir()):
+            for p in folder.iterdir():
+                p.unlink()
+            folder.rmdir()
     files = []
     for student, items in sorted(mine.items()):
-        for f, r, when in items:
-            files.append((out / student / f"{f.exercise}.html", page(f, r, name=names.get(student, ""), graded=when)))
-        files.append((out / student / "index.html", _index(student, names.get(student, ""), [f for f, _, _ in items])))
+        for f, r, when, fs in items:
+            files.append((out / student / f"{f.exercise}.html",
+                          page(f, r, name=names.get(student, ""), graded=when, files=fs)))
+        files.append((out / student / "index.html",
+                       _index(student, names.get(student, ""), [f for f, _, _, _ in items])))
     refuse_overwrite([p for p, _ in files], book.inputs(), "feedback")
     with protect(*book.inputs()):  # all pages or none: a full disk leaves the earlier pages as they were
         return write_all(files, **_PUBLIC)
 
 
-def feedback(gradebook, out):
-    """``kinbook feedback``: every student's pages from the gradebook directory ``gradebook`` into ``out``."""
+def feedback(gradebook, out, lms=None):
+    """``kinbook feedback``: every student's pages from the gradebook directory ``gradebook`` into ``out`` — one folder
+    per student, or with ``lms`` (``canvas``, ``moodle``) one zip per exercise that the LMS's bulk feedback upload
+    takes (:mod:`.upload`). Returns the files written (and, with ``lms``, the pages left out: ``(written, left)``)."""
     with Gradebook(gradebook, create=False) as book:
-        return write_pages(book, out)
+        if lms is None:
+            return write_pages(book, out)
+        from .upload import LAYOUTS, upload_zip
+
+        if lms not in LAYOUTS:
+            from ...errors import GradingError
+
+            raise GradingError(f"feedback for an LMS: one of {', '.join(LAYOUTS)}, got {lms!r}")
+        with protect(*book.inputs()):
+            return upload_zip(book, out, lms, _pages(book))
+
+
+def _pages(book):
+    """``{(exercise, student): html}`` of every student's page."""
+    roster = book.roster()
+    names = {s.student: s.display for s in roster} if roster is not None else {}
+    out = {}
+    for exercise in book.exercises():
+        results = {r.student: r for r in book.results(exercise=exercise)}
+        graded = dict(book.db.execute("SELECT student, graded FROM submissions WHERE exercise = ?", (exercise,)))
+        files = book.files_of(exercise)
+        for f in book.finals(exercise, roster):
+            out[exercise, f.student] = page(f, results.get(f.student), name=names.get(f.student, ""),
+                                            graded=graded.get(f.student, ""), files=files.get(f.student, []))
+    return out

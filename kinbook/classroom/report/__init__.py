@@ -40,6 +40,7 @@ td,th{border:1px solid #ccd;padding:.3rem .6rem;text-align:left;vertical-align:t
 td.n{text-align:right;font-variant-numeric:tabular-nums}.flag{background:#f8d7da;color:#721c24;font-weight:600}
 .muted{color:#666}img{max-width:100%;height:auto;border:1px solid #eee}code,pre{font-size:.85rem}
 pre{margin:0;white-space:pre}td.nowrap{white-space:nowrap}nav a{margin-right:1rem}
+table{max-width:100%}td{overflow-wrap:anywhere}td pre{max-width:20rem;overflow-x:auto}
 """
 
 
@@ -131,6 +132,7 @@ def _exercise_tables(book, exercise, roster):
     return {"scores": tables.scores(book, exercise, roster), "parts": tables.parts(book, exercise),
             "mistakes": tables.mistakes(book, exercise), "reference": tables.reference(book, exercise),
             "copying": tables.copying(book, exercise), "missing": tables.missing(book, exercise, roster),
+            "not_notebooks": tables.not_notebooks(book, exercise, roster), "several": tables.several(book, exercise),
             "off_roster": tables.off_roster(book, exercise, roster)}
 
 
@@ -138,7 +140,9 @@ def _exercise_page(exercise, t):
     handed = [r for r in t["scores"] if r["status"] != "missing"]
     top = max((r["max_score"] for r in t["scores"]), default=0)
     enrolled = len(t["scores"]) - len(t["off_roster"])
-    line = f"{enrolled - len(t['missing'])} of {enrolled} students handed in, {len(t['missing'])} missing"
+    other = len(t["not_notebooks"])
+    line = (f"{enrolled - len(t['missing']) - other} of {enrolled} students handed in, {len(t['missing'])} missing"
+            + (f", {other} handed in no notebook but another file" if other else ""))
     if t["off_roster"]:
         line += f"; {len(t['off_roster'])} more not on the roster"
     out = [f"<nav><a href='index.html'>← the course</a></nav><h1>{_e(exercise)}</h1>", f"<p>{_e(line)}.</p>",
@@ -163,6 +167,10 @@ def _exercise_page(exercise, t):
             "<h2>Copying signals</h2><p class='muted'>What is identical, as found; not a verdict.</p>",
             _table(t["copying"], [("kind", "signal"), ("students", "students"), ("what", "what is identical")]),
             "<h2>Missing</h2>", f"<p>{_e(', '.join(t['missing'])) or 'none'}</p>",
+            "<h2>Handed in something other than a notebook</h2>",
+            _table(t["not_notebooks"], [("student", "student"), ("files", "files"), ("what", "what they are")]),
+            "<h2>Several notebooks in one submission</h2>",
+            _table(t["several"], [("student", "student"), ("files", "files, and what became of each")]),
             "<h2>Not on the roster</h2>", f"<p>{_e(', '.join(t['off_roster'])) or 'none'}</p>",
             "<h2>Every student</h2>",
             _table(t["scores"], [("student", "student"), ("status", "status"), ("score", "score"),
@@ -213,12 +221,14 @@ def report(gradebook, out=None, fmt="html", *, exercises=None, roster=None):
             if fmt == "html":
                 files.append((out / f"{e}.html", _exercise_page(e, t)))
                 continue
-            for name in ("scores", "parts", "mistakes", "reference", "copying"):
+            for name in ("scores", "parts", "mistakes", "reference", "copying", "not_notebooks", "several"):
                 rows = t[name]
                 cols = list(rows[0]) if rows else {"scores": ["student", "status", "score"], "parts": ["part"],
                                                    "mistakes": ["part", "code", "students"],
                                                    "reference": ["student", "part", "how"],
-                                                   "copying": ["kind", "students", "what"]}[name]
+                                                   "copying": ["kind", "students", "what"],
+                                                   "not_notebooks": ["student", "files", "what"],
+                                                   "several": ["student", "files"]}[name]
                 files.append((out / f"{e}-{name}.csv", csv_text(cols, [[r[c] for c in cols] for r in rows])))
         if fmt == "html":
             files.append((out / "index.html", _course_page(summary, totals, top)))

@@ -9,7 +9,8 @@ from __future__ import annotations
 import math
 import statistics
 
-__all__ = ["scores", "parts", "mistakes", "reference", "copying", "summary", "missing", "off_roster", "RARE"]
+__all__ = ["scores", "parts", "mistakes", "reference", "copying", "summary", "missing", "not_notebooks", "several",
+           "off_roster", "RARE"]
 
 #: An identical answer set shared by more than this share of the class is its common answer, not a copying signal.
 RARE = 0.05
@@ -123,8 +124,45 @@ def copying(book, exercise):
 
 
 def missing(book, exercise, roster):
-    """Students on the roster with no submission."""
-    return [f.student for f in book.finals(exercise, roster) if f.status == "missing"]
+    """Students on the roster with nothing handed in (a PDF or a zip handed in instead is :func:`not_notebooks`)."""
+    files = book.files_of(exercise)
+    return [f.student for f in book.finals(exercise, roster) if f.status == "missing" and not files.get(f.student)]
+
+
+def not_notebooks(book, exercise, roster):
+    """Students with no notebook graded who handed in something else: the files and what they are."""
+    import os
+
+    from ..choice import kind_of_file
+
+    files = book.files_of(exercise)
+    out = []
+    for f in book.finals(exercise, roster):
+        if f.status == "missing" and files.get(f.student):
+            names = [os.path.basename(p) for p, *_ in files[f.student]]
+            out.append({"student": f.student, "files": ", ".join(names),
+                        "what": ", ".join(sorted({kind_of_file(n) for n in names})) + ", not a notebook"})
+    return out
+
+
+def several(book, exercise):
+    """Students whose submission held several notebooks: each file, what became of it, and the one that counts."""
+    import os
+
+    counting = dict(book.db.execute("SELECT student, submission FROM submissions WHERE exercise = ?", (exercise,)))
+    out = []
+    for student, files in book.files_of(exercise).items():
+        last = max(run for *_, run in files)
+        notebooks = [(p, o, r) for p, o, r, run in files if p.endswith(".ipynb") and run == last]
+        if len(notebooks) < 2:
+            continue
+        shown = []
+        for p, outcome, reason in notebooks:
+            what = "counts" if p == counting.get(student) else ("graded" if outcome in ("graded", "skipped")
+                                                                 else f"{outcome}: {reason}")
+            shown.append(f"{os.path.basename(p)} ({what})")
+        out.append({"student": student, "files": "; ".join(shown)})
+    return out
 
 
 def off_roster(book, exercise, roster):
