@@ -78,7 +78,15 @@
     const url = box.getAttribute("data-spec");
     const ready = data(url);
     const button = box.querySelector("[data-check]");
-    ready.then((page) => { label(box, page); box.setAttribute("data-ready", "1"); });
+    ready.then((page) => {
+      label(box, page);
+      // one check of nothing, once the page is idle: the parser and the engine are compiled before the student's
+      const idle = window.requestIdleCallback || ((f) => setTimeout(f, 50));
+      idle(() => {
+        window.KinbookInstant.check(page.tryits[box.getAttribute("data-tryit")], page.grammar, "0");
+        box.setAttribute("data-ready", "1");
+      });
+    });
     button.addEventListener("click", () => {
       ready.then((page) => {
         const t0 = performance.now();
