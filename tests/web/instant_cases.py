@@ -11,6 +11,7 @@ or null for an answer that is not text: a Python function), "python": {"passed",
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import sys
@@ -108,8 +109,11 @@ def tryit_cases(specs):
 def main(out):
     specs = Specs()
     with open(out, "w", encoding="utf-8") as f:
-        for case in list(corpus_cases(specs)) + list(tryit_cases(specs)):
+        for k, case in enumerate(itertools.chain(corpus_cases(specs), tryit_cases(specs))):
             f.write(json.dumps(case, ensure_ascii=False) + "\n")
+            f.flush()
+            if k % 50 == 0:
+                print(f"instant_cases: {k} answers checked by Python", file=sys.stderr, flush=True)
         f.write(json.dumps({"specs": specs.by_key, "grammar": instant.grammar()}, ensure_ascii=False) + "\n")
 
 

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from .conftest import Clock, ROOT, SITE, watch
+from .conftest import ROOT, SITE, Clock, watch
 
 LAB_PYTHON = Path(os.environ.get("KINBOOK_PYTHON", ROOT / ".venv" / "bin" / "python"))
 MATHJS = Path(os.environ.get("VIRTUAL_ENV", ROOT / ".venv-web")) / "npm" / "node_modules" / "mathjs"
