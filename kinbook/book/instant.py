@@ -253,9 +253,25 @@ def _ref(values, quantity):
 
 # ------------------------------------------------------------------------------------------------- Newton
 def _iterates_spec(problem, options):
-    """check_iterates: the page names the form of the answer and leaves the step-by-step check to Python."""
-    return {"kind": "iterates", "n": int(np.size(problem.guess)), "guess": _arr(problem.guess),
-            "rule": {"decides": False}, "mistakes": []}
+    """check_iterates: the mechanism's Φ and Φ_q as text (the page evaluates them with the reader's grammar at the
+    student's own iterates, as the checker does), the time, the guess, the solution it leads to, the tolerances."""
+    from ..grading.newton import check_iterates
+    from ..grading.target import target_for
+
+    defaults = {k: p.default for k, p in inspect.signature(check_iterates).parameters.items()
+                if p.default is not inspect.Parameter.empty}
+    mech = problem.mechanism
+    t = target_for(mech)
+    phi = t.symbolic_phi()
+    jac = phi.jacobian(list(mech.q))
+    return {"kind": "iterates", "n": int(mech.n), "names": _names(t), "t": float(problem.t),
+            "phi": [str(e) for e in phi], "phi_q": [[str(e) for e in jac.row(k)] for k in range(jac.rows)],
+            "guess": _arr(problem.guess), "solution": _arr(problem.solution()),
+            "angles": [k for k, c in enumerate(mech.coordinate_names()) if c.startswith("phi")],
+            "rule": {"tol": float(options.get("tol", defaults["tol"])),
+                     "rtol": float(options.get("rtol", defaults["rtol"])), "decides": True},
+            "mistakes": [_mistake(code, None) for code in ("newton_step", "not_converged", "assembly_mode",
+                                                            "wrong_data")]}
 
 
 # ------------------------------------------------------------------------------------------------- entry points

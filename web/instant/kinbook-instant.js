@@ -352,6 +352,8 @@
     }
     const mk = named(spec, S, true);
     if (mk) return { verdict: "fail", mistake: mk, reasons: [] };
+    // more rows than the constraints have: one at least is dependent (or wrong), whatever its form
+    if (ms > m) return { verdict: "fail", mistake: lookalike(spec, S, true), reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
     const reasons = [];
     let undecided = false;
     if (status.includes("wrong")) {
@@ -430,7 +432,8 @@
       }
     }
     if (wrong) {
-      if (sign && spanned(spec, S, reasons, cols)) return { verdict: "undecided", reasons };
+      const unmatched = reasons.filter((x) => x.key === "row_wrong");
+      if (sign && unmatched.length === reasons.length && spanned(spec, S, unmatched, cols)) return { verdict: "undecided", reasons };
       return { verdict: "fail", mistake: mk || lookalike(spec, S, sign), reasons };
     }
     if (mk) return { verdict: "fail", mistake: mk, reasons: [] };
@@ -443,7 +446,7 @@
   function checkJacobian(spec, matrix) {
     const n = spec.n, roles = spec.cols, r = matrix.length, c = matrix[0].length;
     if (![roles.length, n].includes(c)) {
-      if ([roles.length, n].includes(r)) return { verdict: "undecided", reasons: [] };  // transposed: Python says so
+      if ([roles.length, n].includes(r)) return { verdict: "fail", reasons: [{ key: "shape", fields: { got: r + "×" + c, want: spec.m + "×" + roles.length } }] };  // transposed
       return { verdict: "fail", reasons: [{ key: "shape", fields: { got: r + "×" + c, want: spec.m + "×" + roles.length } }] };
     }
     const pts = points(spec.points.samples);
@@ -474,7 +477,7 @@
     if (r === c && r > 1) {  // a square matrix given transposed: Python names it
       const T = evaluate(matrix[0].map((_, j) => matrix.map((row) => row[j])), pts);
       const match = (X) => X.length === R.length && X.every((s, k) => scaleMatch(s, R[k], spec.rule.rtol, false, null, spec.rule.rtol * Math.max(...R.map(maxAbs), 1e-9), true) !== null);
-      if (match(T) && !match(S)) return { verdict: "undecided", reasons: [] };
+      if (match(T) && !match(S)) return { verdict: "fail", reasons: [{ key: "shape", fields: { got: "(" + r + "×" + c + ")ᵀ", want: spec.m + "×" + c } }] };
     }
     return checkDerived(Object.assign({}, spec, { _free: spec.reference.free }), matrix, S, R, cols);
   }
@@ -482,9 +485,9 @@
   /* A Φ_q row that is, at every point, a combination of the reference rows (and the rows that hold anyway):
    * an equivalent formulation Python may accept (the Jacobian of M(q)·Φ) — the page leaves it to Python. */
   function spanned(spec, S, reasons, cols) {
-    const F = spec.reference.free && spec.reference.free.length && spec.reference.free[0].length
-      ? refRows(spec.reference.free, spec.reference.free[0].length, cols) : [];
-    const R = refRows(spec.reference.samples, spec.m, cols).concat(F);
+    // (not with the rows that hold anyway, pᵀp − 1's 2pᵀ: a row off by those is the book's 2ĖĠᵀa form, which
+    // the checker names before it looks for equivalents)
+    const R = refRows(spec.reference.samples, spec.m, cols);
     const w = cols.length, N = spec.points.samples.t.length;
     let any = false;
     for (const reason of reasons) {
@@ -549,6 +552,67 @@
     return { verdict: "fail", mistake: null, reasons };
   }
 
+  // ------------------------------------------------------------------------------------------ Newton–Raphson
+  /* kinbook.grading.newton.check_iterates: the guess first; every step q_j → q_j+1 must be q_j + Δq with
+   * Φ_q(q_j) Δq = −Φ(q_j) (computed here from the student's own q_j); the last iterate converged, to the solution
+   * the guess leads to. */
+  function checkIterates(spec, grammar, text) {
+    const matrix = readAnswer(text, { names: {} }, grammar);
+    const a = matrix.map((row) => row.map((e) => {
+      if (e.num === undefined) throw new Refusal("not_finite");
+      return e.num;
+    }));
+    const n = spec.n, r = spec.rule;
+    const mk = (code) => spec.mistakes.find((m) => m.code === code) || null;
+    if (a.length > 200 || a.length < 2 || a[0].length !== n) {
+      return { verdict: "fail", reasons: [{ key: "shape", fields: { got: a.length + "×" + a[0].length, want: "k×" + n } }] };
+    }
+    if (!a[0].every((x, i) => Math.abs(x - spec.guess[i]) <= 1e-9 + 1e-9 * Math.abs(spec.guess[i]))) {
+      return { verdict: "fail", mistake: mk("wrong_data"), reasons: [] };
+    }
+    const compiled = spec._compiled || (spec._compiled = compileMechanism(spec, grammar));
+    const at = (q) => ({ q, qd: q, t: spec.t });
+    for (let j = 0; j + 1 < a.length; j++) {
+      const p = at(a[j]);
+      const dq = solve(compiled.J.map((row) => row.map((e) => e.f(p))), compiled.phi.map((e) => -e.f(p)));
+      const ok = dq !== null && a[j + 1].every((x, i) => Math.abs(x - (a[j][i] + dq[i])) <= r.rtol * Math.max(1, maxAbs(dq)));
+      if (!ok) return { verdict: "fail", mistake: mk("newton_step"), reasons: [{ key: "row_wrong", fields: { k: j + 2 } }] };
+    }
+    const last = a[a.length - 1];
+    const res = maxAbs(compiled.phi.map((e) => e.f(at(last))));
+    if (!(res <= r.tol)) return { verdict: "fail", mistake: mk("not_converged"), reasons: [] };
+    const d = last.map((x, i) => (spec.angles.includes(i) ? wrapTo(x - spec.solution[i], 2 * Math.PI) : x - spec.solution[i]));
+    if (maxAbs(d) > 1e-6 * Math.max(1, maxAbs(spec.solution))) return { verdict: "fail", mistake: mk("assembly_mode"), reasons: [] };
+    return { verdict: "pass", reasons: [] };
+  }
+
+  function compileMechanism(spec, grammar) {
+    const one = (text) => readAnswer(text, spec, grammar)[0][0];
+    return { phi: spec.phi.map(one), J: spec.phi_q.map((row) => row.map(one)) };
+  }
+
+  /* A x = b by Gaussian elimination with partial pivoting; null when A is singular. */
+  function solve(A, b) {
+    const n = b.length, M = A.map((row, i) => row.concat([b[i]]));
+    for (let c = 0; c < n; c++) {
+      let p = c;
+      for (let i = c + 1; i < n; i++) if (Math.abs(M[i][c]) > Math.abs(M[p][c])) p = i;
+      if (!(Math.abs(M[p][c]) > 1e-300)) return null;
+      [M[c], M[p]] = [M[p], M[c]];
+      for (let i = c + 1; i < n; i++) {
+        const f = M[i][c] / M[c][c];
+        for (let k = c; k <= n; k++) M[i][k] -= f * M[c][k];
+      }
+    }
+    const x = new Array(n).fill(0);
+    for (let i = n - 1; i >= 0; i--) {
+      let s = M[i][n];
+      for (let k = i + 1; k < n; k++) s -= M[i][k] * x[k];
+      x[i] = s / M[i][i];
+    }
+    return x.every(Number.isFinite) ? x : null;
+  }
+
   // ------------------------------------------------------------------------------------------ entry point
   function check(spec, grammar, text) {
     const t0 = (typeof performance !== "undefined" ? performance : Date).now();
@@ -556,6 +620,7 @@
     try {
       if (spec.kind === "value") out = checkValue(spec, grammar, text);
       else if (spec.kind === "rows") out = checkRows(spec, grammar, text);
+      else if (spec.kind === "iterates") out = checkIterates(spec, grammar, text);
       else out = { verdict: "undecided", reasons: [{ key: "not_typed", fields: {} }] };
     } catch (e) {
       if (!(e instanceof Refusal)) throw e;
