@@ -61,7 +61,7 @@ def test_the_page_agrees_with_python_on_the_corpora(verdicts):
             errors.append((case["id"], page["error"][:300]))
             continue
         if v == "not_text":
-            row["not text (a function)"] += 1
+            row["not text"] += 1
             continue
         row["typed"] += 1
         if v == "undecided":
@@ -77,7 +77,7 @@ def test_the_page_agrees_with_python_on_the_corpora(verdicts):
         elif not passed and page.get("mistake") and page["mistake"] in case["python"]["mistakes"]:
             row["same mistake named"] += 1
     total = sum(rows.values(), collections.Counter())
-    cols = ["answers", "not text (a function)", "typed", "decided", "undecided", "disagree", "same mistake named"]
+    cols = ["answers", "not text", "typed", "decided", "undecided", "disagree", "same mistake named"]
     print("\n\nInstant checks: the page's engine (JS, mathjs) beside kinbook.grading (Python)")
     print(f"{'source':10}" + "".join(f"{c:>24}" for c in cols) + f"{'decided %':>12}")
     for name, row in sorted(rows.items()) + [("total", total)]:
