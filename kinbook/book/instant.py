@@ -63,6 +63,7 @@ UI = {
     "arguments": N_("{name}() takes {want} argument(s), got {got}"),
     "not_finite": N_("the answer is not finite there (a division by zero?)"),
     "too_large": N_("the answer is too large for the page"),
+    "exponent": N_("an exponent is too large (at most {limit})"),
     "language": N_("Español"),
     "formative": N_("Checked in your browser; the exercises are graded by Python."),
 }
@@ -215,7 +216,7 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
     if quantity != "Phi" and not s.on_manifold:
         which = "generic"
     w = _witness_points(t, which) if s.N else None
-    rtol = float(options.get("rtol") or RTOL)
+    rtol, refuse = _options(options, RTOL, t.n)
     spec = {"kind": "rows", "checker": name, "quantity": quantity, "names": _names(t), "m": t.m, "n": t.n,
             "cols": [int(c) for c in t.cols], "labels": [t.label(k) for k in range(t.m)],
             "points": {"samples": _points(s)},
@@ -224,17 +225,20 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
                      "factor": {"Phi": "any", "Phi_q": "sign", "nu": "one", "gamma": "one"}[quantity],
                      "order": options.get("order") or ("any" if quantity == "Phi" else "book"),
                      "wrap": {str(k): p for k, p in t.wrap.items()},
-                     "decides": not ({"phi", "at"} & set(options))},
+                     "decides": not ({"phi", "at"} & set(options)), "refuse": refuse},
             "mistakes": []}
     if w is not None:
         spec["points"]["witness"] = _points(w)
         spec["reference"]["witness"] = _ref(t.evaluate(w), quantity)
     if quantity == "Phi_q":  # rows that hold anyway (a spatial joint's normalization rows): free in a combination
         spec["reference"]["free"] = _arr(t.reference(which)["free_q"])
-    if quantity == "Phi":
-        m = t.samples("assembled")
-        spec["points"]["assembled"] = _points(m)
-        spec["assembled_ok"] = bool(m.on_manifold)
+    if quantity == "Phi":  # where each constraint alone holds: a row that vanishes there may be an equivalent
+        spec["blocks"] = []
+        for c in t.constraints:
+            own = t.own_target(c).samples("assembled")
+            if own.on_manifold:
+                spec["blocks"].append({"rows": t.block(c), "points": _points(own)})
+        spec["blocks_complete"] = len(spec["blocks"]) == len(t.constraints)
     for rows, code, detail, erratum in wrong_forms:
         S = t.tape(list(rows))(s.Q, s.QD, s.T)["value"]
         spec["mistakes"].append(_mistake(code, _arr(S), detail, (), erratum) | {"rows": True})
@@ -244,6 +248,29 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
     for f in MUTANTS:
         spec["mistakes"] += f(name, t, s)
     return spec
+
+
+def _options(options, default_rtol, n=None):
+    """(rtol, refused): the checker refuses (a failed, "malformed" result) an rtol outside (0, 1), an order other
+    than "any" or "book", a ``symbolic`` that is not True or False and an ``at`` that is not {"q": n numbers,
+    "qd": n numbers, "t": a number} (some of them) — the page refuses them too."""
+    at = options.get("at")
+    if at is not None:
+        if not isinstance(at, dict) or set(at) - {"q", "qd", "t"}:
+            return default_rtol, True
+        for key, shape in (("q", (n,)), ("qd", (n,)), ("t", ())):
+            try:
+                v = np.asarray(at.get(key, np.zeros(shape)), dtype=float)
+            except (TypeError, ValueError):
+                return default_rtol, True
+            if v.shape != shape or not np.all(np.isfinite(v)):
+                return default_rtol, True
+    rtol = options.get("rtol")
+    good = rtol is None or (isinstance(rtol, (int, float, np.integer, np.floating)) and not isinstance(rtol, bool)
+                            and np.isfinite(float(rtol)) and 0 < float(rtol) < 1)
+    good = good and options.get("order", "any") in ("any", "book", None)
+    good = good and isinstance(options.get("symbolic", False), (bool, np.bool_))
+    return (float(rtol) if good and rtol is not None else default_rtol), not good
 
 
 def _ref(values, quantity):

@@ -118,11 +118,12 @@ def main(out):
     specs = Specs()
     with open(out, "w", encoding="utf-8") as f:
         for k, case in enumerate(itertools.chain(corpus_cases(specs), tryit_cases(specs))):
-            f.write(json.dumps(case, ensure_ascii=False) + "\n")
+            f.write(json.dumps(case, ensure_ascii=False, allow_nan=False) + "\n")
             f.flush()
             if k % 50 == 0:
                 print(f"instant_cases: {k} answers checked by Python", file=sys.stderr, flush=True)
-        f.write(json.dumps({"specs": specs.by_key, "grammar": instant.grammar()}, ensure_ascii=False) + "\n")
+        f.write(json.dumps({"specs": specs.by_key, "grammar": instant.grammar()}, ensure_ascii=False, allow_nan=False)
+                + "\n")
 
 
 if __name__ == "__main__":

@@ -55,9 +55,12 @@
       p.appendChild(a);
       out.appendChild(p);
     }
-    const tex = window.KinbookInstant.echo(spec, page.grammar, text);
     const echo = box.querySelector("[data-echo]");
     echo.textContent = "";
+    setTimeout(() => showEcho(echo, ui, window.KinbookInstant.echo(spec, page.grammar, text)), 0);  // the verdict first
+  }
+
+  function showEcho(echo, ui, tex) {
     if (tex) {
       echo.appendChild(el("span", { class: "kinbook-instant-label" }, ui("read_as") + " "));
       echo.appendChild(el("span", {}, "\\(" + tex + "\\)"));

@@ -66,13 +66,12 @@
     const g = ctx.grammar, lim = g.limits;
     let count = 0;
     function walk(n, depth) {
-      if (++count > lim.nodes) throw new Refusal("too_large");
-      if (depth > lim.depth) throw new Refusal("too_large");
+      if (++count > 10 * lim.nodes || depth > 10 * lim.depth) throw new Refusal("too_large");
       switch (n.type) {
         case "ParenthesisNode": return walk(n.content, depth);
         case "ConstantNode": {
           if (typeof n.value !== "number") throw new Refusal("not_allowed", { what: String(n.value) });
-          if (!isFinite(n.value) || Math.abs(n.value) > lim.magnitude) throw new Refusal("too_large");
+          if (!isFinite(n.value) || Math.abs(n.value) > lim.magnitude) throw new Refusal("not_finite");
           const v = n.value;
           return { f: () => v, num: v };
         }
@@ -119,7 +118,7 @@
   function operator(fn, args, lim) {
     const [a, b] = args;
     const num = args.every((x) => x.num !== undefined);
-    if (fn === "pow" && b.num !== undefined && Math.abs(b.num) > lim.exponent) throw new Refusal("too_large");
+    if (fn === "pow" && b.num !== undefined && Math.abs(b.num) > lim.exponent) throw new Refusal("exponent", { limit: lim.exponent });
     const F = {
       add: (p) => a.f(p) + b.f(p), subtract: (p) => a.f(p) - b.f(p), multiply: (p) => a.f(p) * b.f(p),
       divide: (p) => a.f(p) / b.f(p), pow: (p) => Math.pow(a.f(p), b.f(p)),
@@ -303,6 +302,7 @@
   function checkRows(spec, grammar, text) {
     const matrix = readAnswer(text, spec, grammar);
     const rule = spec.rule, q = spec.quantity;
+    if (rule.refuse) throw new Refusal("not_allowed", { what: "options" });  // an option the checker refuses
     if (!rule.decides) return { verdict: "undecided", reasons: [] };
     if (q === "Phi_q") return checkJacobian(spec, matrix);
     const rows = asVector(matrix, spec.m);
@@ -356,14 +356,11 @@
     if (ms > m) return { verdict: "fail", mistake: lookalike(spec, S, true), reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
     const reasons = [];
     let undecided = false;
-    if (status.includes("wrong")) {
-      const A = evaluate(rows, points(spec.points.assembled));
-      for (let k = 0; k < ms; k++) {
-        if (status[k] !== "wrong") continue;
-        const vanishes = spec.assembled_ok && maxAbs(A[k]) <= 1e-4 * Math.max(maxAbs(S[k]), 1e-9);
-        if (vanishes) { undecided = true; reasons.push({ key: "equivalent", fields: { k: k + 1 } }); }
-        else reasons.push({ key: "row_wrong", fields: { k: k + 1 } });
-      }
+    for (let k = 0; k < ms; k++) {
+      if (status[k] !== "wrong") continue;
+      const how = formulation(spec, rows[k], maxAbs(S[k]));
+      if (how === "maybe") { undecided = true; reasons.push({ key: "equivalent", fields: { k: k + 1 } }); }
+      else reasons.push({ key: "row_wrong", fields: { k: k + 1 } });
     }
     if (reasons.some((r) => r.key === "row_wrong") || status.includes("dependent")) {
       return { verdict: "fail", mistake: lookalike(spec, S, true), reasons };
@@ -374,6 +371,40 @@
     const bad = witness(spec, rows, ref, S, R, true);
     if (bad !== null) return { verdict: "fail", reasons: [{ key: "row_only", fields: { k: bad + 1 } }] };
     return { verdict: "pass", reasons: [] };
+  }
+
+  /* A Φ row that is no constant multiple of a reference row, where each constraint alone holds (its own assembled
+   * points): "wrong" when it vanishes where no constraint alone holds (a masked row, or no constraint at all) or
+   * when its gradient vanishes there too (Φ_k², a vanishing factor: the rank is lost); "maybe" an equivalent
+   * formulation otherwise — the checker decides (its zero-set search, the coverage of every row). */
+  function formulation(spec, row, scale) {
+    scale = Math.max(scale, 1e-9);
+    let maybe = false;
+    for (const block of spec.blocks) {
+      const pts = points(block.points);
+      const values = evaluate([row], pts)[0];
+      const size = maxAbs(values);
+      if (size > 1e-4 * scale) continue;          // not zero where this constraint holds
+      if (size > 1e-6 * scale) return "maybe";    // nearly: the page cannot say
+      for (const p of pts) {
+        if (gradientSize(row, p) <= 1e-6 * scale) return "wrong";
+      }
+      maybe = true;
+    }
+    return maybe || !spec.blocks_complete ? "maybe" : "wrong";
+  }
+
+  function gradientSize(row, p) {
+    let g = 0;
+    for (let i = 0; i < p.q.length; i++) {
+      const h = 1e-6 * Math.max(1, Math.abs(p.q[i]));
+      const up = p.q.slice(), down = p.q.slice();
+      up[i] += h;
+      down[i] -= h;
+      const d = (row[0].f({ q: up, qd: p.qd, t: p.t }) - row[0].f({ q: down, qd: p.qd, t: p.t })) / (2 * h);
+      g = Math.max(g, Math.abs(d));
+    }
+    return g;
   }
 
   function lookalike(spec, S, free) {
@@ -451,7 +482,7 @@
     }
     const pts = points(spec.points.samples);
     const S = evaluate(matrix, pts);
-    let cols = c === n ? [...Array(n).keys()] : roles;
+    let cols = c === roles.length ? roles : [...Array(n).keys()];  // evaluate.best_columns
     const sorted = [...roles].sort((a, b) => a - b);
     if (c === roles.length && sorted.some((x, i) => x !== roles[i])) {
       const fit = (cc) => {
@@ -485,9 +516,9 @@
   /* A Φ_q row that is, at every point, a combination of the reference rows (and the rows that hold anyway):
    * an equivalent formulation Python may accept (the Jacobian of M(q)·Φ) — the page leaves it to Python. */
   function spanned(spec, S, reasons, cols) {
-    // (not with the rows that hold anyway, pᵀp − 1's 2pᵀ: a row off by those is the book's 2ĖĠᵀa form, which
-    // the checker names before it looks for equivalents)
-    const R = refRows(spec.reference.samples, spec.m, cols);
+    const F = spec.reference.free && spec.reference.free.length && spec.reference.free[0].length
+      ? refRows(spec.reference.free, spec.reference.free[0].length, cols) : [];
+    const R = refRows(spec.reference.samples, spec.m, cols).concat(F);
     const w = cols.length, N = spec.points.samples.t.length;
     let any = false;
     for (const reason of reasons) {
@@ -624,7 +655,8 @@
       else out = { verdict: "undecided", reasons: [{ key: "not_typed", fields: {} }] };
     } catch (e) {
       if (!(e instanceof Refusal)) throw e;
-      out = { verdict: "refused", reasons: [{ key: e.key, fields: e.fields }] };
+      // beyond the page's own bounds the checker's (larger ones for answers) decide: the page does not
+      out = { verdict: e.key === "too_large" ? "undecided" : "refused", reasons: [{ key: e.key, fields: e.fields }] };
     }
     out.ms = (typeof performance !== "undefined" ? performance : Date).now() - t0;
     return out;
