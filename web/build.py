@@ -55,7 +55,7 @@ MATHJAX_PARTS = ("tex-chtml.js", "input", "output/chtml", "a11y", "sre", "ui", "
 LIVE_NOTEBOOK = "../live/notebooks/index.html?path={name}"
 
 # The instant checks (issue 35): mathjs's browser bundle and kinbook's two scripts, served from <site>/instant/ with
-# each page's JSON; the scripts are loaded (deferred, in this order) by the first try-it of a page.
+# each page's JSON; the first try-it of a page loads the page script, which loads the other two after the page.
 INSTANT_SCRIPTS = ("math.js", "kinbook-instant.js", "kinbook-instant-page.js")
 TRY_IT_CALL = re.compile(r'kb\.try_it\("([^"]+)"')
 INSTANT_STYLE = ("<style>.kinbook-instant{border-left:4px solid #1f6feb;background:#f6f8fa;padding:6px 10px;margin:4px 0 12px}"
@@ -135,8 +135,7 @@ def instant_cells(nb, name):
             continue
         tryit = found.group(1)
         notebook = tryit.split("/")[0]
-        scripts = (INSTANT_STYLE + "".join(f'<script defer src="../instant/{s}"></script>' for s in INSTANT_SCRIPTS)
-                   if first else "")
+        scripts = (INSTANT_STYLE + f'<script defer src="../instant/{INSTANT_SCRIPTS[-1]}"></script>' if first else "")
         first = False
         html = (f'<div class="kinbook-instant" data-tryit="{tryit}" data-spec="../instant/{notebook}.json" '
                 f'data-live="{LIVE_NOTEBOOK.format(name=name)}">'

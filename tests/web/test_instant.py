@@ -46,8 +46,11 @@ def verdicts(tmp_path_factory):
     subprocess.run([LAB_PYTHON, ROOT / "tests" / "web" / "instant_cases.py", cases], check=True, cwd=ROOT)
     out = subprocess.run([node, ROOT / "tests" / "web" / "instant_node.js", cases, MATHJS], check=True,
                          capture_output=True, text=True).stdout
-    python = [json.loads(line) for line in cases.read_text().splitlines()][:-1]
+    lines = [json.loads(line) for line in cases.read_text().splitlines()]
+    python, specs = lines[:-1], lines[-1]["specs"]
     page = {v["id"]: v for v in map(json.loads, out.splitlines())}
+    for c in python:  # an option a try-it never has (phi=: the student's own Φ; at=: numbers at a configuration)
+        page[c["id"]]["options"] = not specs[c["spec"]].get("rule", {}).get("decides", True)
     return [(c, page[c["id"]]) for c in python]
 
 
@@ -67,6 +70,7 @@ def test_the_page_agrees_with_python_on_the_corpora(verdicts):
         row["typed"] += 1
         if v == "undecided":
             row["undecided"] += 1
+            row["of which phi=/at="] += bool(page.get("options"))
             continue
         row["decided"] += 1
         passed = v == "pass"
@@ -78,12 +82,14 @@ def test_the_page_agrees_with_python_on_the_corpora(verdicts):
         elif not passed and page.get("mistake") and page["mistake"] in case["python"]["mistakes"]:
             row["same mistake named"] += 1
     total = sum(rows.values(), collections.Counter())
-    cols = ["answers", "not text", "typed", "decided", "undecided", "disagree", "same mistake named"]
+    cols = ["answers", "not text", "typed", "decided", "undecided", "of which phi=/at=", "disagree",
+            "same mistake named"]
     print("\n\nInstant checks: the page's engine (JS, mathjs) beside kinbook.grading (Python)")
-    print(f"{'source':10}" + "".join(f"{c:>24}" for c in cols) + f"{'decided %':>12}")
+    print(f"{'source':10}" + "".join(f"{c:>19}" for c in cols) + f"{'decided %':>11}{'w/o phi=/at=':>14}")
     for name, row in sorted(rows.items()) + [("total", total)]:
         share = 100 * row["decided"] / max(row["typed"], 1)
-        print(f"{name:10}" + "".join(f"{row[c]:>24}" for c in cols) + f"{share:>11.1f}%")
+        plain = 100 * row["decided"] / max(row["typed"] - row["of which phi=/at="], 1)
+        print(f"{name:10}" + "".join(f"{row[c]:>19}" for c in cols) + f"{share:>10.1f}%{plain:>13.1f}%")
     print(f"passes where Python refuses: {len(false_pass)}")
     ms = sorted(p["ms"] for _, p in verdicts if p.get("ms") is not None)
     if ms:

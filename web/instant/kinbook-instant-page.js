@@ -1,8 +1,8 @@
 /* The try-its of a book page, answered in the page (issue 35). Each try-it is one element
  * <div data-tryit="13-1/try-1" data-spec="../instant/13-1.json" data-live="…"> holding its input (textarea),
  * its check button and its verdict (data-verdict: pass, fail, refused or undecided). The engine is
- * kinbook-instant.js (window.KinbookInstant, over mathjs); the page's data is fetched from the site itself once,
- * when the page loads. English and Spanish: the button "Español" / "English" switches every try-it of the page
+ * kinbook-instant.js (window.KinbookInstant, over mathjs), loaded by this script after the page's own load; the
+ * page's data is fetched from the site itself once. English and Spanish: the button "Español" / "English" switches every try-it of the page
  * (remembered in localStorage). */
 (function () {
   "use strict";
@@ -113,11 +113,23 @@
   }
 
   function start() {
-    if (!window.math) return;
     window.KinbookInstant = window.KinbookInstant.call ? window.KinbookInstant(window.math) : window.KinbookInstant;
     document.querySelectorAll("[data-tryit]").forEach(setUp);
   }
 
-  if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);
-  else start();
+  // mathjs and the engine are loaded once the page itself has loaded: the book page is interactive as soon as
+  // without them (mathjs is some 650 kB to parse)
+  const base = document.currentScript.src.replace(/[^/]*$/, "");
+  function load(name) {
+    return new Promise((resolve, reject) => {
+      const s = document.createElement("script");
+      s.src = base + name;
+      s.onload = resolve;
+      s.onerror = reject;
+      document.head.appendChild(s);
+    });
+  }
+  function begin() { load("math.js").then(() => load("kinbook-instant.js")).then(start); }
+  if (document.readyState === "complete") begin();
+  else window.addEventListener("load", begin);
 })();
