@@ -219,6 +219,7 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
     rtol, refuse = _options(options, RTOL, t.n)
     spec = {"kind": "rows", "checker": name, "quantity": quantity, "names": _names(t), "m": t.m, "n": t.n,
             "cols": [int(c) for c in t.cols], "labels": [t.label(k) for k in range(t.m)],
+            "row_blocks": [[int(k) for k in t.block(c)] for c in t.constraints],
             "points": {"samples": _points(s)},
             "reference": {"samples": _ref(t.reference(which), quantity)},
             "rule": {"rtol": rtol, "zero_tol": zero_tol(rtol),

@@ -518,21 +518,23 @@
   function spanned(spec, S, reasons, cols) {
     const F = spec.reference.free && spec.reference.free.length && spec.reference.free[0].length
       ? refRows(spec.reference.free, spec.reference.free[0].length, cols) : [];
-    const R = refRows(spec.reference.samples, spec.m, cols).concat(F);
+    const R = refRows(spec.reference.samples, spec.m, cols);
     const w = cols.length, N = spec.points.samples.t.length;
-    let any = false;
-    for (const reason of reasons) {
-      const k = reason.fields.k - 1, s = S[k];
-      let all = true;
+    const blocks = spec.row_blocks || [R.map((_, j) => j)];
+    // a combination of the rows of one constraint (the checker's jacobian_equivalents), at every point
+    const inBlock = (s, block) => {
+      const rows = block.map((j) => R[j]).concat(F);
       for (let p = 0; p < N; p++) {
-        const v = s.slice(p * w, p * w + w);
-        const basis = R.map((row) => row.slice(p * w, p * w + w));
-        if (!inSpan(v, basis, spec.rule.rtol)) { all = false; break; }
+        const basis = rows.map((row) => row.slice(p * w, p * w + w));
+        if (!inSpan(s.slice(p * w, p * w + w), basis, spec.rule.rtol)) return false;
       }
-      if (all && maxAbs(s) > 0) any = true;
-      else return false;
+      return true;
+    };
+    for (const reason of reasons) {
+      const s = S[reason.fields.k - 1];
+      if (!(maxAbs(s) > 0) || !blocks.some((b) => inBlock(s, b))) return false;
     }
-    return any;
+    return reasons.length > 0;
   }
 
   function inSpan(v, basis, rtol) {
