@@ -352,8 +352,9 @@
     }
     const mk = named(spec, S, true);
     if (mk) return { verdict: "fail", mistake: mk, reasons: [] };
-    // more rows than the constraints have: one at least is dependent (or wrong), whatever its form
-    if (ms > m) return { verdict: "fail", mistake: lookalike(spec, S, true), reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
+    // more rows than the constraints have: one at least is dependent (or wrong), whatever its form; fewer: their
+    // gradients cannot span the reference's (independent, with the bodies' pᵀp − 1, where the checker samples)
+    if (ms !== m) return { verdict: "fail", mistake: lookalike(spec, S, true), reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
     const reasons = [];
     let undecided = false;
     for (let k = 0; k < ms; k++) {
