@@ -158,7 +158,7 @@ $(WEB_STAMP): $(WEB_PIN) requirements/lite-kernel.txt web/package.json web/packa
 		--require-hashes -r requirements/lite-kernel.txt -d $(WEB_VENV)/wheels
 	touch $@
 
-book: $(WEB_STAMP)
+book: $(WEB_STAMP) $(STAMP)
 	$(WEB_BIN)/python web/build.py book
 
 # The live site serves Pyodide itself, compiled (web/pyodide_site.py: assembled once into .venv-web/pyodide/).

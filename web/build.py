@@ -6,7 +6,10 @@
 Both take whatever notebooks are in chapters/ as they are stored (never executed here: their outputs are
 kept true by nbval in `make test`), copy them into a staging folder under build/web/ and adapt the copies:
 
-* the book's pages get an "Open live" link to the same notebook in the live site (``../live/...``);
+* the book's pages get an "Open live" link to the same notebook in the live site (``../live/...``), and each
+  try-it an instant check below its cell (``data-tryit``: issue 35) — answered in the page by web/instant/'s
+  script over mathjs, with the page's JSON written by kinbook.book.instant (run with the lab environment's
+  Python, where kinbook is installed: KINBOOK_PYTHON, default .venv/bin/python);
 * the live copies get the Pyodide kernel (kernelspec ``python``) and a first cell that installs kinbook
   from the site's own package index (piplite);
 * the live site's pages get web/lite/kinbook-live.js, which says in the page when Python (Pyodide) cannot be
@@ -25,6 +28,7 @@ import argparse
 import hashlib
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -49,6 +53,18 @@ MATHJAX_PARTS = ("tex-chtml.js", "input", "output/chtml", "a11y", "sre", "ui", "
 
 # The page of the live site that opens one notebook (JupyterLite's Notebook interface), from a book page.
 LIVE_NOTEBOOK = "../live/notebooks/index.html?path={name}"
+
+# The instant checks (issue 35): mathjs's browser bundle and kinbook's two scripts, served from <site>/instant/ with
+# each page's JSON; the first try-it of a page loads the page script, which loads the other two after the page.
+INSTANT_SCRIPTS = ("math.js", "kinbook-instant.js", "kinbook-instant-page.js")
+TRY_IT_CALL = re.compile(r'kb\.try_it\("([^"]+)"')
+INSTANT_STYLE = ("<style>.kinbook-instant{border-left:4px solid #1f6feb;background:#f6f8fa;padding:6px 10px;margin:4px 0 12px}"
+                 ".kinbook-instant textarea{width:100%;font-family:monospace;font-size:90%}"
+                 ".kinbook-instant-bar{margin:4px 0}.kinbook-instant-lang{float:right}"
+                 "[data-verdict=pass]{color:#1a7f37}[data-verdict=fail],[data-verdict=refused]{color:#cf222e}"
+                 "[data-verdict=undecided]{color:#9a6700}.kinbook-instant-mistake,.kinbook-instant-hint{color:#24292f}"
+                 "</style>")
+LAB_PYTHON = Path(os.environ.get("KINBOOK_PYTHON", ROOT / ".venv" / "bin" / "python"))
 
 # What the first cell of each live notebook runs. kinbook and ipywidgets (for the sliders), with numpy, scipy,
 # sympy and matplotlib, are already there: web/lite/jupyter-lite.json has the kernel load them, compiled, from the
@@ -105,6 +121,31 @@ def book_notebook(nb, name):
             "notebook in your browser: no install (JupyterLite; the first start downloads Python, then the "
             "browser keeps it).</p>")
     nb["cells"].insert(_after_title(nb), _cell("markdown", link, "kinbook-open-live"))
+    return instant_cells(nb, name)
+
+
+def instant_cells(nb, name):
+    """Under each try-it cell (``kb.try_it("13-1/try-1", …)``), its instant check: one ``data-tryit`` element
+    with the answer's input, the check button and the verdict; the first one loads the scripts."""
+    cells, first = [], True
+    for cell in nb["cells"]:
+        cells.append(cell)
+        found = TRY_IT_CALL.search(_joined(cell["source"])) if cell["cell_type"] == "code" else None
+        if found is None:
+            continue
+        tryit = found.group(1)
+        notebook = tryit.split("/")[0]
+        scripts = (INSTANT_STYLE + f'<script defer src="../instant/{INSTANT_SCRIPTS[-1]}"></script>' if first else "")
+        first = False
+        html = (f'<div class="kinbook-instant" data-tryit="{tryit}" data-spec="../instant/{notebook}.json" '
+                f'data-live="{LIVE_NOTEBOOK.format(name=name)}">'
+                '<textarea rows="3" spellcheck="false" autocomplete="off" aria-label="answer"></textarea>'
+                '<div class="kinbook-instant-bar"><button type="button" data-check>Check</button> '
+                '<button type="button" data-lang class="kinbook-instant-lang">Español</button> '
+                '<small data-note></small></div>'
+                '<div data-verdict aria-live="polite"></div><div data-echo></div></div>' + scripts)
+        cells.append(_cell("markdown", html, f"kinbook-instant-{tryit.replace('/', '-')}"))
+    nb["cells"] = cells
     return nb
 
 
@@ -168,6 +209,7 @@ def build_book():
     (src / "_extra" / "mathjax").mkdir(parents=True)
     for part in MATHJAX_PARTS:
         (shutil.copy2 if part.endswith(".js") else _copy_tree)(mathjax / part, src / "_extra" / "mathjax" / part)
+    build_instant(src / "_extra" / "instant")
 
     out = STAGE / "book-out"
     if out.exists():
@@ -182,6 +224,23 @@ def build_book():
     for entry in html.iterdir():
         shutil.move(str(entry), SITE / entry.name)
     print(f"book: {SITE}/index.html ({_size(SITE, skip='live')})")
+
+
+def build_instant(dst):
+    """<site>/instant/: mathjs's browser bundle (npm ci of web/package.json), kinbook's page scripts and one JSON
+    per notebook with try-its (kinbook.book.instant, run by the lab environment's Python)."""
+    bundle = NODE_MODULES / "mathjs" / "lib" / "browser" / "math.js"
+    if not bundle.is_file():
+        raise SystemExit(f"{bundle} is missing: run `make web-env` (npm ci of web/package.json) first")
+    if not LAB_PYTHON.exists():
+        raise SystemExit(f"{LAB_PYTHON} is missing: `make install` (kinbook writes the try-its' checks) or set "
+                         "KINBOOK_PYTHON")
+    dst.mkdir(parents=True)
+    shutil.copy2(bundle, dst / "math.js")
+    shutil.copy2(bundle.with_name("math.js.LICENSE.txt"), dst / "math.js.LICENSE.txt")
+    for script in INSTANT_SCRIPTS[1:]:
+        shutil.copy2(WEB / "instant" / script, dst / script)
+    _run([LAB_PYTHON, "-m", "kinbook.book.instant", dst], cwd=ROOT)
 
 
 def kinbook_wheel(dst):

@@ -1,0 +1,79 @@
+"""kinbook.book.instant: the data a book page checks its try-its with (issue 35). The page's engine itself is run
+against Python's verdicts by tests/web/test_instant.py (make test-web: Node and chromium)."""
+
+import json
+
+import numpy as np
+import pytest
+
+from kinbook.book import instant
+from kinbook.book.tryits import TRY_ITS, get
+from kinbook.core import reader
+
+get("13-1/try-1")
+IDS = list(TRY_ITS)
+NOTEBOOKS = sorted({i.split("/")[0] for i in IDS})
+
+
+@pytest.fixture(scope="module")
+def pages():
+    return {nb: json.loads(json.dumps(instant.page(nb), allow_nan=False)) for nb in NOTEBOOKS}
+
+
+def test_the_grammar_is_the_readers():
+    g = instant.grammar()
+    assert g["functions"] == {name: list(counts) for name, (_, counts) in reader.FUNCTIONS.items()}
+    assert g["aliases"] == reader.ALIASES
+    assert g["constants"] == {"pi": pytest.approx(np.pi), "π": pytest.approx(np.pi), "E": pytest.approx(np.e)}
+
+
+def test_every_tryit_has_its_check_in_its_page_with_texts_in_both_languages(pages):
+    for nb, page in pages.items():
+        assert sorted(page["tryits"]) == sorted(i for i in IDS if i.startswith(nb + "/"))
+        for key, texts in page["ui"].items():
+            assert texts["en"] and texts["es"], key
+        assert page["ui"]["check"]["es"] == "Comprobar"
+        for spec in page["tryits"].values():
+            for m in spec["mistakes"]:
+                assert m["title"]["en"] and m["title"]["es"] and m["hint"]["es"] != "", m["code"]
+
+
+@pytest.mark.parametrize("id", [i for i in IDS if get(i).checker.__name__ in ("check_value", "check_rotation",
+                                                                               "check_euler_parameters")])
+def test_numbers_the_worked_answer_meets_the_pages_rule(pages, id):
+    """The worked answer (computed apart, by the try-it's own solution code) is within the page's tolerance of the
+    page's value, and no catalogued mistake of the page is that close to it."""
+    spec = pages[id.split("/")[0]]["tryits"][id]
+    a = np.asarray(get(id).reference_answer(), float).ravel()
+    e = np.asarray(spec["value"], float).ravel()
+    tol = spec["rule"]["atol"] + spec["rule"]["rtol"] * np.abs(e).max()
+    assert np.abs(a - e).max() <= tol
+    for m in spec["mistakes"]:
+        v = np.asarray(m["values"], float).ravel()
+        if v.size == e.size and np.abs(v - e).max() > tol:
+            assert np.abs(a - v).max() > tol, m["code"]
+
+
+@pytest.mark.parametrize("id", [i for i in IDS if get(i).checker.__name__ in ("check_phi", "check_nu", "check_gamma")
+                                and all(isinstance(r, str) for r in np.ravel(get(i).reference_answer()))])
+def test_rows_the_worked_answer_is_the_reference_at_the_pages_points(pages, id):
+    """The worked answer's rows, read by kinbook's reader and evaluated by sympy at the page's points, are the
+    reference's values there (a constant factor per row for Φ)."""
+    import sympy as sp
+
+    spec = pages[id.split("/")[0]]["tryits"][id]
+    rows = list(np.ravel(get(id).reference_answer()))
+    symbols = {name: sp.Symbol(name) for name in spec["names"]}
+    P = spec["points"]["samples"]
+    R = np.asarray(spec["reference"]["samples"], float)
+    for k, text in enumerate(rows):
+        expr = reader.read_expression(text, symbols=symbols, where="worked answer")
+        values = []
+        for i, t in enumerate(P["t"]):
+            env = {}
+            for name, (kind, j) in spec["names"].items():
+                env[symbols[name]] = t if kind == "t" else P[kind][i][j]
+            values.append(float(expr.xreplace(env).evalf()))
+        values = np.array(values)
+        ratio = values @ R[:, k] / (R[:, k] @ R[:, k]) if spec["quantity"] == "Phi" else 1.0
+        assert np.allclose(values, ratio * R[:, k], rtol=1e-9, atol=1e-9), (id, k)

@@ -1,0 +1,130 @@
+"""Every answer of kinbook's checker corpora, checked by Python, with what the page needs to check it too
+(issue 35: one rule, two engines). Run by tests/web/test_instant.py with the lab environment's Python (kinbook
+and its test corpora are there, not in .venv-web):
+
+    .venv/bin/python tests/web/instant_cases.py OUT.jsonl
+
+One JSON line per answer: {"id", "source", "spec" (a key into the specs), "text" (the answer as typed in the page,
+or null for an answer that is not text: a Python function, or a sympy object too large to type), "python": {"passed", "mistakes"}}; then one line
+{"specs": {key: spec}, "grammar": …}.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+from kinbook import grading  # noqa: E402
+from kinbook.book import instant  # noqa: E402
+from kinbook.grading.read import tree_size  # noqa: E402
+
+TYPED = 5000
+"""Nodes of a sympy answer written out as a tree above which it is not an answer anyone types in a page (sympy's
+own derivation of a spatial γ has some 10⁵): such an answer counts with the functions, as not text."""
+
+CHECKS = {"phi": grading.check_phi, "jacobian": grading.check_jacobian, "nu": grading.check_nu,
+          "gamma": grading.check_gamma}
+
+
+def as_text(answer):
+    """The answer as a student types it in the page (a list of rows, each a text or a list of texts; numbers as
+    Python prints them), or None when it is not text (a function)."""
+    def entry(x):
+        if isinstance(x, str):
+            return x
+        if isinstance(x, (bool, np.bool_)):
+            raise TypeError
+        if isinstance(x, (int, float, np.integer, np.floating)):
+            return repr(float(x)) if math.isfinite(float(x)) else "1/0"
+        if isinstance(x, sp.Basic):  # a sympy expression: as sympy prints it (** for powers) …
+            if tree_size(x) > TYPED:  # … unless sympy built more than anyone types (a derived spatial γ)
+                raise TypeError
+            return str(x)
+        raise TypeError
+
+    def walk(x):
+        if hasattr(x, "tolist") and not isinstance(x, str):
+            x = x.tolist()
+        if isinstance(x, (list, tuple)):
+            return [walk(v) for v in x]
+        return entry(x)
+
+    try:
+        if callable(answer) and not hasattr(answer, "tolist"):
+            return None
+        value = walk(answer)
+    except TypeError:
+        return None
+    return value if isinstance(value, str) else json.dumps(value, ensure_ascii=False)
+
+
+class Specs:
+    def __init__(self):
+        self.by_key, self.keys = {}, {}
+
+    def key(self, ident, make, *args):
+        if ident not in self.keys:
+            k = f"s{len(self.by_key)}"
+            self.by_key[k] = make(*args)
+            self.keys[ident] = k
+        return self.keys[ident]
+
+
+def corpus_cases(specs):
+    sys.path.insert(0, str(ROOT))
+    from tests.grading import corpus, corpus2, corpus3, corpus4
+
+    groups = [("corpus", corpus.CASES, corpus.target), ("corpus2", corpus2.cases(), corpus2.target),
+              ("corpus3", corpus3.cases() + corpus3.long_cases() + corpus3.spatial_gap_cases()
+               + corpus3.driver_gap_cases(), corpus3.target), ("corpus4", corpus4.cases(), corpus4.target)]
+    for source, cases, target_of in groups:
+        for case in cases:
+            target = target_of(case.mech, case.constraint)
+            result = CHECKS[case.check](case.answer, target, **case.options)
+            options = {k: v for k, v in case.options.items() if k != "phi"} | (
+                {"phi": True} if "phi" in case.options else {})
+            ident = (source, case.mech, case.constraint, case.check, json.dumps(options, sort_keys=True, default=str))
+            key = specs.key(ident, instant.spec, CHECKS[case.check], target, options)
+            yield {"id": case.id, "source": source, "spec": key, "text": as_text(case.answer),
+                   "python": {"passed": bool(result.passed), "mistakes": list(result.mistakes)}}
+
+
+def tryit_cases(specs):
+    from tests.grading import tryits
+
+    for t in tryits.all_tryits():
+        item = getattr(t, "item", None)
+        if item is not None:
+            key = specs.key(("tryit", t.id), instant.tryit_spec, item)
+        else:
+            key = specs.key(("tryit", t.id), instant.spec, t.checker, t.target(), t.options)
+        answers = [("right", t.right)] + [(f"wrong-{k}", a) for k, (a, _) in enumerate(t.wrong)]
+        for label, answer in answers:
+            result = t.check(answer)
+            yield {"id": f"{t.id}/{label}", "source": "tryits", "spec": key, "text": as_text(answer),
+                   "python": {"passed": bool(result.passed), "mistakes": list(result.mistakes)}}
+
+
+def main(out):
+    specs = Specs()
+    with open(out, "w", encoding="utf-8") as f:
+        for k, case in enumerate(itertools.chain(corpus_cases(specs), tryit_cases(specs))):
+            f.write(json.dumps(case, ensure_ascii=False, allow_nan=False) + "\n")
+            f.flush()
+            if k % 50 == 0:
+                print(f"instant_cases: {k} answers checked by Python", file=sys.stderr, flush=True)
+        f.write(json.dumps({"specs": specs.by_key, "grammar": instant.grammar()}, ensure_ascii=False, allow_nan=False)
+                + "\n")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])

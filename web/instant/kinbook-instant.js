@@ -1,0 +1,681 @@
+/* kinbook's instant check (issue 35): a try-it's answer checked in the page, without Python.
+ *
+ * The page's JSON (kinbook/book/instant.py, written at build time) holds everything but the answer: the
+ * reader's grammar (kinbook/core/reader.py: the same names, functions and bounds), the reference at the
+ * checker's own points, the rule (a constant factor per row, the tolerance) and the catalogued mistakes as
+ * values at the same points. mathjs (pinned in web/package-lock.json, served by the site) parses the answer;
+ * the tree is walked against kinbook's allow-list before anything is evaluated, and evaluated by a closure built
+ * here (never mathjs's own evaluate: no complex numbers, no units, nothing outside the grammar).
+ *
+ * verdict: "pass", "fail" (with a named mistake when the values are a catalogued one's), "refused" (the answer
+ * cannot be read: Python refuses it too) or "undecided" (an equivalent formulation, a Newton iteration: the
+ * page says so and links to the live notebook). The engine below has no DOM: tests/web run it under Node.
+ */
+(function (root, factory) {
+  if (typeof module === "object" && module.exports) module.exports = factory;
+  else root.KinbookInstant = factory(root.math);
+})(typeof self !== "undefined" ? self : this, function (math) {
+  "use strict";
+
+  // ------------------------------------------------------------------------------------------ reading
+  class Refusal extends Error {
+    constructor(key, fields) { super(key); this.key = key; this.fields = fields || {}; }
+  }
+
+  const NUMBER = /(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?/y;
+  const NAME = /[\p{L}\p{Nl}_][\p{L}\p{Nl}\p{Mn}\p{Mc}\p{Nd}\p{Pc}]*/uy;
+  const STRING = /"(?:[^"\\]|\\.)*"|'(?:[^'\\]|\\.)*'/y;
+
+  /* Every name becomes a placeholder mathjs cannot misread (π, φ̇2, e01 …: kinbook's names in NFKC, as
+   * Python's parser reads them); numbers are kept as written, ** becomes ^ (as kinbook's reader does). */
+  function tokenize(text, names) {
+    let out = "", i = 0;
+    while (i < text.length) {
+      let m;
+      for (const re of [STRING, NUMBER, NAME]) {
+        re.lastIndex = i;
+        m = re.exec(text);
+        if (m) {
+          const end = re.lastIndex;  // before a string's inside is tokenized (the same sticky expressions)
+          if (re === NAME) {
+            const name = m[0].normalize("NFKC");
+            let key = names.byName.get(name);
+            if (!key) { key = "_k" + names.list.length; names.byName.set(name, key); names.list.push(name); }
+            out += key;
+          } else if (re === STRING) {
+            out += m[0][0] + tokenize(m[0].slice(1, -1), names) + m[0][0];
+          } else {
+            out += m[0];
+          }
+          i = end;
+          break;
+        }
+      }
+      if (m) continue;
+      if (text.startsWith("**", i)) { out += "^"; i += 2; continue; }
+      out += text[i];
+      i += 1;
+    }
+    return out;
+  }
+
+  const OPS = { add: "+", subtract: "-", multiply: "*", divide: "/", pow: "^", unaryMinus: "-", unaryPlus: "+" };
+
+  /* One entry: the vetted tree compiled to f(point) → number, with its TeX. */
+  function entry(node, ctx) {
+    const g = ctx.grammar, lim = g.limits;
+    let count = 0;
+    function walk(n, depth) {
+      if (++count > 10 * lim.nodes || depth > 10 * lim.depth) throw new Refusal("too_large");
+      switch (n.type) {
+        case "ParenthesisNode": return walk(n.content, depth);
+        case "ConstantNode": {
+          if (typeof n.value !== "number") throw new Refusal("not_allowed", { what: String(n.value) });
+          if (!isFinite(n.value) || Math.abs(n.value) > lim.magnitude) throw new Refusal("not_finite");
+          const v = n.value;
+          return { f: () => v, num: v };
+        }
+        case "SymbolNode": {
+          const name = ctx.names.list[Number(n.name.slice(2))];
+          if (name in g.constants) { const v = g.constants[name]; return { f: () => v, num: v }; }
+          const where = ctx.symbols[name];
+          if (!where) {
+            if (name in g.functions || name in g.aliases) throw new Refusal("not_allowed", { what: name });
+            throw new Refusal("unknown_name", { name });
+          }
+          const [arr, k] = where;
+          if (arr === "t") return { f: (p) => p.t };
+          return arr === "q" ? { f: (p) => p.q[k] } : { f: (p) => p.qd[k] };
+        }
+        case "OperatorNode": {
+          if (!(n.fn in OPS)) throw new Refusal("not_allowed", { what: n.op });
+          if (n.implicit) throw new Refusal("implicit");
+          const args = n.args.map((a) => walk(a, depth + 1));
+          return operator(n.fn, args, lim);
+        }
+        case "FunctionNode": {
+          if (!n.fn || n.fn.type !== "SymbolNode") throw new Refusal("not_allowed", { what: "(…)(…)" });
+          const written = ctx.names.list[Number(n.fn.name.slice(2))];
+          const name = g.aliases[written] || written;
+          if (!(name in g.functions)) {
+            if (ctx.symbols[written] || written in g.constants) throw new Refusal("implicit");
+            throw new Refusal("unknown_function", { name: written });
+          }
+          if (!g.functions[name].includes(n.args.length)) {
+            throw new Refusal("arguments", { name: written, want: g.functions[name].join(" or "), got: n.args.length });
+          }
+          const args = n.args.map((a) => walk(a, depth + 1));
+          return call(name, args);
+        }
+        default:
+          throw new Refusal("not_allowed", { what: n.type.replace("Node", "").toLowerCase() });
+      }
+    }
+    const built = walk(node, 1);
+    return { f: built.f, num: built.num, tex: tex(node, ctx) };
+  }
+
+  function operator(fn, args, lim) {
+    const [a, b] = args;
+    const num = args.every((x) => x.num !== undefined);
+    if (fn === "pow" && b.num !== undefined && Math.abs(b.num) > lim.exponent) throw new Refusal("exponent", { limit: lim.exponent });
+    const F = {
+      add: (p) => a.f(p) + b.f(p), subtract: (p) => a.f(p) - b.f(p), multiply: (p) => a.f(p) * b.f(p),
+      divide: (p) => a.f(p) / b.f(p), pow: (p) => Math.pow(a.f(p), b.f(p)),
+      unaryMinus: (p) => -a.f(p), unaryPlus: (p) => a.f(p),
+    }[fn];
+    if (!num) return { f: F };
+    const v = F({});
+    if (!isFinite(v) || Math.abs(v) > lim.magnitude) throw new Refusal("not_finite");
+    return { f: () => v, num: v };
+  }
+
+  const FUNCTIONS = {
+    sin: Math.sin, cos: Math.cos, tan: Math.tan, asin: Math.asin, acos: Math.acos, atan: Math.atan,
+    atan2: Math.atan2, sqrt: Math.sqrt, exp: Math.exp, Abs: Math.abs, sign: Math.sign,
+    log: (x, b) => (b === undefined ? Math.log(x) : Math.log(x) / Math.log(b)),
+  };
+
+  function call(name, args) {
+    const fn = FUNCTIONS[name];
+    const F = args.length === 1 ? (p) => fn(args[0].f(p)) : (p) => fn(args[0].f(p), args[1].f(p));
+    if (args.every((x) => x.num !== undefined)) {
+      const v = F({});
+      if (!isFinite(v)) throw new Refusal("not_finite");
+      return { f: () => v, num: v };
+    }
+    return { f: F };
+  }
+
+  // TeX of a name as the book writes it: x1 → x_{1}, phi2 → \varphi_{2}, dphi2 → \dot{\varphi}_{2}
+  function nameTex(name) {
+    const m = /^(d)?(phi|φ|ϕ|x|y|z|e[0-3]|[A-Za-z]+?)_?(dot)?_?([0-9]+)$/u.exec(name);
+    if (!m) return name === "pi" || name === "π" ? "\\pi" : name === "t" ? "t" : "\\mathrm{" + name.replace(/_/g, "\\_") + "}";
+    let stem = { phi: "\\varphi", "φ": "\\varphi", "ϕ": "\\varphi" }[m[2]] || m[2];
+    if (/^e[0-3]$/.test(m[2])) stem = "e_{" + m[2][1];
+    const sub = /^e[0-3]$/.test(m[2]) ? stem + m[4] + "}" : stem + "_{" + m[4] + "}";
+    return m[1] || m[3] ? "\\dot{" + sub + "}" : sub;
+  }
+
+  function tex(node, ctx) {
+    try {
+      return node.toTex({
+        parenthesis: "auto", implicit: "show",
+        handler: (n, options) => {
+          if (n.type === "SymbolNode") {
+            const name = ctx.names.list[Number(n.name.slice(2))];
+            return "{" + (name in ctx.grammar.constants ? (name === "E" ? "e" : "\\pi") : nameTex(name.normalize("NFKC"))) + "}";
+          }
+          if (n.type === "FunctionNode") {
+            const written = ctx.names.list[Number(n.fn.name.slice(2))];
+            const name = ctx.grammar.aliases[written] || written;
+            const args = n.args.map((a) => a.toTex(options));
+            if (name === "sqrt") return "\\sqrt{" + args[0] + "}";
+            if (name === "Abs") return "\\left|" + args[0] + "\\right|";
+            const op = ["sin", "cos", "tan", "exp", "log"].includes(name) ? "\\" + name : "\\operatorname{" + name + "}";
+            return op + "\\left(" + args.join(",") + "\\right)";
+          }
+          return undefined;
+        },
+      });
+    } catch (e) {
+      return "";
+    }
+  }
+
+  function parse(source) {
+    try {
+      return math.parse(source);
+    } catch (e) {
+      throw new Refusal("syntax");
+    }
+  }
+
+  /* The answer as a matrix of entries (rows × columns): a list ["…", "…"] or [[…], […]] as in the notebook,
+   * or one row per line (a line may be a list [a, b, c]). */
+  function readAnswer(text, spec, grammar) {
+    if (typeof text !== "string" || !text.trim()) throw new Refusal("syntax");
+    if (text.length > 20 * grammar.limits.length) throw new Refusal("too_large");
+    const ctx = { grammar, symbols: spec.names || {}, names: { byName: new Map(), list: [] } };
+    const source = tokenize(text.trim(), ctx.names);
+    let top;
+    try {
+      top = math.parse(source);
+    } catch (e) {
+      top = null;
+    }
+    let rows;
+    if (top && unwrap(top).type === "ArrayNode") {
+      rows = unwrap(top).items.map((item) => (unwrap(item).type === "ArrayNode" ? unwrap(item).items : [item]));
+    } else if (top && top.type !== "BlockNode") {
+      rows = [[top]];
+    } else {
+      rows = source.split(/\n/).filter((l) => l.trim()).map((line) => {
+        const n = unwrap(parse(line));
+        return n.type === "ArrayNode" ? n.items : [n];
+      });
+    }
+    const matrix = rows.map((row) => row.map((n) => {
+      n = unwrap(n);
+      if (n.type === "ConstantNode" && typeof n.value === "string") n = parse(n.value);
+      if (n.type === "ArrayNode") throw new Refusal("not_allowed", { what: "[…]" });
+      return entry(n, ctx);
+    }));
+    const width = matrix[0].length;
+    if (matrix.some((r) => r.length !== width)) throw new Refusal("syntax");
+    return matrix;
+  }
+
+  function unwrap(n) { return n && n.type === "ParenthesisNode" ? unwrap(n.content) : n; }
+
+  // ------------------------------------------------------------------------------------------ comparing
+  const maxAbs = (a) => a.reduce((m, x) => Math.max(m, Math.abs(x)), 0);
+  const NICE = [1, -1, 2, -2, 0.5, -0.5, 3, -3];
+  function nice(c) {
+    for (const r of NICE) if (Math.abs(c - r) < 1e-9 * Math.max(1, Math.abs(c))) return r;
+    return c;
+  }
+  const wrapTo = (x, period) => ((((x + period / 2) % period) + period) % period) - period / 2;
+
+  function same(a, b, rtol, period) {
+    const scale = Math.max(maxAbs(a), maxAbs(b));
+    const tol = rtol * scale + 1e-12 * Math.max(scale, 1) * rtol;
+    return a.every((x, i) => Math.abs(period ? wrapTo(x - b[i], period) : x - b[i]) <= tol);
+  }
+
+  /* kinbook.grading.compare.scale_match: the constant c ≠ 0 with a ≈ c·b at every point, or null. */
+  function scaleMatch(a, b, rtol, free, period, atol, zeros) {
+    atol = atol || 0;
+    if (period) {
+      for (const c of free ? [1, -1] : [1]) if (same(a, b.map((x) => c * x), rtol, period)) return c;
+      return null;
+    }
+    const sb = maxAbs(b);
+    if (sb <= atol) return zeros && maxAbs(a) <= Math.max(atol, 1e-12) ? 1 : null;
+    if (!free) {
+      const d = maxAbs(a.map((x, i) => x - b[i]));
+      return d <= rtol * Math.max(maxAbs(a), sb) + atol ? 1 : null;
+    }
+    let ab = 0, bb = 0;
+    for (let i = 0; i < a.length; i++) { ab += a[i] * b[i]; bb += b[i] * b[i]; }
+    const c = ab / bb;
+    if (c === 0 || !isFinite(c)) return null;
+    const d = maxAbs(a.map((x, i) => x - c * b[i]));
+    return d <= rtol * Math.max(maxAbs(a), Math.abs(c) * sb) + atol ? nice(c) : null;
+  }
+
+  function points(P) {
+    return P.t.map((t, i) => ({ q: P.q[i], qd: P.qd[i], t }));
+  }
+
+  // values of an entry at every point, flattened over the entries of a row: rows × (points · width)
+  function evaluate(matrix, pts) {
+    return matrix.map((row) => {
+      const out = [];
+      for (const p of pts) for (const e of row) out.push(e.f(p));
+      if (!out.every(Number.isFinite)) throw new Refusal("not_finite");
+      return out;
+    });
+  }
+
+  // reference rows flattened the same way: R[point][row] (or R[point][row][col] for Φ_q, taking cols)
+  function refRows(R, m, cols) {
+    const out = [];
+    for (let j = 0; j < m; j++) {
+      const row = [];
+      for (const atPoint of R) {
+        if (cols) for (const c of cols) row.push(atPoint[j][c]);
+        else row.push(atPoint[j]);
+      }
+      out.push(row);
+    }
+    return out;
+  }
+
+  // ------------------------------------------------------------------------------------------ rows
+  function asVector(matrix, m) {
+    if (matrix.length === 1 && matrix[0].length > 1) return matrix[0].map((e) => [e]);
+    if (matrix[0].length === 1) return matrix;
+    throw new Refusal("shape", { got: matrix.length + "×" + matrix[0].length, want: m });
+  }
+
+  function checkRows(spec, grammar, text) {
+    const matrix = readAnswer(text, spec, grammar);
+    const rule = spec.rule, q = spec.quantity;
+    if (rule.refuse) throw new Refusal("not_allowed", { what: "options" });  // an option the checker refuses
+    if (!rule.decides) return { verdict: "undecided", reasons: [] };
+    if (q === "Phi_q") return checkJacobian(spec, matrix);
+    const rows = asVector(matrix, spec.m);
+    const pts = points(spec.points.samples);
+    const S = evaluate(rows, pts);
+    const R = refRows(spec.reference.samples, spec.m);
+    return q === "Phi" ? checkPhi(spec, rows, S, R) : checkDerived(spec, rows, S, R, null);
+  }
+
+  function named(spec, S, free) {
+    // a catalogued mistake: the answer's rows are its rows (in any order, each with a constant factor)
+    for (const mk of spec.mistakes) {
+      const W = mk.rows ? transposeRows(mk.values) : null;
+      if (!W || W.length !== S.length) continue;
+      const left = W.map((_, j) => j);
+      let ok = true;
+      for (const s of S) {
+        const hit = left.find((j) => scaleMatch(s, W[j], 1e-6, free) !== null);
+        if (hit === undefined) { ok = false; break; }
+        left.splice(left.indexOf(hit), 1);
+      }
+      if (ok) return mk;
+    }
+    return null;
+  }
+
+  // mistake values are stored as the reference: [point][row](…); as rows × points
+  function transposeRows(V) {
+    const m = V[0].length, out = [];
+    for (let j = 0; j < m; j++) out.push(V.map((p) => (Array.isArray(p[j]) ? p[j] : [p[j]])).flat());
+    return out;
+  }
+
+  function checkPhi(spec, rows, S, R) {
+    const rule = spec.rule, ms = S.length, m = R.length;
+    const wrap = rule.wrap || {};
+    const C = S.map((s) => R.map((r, j) => scaleMatch(s, r, rule.rtol, true, wrap[j])));
+    const status = new Array(ms).fill("wrong"), ref = new Array(ms).fill(null), taken = new Map();
+    const book = rule.order === "book";
+    if (book) for (let k = 0; k < Math.min(ms, m); k++) if (C[k][k] !== null) { status[k] = "ok"; ref[k] = k; taken.set(k, k); }
+    for (let k = 0; k < ms; k++) {
+      if (status[k] === "ok") continue;
+      const cands = R.map((_, j) => j).filter((j) => C[k][j] !== null);
+      const free = cands.filter((j) => !taken.has(j));
+      if (free.length) { status[k] = "ok"; ref[k] = free[0]; taken.set(free[0], k); }
+      else if (cands.length) status[k] = "dependent";
+    }
+    const mk = named(spec, S, true);
+    if (mk) return { verdict: "fail", mistake: mk, reasons: [] };
+    // more rows than the constraints have: one at least is dependent (or wrong), whatever its form; fewer: their
+    // gradients cannot span the reference's (independent, with the bodies' pᵀp − 1, where the checker samples)
+    if (ms !== m) return { verdict: "fail", mistake: lookalike(spec, S, true), reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
+    const reasons = [];
+    let undecided = false;
+    for (let k = 0; k < ms; k++) {
+      if (status[k] !== "wrong") continue;
+      const how = formulation(spec, rows[k], maxAbs(S[k]));
+      if (how === "maybe") { undecided = true; reasons.push({ key: "equivalent", fields: { k: k + 1 } }); }
+      else reasons.push({ key: "row_wrong", fields: { k: k + 1 } });
+    }
+    if (reasons.some((r) => r.key === "row_wrong") || status.includes("dependent")) {
+      return { verdict: "fail", mistake: lookalike(spec, S, true), reasons };
+    }
+    if (undecided) return { verdict: "undecided", reasons };
+    if (ms !== m) return { verdict: "fail", reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
+    if (book && ref.some((j, k) => j !== k)) return { verdict: "fail", reasons: [] };
+    const bad = witness(spec, rows, ref, S, R, true);
+    if (bad !== null) return { verdict: "fail", reasons: [{ key: "row_only", fields: { k: bad + 1 } }] };
+    return { verdict: "pass", reasons: [] };
+  }
+
+  /* A Φ row that is no constant multiple of a reference row, where each constraint alone holds (its own assembled
+   * points): "wrong" when it vanishes where no constraint alone holds (a masked row, or no constraint at all) or
+   * when its gradient vanishes there too (Φ_k², a vanishing factor: the rank is lost); "maybe" an equivalent
+   * formulation otherwise — the checker decides (its zero-set search, the coverage of every row). */
+  function formulation(spec, row, scale) {
+    scale = Math.max(scale, 1e-9);
+    let maybe = false;
+    for (const block of spec.blocks) {
+      const pts = points(block.points);
+      const values = evaluate([row], pts)[0];
+      const size = maxAbs(values);
+      if (size > 1e-4 * scale) continue;          // not zero where this constraint holds
+      if (size > 1e-6 * scale) return "maybe";    // nearly: the page cannot say
+      for (const p of pts) {
+        if (gradientSize(row, p) <= 1e-6 * scale) return "wrong";
+      }
+      maybe = true;
+    }
+    return maybe || !spec.blocks_complete ? "maybe" : "wrong";
+  }
+
+  function gradientSize(row, p) {
+    let g = 0;
+    for (let i = 0; i < p.q.length; i++) {
+      const h = 1e-6 * Math.max(1, Math.abs(p.q[i]));
+      const up = p.q.slice(), down = p.q.slice();
+      up[i] += h;
+      down[i] -= h;
+      const d = (row[0].f({ q: up, qd: p.qd, t: p.t }) - row[0].f({ q: down, qd: p.qd, t: p.t })) / (2 * h);
+      g = Math.max(g, Math.abs(d));
+    }
+    return g;
+  }
+
+  function lookalike(spec, S, free) {
+    const mk = spec.mistakes.filter((x) => x.code === "wrong_data" && x.rows);
+    return named({ mistakes: mk }, S, free);
+  }
+
+  /* Rows accepted at the checker's points, compared again at the page's witness points with the same factor. */
+  function witness(spec, rows, ref, S, R, phi) {
+    if (!spec.points.witness) return null;
+    const pts = points(spec.points.witness);
+    const cols = spec._cols || null;
+    const W = evaluate(rows, pts);
+    const RW = refRows(spec.reference.witness, spec.m, cols);
+    const scaleAll = Math.max(...R.map(maxAbs), 1e-9);
+    for (let k = 0; k < rows.length; k++) {
+      const j = ref[k];
+      if (j === null || j === undefined) continue;
+      const c = spec._factors ? spec._factors[k] : scaleMatch(S[k], R[j], spec.rule.rtol, true, (spec.rule.wrap || {})[j]);
+      const a = W[k], b = RW[j].map((x) => c * x);
+      const rtol = spec.rule.rtol;
+      let ok;
+      if (phi) ok = scaleMatch(a, b, rtol, false, (spec.rule.wrap || {})[j], rtol * Math.max(Math.abs(c) * maxAbs(R[j]), 1e-9), true) !== null;
+      else ok = maxAbs(a.map((x, i) => x - b[i])) <= rtol * Math.max(maxAbs(a), maxAbs(b)) + rtol * scaleAll;
+      if (!ok) return k;
+    }
+    return null;
+  }
+
+  function checkDerived(spec, rows, S, R, cols) {
+    const rule = spec.rule, ms = S.length, m = R.length;
+    const sign = rule.factor === "sign";
+    const atol = rule.rtol * Math.max(Math.max(...R.map(maxAbs)), 1e-9);
+    const factor = (k, j) => {
+      if (j >= m) return null;
+      const c = scaleMatch(S[k], R[j], rule.rtol, sign, null, atol, true);
+      return c === null ? null : c;
+    };
+    const mk = named(spec, S, sign);
+    const ref = [], factors = [], reasons = [];
+    if (ms !== m) return { verdict: "fail", mistake: mk, reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
+    let wrong = false;
+    for (let k = 0; k < ms; k++) {
+      let j = k;
+      if (rule.order === "any") {
+        j = R.findIndex((_, jj) => !ref.includes(jj) && factor(k, jj) !== null);
+        if (j < 0) j = k;
+      }
+      const c = factor(k, j);
+      ref.push(j);
+      factors.push(c);
+      if (c === null) { wrong = true; reasons.push({ key: "row_wrong", fields: { k: k + 1 } }); }
+      else if (Math.abs(Math.abs(c) - 1) > 1e-6) {
+        wrong = true;
+        reasons.push({ key: "scaled_row", fields: { k: k + 1, c: +c.toPrecision(6) } });
+      }
+    }
+    if (wrong) {
+      const unmatched = reasons.filter((x) => x.key === "row_wrong");
+      if (sign && unmatched.length === reasons.length && spanned(spec, S, unmatched, cols)) return { verdict: "undecided", reasons };
+      return { verdict: "fail", mistake: mk || lookalike(spec, S, sign), reasons };
+    }
+    if (mk) return { verdict: "fail", mistake: mk, reasons: [] };
+    const bad = witness(Object.assign({}, spec, { _cols: cols, _factors: factors }), rows, ref, S, R, false);
+    if (bad !== null) return { verdict: "fail", reasons: [{ key: "row_only", fields: { k: bad + 1 } }] };
+    return { verdict: "pass", reasons: [] };
+  }
+
+  // ------------------------------------------------------------------------------------------ Φ_q
+  function checkJacobian(spec, matrix) {
+    const n = spec.n, roles = spec.cols, r = matrix.length, c = matrix[0].length;
+    if (![roles.length, n].includes(c)) {
+      if ([roles.length, n].includes(r)) return { verdict: "fail", reasons: [{ key: "shape", fields: { got: r + "×" + c, want: spec.m + "×" + roles.length } }] };  // transposed
+      return { verdict: "fail", reasons: [{ key: "shape", fields: { got: r + "×" + c, want: spec.m + "×" + roles.length } }] };
+    }
+    const pts = points(spec.points.samples);
+    const S = evaluate(matrix, pts);
+    let cols = c === roles.length ? roles : [...Array(n).keys()];  // evaluate.best_columns
+    const sorted = [...roles].sort((a, b) => a - b);
+    if (c === roles.length && sorted.some((x, i) => x !== roles[i])) {
+      const fit = (cc) => {
+        const R = refRows(spec.reference.samples, spec.m, cc);
+        let good = 0;
+        for (let col = 0; col < cc.length; col++) {
+          let all = true;
+          for (let k = 0; k < Math.min(S.length, R.length); k++) {
+            for (let p = col; p < S[k].length; p += cc.length) {
+              let scale = 0;
+              for (let kk = 0; kk < Math.min(S.length, R.length); kk++) scale = Math.max(scale, Math.abs(R[kk][p]));
+              if (Math.abs(S[k][p] - R[k][p]) > spec.rule.rtol * (scale + 1e-12)) { all = false; break; }
+            }
+            if (!all) break;
+          }
+          if (all) good++;
+        }
+        return good;
+      };
+      if (fit(sorted) > fit(roles)) cols = sorted;
+    }
+    const R = refRows(spec.reference.samples, spec.m, cols);
+    if (r === c && r > 1) {  // a square matrix given transposed: Python names it
+      const T = evaluate(matrix[0].map((_, j) => matrix.map((row) => row[j])), pts);
+      const match = (X) => X.length === R.length && X.every((s, k) => scaleMatch(s, R[k], spec.rule.rtol, false, null, spec.rule.rtol * Math.max(...R.map(maxAbs), 1e-9), true) !== null);
+      if (match(T) && !match(S)) return { verdict: "fail", reasons: [{ key: "shape", fields: { got: "(" + r + "×" + c + ")ᵀ", want: spec.m + "×" + c } }] };
+    }
+    return checkDerived(Object.assign({}, spec, { _free: spec.reference.free }), matrix, S, R, cols);
+  }
+
+  /* A Φ_q row that is, at every point, a combination of the reference rows (and the rows that hold anyway):
+   * an equivalent formulation Python may accept (the Jacobian of M(q)·Φ) — the page leaves it to Python. */
+  function spanned(spec, S, reasons, cols) {
+    const F = spec.reference.free && spec.reference.free.length && spec.reference.free[0].length
+      ? refRows(spec.reference.free, spec.reference.free[0].length, cols) : [];
+    const R = refRows(spec.reference.samples, spec.m, cols);
+    const w = cols.length, N = spec.points.samples.t.length;
+    const blocks = spec.row_blocks || [R.map((_, j) => j)];
+    // a combination of the rows of one constraint (the checker's jacobian_equivalents), at every point
+    const inBlock = (s, block) => {
+      const rows = block.map((j) => R[j]).concat(F);
+      for (let p = 0; p < N; p++) {
+        const basis = rows.map((row) => row.slice(p * w, p * w + w));
+        if (!inSpan(s.slice(p * w, p * w + w), basis, spec.rule.rtol)) return false;
+      }
+      return true;
+    };
+    for (const reason of reasons) {
+      const s = S[reason.fields.k - 1];
+      if (!(maxAbs(s) > 0) || !blocks.some((b) => inBlock(s, b))) return false;
+    }
+    return reasons.length > 0;
+  }
+
+  function inSpan(v, basis, rtol) {
+    const Q = [];
+    for (const b of basis) {
+      let u = b.slice();
+      for (const e of Q) { const d = dot(u, e); u = u.map((x, i) => x - d * e[i]); }
+      const nu = Math.sqrt(dot(u, u));
+      if (nu > 1e-10 * Math.max(1, Math.sqrt(dot(b, b)))) Q.push(u.map((x) => x / nu));
+    }
+    let r = v.slice();
+    for (const e of Q) { const d = dot(r, e); r = r.map((x, i) => x - d * e[i]); }
+    return Math.sqrt(dot(r, r)) <= Math.max(1e-6, rtol) * Math.max(Math.sqrt(dot(v, v)), 1e-12);
+  }
+  const dot = (a, b) => a.reduce((s, x, i) => s + x * b[i], 0);
+
+  // ------------------------------------------------------------------------------------------ numbers
+  function shapeOf(v) { return Array.isArray(v) ? [v.length].concat(v.length ? shapeOf(v[0]) : []) : []; }
+  const flat = (v) => (Array.isArray(v) ? v.flat(Infinity) : [v]);
+
+  function checkValue(spec, grammar, text) {
+    const matrix = readAnswer(text, { names: {} }, grammar);
+    for (const row of matrix) for (const e of row) if (e.num === undefined) throw new Refusal("not_finite");
+    const a = matrix.flat().map((e) => e.num);
+    const eShape = spec.shape, size = eShape.reduce((x, y) => x * y, 1);
+    const aShape = matrix.length === 1 ? [matrix[0].length] : [matrix.length, matrix[0].length];
+    const squeeze = (s) => s.filter((x) => x !== 1).join("×");
+    const r = spec.rule;
+    if (a.length !== size || (!r.sizes_only && squeeze(aShape) !== squeeze(eShape))) {
+      const transposed = aShape.length === 2 && eShape.length === 2 && aShape[0] === eShape[1] && aShape[1] === eShape[0];
+      return { verdict: "fail", mistake: transposed ? spec.diagnoses && spec.diagnoses.transposed : null,
+        reasons: [{ key: "shape", fields: { got: aShape.join("×"), want: eShape.join("×") || "1" } }] };
+    }
+    const e = flat(spec.value);
+    const per = new Set(r.periodic);
+    const close = (x, y) => {
+      const scale = maxAbs(y), tol = r.atol + r.rtol * scale;
+      return x.every((v, i) => Math.abs(per.has(i) ? wrapTo(v - y[i], 2 * Math.PI) : v - y[i]) <= tol);
+    };
+    if (close(a, e)) return { verdict: "pass", reasons: [] };
+    for (const eq of spec.equivalents) if (close(a, flat(eq.values))) return { verdict: "pass", reasons: [], why: eq.why };
+    const off = a.filter((v, i) => Math.abs(per.has(i) ? wrapTo(v - e[i], 2 * Math.PI) : v - e[i]) > r.atol + r.rtol * maxAbs(e)).length;
+    const reasons = size > 1 ? [{ key: "entries_off", fields: { n: off, total: size } }] : [];
+    for (const mk of spec.mistakes) {
+      const v = flat(mk.values);
+      if (v.length === e.length && !close(v, e) && close(a, v)) return { verdict: "fail", mistake: mk, reasons };
+    }
+    return { verdict: "fail", mistake: null, reasons };
+  }
+
+  // ------------------------------------------------------------------------------------------ Newton–Raphson
+  /* kinbook.grading.newton.check_iterates: the guess first; every step q_j → q_j+1 must be q_j + Δq with
+   * Φ_q(q_j) Δq = −Φ(q_j) (computed here from the student's own q_j); the last iterate converged, to the solution
+   * the guess leads to. */
+  function checkIterates(spec, grammar, text) {
+    const matrix = readAnswer(text, { names: {} }, grammar);
+    const a = matrix.map((row) => row.map((e) => {
+      if (e.num === undefined) throw new Refusal("not_finite");
+      return e.num;
+    }));
+    const n = spec.n, r = spec.rule;
+    const mk = (code) => spec.mistakes.find((m) => m.code === code) || null;
+    if (a.length > 200 || a.length < 2 || a[0].length !== n) {
+      return { verdict: "fail", reasons: [{ key: "shape", fields: { got: a.length + "×" + a[0].length, want: "k×" + n } }] };
+    }
+    if (!a[0].every((x, i) => Math.abs(x - spec.guess[i]) <= 1e-9 + 1e-9 * Math.abs(spec.guess[i]))) {
+      return { verdict: "fail", mistake: mk("wrong_data"), reasons: [] };
+    }
+    const compiled = spec._compiled || (spec._compiled = compileMechanism(spec, grammar));
+    const at = (q) => ({ q, qd: q, t: spec.t });
+    for (let j = 0; j + 1 < a.length; j++) {
+      const p = at(a[j]);
+      const dq = solve(compiled.J.map((row) => row.map((e) => e.f(p))), compiled.phi.map((e) => -e.f(p)));
+      const ok = dq !== null && a[j + 1].every((x, i) => Math.abs(x - (a[j][i] + dq[i])) <= r.rtol * Math.max(1, maxAbs(dq)));
+      if (!ok) return { verdict: "fail", mistake: mk("newton_step"), reasons: [{ key: "row_wrong", fields: { k: j + 2 } }] };
+    }
+    const last = a[a.length - 1];
+    const res = maxAbs(compiled.phi.map((e) => e.f(at(last))));
+    if (!(res <= r.tol)) return { verdict: "fail", mistake: mk("not_converged"), reasons: [] };
+    const d = last.map((x, i) => (spec.angles.includes(i) ? wrapTo(x - spec.solution[i], 2 * Math.PI) : x - spec.solution[i]));
+    if (maxAbs(d) > 1e-6 * Math.max(1, maxAbs(spec.solution))) return { verdict: "fail", mistake: mk("assembly_mode"), reasons: [] };
+    return { verdict: "pass", reasons: [] };
+  }
+
+  function compileMechanism(spec, grammar) {
+    const one = (text) => readAnswer(text, spec, grammar)[0][0];
+    return { phi: spec.phi.map(one), J: spec.phi_q.map((row) => row.map(one)) };
+  }
+
+  /* A x = b by Gaussian elimination with partial pivoting; null when A is singular. */
+  function solve(A, b) {
+    const n = b.length, M = A.map((row, i) => row.concat([b[i]]));
+    for (let c = 0; c < n; c++) {
+      let p = c;
+      for (let i = c + 1; i < n; i++) if (Math.abs(M[i][c]) > Math.abs(M[p][c])) p = i;
+      if (!(Math.abs(M[p][c]) > 1e-300)) return null;
+      [M[c], M[p]] = [M[p], M[c]];
+      for (let i = c + 1; i < n; i++) {
+        const f = M[i][c] / M[c][c];
+        for (let k = c; k <= n; k++) M[i][k] -= f * M[c][k];
+      }
+    }
+    const x = new Array(n).fill(0);
+    for (let i = n - 1; i >= 0; i--) {
+      let s = M[i][n];
+      for (let k = i + 1; k < n; k++) s -= M[i][k] * x[k];
+      x[i] = s / M[i][i];
+    }
+    return x.every(Number.isFinite) ? x : null;
+  }
+
+  // ------------------------------------------------------------------------------------------ entry point
+  function check(spec, grammar, text) {
+    const t0 = (typeof performance !== "undefined" ? performance : Date).now();
+    let out;
+    try {
+      if (spec.kind === "value") out = checkValue(spec, grammar, text);
+      else if (spec.kind === "rows") out = checkRows(spec, grammar, text);
+      else if (spec.kind === "iterates") out = checkIterates(spec, grammar, text);
+      else out = { verdict: "undecided", reasons: [{ key: "not_typed", fields: {} }] };
+    } catch (e) {
+      if (!(e instanceof Refusal)) throw e;
+      // beyond the page's own bounds the checker's (larger ones for answers) decide: the page does not
+      out = { verdict: e.key === "too_large" ? "undecided" : "refused", reasons: [{ key: e.key, fields: e.fields }] };
+    }
+    out.ms = (typeof performance !== "undefined" ? performance : Date).now() - t0;
+    return out;
+  }
+
+  /* The TeX of the answer as it was read (null when it cannot be read). */
+  function echo(spec, grammar, text) {
+    try {
+      const matrix = readAnswer(text, spec.kind === "rows" ? spec : { names: {} }, grammar);
+      const rows = matrix.map((row) => row.map((e) => e.tex).join(" & "));
+      return rows.length === 1 && matrix[0].length === 1 ? rows[0]
+        : "\\begin{bmatrix}" + rows.join(" \\\\ ") + "\\end{bmatrix}";
+    } catch (e) {
+      return null;
+    }
+  }
+
+  return { check, echo, Refusal, tokenize, scaleMatch };
+});
