@@ -101,10 +101,10 @@ def export(gradebook, out, fmt="csv", *, exercises=None, decimals=2, missing="ze
         inputs = book.inputs() + [("the roster", getattr(roster, "path", None))]
     refuse_overwrite([out], inputs, "export")
     with protect(*inputs):
-        return _write(out, fmt, exercises, finals, roster, headers, decimals, missing)
+        return _write(out, fmt, exercises, finals, roster, headers, decimals, missing, scale)
 
 
-def _write(out, fmt, exercises, finals, roster, headers, decimals, missing):
+def _write(out, fmt, exercises, finals, roster, headers, decimals, missing, scale=False):
     students = list(roster) if roster is not None else []
     on_roster = {s.student for s in students}
     graded = sorted({s for e in exercises for s in finals[e]} - on_roster)
