@@ -99,13 +99,14 @@ def grammar():
 
 
 def _checker_name(checker):
+    """The name of a try-it's checker (a :class:`kinbook.grading.item.Checker` of the one table, or its function)."""
     from ..grading import CHECKERS
-    from ..grading.newton import check_iterates
 
-    if checker is check_iterates:
-        return "iterates"
-    for name, f in CHECKERS.items():
-        if f is checker:
+    name = getattr(checker, "name", None)
+    if name in CHECKERS:
+        return name
+    for name, c in CHECKERS.items():
+        if c is checker or c.function is checker:
             return name
     raise ValueError(f"no instant check for the checker {checker!r}")
 
@@ -132,7 +133,7 @@ def _value_spec(name, expected, options, lookalikes=()):
     from ..grading import CHECKERS
     from ..grading.expected import Expected
 
-    defaults = {k: p.default for k, p in inspect.signature(CHECKERS[name]).parameters.items()
+    defaults = {k: p.default for k, p in inspect.signature(CHECKERS[name].function).parameters.items()
                 if p.default is not inspect.Parameter.empty}
     exp = expected if isinstance(expected, Expected) else Expected(np.asarray(expected, float))
     e = np.asarray(exp.value, float)
