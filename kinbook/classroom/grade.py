@@ -532,9 +532,16 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     run = book.begin_run(src, "bubblewrap" if isolation else "none")
     options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic), reveal_hidden=bool(reveal_hidden))
     plan = intake(book, run, src, submissions, force=force, regrade=regrade, policy=policy, pattern=id_pattern,
-                  roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times)
+                  roster=roster, max_bytes=MAX_NOTEBOOK_BYTES, progress=progress, file_times=file_times,
+                  reproduce=_options_shown(timeout, memory, generic, isolation))
     return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
                       progress=progress)
+
+
+def _options_shown(timeout, memory, generic, isolation):
+    """A run's options as ``kinbook grade`` takes them (for the command that reproduces a failure)."""
+    return (("--timeout", f"{float(timeout):g}", "--memory", f"{float(memory):g}") + (("--generic",) if generic else ())
+            + (() if isolation else ("--no-isolation",)))
 
 
 def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progress):

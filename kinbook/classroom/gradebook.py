@@ -206,6 +206,12 @@ class Gradebook:
         return self.db.execute("SELECT id, source_sha256, status FROM attempts WHERE exercise = ? AND student = ? AND "
                                "sha256 = ? ORDER BY id DESC LIMIT 1", (exercise, student, sha256)).fetchone()
 
+    def runs_graded(self, exercise, student, sha256):
+        """How many runs set out to grade this very file (its sha256) of the student: a file the grader keeps
+        failing on (``grader-error``) is tried again a bounded number of times across runs."""
+        return self.db.execute("SELECT COUNT(DISTINCT run) FROM files WHERE exercise = ? AND student = ? AND "
+                               "sha256 = ? AND outcome = 'graded'", (exercise, student, sha256)).fetchone()[0]
+
     def note_changed(self, exercise, student, sha256):
         """A file different from the graded one was seen for this student (not graded again without --force)."""
         self.db.execute("UPDATE submissions SET changed_sha256 = ? WHERE exercise = ? AND student = ?",
@@ -257,11 +263,12 @@ class Gradebook:
 
     def _select(self, exercise, student):
         """Make the attempt that counts under the policy the student's result (``submissions`` and ``parts``)."""
-        rows = self.db.execute("SELECT id FROM attempts WHERE exercise = ? AND student = ? AND status != 'superseded' "
-                               "ORDER BY id", (exercise, student)).fetchall()
+        rows = self.db.execute("SELECT id, status FROM attempts WHERE exercise = ? AND student = ? AND "
+                               "status != 'superseded' ORDER BY id", (exercise, student)).fetchall()
         if not rows:
             return
-        ids = [r[0] for r in rows]
+        # an attempt the grader could not grade (no score) never hides one it did: the graded one counts meanwhile
+        ids = [r[0] for r in rows if r[1] not in UNGRADED] or [r[0] for r in rows]
         rule = self.rule(exercise)
         chosen = ids[-1]
         if rule.policy == "best" and len(ids) > 1:

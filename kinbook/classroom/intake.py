@@ -10,13 +10,18 @@ printed say what happened to every file that is not simply graded.
 from __future__ import annotations
 
 import hashlib
+import shlex
 from dataclasses import dataclass, field
 
 from ..errors import GradingError
 from .files import collect, read_entry
 from .results import UNGRADED, Refused, SubmissionResult
 
-__all__ = ["intake", "Intake", "SourceChanged"]
+__all__ = ["intake", "Intake", "SourceChanged", "GRADER_RUNS"]
+
+#: Runs that try a file the grader failed on (``grader-error``) before it is left to the instructor, with the command
+#: that reproduces the failure (``--force`` tries it again).
+GRADER_RUNS = 3
 
 
 class SourceChanged(GradingError):
@@ -45,6 +50,7 @@ class Intake:
     off_roster: list = field(default_factory=list)
     stale: list = field(default_factory=list)
     entries: dict = field(default_factory=dict)
+    reproduce: tuple = ()
 
 
 def check_pin(book, src, regrade):
@@ -60,7 +66,7 @@ def check_pin(book, src, regrade):
 
 
 def intake(book, run, src, submissions, *, force=False, regrade=False, policy=None, pattern=None, roster=None,
-           max_bytes, progress=None, file_times=False):
+           max_bytes, progress=None, file_times=False, reproduce=()):
     """Plan a run (see the module docstring) and record every entry that is not graded by it.
 
     Parameters
@@ -79,6 +85,9 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
         ``--id-pattern``: a ready pattern's name or a regular expression.
     roster : Roster or None
         Stored in the gradebook when given; else the stored one (if any) maps the ids.
+    reproduce : tuple of str
+        The run's options (``--timeout``, ``--memory``, ``--generic`` …) for the command that reproduces a grader
+        failure.
     """
     check_pin(book, src, regrade)
     if roster is not None:
@@ -89,7 +98,7 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
         book.set_rule(src.exercise, policy=policy)
     policy = book.rule(src.exercise).policy
     book.set_pin(src)
-    plan = Intake()
+    plan = Intake(reproduce=tuple(reproduce))
     say = progress or (lambda item: None)
     entries = collect(submissions, src.exercise, max_bytes=max_bytes, pattern=pattern, roster=roster, policy=policy,
                       file_times=file_times)
@@ -155,6 +164,15 @@ def _decide(book, run, src, e, plan, force, say):
         e.replace = previous[0] if previous is not None else None
         plan.refused.append(e)
         book.record_file(run, ex, e, e.status, e.message, digest)
+    elif (previous is not None and previous[2] in UNGRADED and not force
+          and book.runs_graded(ex, e.student, digest) >= GRADER_RUNS):
+        plan.skipped += 1
+        command = " ".join(shlex.quote(str(a)) for a in (
+            "kinbook", "grade", src.path, e.path, "-o", "kinbook-reproduce", *plan.reproduce))
+        why = (f"the grader failed on this file in {GRADER_RUNS} runs (not the student's doing; no score): not tried "
+               f"again without --force — reproduce it with: {command}")
+        book.record_file(run, ex, e, "skipped", why, digest)
+        say(f"grader-error {e.path}: {why}")
     elif (previous is not None and previous[1] == src.sha256 and previous[2] not in ("superseded", *UNGRADED)
           and not force):
         plan.skipped += 1

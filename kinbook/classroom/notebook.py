@@ -34,6 +34,7 @@ from pathlib import Path
 from ..errors import GradingError
 from .parts import check_parameters
 from .results import Refused
+from .sandbox.protocol import MAX_SUBMISSION_BYTES
 
 __all__ = [
     "BEGIN_SOLUTION", "END_SOLUTION", "BEGIN_HIDDEN", "END_HIDDEN", "Source", "load_source", "checksum",
@@ -41,8 +42,8 @@ __all__ = [
     "find_parameters", "parse_submission", "MAX_NOTEBOOK_BYTES", "MAX_CELLS",
 ]
 
-#: A submission larger than this is refused unread (``too-large``).
-MAX_NOTEBOOK_BYTES = 8 * 1024 * 1024
+#: A submission larger than this is refused unread (``too-large``); the sandbox's job frame is sized from it.
+MAX_NOTEBOOK_BYTES = MAX_SUBMISSION_BYTES
 #: A submission with more cells than this is refused (``too-large``).
 MAX_CELLS = 2000
 MAX_CELL_CHARS = 1_000_000

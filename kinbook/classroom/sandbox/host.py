@@ -52,12 +52,14 @@ from . import bwrap
 from . import cgroup as cgroups
 from .protocol import (
     ISOLATED,
+    MAX_JOB_BYTES,
     MAX_RESULT_BYTES,
     RUNNING,
     FrameError,
     FrameReader,
     Layout,
     cpu_seconds,
+    job_frame,
     wall_seconds,
     write_frame,
 )
@@ -70,8 +72,9 @@ STARTUP_SECONDS = 60.0
 WORKER_STATUSES = ("ok", "timeout", "memory", "error")
 #: Statuses an execution can have: the worker's, and ``grader-error`` — the run failed before any code of the
 #: submission ran (a kernel that did not start, a sandbox that stopped), :data:`GRADER_RETRIES` times more after
-#: the first: nothing to grade, and not the student's doing.
-STATUSES = WORKER_STATUSES + ("grader-error",)
+#: the first: nothing to grade, and not the student's doing; and ``too-large`` — a job over the frame limit, which
+#: only a submission over the size cap can make (:data:`~.protocol.MAX_JOB_BYTES`): the submission's, not run.
+STATUSES = WORKER_STATUSES + ("grader-error", "too-large")
 #: Times a run that failed before any code of the submission ran is tried again, each in a new sandbox.
 GRADER_RETRIES = 2
 _MAX_ANSWERS = 100
@@ -448,15 +451,11 @@ class Sandbox:
         -------
         Execution
         """
-        import nbformat
-
         t0 = time.monotonic()
-        nb = nbformat.v4.new_notebook()
-        nb.cells = [nbformat.v4.new_code_cell(c) for c in cells]
-        files = dict(files or {})
-        header = {"timeout": float(timeout), "names": list(names), "notebook": nbformat.writes(nb),
-                  "files": [[os.path.basename(k), len(v)] for k, v in files.items()]}
-        payload = b"".join(files.values())
+        header, payload = job_frame(cells, names, timeout, files)
+        if len(payload) > MAX_JOB_BYTES - (1 << 20):  # (only a caller past the submission cap gets here)
+            return Execution("too-large", f"the notebook's code and its copy take {len(payload):,} bytes (at most "
+                                          f"{MAX_JOB_BYTES - (1 << 20):,} in a job): not run", seconds=0.0)
         limits = {"memory_mb": float(memory_mb), "cpu_s": cpu_seconds(timeout), "audit": bool(audit_hook)}
         for tries in range(1, GRADER_RETRIES + 2):
             if tries > 1:

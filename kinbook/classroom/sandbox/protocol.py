@@ -33,14 +33,20 @@ import select
 import time
 from dataclasses import asdict, dataclass
 
-__all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "RUNNING", "FrameError",
+__all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_SUBMISSION_BYTES", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "job_frame", "read_job", "RUNNING", "FrameError",
            "write_frame", "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper",
            "cpu_seconds", "wall_seconds", "THREAD_ENV"]
 
 JOB_FD = 3
 RESULT_FD = 4
-#: A job carries the notebook to run and a copy of the submission (each refused above 8 MB before).
-MAX_JOB_BYTES = 40 * 1024 * 1024
+#: The largest submission graded (a larger one is ``too-large``, refused unread: :mod:`kinbook.classroom.notebook`).
+MAX_SUBMISSION_BYTES = 8 * 1024 * 1024
+#: A job carries the code cells as UTF-8 (never more bytes than they take in the submission's JSON: a character
+#: is at least as long there, escaped or not) and a copy of the submission, after a header of a few kilobytes
+#: (:func:`job_frame`): a submission under the cap always fits, whatever its characters — a frame limit that
+#: does not follow from the cap lets a student's file make the grader fail (a notebook of 6.9 MB of DEL
+#: characters, written JSON inside JSON, once took 48.5 MB).
+MAX_JOB_BYTES = 2 * MAX_SUBMISSION_BYTES + (1 << 20)
 #: The answers (at most 2 MB each, 100 of them in principle; far less in practice) and cell errors.
 MAX_RESULT_BYTES = 16 * 1024 * 1024
 _MAGIC = b"KBF1"
@@ -106,6 +112,42 @@ class Layout:
 
 #: The layout inside bubblewrap (every directory a size-capped tmpfs of the sandbox).
 ISOLATED = Layout(home="/home/student", tmp="/tmp", work="/run/kinbook/work", isolated=True)
+
+
+def job_frame(cells, names, timeout, files=None):
+    """The job of one run as a frame's ``(header, payload)``: the code cells' sources and the files' bytes in the
+    payload (the cells as UTF-8, lone surrogates kept), their sizes and the answer names in the header.
+
+    >>> header, payload = job_frame(["x = 1", "y = '\\x7f'"], ["x"], 5.0, {"a.ipynb": b"{}"})
+    >>> read_job(header, payload)[0]
+    ['x = 1', "y = '\\x7f'"]
+    """
+    files = dict(files or {})
+    code = [str(c).encode("utf-8", "surrogatepass") for c in cells]
+    header = {"timeout": float(timeout), "names": [str(n) for n in names], "cells": [len(c) for c in code],
+              "files": [[os.path.basename(k), len(v)] for k, v in files.items()]}
+    return header, b"".join(code) + b"".join(files.values())
+
+
+def read_job(header, payload):
+    """``(cells, names, timeout, files)`` of a job frame (:func:`job_frame`); :class:`FrameError` when it does not
+    hold together."""
+    try:
+        sizes = [int(n) for n in header["cells"]] + [int(size) for _, size in header["files"]]
+        names = [str(n) for n in header["names"]]
+        timeout = float(header["timeout"])
+    except (KeyError, TypeError, ValueError):
+        raise FrameError("the job's header is malformed") from None
+    if any(n < 0 for n in sizes) or sum(sizes) != len(payload):
+        raise FrameError("the job's sizes do not add up to its payload")
+    pieces, offset = [], 0
+    for n in sizes:
+        pieces.append(payload[offset:offset + n])
+        offset += n
+    cells = [p.decode("utf-8", "surrogatepass") for p in pieces[:len(header["cells"])]]
+    files = {os.path.basename(str(name)) or "file": data
+             for (name, _), data in zip(header["files"], pieces[len(header["cells"]):])}
+    return cells, names, timeout, files
 
 
 class FrameError(ValueError):

@@ -35,7 +35,7 @@ import sys
 import time
 from pathlib import Path
 
-from .protocol import MAX_JOB_BYTES, RUNNING, FrameError, read_frame, wall_seconds, write_frame
+from .protocol import MAX_JOB_BYTES, RUNNING, FrameError, read_frame, read_job, wall_seconds, write_frame
 
 __all__ = ["main", "preload", "STARTUP_SECONDS", "MAX_ANSWER_CHARS", "SNAPSHOT_CHARS"]
 
@@ -70,12 +70,8 @@ def _kernel_spec_dir(layout, channel_fd):
 
 
 def _read_job(job_fd):
-    header, payload = read_frame(job_fd, MAX_JOB_BYTES, timeout=60)
-    files, offset = {}, 0
-    for name, size in header.pop("files"):
-        files[os.path.basename(str(name)) or "file"] = payload[offset:offset + int(size)]
-        offset += int(size)
-    return header, files
+    cells, names, timeout, files = read_job(*read_frame(job_fd, MAX_JOB_BYTES, timeout=60))
+    return {"cells": cells, "names": names, "timeout": timeout}, files
 
 
 def _vm_bytes():
@@ -121,7 +117,7 @@ def _client_class():
 
 
 def run(job, layout, channel_fd, started=None):
-    """Run the job's notebook (``job["notebook"]``: nbformat JSON, code cells only) and read its answers;
+    """Run the job's code cells (``job["cells"]``: their sources) and read its answers;
     returns the result. ``started`` is called once the kernel is up, before the first cell is sent to it."""
     import nbformat
     from jupyter_client import AsyncKernelManager
@@ -129,7 +125,7 @@ def run(job, layout, channel_fd, started=None):
     from jupyter_core.utils import run_sync
     from nbclient.exceptions import CellTimeoutError, DeadKernelError
 
-    nb = nbformat.reads(job["notebook"], as_version=4)
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(c) for c in job["cells"]])
     names = list(job["names"])
     ksm = KernelSpecManager(kernel_dirs=[str(_kernel_spec_dir(layout, channel_fd))])
     # the kernel's ZeroMQ sockets are Unix sockets in the run's own control directory, not TCP ports: ports chosen
