@@ -25,12 +25,13 @@ import os
 import stat
 import tempfile
 import unicodedata
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from .results import Refused
 
-__all__ = ["atomic_write", "PUBLIC_FILE", "PUBLIC_DIR", "Entry", "collect", "read_entry", "shown", "student_id", "MAX_ID_CHARS"]
+__all__ = ["atomic_write", "PUBLIC_FILE", "PUBLIC_DIR", "Entry", "collect", "read_entry", "shown", "student_id",
+           "id_key", "file_time", "MAX_ID_CHARS"]
 
 MAX_ID_CHARS = 64
 _ID_EXTRA = "._@+-"
@@ -116,8 +117,30 @@ def student_id(name):
 
 
 def id_key(sid):
-    """Ids with the same key are the same student for a file system or a spreadsheet (case, Unicode forms)."""
+    """Ids with the same key are the same student for a file system or a spreadsheet (case, Unicode forms):
+    NFKC, then case folding — ``"ＡＬＩＣＥ"``, ``"Alice"`` and ``"alice"`` have one key.
+
+    >>> id_key("ＡＬＩＣＥ") == id_key("alice")
+    True
+    """
     return unicodedata.normalize("NFKC", sid).casefold()
+
+
+def file_time(seconds):
+    """A file's modification time (seconds since 1970) as ISO 8601 in UTC. A time no calendar holds (past the
+    year 9999, before the year 1, not a number) is read as the latest or the earliest time there is: the
+    submission's problem — late, not a crash of the run.
+
+    >>> file_time(0)
+    '1970-01-01T00:00:00+00:00'
+    >>> file_time(10**12)
+    '9999-12-31T23:59:59+00:00'
+    """
+    try:
+        return _dt.datetime.fromtimestamp(int(seconds), _dt.timezone.utc).isoformat()
+    except (ValueError, OverflowError, OSError):
+        edge = _dt.datetime.max if not seconds < 0 else _dt.datetime.min
+        return edge.replace(microsecond=0, tzinfo=_dt.timezone.utc).isoformat()
 
 
 @dataclass
@@ -172,6 +195,7 @@ class Entry:
     mtime: float = 0.0
     sha256: str = ""
     replace: int | None = None
+    signals: list = field(default_factory=list)
     _raw: str = ""
     _named: bool | None = None
     _order: tuple = ()
@@ -254,12 +278,14 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
     name = read_name(parts, exercise, os.path.basename(os.path.realpath(root)), rx,
                      roster.knows if roster is not None else None)
     e._named, e.attempt, e.late = name.exercise_named, name.attempt, name.late
-    if name.time is not None:
-        e.submitted, e.submitted_from = name.time.isoformat(), "name"
+    if name.time is not None:  # the LMS's own field (a pattern's `time` group), never a date the student wrote
+        e.submitted, e.submitted_from = name.time.isoformat(), "lms"
     elif st is not None and file_times:
-        e.submitted = _dt.datetime.fromtimestamp(int(st.st_mtime), _dt.timezone.utc).isoformat()
-        e.submitted_from = "file"
-    e._order = (name.attempt, (name.time or _dt.datetime.min).isoformat(), e.mtime, e.path)
+        e.submitted, e.submitted_from = file_time(st.st_mtime), "file"
+    e._order = name.order + (e.mtime, e.path)
+    if name.names is not None:
+        e.signals.append(("names-another", f"the file's name {shown(parts[-1])!r} names {shown(name.names)!r}, "
+                                           f"not the student of its folder"))
     if name.raw is None:
         # a link, a device or a hard link (the instructor's source unpacked into collected/) says so, named or not
         e.status, e.message = problem if problem is not None else ("ignored", f"no student: the path {name.why}")
@@ -282,35 +308,55 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
 
 
 def _attempts(entries, policy):
-    """Group the entries of one student: spellings that only meet once folded are a clash (``duplicate-id``);
-    several files of one id are attempts, chosen by ``policy``."""
+    """Group the entries of one student (ids compared by :func:`id_key`), then choose among their attempts by
+    ``policy``. Spellings that only meet once folded: the real student's (on the roster; else the one spelling that
+    is its own NFKC form) keeps their files, and a look-alike (``ａｌｉｃｅ`` beside ``alice``) is a signal and a
+    ``duplicate-id`` of its own — never a clash that zeroes the real one. Only where no spelling can be told real
+    (``Ana`` and ``ana``, no roster) are all of them ``duplicate-id``."""
     by_key = {}
     for e in entries:
         if e.student and e.status not in ("ignored",):
             by_key.setdefault(id_key(e.student), []).append(e)
     for same in by_key.values():
-        if len(same) < 2:
-            continue
-        if len({e._raw for e in same}) > 1 and not all(e.on_roster for e in same):
+        spellings = {e.student for e in same}
+        if len(spellings) > 1:
+            real = {e.student for e in same if e.on_roster} or {
+                sid for sid in spellings if unicodedata.normalize("NFKC", sid) == sid}
+            if len(real) != 1:
+                for e in same:
+                    e.status, e.message = "duplicate-id", (
+                        f"the id {e.student!r} is spelled differently by another submission (equal once case and "
+                        "Unicode forms are folded): none of them is graded; rename the folders or give a roster")
+                continue
+            (real,) = real
             for e in same:
-                others = ", ".join(o.path for o in same if o is not e)[:300]
-                e.status, e.message = "duplicate-id", (f"more than one submission for student {e.student!r} under "
-                                                       f"different spellings (also {others}); none of them is graded")
-            continue
-        good = sorted((e for e in same if e.status is None), key=lambda e: e._order)
-        if good:
-            for e in same:
-                if e.status is not None:
-                    e.result = False
-                    e.message += f" (another file of {e.student} is graded)"
-        if policy == "latest" and len(good) > 1:
-            last = good[-1]
-            for e in good[:-1]:
-                e.status, e.result = "superseded", False
-                e.message = f"an earlier attempt of {e.student} than {last.path} (policy: latest)"
-        elif not good:
-            for e in same[:-1]:
+                if e.student != real:
+                    e.status, e.message = "duplicate-id", (
+                        f"the id {e.student!r} looks like the id of another student (equal once case and Unicode "
+                        "forms are folded): not graded")
+                    e.signals.append(("look-alike", f"the id {e.student!r} looks like {real!r}"))
+            same = [e for e in same if e.student == real]
+        _choose(same, policy)
+
+
+def _choose(same, policy):
+    """Several files of one student: attempts, the policy says which are graded."""
+    if len(same) < 2:
+        return
+    good = sorted((e for e in same if e.status is None), key=lambda e: e._order)
+    if good:
+        for e in same:
+            if e.status is not None:
                 e.result = False
+                e.message += f" (another file of {e.student} is graded)"
+    if policy == "latest" and len(good) > 1:
+        last = good[-1]
+        for e in good[:-1]:
+            e.status, e.result = "superseded", False
+            e.message = f"an earlier attempt of {e.student} than {last.path} (policy: latest)"
+    elif not good:
+        for e in same[:-1]:
+            e.result = False
 
 
 def _problem(name, st, named_by_instructor=False):

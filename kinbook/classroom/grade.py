@@ -559,6 +559,9 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
             if res.status == "wrong-release":
                 progress(f"copying signal: {res.student} submitted a notebook that was not released for them "
                          f"({res.message})")
+            for kind, detail in res.signals:
+                if kind in ("look-alike", "names-another"):
+                    progress(f"signal: {res.student}: {detail}")
         if src.changed_on_disk():
             raise GradingError(f"the source notebook {str(src.path)!r} changed during grading; the run was stopped "
                                "(every result recorded so far is kept). Grade again once it is final.")

@@ -197,4 +197,5 @@ def annotate(result, plan, src):
     if e is None:
         return None
     result.submitted, result.submitted_from, result.late = e.submitted, e.submitted_from, e.late
+    result.signals = list(result.signals) + [s for s in e.signals if s not in result.signals]
     return e.replace

@@ -116,10 +116,13 @@ class SubmissionResult:
         cpu)"`` (a control group held all the sandbox's processes), ``"bubblewrap; rlimits, no fork"``
         (per-process limits, the kernel unable to fork); ``""`` when nothing was run.
     submitted, submitted_from, late :
-        When it was handed in (ISO 8601), read from ``"name"`` or ``"file"``, and whether the LMS marked it late.
+        When it was handed in (ISO 8601), read from the LMS (``"lms"``: a pattern's ``time`` group) or the file's
+        time (``"file"``), never from a date in a file's name; and whether the LMS marked it late.
     signals : list of (kind, detail)
-        Copying signals for the instructor (never told to the student): ``("released-for", "<other id>")`` for a
-        notebook released for another student.
+        Signals for the instructor (never told to the student): ``("released-for", "<other id>")`` for a
+        notebook released for another student, ``("names-another", …)`` for a file whose own name names another
+        student than its folder's, ``("look-alike", …)`` for an id equal to another student's once case and
+        Unicode forms are folded.
     source_sha256 : str
         The source notebook that graded it.
     attempt : int or None

@@ -11,6 +11,10 @@ must get.
 
 import copy
 import json
+import os
+import shutil
+import tempfile
+from pathlib import Path
 
 import nbformat
 import pytest
@@ -26,7 +30,7 @@ from kinbook.classroom.notebook import (
 from kinbook.classroom.sandbox.protocol import MAX_JOB_BYTES, job_frame, read_job
 
 from .conftest import BWRAP, ENOUGH, SOURCE
-from .make_submissions import RIGHT_ANGLE, RIGHT_PHI
+from .make_submissions import RIGHT_ANGLE, RIGHT_PHI, WRONG_ANGLE, WRONG_PHI
 
 FULL = 6.0
 
@@ -94,3 +98,98 @@ def test_a_notebook_of_del_characters_under_the_cap_is_graded(tmp_path):
     path = put(tmp_path / "collected" / "mallory" / "tiny.ipynb", data)
     (r,) = grade(SOURCE, [path.parent.parent], tmp_path / "graded", timeout=ENOUGH, memory=400, isolation=BWRAP)
     assert (r.student, r.status, r.score) == ("mallory", "ok", FULL)
+
+
+# ================================================================ 2. who and when come from the LMS
+@pytest.mark.skipif(not BWRAP, reason="needs bubblewrap")
+def test_a_file_naming_a_classmate_is_its_folders_students_and_a_look_alike_zeroes_nobody(tmp_path):
+    """mallory's folder holds ``tiny-alice-9.ipynb`` (wrong answers): mallory's attempt, with a signal — alice's own
+    correct file still counts (before: alice's latest attempt, 0/6). A folder ``ａｌｉｃｅ`` (full-width) beside
+    ``alice``: a look-alike, its own duplicate-id with a signal — alice 6/6 (before: both duplicate-id, alice 0)."""
+    c = tmp_path / "collected"
+    put(c / "alice" / "tiny.ipynb", notebook())
+    put(c / "mallory" / "tiny-alice-9.ipynb", notebook(WRONG_PHI, WRONG_ANGLE))
+    put(c / "ａｌｉｃｅ" / "tiny.ipynb", notebook(WRONG_PHI, WRONG_ANGLE))
+    said = []
+    results = grade(SOURCE, [c], tmp_path / "graded", timeout=ENOUGH, memory=400, isolation=BWRAP,
+                    progress=said.append)
+    got = {r.student: (r.status, r.score) for r in results}
+    assert got == {"alice": ("ok", FULL), "mallory": ("ok", 0.0), "ａｌｉｃｅ": ("duplicate-id", 0.0)}
+    by = {r.student: r for r in results}
+    assert by["mallory"].signals == [("names-another", "the file's name 'tiny-alice-9.ipynb' names 'alice', not the "
+                                                       "student of its folder")]
+    assert by["ａｌｉｃｅ"].signals == [("look-alike", "the id 'ａｌｉｃｅ' looks like 'alice'")]
+    assert "alice" not in by["ａｌｉｃｅ"].message.replace("ａｌｉｃｅ", "")  # nothing of a classmate on the page
+    assert sum(isinstance(s, str) and s.startswith("signal: ") for s in said) == 2
+    from kinbook.classroom.gradebook import Gradebook
+    from kinbook.classroom.report.tables import copying
+
+    with Gradebook(tmp_path / "graded") as book:
+        rows = copying(book, "tiny")
+    assert {r["students"] for r in rows if r["kind"] == "an id that is not the file's student's"} == {
+        "mallory", "ａｌｉｃｅ"}
+
+
+def _stamped(tmp_path, name, mtime):
+    path = put(tmp_path / name, b"{}")
+    os.utime(path, (mtime, mtime))
+    return path
+
+
+@pytest.mark.parametrize("layout, pattern", [
+    ("ana/tiny_2026-02-01.ipynb", None),
+    ("tiny-ana-2026-02-01T0000.ipynb", None),
+    ("Ana García_123456_assignsubmission_file_/tiny_2026-02-01.ipynb", "moodle"),
+    ("garciaana_123456_789_tiny_2026-02-01.ipynb", "canvas"),
+])
+def test_the_time_is_the_lms_or_the_files_never_a_date_the_student_wrote(tmp_path, layout, pattern):
+    """An upload named ``…_2026-02-01.ipynb`` handed in on 2026-02-06: 2026-02-06 with --file-times (late), nothing
+    without (before: 2026-02-01, on time, in Moodle's layout and the default one)."""
+    from kinbook.classroom.files import collect
+
+    handed_in = 1_770_336_000  # 2026-02-06T00:00:00Z
+    _stamped(tmp_path / "c", layout, handed_in)
+    (e,) = collect([tmp_path / "c"], "tiny", max_bytes=1000, pattern=pattern, file_times=True)
+    assert (e.submitted, e.submitted_from) == ("2026-02-06T00:00:00+00:00", "file")
+    (e,) = collect([tmp_path / "c"], "tiny", max_bytes=1000, pattern=pattern)
+    assert e.submitted == ""
+
+
+def test_a_time_the_lms_writes_in_its_own_field_is_read():
+    from kinbook.classroom.naming import compile_pattern, read_name
+
+    name = read_name(("HW_ana_attempt_2026-02-06-00-00-00_tiny_2026-02-01.ipynb",), "tiny", "c",
+                     compile_pattern("blackboard"))
+    assert (name.raw, name.time.isoformat()) == ("ana", "2026-02-06T00:00:00")
+
+
+def test_canvas_orders_a_students_files_by_its_own_submission_numbers(tmp_path):
+    """Canvas numbers the files it keeps: the later upload counts, whatever suffix the student gave its name."""
+    from kinbook.classroom.files import collect
+
+    c = tmp_path / "c"
+    put(c / "garciaana_123456_900_tiny-99.ipynb", b"{}")    # the earlier upload, named as if a 99th attempt
+    put(c / "garciaana_123456_901_tiny.ipynb", b"{}")
+    found = {e.path.rsplit("/", 1)[1]: e.status for e in collect([c], "tiny", max_bytes=1000, pattern="canvas")}
+    assert found == {"garciaana_123456_900_tiny-99.ipynb": "superseded", "garciaana_123456_901_tiny.ipynb": None}
+
+
+@pytest.mark.skipif(not os.path.isdir("/dev/shm"), reason="needs a tmpfs (ext4 holds no time past the year 2446)")
+def test_a_file_time_past_the_year_9999_is_that_submissions_problem(tmp_path):
+    """One file dated in the year 33658: that file reads as handed in at the end of time (late), and the run grades
+    everyone (before: ``internal error: ValueError`` and nobody graded)."""
+    from kinbook.classroom.files import collect
+
+    d = tempfile.mkdtemp(dir="/dev/shm")
+    try:
+        far = _stamped(Path(d), "eve/tiny.ipynb", 10**12)
+        _stamped(Path(d), "ana/tiny.ipynb", 1_770_336_000)
+        assert os.stat(far).st_mtime == 10**12
+        found = {e.student: e.submitted for e in collect([d], "tiny", max_bytes=1000, file_times=True)}
+        assert found == {"eve": "9999-12-31T23:59:59+00:00", "ana": "2026-02-06T00:00:00+00:00"}
+        with pytest.warns(RuntimeWarning):  # (corrupt notebooks: nothing runs)
+            results = grade(SOURCE, [d], tmp_path / "graded", isolation=False, file_times=True)
+        assert sorted((r.student, r.status) for r in results) == [("ana", "corrupt-notebook"),
+                                                                  ("eve", "corrupt-notebook")]
+    finally:
+        shutil.rmtree(d)
