@@ -126,27 +126,34 @@ def _release_kind(data):
     return "generic" if meta["student"] is None else "student"
 
 
-def _contents(entries):
-    """The bytes of each entry that can still be read (the others are refused when their turn comes)."""
+def _release_kinds(entries):
+    """{student: the kinds of release of their files that can still be read} (the others are refused when their turn
+    comes)."""
+    kinds = {}
     for entry in entries:
         data, refused = _read_again(entry)
         if refused is None:
-            yield data
+            kinds.setdefault(entry.student, set()).add(_release_kind(data))
+    return kinds
 
 
 def _same_release_as_graded(kinds, per_student, exercise):
-    """Stop before any grading when most submissions are the other kind of release than the one graded: the
+    """Stop before any grading when most *students* handed in the other kind of release than the one graded: the
     generic release graded per student (every student would be refused), or per-student variants graded with
-    ``--generic``. That is the instructor's mistake, not the students'."""
-    known = [k for k in kinds if k is not None]
-    wrong = sum(1 for k in known if k == ("generic" if per_student else "student"))
-    if not known or wrong * 2 <= len(known):
+    ``--generic``. That is the instructor's mistake, not the students'. Each student is one vote, whatever number
+    of files they handed in: one student's three copies of the generic release are that student's problem
+    (``wrong-release``), never a stop of the class."""
+    wanted = "student" if per_student else "generic"
+    votes = [k - {None} for k in kinds.values() if k - {None}]
+    known = len(votes)
+    wrong = sum(1 for k in votes if wanted not in k)
+    if not known or wrong * 2 <= known:
         return
     if per_student:
-        raise GradingError(f"{wrong} of {len(known)} submissions of {exercise} are its generic release (made by "
-                           "`kinbook release`), not per-student variants: grade them with --generic. Nothing was "
-                           "graded.")
-    raise GradingError(f"{wrong} of {len(known)} submissions of {exercise} are per-student variants (made by "
+        raise GradingError(f"{wrong} of {known} students handed in {exercise}'s generic release (made by "
+                           "`kinbook release`), not their per-student variants: grade them with --generic. Nothing "
+                           "was graded.")
+    raise GradingError(f"{wrong} of {known} students handed in per-student variants of {exercise} (made by "
                        "`kinbook variant`): grade them without --generic. Nothing was graded.")
 
 
@@ -247,7 +254,8 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         cells, meta = parse_submission(data, metadata=True)
     except Refused as exc:
         return done(exc.status, exc.message, _all_parts(parts, exc.status, exc.message))
-    other, named = _released_for(meta, cells, student, values is not None)
+    other, named = _released_for(meta, cells, student, values is not None, generic=generic and values is None
+                                 and find_parameters(source.nb) is not None)
     if other:
         res = done("wrong-release", other, _all_parts(parts, "wrong-release", other))
         if named is not None:  # a copying signal, for the instructor's report
@@ -406,7 +414,7 @@ def _hidden_verdict(result):
 _RELEASED_FOR = re.compile(r"#\s*parameters of student (['\"])(.{1,200}?)\1\s*$", re.MULTILINE)
 
 
-def _released_for(meta, cells, student, per_student):
+def _released_for(meta, cells, student, per_student, generic=False):
     """``(why, other student)`` when the notebook is not this student's release, else ``(None, None)``: the
     notebook released for another student (its metadata or its parameters cell name them: a copying signal for
     the instructor, not tampering), or the generic release where each student got their own (no other student)."""
@@ -424,6 +432,9 @@ def _released_for(meta, cells, student, per_student):
         return f"this notebook was released for {clean(named, 80)}, not for {student}", named
     if per_student and "student" in meta and meta["student"] is None:
         return f"this is the exercise's generic release, not the notebook released for {student}", None
+    if generic and named is not None:  # the student's own variant, graded as the generic release: not run,
+        return (f"this is the notebook released for {student} (a per-student variant), and the exercise was graded "
+                "as its generic release (--generic): grade it without --generic"), None  # never called tampered
     return None, None
 
 
@@ -569,8 +580,7 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
     # an instructor's mistake (the generic release graded per student, or variants with --generic) stops the run
     # here, before any grading
     if find_parameters(src.nb) is not None:
-        _same_release_as_graded([_release_kind(d) for d in _contents(plan.todo)],
-                                not generic, src.exercise)
+        _same_release_as_graded(_release_kinds(plan.todo), not generic, src.exercise)
     for entry in plan.refused:
         record(_refused(src, entry, entry.status, entry.message))
     todo = plan.todo

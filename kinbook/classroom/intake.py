@@ -22,6 +22,9 @@ __all__ = ["intake", "Intake", "SourceChanged", "GRADER_RUNS"]
 #: Runs that try a file the grader failed on (``grader-error``) before it is left to the instructor, with the command
 #: that reproduces the failure (``--force`` tries it again).
 GRADER_RUNS = 3
+#: Verdicts reached without running anything, which depend on how the run is graded (``--generic``): reached again
+#: by every run (it costs no sandbox), never "graded before" — a run with the wrong option leaves nothing behind.
+UNRUN = ("tampered", "wrong-release")
 
 
 class SourceChanged(GradingError):
@@ -173,7 +176,7 @@ def _decide(book, run, src, e, plan, force, say):
                f"again without --force — reproduce it with: {command}")
         book.record_file(run, ex, e, "skipped", why, digest)
         say(f"grader-error {e.path}: {why}")
-    elif (previous is not None and previous[1] == src.sha256 and previous[2] not in ("superseded", *UNGRADED)
+    elif (previous is not None and previous[1] == src.sha256 and previous[2] not in ("superseded", *UNGRADED, *UNRUN)
           and not force):
         plan.skipped += 1
         book.record_file(run, ex, e, "skipped", "graded before (same file, same source)", digest)

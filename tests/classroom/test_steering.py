@@ -193,3 +193,57 @@ def test_a_file_time_past_the_year_9999_is_that_submissions_problem(tmp_path):
                                                                   ("eve", "corrupt-notebook")]
     finally:
         shutil.rmtree(d)
+
+
+# ================================================================ 3. one student never stops a class
+def _ex11():
+    return os.path.join(os.path.dirname(SOURCE), "..", "..", "..", "exercises",
+                        "ex11-rotations-euler-parameters.ipynb")
+
+
+@pytest.mark.skipif(not BWRAP, reason="needs bubblewrap")
+def test_one_students_copies_of_the_generic_release_never_stop_the_class(tmp_path):
+    """alice and bob hand in their variants (correct), mallory three copies of the generic release (policy best):
+    alice and bob 10/10, mallory's three files wrong-release (before: rc 2, "Nothing was graded"); and --generic, which
+    would wrong the class, is refused with the right advice (before: advised, and it made alice and bob tampered)."""
+    from kinbook.classroom import student_parameters
+    from kinbook.classroom.release import write_notebook
+    from kinbook.errors import GradingError
+
+    src = _ex11()
+    source = load_source(src)
+    subs = tmp_path / "subs"
+    for student in ("alice", "bob"):
+        write_notebook(student_notebook(source, student_parameters(source, student), student, keep_solutions=True),
+                       subs / student / f"{source.exercise}.ipynb")
+    for copy_ in ("", " (1)", " (2)"):
+        write_notebook(student_notebook(source, keep_solutions=True), subs / "mallory" / f"{source.exercise}{copy_}.ipynb")
+    out = tmp_path / "graded"
+    results = grade(src, [subs], out, timeout=ENOUGH, memory=600, jobs=2, isolation=BWRAP, policy="best")
+    got = sorted((r.student, r.status, r.score) for r in results)
+    assert got == [("alice", "ok", 10.0), ("bob", "ok", 10.0)] + [("mallory", "wrong-release", 0.0)] * 3
+    with pytest.raises(GradingError, match=r"2 of 3 students handed in per-student variants .* without --generic"):
+        grade(src, [subs], out, timeout=ENOUGH, memory=600, isolation=BWRAP, generic=True, force=True)
+
+
+@pytest.mark.skipif(not BWRAP, reason="needs bubblewrap")
+def test_grading_with_the_wrong_release_option_never_calls_an_honest_student_tampered(tmp_path):
+    """Graded with --generic, alice's own variant is not run and says why (wrong-release, never tampered); the next run
+    without --generic grades her again — not "graded before" — and she gets 10/10."""
+    from kinbook.classroom import student_parameters
+    from kinbook.classroom.release import write_notebook
+
+    src = _ex11()
+    source = load_source(src)
+    subs = tmp_path / "subs"
+    write_notebook(student_notebook(source, student_parameters(source, "alice"), "alice", keep_solutions=True),
+                   subs / "alice" / f"{source.exercise}.ipynb")
+    write_notebook(student_notebook(source), subs / "carol" / f"{source.exercise}.ipynb")
+    out = tmp_path / "graded"
+    first = {r.student: r for r in grade(src, [subs], out, timeout=ENOUGH, memory=600, isolation=BWRAP,
+                                         generic=True)}
+    assert first["alice"].status == "wrong-release" and "grade it without --generic" in first["alice"].message
+    assert (first["carol"].status, first["carol"].score) == ("missing-answer", 0.0)  # the generic release, blank
+    again = {r.student: (r.status, r.score) for r in grade(src, [subs], out, timeout=ENOUGH, memory=600,
+                                                           isolation=BWRAP)}
+    assert again == {"alice": ("ok", 10.0)}  # carol's: graded before
