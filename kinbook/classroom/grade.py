@@ -411,7 +411,7 @@ def _hidden_verdict(result):
     return out + (" — " + " | ".join(hints) if hints else "")
 
 
-_RELEASED_FOR = re.compile(r"#\s*parameters of student (['\"])(.{1,200}?)\1\s*$", re.MULTILINE)
+_RELEASED_FOR = re.compile(r"#[^\S\n]*parameters of student (['\"])(.{1,200}?)\1[^\S\n]*$", re.MULTILINE)
 
 
 def _released_for(meta, cells, student, per_student, generic=False):

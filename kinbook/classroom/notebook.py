@@ -197,7 +197,7 @@ def find_parameters(nb):
     return found
 
 
-_ASSIGNS_PARAMETERS = re.compile(r"(?m)^\s*[A-Za-z_]\w*\s*=\s*(?:\w+\.)?parameters\s*\(")
+_ASSIGNS_PARAMETERS = re.compile(r"(?m)^[^\S\n]*[A-Za-z_]\w*[^\S\n]*=[^\S\n]*(?:\w+\.)?parameters[^\S\n]*\(")
 
 
 def parameters_code(name, values, student=None):

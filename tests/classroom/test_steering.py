@@ -247,3 +247,95 @@ def test_grading_with_the_wrong_release_option_never_calls_an_honest_student_tam
     again = {r.student: (r.status, r.score) for r in grade(src, [subs], out, timeout=ENOUGH, memory=600,
                                                            isolation=BWRAP)}
     assert again == {"alice": ("ok", 10.0)}  # carol's: graded before
+
+
+# ================================================================ 4. the grader's own reading is bounded
+def _reading(data):
+    """Everything the grading process does with a submission's text outside the sandbox: parse it, look for whom it
+    was released for, follow reference use, find where each answer was assigned and name the cells."""
+    import importlib
+
+    from kinbook.classroom.answers import describe
+    from kinbook.classroom.reference_use import reference_use
+    from kinbook.classroom.results import PartGrade
+    from kinbook.classroom.variant import references
+
+    g = importlib.import_module("kinbook.classroom.grade")
+    src = load_source(SOURCE)
+    parts = references(src)
+    cells, meta = parse_submission(data, metadata=True)
+    g._released_for(meta, cells, "ana", False)
+    code = [c["source"] for c in cells if c["cell_type"] == "code"]
+    reference_use(code, [p.answer for p in parts], calls=g._reference_calls(src), locked=[],
+                  numbers=list(range(1, len(code) + 1)))
+    describe([PartGrade(p.name, 0.0, p.points, "missing-answer", "") for p in parts], parts, {}, cells)
+    g._cell_name(cells, len(code))
+
+
+def _cpu(f, *args):
+    import time
+
+    best = float("inf")
+    for _ in range(2):
+        t0 = time.process_time()
+        f(*args)
+        best = min(best, time.process_time() - t0)
+    return best
+
+
+#: The analyses' cap (a notebook's code beyond it is not parsed) and one cell's (beyond the cap: read by patterns).
+AT_CAP = 299_000
+WORST = {  # each the worst known input of a reader of student text, at a cap
+    "paren-newlines": "(" + "\n" * AT_CAP,                  # ^\s* (IPython escapes, assignments): 46 s at 60,000
+    "paren-newlines-1M": "(" + "\n" * (MAX_CELL_CHARS - 10),  # the same beyond the parsing cap (patterns only)
+    "spaces": " " * AT_CAP,
+    "equals-spaces": "=" + " " * AT_CAP,
+    "questions": "?" * AT_CAP,
+    "item-brackets": "Phi_OA[" + "[" * AT_CAP,
+    "nested": "(" * AT_CAP,
+    "chain": "".join(f"a{i} = a{i - 1}\n" for i in range(1, 40_000))[:AT_CAP],
+    "rows": "Phi_OA = [" + "1," * (AT_CAP // 2 - 10) + "]",
+    "magics": ("%time x = 1\n" * (AT_CAP // 12)),
+    "released-for": ("# parameters of student '" + "a' " * 60) * (AT_CAP // 200),
+}
+
+
+@pytest.fixture(scope="module")
+def plain_reading():
+    return _cpu(_reading, notebook(extra=[("x = 1\n" * (AT_CAP // 6))]))
+
+
+@pytest.mark.parametrize("name", sorted(WORST))
+def test_the_graders_reading_of_the_worst_text_costs_what_a_plain_notebook_does(name, plain_reading):
+    """The grading process's own reading of each worst input costs at most 3 × a plain notebook of the same size's
+    (a ratio, never a budget in seconds: the same on any machine). Before, ``(`` plus 60,000 newlines cost 28 s of
+    CPU here against 0.6 s (x 50), and about 19 minutes at the 300,000-character cap."""
+    data = notebook(extra=[WORST[name]])
+    assert len(data) <= MAX_NOTEBOOK_BYTES
+    assert _cpu(_reading, data) <= 3 * plain_reading
+
+
+def test_decoding_an_answer_reads_a_long_number_only_once(monkeypatch):
+    """A float answer of 2,000,000 digits that does not match (``1…1x``) is refused by its length, before any pattern
+    reads it (before: the pattern ran first and backtracked quadratically, ~16 s at 20,000 digits). Counted: the
+    characters the decoder's patterns are given."""
+    import re
+
+    import kinbook.classroom.serialize as serialize
+    from kinbook.classroom.serialize import decode_answers
+
+    read = []
+
+    class Counting:
+        def __getattr__(self, name):
+            return getattr(re, name)
+
+        @staticmethod
+        def fullmatch(pattern, text, *args):
+            read.append(len(text))
+            return re.fullmatch(pattern, text, *args)
+
+    monkeypatch.setattr(serialize, "re", Counting())
+    evil = {"x": {"kind": "sympy", "shape": [1, 1], "data": [["Float", "1" * 2_000_000 + "x"]]}}
+    assert decode_answers(evil, ["x"])[1] == {"x": "bad float"}
+    assert sum(read) <= 40
