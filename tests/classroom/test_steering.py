@@ -339,3 +339,45 @@ def test_decoding_an_answer_reads_a_long_number_only_once(monkeypatch):
     evil = {"x": {"kind": "sympy", "shape": [1, 1], "data": [["Float", "1" * 2_000_000 + "x"]]}}
     assert decode_answers(evil, ["x"])[1] == {"x": "bad float"}
     assert sum(read) <= 40
+
+
+# ================================================================ 5. answers read before a failure are kept
+FILL = """for d in ('/tmp', '/home/student', '.'):
+    try:
+        with open(d + '/fill', 'wb') as f:
+            while True:
+                f.write(b'x' * 2**20)
+    except OSError as e:
+        print(d, e)"""
+
+
+@pytest.mark.skipif(not BWRAP, reason="needs bubblewrap")
+def test_a_notebook_that_fills_its_directories_keeps_the_answers_read_before(tmp_path):
+    """Right answers, then /tmp and the home directory filled to their caps, then memory: memory, 6/6 (the answers
+    read before the failing cell are graded; the issue saw "memory 0/11")."""
+    path = put(tmp_path / "collected" / "ana" / "tiny.ipynb",
+               notebook(extra=[FILL, "hog = []\nwhile True:\n    hog.append(bytearray(2**20))"]))
+    (r,) = grade(SOURCE, [path.parent.parent], tmp_path / "graded", timeout=ENOUGH, memory=300, isolation=BWRAP)
+    assert (r.status, r.score) == ("memory", FULL)
+
+
+class _Unhooked(__import__("kinbook.classroom.sandbox", fromlist=["Sandbox"]).Sandbox):
+    """A sandbox running notebooks without the audit hook: what a student who switched it off can do."""
+
+    def run(self, cells, names, **kw):
+        return super().run(cells, names, **{**kw, "audit_hook": False})
+
+
+@pytest.mark.skipif(not BWRAP, reason="needs bubblewrap")
+def test_answers_read_before_the_worker_is_killed_are_graded(tmp_path, monkeypatch):
+    """With the audit hook off, a notebook kills every process of the sandbox it may signal (its worker included)
+    after its answers were read: the worker never writes a result, and the answers it sent after each cell are
+    graded — error, 6/6 (before: error, 0/6: nothing was kept when the worker died)."""
+    import kinbook.classroom.sandbox as sandbox
+
+    monkeypatch.setattr(sandbox, "Sandbox", _Unhooked)
+    path = put(tmp_path / "collected" / "ana" / "tiny.ipynb",
+               notebook(extra=["import os, signal\nos.kill(-1, signal.SIGKILL)"]))
+    (r,) = grade(SOURCE, [path.parent.parent], tmp_path / "graded", timeout=ENOUGH, memory=400, isolation=BWRAP)
+    assert (r.status, r.score) == ("error", FULL), r.message
+    assert "the answers read after code cell" in r.message

@@ -51,6 +51,7 @@ from ...errors import GradingError
 from . import bwrap
 from . import cgroup as cgroups
 from .protocol import (
+    ANSWERS,
     ISOLATED,
     MAX_JOB_BYTES,
     MAX_RESULT_BYTES,
@@ -505,17 +506,17 @@ class Sandbox:
         try:
             ended, early = self._wait(reading, timeout, memory)
         except FrameError as exc:
-            return (Execution if reading.started else _grader)(
-                "error", f"the sandbox returned an unreadable result: {exc}")
+            return _kept((Execution if reading.started else _grader)(
+                "error", f"the sandbox returned an unreadable result: {exc}"), reading)
         if early is not None:
-            return early
+            return _kept(early, reading)
         frame = reading.reader.frame
         if not reading.started:  # whatever the worker said: nothing of the submission ran
             said = _validated(frame[0]).message if frame is not None else f"it ended: {ended}"
             return _grader(said or "the kernel did not start")
-        if frame is None:
-            return self._out_of_memory(memory) or Execution(
-                "error", f"the grading worker stopped without a result ({ended})")
+        if frame is None:  # the worker stopped (killed at the memory limit, the sandbox's directories full …)
+            return _kept(self._out_of_memory(memory) or Execution(
+                "error", f"the grading worker stopped without a result ({ended})"), reading)
         ex = _validated(frame[0])
         oom = self._out_of_memory(memory, reached=ex.status == "timeout")
         if oom is not None and ex.status in ("ok", "error", "timeout"):
@@ -597,6 +598,16 @@ class Sandbox:
             self.close()
 
 
+def _kept(ex, reading):
+    """``ex`` of a run that ended without the worker's result, with the answers the worker sent before it stopped:
+    answers read before a failure are graded, whatever the failure."""
+    if not ex.before_code and ex.answers is None:
+        ex.answers = reading.kept()
+        if ex.answers is not None and reading.answers[1]:
+            ex.message += f" (the answers read after code cell {reading.answers[1]} are graded)"
+    return ex
+
+
 def _grader(*args):
     """An Execution that failed before any code of the submission ran (``message``, or ``status, message``)."""
     status, message = args if len(args) == 2 else ("error", args[0])
@@ -604,13 +615,39 @@ def _grader(*args):
 
 
 class _ResultReader:
-    """The worker's frames on the result pipe: its ``running`` frame (:attr:`started`), then its result
-    (``reader.frame``)."""
+    """The worker's frames on the result pipe: its ``running`` frame (:attr:`started`), the answers read after each
+    cell that changed them (the last kept as bytes, unread: :meth:`kept`), then its result (``reader.frame``)."""
 
     def __init__(self, fd):
         self.fd = fd
         self.reader = FrameReader(MAX_RESULT_BYTES)
         self.started = False
+        self.answers = None  # (payload, cell) of the last answers frame
+
+    def kept(self):
+        """The answers of the last ``answers`` frame, validated as a result's are, or None."""
+        if self.answers is None:
+            return None
+        try:
+            answers = json.loads(self.answers[0])
+        except (ValueError, RecursionError):
+            return None
+        ex = _validated({"status": "error", "answers": answers})
+        return ex.answers if not ex.message else None
+
+    def _next(self):
+        """Frames the worker sends before its result: taken here, the reader made ready for the next one."""
+        while self.reader.frame is not None:
+            header, payload = self.reader.frame
+            if not self.started and header == {"status": RUNNING}:
+                self.started = True  # from here on, the submission's code runs
+            elif self.started and header.get("status") == ANSWERS:
+                cell = header.get("cell")
+                self.answers = (payload, cell if isinstance(cell, int) and not isinstance(cell, bool) else None)
+            else:
+                return
+            rest, self.reader = self.reader.rest, FrameReader(MAX_RESULT_BYTES)
+            self.reader.push(rest)
 
     def feed(self, chunks=1):
         for _ in range(chunks):
@@ -621,10 +658,7 @@ class _ResultReader:
             if not chunk:
                 return
             self.reader.push(chunk)
-            if self.reader.frame is not None and not self.started and self.reader.frame[0] == {"status": RUNNING}:
-                self.started = True  # from here on, the submission's code runs
-                rest, self.reader = self.reader.rest, FrameReader(MAX_RESULT_BYTES)
-                self.reader.push(rest)
+            self._next()
 
 
 def bwrap_text(data):

@@ -33,8 +33,8 @@ import select
 import time
 from dataclasses import asdict, dataclass
 
-__all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_SUBMISSION_BYTES", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "job_frame", "read_job", "RUNNING", "FrameError",
-           "write_frame", "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper",
+__all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_SUBMISSION_BYTES", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "job_frame",
+           "read_job", "RUNNING", "ANSWERS", "FrameError", "write_frame", "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper",
            "cpu_seconds", "wall_seconds", "THREAD_ENV"]
 
 JOB_FD = 3
@@ -59,6 +59,9 @@ THREAD_ENV = {name: "1" for name in (
     "RAYON_NUM_THREADS", "TBB_NUM_THREADS")}
 #: The status of the worker's first frame: the kernel is up and the first cell is about to be sent.
 RUNNING = "running"
+#: The status of the worker's frames between ``running`` and its result: the answers as read after a cell (in the
+#: payload, kept unread by the grading process until the run ends without a result).
+ANSWERS = "answers"
 
 
 def cpu_seconds(timeout):

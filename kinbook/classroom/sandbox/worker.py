@@ -35,7 +35,7 @@ import sys
 import time
 from pathlib import Path
 
-from .protocol import MAX_JOB_BYTES, RUNNING, FrameError, read_frame, read_job, wall_seconds, write_frame
+from .protocol import ANSWERS, MAX_JOB_BYTES, RUNNING, FrameError, read_frame, read_job, wall_seconds, write_frame
 
 __all__ = ["main", "preload", "STARTUP_SECONDS", "MAX_ANSWER_CHARS", "SNAPSHOT_CHARS"]
 
@@ -98,7 +98,9 @@ def main(layout, job_fd, result_fd, channel_fd, limits):
         os.close(job_fd)
     for name, data in files.items():
         Path(layout.home, name).write_bytes(data)
-    result = run(job, layout, channel_fd, started=lambda: write_frame(result_fd, {"status": RUNNING}))
+    result = run(job, layout, channel_fd, started=lambda: write_frame(result_fd, {"status": RUNNING}),
+                 answered=lambda answers, cell: write_frame(result_fd, {"status": ANSWERS, "cell": cell},
+                                                            json.dumps(answers).encode()))
     write_frame(result_fd, result)
 
 
@@ -116,9 +118,11 @@ def _client_class():
     return Client
 
 
-def run(job, layout, channel_fd, started=None):
+def run(job, layout, channel_fd, started=None, answered=None):
     """Run the job's code cells (``job["cells"]``: their sources) and read its answers;
-    returns the result. ``started`` is called once the kernel is up, before the first cell is sent to it."""
+    returns the result. ``started`` is called once the kernel is up, before the first cell is sent to it;
+    ``answered(answers, cell)`` whenever the answers read after a cell changed, so that they reach the grading
+    process before whatever may stop this worker (its memory, the sandbox's full directories, a kill)."""
     import nbformat
     from jupyter_client import AsyncKernelManager
     from jupyter_client.kernelspec import KernelSpecManager
@@ -165,9 +169,12 @@ def run(job, layout, channel_fd, started=None):
                         result.update(status="memory", message="the notebook ran out of memory (MemoryError)",
                                       cell=index + 1)
                         break
+                    before = snapshot.answers
                     if not run_sync(snapshot.take)(client, left()):
                         result.update(status="timeout", message=late, cell=index + 1)
                         break
+                    if answered is not None and snapshot.answers is not before:
+                        answered(snapshot.answers, index + 1)
                 else:
                     result["status"] = "ok"
             except CellTimeoutError:
