@@ -53,7 +53,7 @@ from .reference_use import exercise_calls, reference_use
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, ungraded_notice, worst
 from .sanitize import clean, clean_result
 from .serialize import decode_answers
-from .variant import references, student_parameters
+from .variant import references, seed_from, student_parameters
 
 __all__ = ["STATUSES", "PartGrade", "SubmissionResult", "grade_submission", "grade", "NO_ISOLATION_WARNING"]
 
@@ -278,7 +278,10 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
 
     code = [c["source"] for c in cells if c["cell_type"] == "code"]
     names = sorted({p.answer for p in parts} | {p.options["phi"] for p in parts if isinstance(p.options.get("phi"), str)})
-    ex = sandbox.run(code, names, timeout=timeout, memory_mb=memory, files={"submission.ipynb": data})
+    calls = _reference_calls(source)
+    setup = {"seed": seed_from(f"{source.exercise}:{student}"), "functions": sorted(calls.functions),
+             "methods": sorted(calls.methods)}
+    ex = sandbox.run(code, names, timeout=timeout, memory_mb=memory, files={"submission.ipynb": data}, setup=setup)
     limits = ex.limits or getattr(sandbox, "limits", "")
     if ex.status != "ok" and ex.answers is None and ex.cell is None:
         return done(ex.status, ex.message, _all_parts(parts, ex.status, ex.message), ran=limits)
@@ -292,8 +295,12 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
     locked_sums = {checksum(c) for c in code_locked}
     mine = [i for i, c in enumerate((c for c in cells if c["cell_type"] == "code"), 1) if checksum(c) in locked_sums]
     numbers = [i for i, c in enumerate(cells, 1) if c["cell_type"] == "code"]  # as the student sees them
-    used = reference_use(code, [p.answer for p in parts], calls=_reference_calls(source), locked=mine,
-                         numbers=numbers)
+    used = reference_use(code, [p.answer for p in parts], calls=calls, locked=mine, numbers=numbers)
+    for name, calls_seen in ex.reference.items():  # as it ran: whatever spelled the call (issue 36)
+        seen = [(key, cell, same) for key, cell, same in calls_seen if cell not in mine and 0 < cell <= len(numbers)]
+        if name in used and seen and (not used[name] or used[name].startswith("not followed")):
+            key, cell, same = seen[0]
+            used[name] = f"{key}() (cell {numbers[cell - 1]}, as run" + ("" if same else ": equal to its result") + ")"
     grades = [_part_grade(p, decoded, problems, stopped, cells, ex.errors, used, reveal_hidden) for p in parts]
     describe(grades, parts, decoded, cells)
     status = worst([g.status for g in grades] + ([stopped[0]] if stopped else []))

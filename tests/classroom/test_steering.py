@@ -381,3 +381,83 @@ def test_answers_read_before_the_worker_is_killed_are_graded(tmp_path, monkeypat
     (r,) = grade(SOURCE, [path.parent.parent], tmp_path / "graded", timeout=ENOUGH, memory=400, isolation=BWRAP)
     assert (r.status, r.score) == ("error", FULL), r.message
     assert "the answers read after code cell" in r.message
+
+
+# ================================================================ 6. reference use read from what ran
+RIGHT_BY_HAND = "sp.Matrix([x1 - x2 + sp.cos(phi2), y1 - y2 + sp.sin(phi2)])"
+#: Φ of joint 1 taken from kinbook's reference, in spellings the reading of the code does not follow (each full marks
+#: with an empty reference column before).
+HIDDEN = {
+    "prompt": ">>> Phi_OA = mech.constraint_phi('1')",
+    "indented": "    Phi_OA = mech.constraint_phi('1')",
+    "semicolon-exec": ";exec Phi_OA = mech.constraint_phi('1')",
+    "bare-time": "time Phi_OA = mech.constraint_phi('1')",
+    "getattribute": "Phi_OA = mech.__getattribute__('constraint_phi')('1')",
+    "object-getattribute": "Phi_OA = object.__getattribute__(mech, 'constraint_phi')('1')",
+    "reduce-getattr": "import functools\nPhi_OA = functools.reduce(getattr, ['constraint_phi'], mech)('1')",
+    "attrgetter": "import operator\nPhi_OA = operator.attrgetter('constraint' + '_phi')(mech)('1')",
+    "match-class": "match mech:\n    case object(constraint_phi=f):\n        Phi_OA = f('1')",
+    "sympify-locals": "Phi_OA = sp.sympify(\"m.constraint_phi('1')\", locals={'m': mech})",
+    "timeit-globals": "import timeit\nout = {}\ntimeit.timeit(\"out['P'] = m.constraint_phi('1')\", "
+                      "globals={'m': mech, 'out': out}, number=1)\nPhi_OA = out['P']",
+}
+#: A student's own code with the library's names: never reported as the library's.
+OWN = {
+    "own-method": f"class Mine:\n    def constraint_phi(self, k):\n        return {RIGHT_BY_HAND}\n"
+                  "Phi_OA = Mine().constraint_phi('1')",
+    "own-function": f"def constraint_phi(k):\n    return {RIGHT_BY_HAND}\nPhi_OA = constraint_phi('1')",
+    "own-joint": f"class Joint:\n    def __init__(self, *a):\n        pass\n    def symbolic(self):\n"
+                 f"        return {RIGHT_BY_HAND}\nPhi_OA = Joint(1, 2).symbolic()",
+    "own-phi": f"class C:\n    def phi(self):\n        return {RIGHT_BY_HAND}\nPhi_OA = C().phi()",
+    "by-hand": f"Phi_OA = {RIGHT_BY_HAND}",
+}
+
+
+@pytest.fixture(scope="module")
+def reference_batch(tmp_path_factory):
+    if not BWRAP:
+        pytest.skip("needs bubblewrap")
+    root = tmp_path_factory.mktemp("reference")
+    for name, code in {**HIDDEN, **OWN, "checked": f"Phi_OA = {RIGHT_BY_HAND}\n"
+                                                  "assert mech.constraint_phi('1') == Phi_OA"}.items():
+        put(root / "c" / name / "tiny.ipynb", notebook(code))
+    return {r.student: r for r in grade(SOURCE, [root / "c"], root / "graded", timeout=ENOUGH, memory=400, jobs=2,
+                                        isolation=BWRAP)}
+
+
+@pytest.mark.parametrize("student", sorted(HIDDEN))
+def test_reference_use_is_seen_however_it_is_spelled(reference_batch, student):
+    r = reference_batch[student]
+    assert (r.status, r.score) == ("ok", FULL)  # reported, not penalized
+    assert r.parts[0].reference == "kinbook.core.mechanism.MechanismBase.constraint_phi() (cell 4, as run)"
+
+
+@pytest.mark.parametrize("student", sorted(OWN))
+def test_a_students_own_code_is_never_reported_as_the_librarys(reference_batch, student):
+    r = reference_batch[student]
+    assert (r.status, r.score, [p.reference for p in r.parts]) == ("ok", FULL, ["", ""])
+
+
+def test_an_answer_checked_against_the_reference_says_so(reference_batch):
+    """Typed by hand, then compared with the reference in the same cell: reported as equal to its result (for the
+    instructor's judgement; the very object would read "as run")."""
+    assert reference_batch["checked"].parts[0].reference == (
+        "kinbook.core.mechanism.MechanismBase.constraint_phi() (cell 4, as run: equal to its result)")
+
+
+@pytest.mark.skipif(not BWRAP, reason="needs bubblewrap")
+def test_random_generators_are_seeded_from_the_student():
+    """random, numpy.random and sympy's generator: the same numbers for one student on every run, others for
+    another student (before: numpy's from the clock, sympy's the same for everyone)."""
+    from kinbook.classroom.sandbox import Sandbox
+    from kinbook.classroom.variant import seed_from
+
+    cells = ["import random, numpy as np, sympy.core.random as sr\n"
+             "r = [random.random(), float(np.random.random()), sr.random()]"]
+    draws = {}
+    with Sandbox(BWRAP) as sb:
+        for student in ("ana", "ben", "ana"):
+            ex = sb.run(cells, ["r"], timeout=ENOUGH, memory_mb=400, setup={"seed": seed_from(f"tiny:{student}")})
+            draws.setdefault(student, []).append(ex.answers["r"]["data"])
+    assert draws["ana"][0] == draws["ana"][1]
+    assert all(a != b for a, b in zip(draws["ana"][0], draws["ben"][0]))

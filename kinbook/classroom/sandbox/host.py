@@ -118,6 +118,10 @@ class Execution:
         failure is the grader's (tried again by :meth:`Sandbox.run`).
     tries : int
         How many times the notebook was run (more than 1 after failures of the grader's).
+    reference : dict
+        {answer name: [(the reference function's qualified name, the code cell it ran in, whether the answer is its
+        very result or an equal copy), …]} (the latest first, at most four) for the answers that are the result of a
+        call into the exercise's reference, as observed in the kernel (:mod:`.trace`).
     """
 
     status: str
@@ -129,6 +133,7 @@ class Execution:
     limits: str = ""
     before_code: bool = False
     tries: int = 1
+    reference: dict = field(default_factory=dict)
 
 
 def _text(value, limit):
@@ -154,7 +159,16 @@ def _validated(header):
         return Execution("error", "the sandbox returned no answers")
     cell = header.get("cell")
     cell = cell if isinstance(cell, int) and not isinstance(cell, bool) and 0 < cell <= 1_000_000 else None
-    return Execution(status, _text(header.get("message"), 500), answers, errors, cell=cell)
+    reference = {}
+    raw = header.get("reference")
+    for name, entries in (raw.items() if isinstance(raw, dict) else ()):
+        if isinstance(name, str) and answers is not None and name in answers and isinstance(entries, list):
+            kept = [(e[0][:200], e[1], e[2] == 1) for e in entries[:4]
+                    if isinstance(e, list) and len(e) == 3 and isinstance(e[0], str) and isinstance(e[1], int)
+                    and not isinstance(e[1], bool) and 0 < e[1] <= 1_000_000 and e[2] in (0, 1)]
+            if kept:
+                reference[name] = kept
+    return Execution(status, _text(header.get("message"), 500), answers, errors, cell=cell, reference=reference)
 
 
 def _clean_env(extra=None):
@@ -425,7 +439,7 @@ class Sandbox:
             return False
 
     # ----------------------------------------------------------------------------------------------- run
-    def run(self, cells, names, *, timeout=60.0, memory_mb=1000, files=None, audit_hook=True):
+    def run(self, cells, names, *, timeout=60.0, memory_mb=1000, files=None, audit_hook=True, setup=None):
         """Run code cells in a fresh worker and kernel; read the named answers.
 
         Parameters
@@ -447,13 +461,16 @@ class Sandbox:
         audit_hook : bool
             Install the kernel's audit hook (always, when grading). False only to test what the
             operating-system sandbox holds on its own.
+        setup : dict, optional
+            ``{"seed": int, "functions": [...], "methods": [...]}``: the seed of the notebook's random generators
+            and the reference's calls to observe (:func:`.trace.setup`), before the first cell.
 
         Returns
         -------
         Execution
         """
         t0 = time.monotonic()
-        header, payload = job_frame(cells, names, timeout, files)
+        header, payload = job_frame(cells, names, timeout, files, setup)
         if len(payload) > MAX_JOB_BYTES - (1 << 20):  # (only a caller past the submission cap gets here)
             return Execution("too-large", f"the notebook's code and its copy take {len(payload):,} bytes (at most "
                                           f"{MAX_JOB_BYTES - (1 << 20):,} in a job): not run", seconds=0.0)

@@ -117,9 +117,10 @@ class Layout:
 ISOLATED = Layout(home="/home/student", tmp="/tmp", work="/run/kinbook/work", isolated=True)
 
 
-def job_frame(cells, names, timeout, files=None):
+def job_frame(cells, names, timeout, files=None, setup=None):
     """The job of one run as a frame's ``(header, payload)``: the code cells' sources and the files' bytes in the
-    payload (the cells as UTF-8, lone surrogates kept), their sizes and the answer names in the header.
+    payload (the cells as UTF-8, lone surrogates kept), their sizes, the answer names and the kernel's ``setup``
+    (the seed and the reference's names: :func:`kinbook.classroom.sandbox.trace.setup`) in the header.
 
     >>> header, payload = job_frame(["x = 1", "y = '\\x7f'"], ["x"], 5.0, {"a.ipynb": b"{}"})
     >>> read_job(header, payload)[0]
@@ -127,19 +128,25 @@ def job_frame(cells, names, timeout, files=None):
     """
     files = dict(files or {})
     code = [str(c).encode("utf-8", "surrogatepass") for c in cells]
+    setup = dict(setup or {})
     header = {"timeout": float(timeout), "names": [str(n) for n in names], "cells": [len(c) for c in code],
-              "files": [[os.path.basename(k), len(v)] for k, v in files.items()]}
+              "files": [[os.path.basename(k), len(v)] for k, v in files.items()],
+              "setup": {"seed": int(setup.get("seed", 0)), "functions": sorted(map(str, setup.get("functions", ()))),
+                        "methods": sorted(map(str, setup.get("methods", ())))}}
     return header, b"".join(code) + b"".join(files.values())
 
 
 def read_job(header, payload):
-    """``(cells, names, timeout, files)`` of a job frame (:func:`job_frame`); :class:`FrameError` when it does not
-    hold together."""
+    """``(cells, names, timeout, files, setup)`` of a job frame (:func:`job_frame`); :class:`FrameError` when it
+    does not hold together."""
     try:
         sizes = [int(n) for n in header["cells"]] + [int(size) for _, size in header["files"]]
         names = [str(n) for n in header["names"]]
         timeout = float(header["timeout"])
-    except (KeyError, TypeError, ValueError):
+        setup = header.get("setup") or {}
+        setup = {"seed": int(setup.get("seed", 0)), "functions": [str(f) for f in setup.get("functions", [])],
+                 "methods": [str(m) for m in setup.get("methods", [])]}
+    except (KeyError, TypeError, ValueError, AttributeError):
         raise FrameError("the job's header is malformed") from None
     if any(n < 0 for n in sizes) or sum(sizes) != len(payload):
         raise FrameError("the job's sizes do not add up to its payload")
@@ -150,7 +157,7 @@ def read_job(header, payload):
     cells = [p.decode("utf-8", "surrogatepass") for p in pieces[:len(header["cells"])]]
     files = {os.path.basename(str(name)) or "file": data
              for (name, _), data in zip(header["files"], pieces[len(header["cells"]):])}
-    return cells, names, timeout, files
+    return cells, names, timeout, files, setup
 
 
 class FrameError(ValueError):

@@ -70,8 +70,8 @@ def _kernel_spec_dir(layout, channel_fd):
 
 
 def _read_job(job_fd):
-    cells, names, timeout, files = read_job(*read_frame(job_fd, MAX_JOB_BYTES, timeout=60))
-    return {"cells": cells, "names": names, "timeout": timeout}, files
+    cells, names, timeout, files, setup = read_job(*read_frame(job_fd, MAX_JOB_BYTES, timeout=60))
+    return {"cells": cells, "names": names, "timeout": timeout, "setup": setup}, files
 
 
 def _vm_bytes():
@@ -162,6 +162,8 @@ def run(job, layout, channel_fd, started=None, answered=None):
             index = -1
             if started is not None:
                 started()  # no code of the submission has run before this
+            if job.get("setup"):  # seeds and the reference's calls observed, before the first cell
+                run_sync(snapshot.setup)(client, job["setup"], left())
             try:
                 for index, cell in enumerate(nb.cells):
                     client.execute_cell(cell, index)
@@ -170,7 +172,7 @@ def run(job, layout, channel_fd, started=None, answered=None):
                                       cell=index + 1)
                         break
                     before = snapshot.answers
-                    if not run_sync(snapshot.take)(client, left()):
+                    if not run_sync(snapshot.take)(client, left(), index + 1):
                         result.update(status="timeout", message=late, cell=index + 1)
                         break
                     if answered is not None and snapshot.answers is not before:
@@ -192,6 +194,7 @@ def run(job, layout, channel_fd, started=None, answered=None):
     except Exception as exc:  # kernel failed to start, zmq trouble…
         result.update(status="error", message=f"the notebook could not be run: {type(exc).__name__}: {exc}"[:500])
     result["answers"] = snapshot.answers
+    result["reference"] = snapshot.reference
     if result["status"] == "ok" and snapshot.answers is None:
         result.update(status="error", message="the answers could not be read" + (
             f" ({snapshot.problem})" if snapshot.problem else ""))
@@ -201,32 +204,70 @@ def run(job, layout, channel_fd, started=None, answered=None):
 
 
 class _Snapshot:
-    """The named answers as they stand after each cell (the last good reading is kept)."""
+    """The named answers as they stand after each cell (the last good reading is kept), and which of them are the
+    very results of the reference's calls (:mod:`.trace`)."""
 
     def __init__(self, names):
         self.expression = (f"__import__('kinbook.classroom.serialize', fromlist=['dumps']).dumps({names!r}, "
                            "get_ipython().user_ns)")
+        self.trace = (f"__import__('kinbook.classroom.sandbox.trace', fromlist=['report']).report({names!r}, "
+                      "get_ipython().user_ns, {cell})")
+        self.names = list(names)
         self.text = None
         self.answers = None
         self.problem = ""
+        self.reference = {}
 
-    async def take(self, client, timeout):
-        """Ask the kernel for the answers; False when no reply came within ``timeout`` seconds."""
+    async def setup(self, client, setup, timeout):
+        """Have the kernel seed its generators and observe the reference's calls (:func:`.trace.setup`)."""
+        code = (f"__import__('kinbook.classroom.sandbox.trace', fromlist=['setup']).setup({int(setup['seed'])!r}, "
+                f"{list(setup['functions'])!r}, {list(setup['methods'])!r})")
+        return await self._ask(client, code, {}, timeout) is not None
+
+    async def take(self, client, timeout, cell=0):
+        """Ask the kernel for the answers after code cell ``cell``; False when no reply came within ``timeout``
+        seconds."""
+        trace = self.trace.replace("{cell}", str(int(cell)))
+        reply = await self._ask(client, "", {"kinbook": self.expression, "trace": trace}, timeout)
+        if reply is None:
+            return False
+        found = reply.get("content", {}).get("user_expressions", {})
+        self._read(found.get("kinbook", {}))
+        self._read_trace(found.get("trace", {}))
+        return True
+
+    async def _ask(self, client, code, expressions, timeout):
         kc = client.kc
-        msg_id = kc.execute("", silent=True, store_history=False, user_expressions={"kinbook": self.expression})
+        msg_id = kc.execute(code, silent=True, store_history=False, user_expressions=expressions)
         end = time.monotonic() + timeout
         while True:
             remaining = end - time.monotonic()
             if remaining <= 0:
-                return False
+                return None
             try:
                 reply = await kc.get_shell_msg(timeout=remaining)
             except Exception:  # queue.Empty (timeout), a dead kernel
-                return False
+                return None
             if reply.get("parent_header", {}).get("msg_id") == msg_id:
-                break
-        self._read(reply.get("content", {}).get("user_expressions", {}).get("kinbook", {}))
-        return True
+                return reply
+
+    def _read_trace(self, value):
+        text = value.get("data", {}).get("text/plain") if value.get("status") == "ok" else None
+        if not isinstance(text, str) or len(text) > 64 * 1024:
+            return
+        try:
+            found = json.loads(ast.literal_eval(text))
+        except (ValueError, SyntaxError, MemoryError, RecursionError):
+            return
+        if isinstance(found, dict):
+            self.reference = {}  # as the answers stand now
+            for name in self.names:
+                entries = found.get(name)
+                entries = [[e[0][:200], e[1], e[2]] for e in (entries if isinstance(entries, list) else [])[:4]
+                           if isinstance(e, list) and len(e) == 3 and isinstance(e[0], str) and isinstance(e[1], int)
+                           and e[2] in (0, 1)]
+                if entries:
+                    self.reference[name] = entries
 
     def _read(self, value):
         if value.get("status") != "ok":
