@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import hashlib
 import os
-import re
 import signal
 import sys
 import time
@@ -49,7 +48,8 @@ from .notebook import (
 )
 from .options import check_options
 from .parts import CHECKS
-from .reference_use import exercise_calls, reference_use
+from .reference_use import as_run, exercise_calls, reference_use
+from .release_kind import check_release_kinds, release_kinds, released_for
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, ungraded_notice, worst
 from .sanitize import clean, clean_result
 from .serialize import decode_answers
@@ -113,48 +113,6 @@ def check_memory(memory):
     if have is not None and memory > have:
         raise GradingError(f"--memory {memory:g} MB is more than this machine has ({have:,} MB): each notebook "
                            f"may use at most {have:,} MB (and --jobs N runs N notebooks at once)")
-
-
-def _release_kind(data):
-    """"generic" or "student" as the notebook's kinbook metadata says, None when it cannot tell."""
-    try:
-        meta = parse_submission(data, metadata=True)[1]
-    except Refused:
-        return None
-    if "student" not in meta:
-        return None
-    return "generic" if meta["student"] is None else "student"
-
-
-def _release_kinds(entries):
-    """{student: the kinds of release of their files that can still be read} (the others are refused when their turn
-    comes)."""
-    kinds = {}
-    for entry in entries:
-        data, refused = _read_again(entry)
-        if refused is None:
-            kinds.setdefault(entry.student, set()).add(_release_kind(data))
-    return kinds
-
-
-def _same_release_as_graded(kinds, per_student, exercise):
-    """Stop before any grading when most *students* handed in the other kind of release than the one graded: the
-    generic release graded per student (every student would be refused), or per-student variants graded with
-    ``--generic``. That is the instructor's mistake, not the students'. Each student is one vote, whatever number
-    of files they handed in: one student's three copies of the generic release are that student's problem
-    (``wrong-release``), never a stop of the class."""
-    wanted = "student" if per_student else "generic"
-    votes = [k - {None} for k in kinds.values() if k - {None}]
-    known = len(votes)
-    wrong = sum(1 for k in votes if wanted not in k)
-    if not known or wrong * 2 <= known:
-        return
-    if per_student:
-        raise GradingError(f"{wrong} of {known} students handed in {exercise}'s generic release (made by "
-                           "`kinbook release`), not their per-student variants: grade them with --generic. Nothing "
-                           "was graded.")
-    raise GradingError(f"{wrong} of {known} students handed in per-student variants of {exercise} (made by "
-                       "`kinbook variant`): grade them without --generic. Nothing was graded.")
 
 
 def _refused(source, entry, status, message, isolation=""):
@@ -254,7 +212,7 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         cells, meta = parse_submission(data, metadata=True)
     except Refused as exc:
         return done(exc.status, exc.message, _all_parts(parts, exc.status, exc.message))
-    other, named = _released_for(meta, cells, student, values is not None, generic=generic and values is None
+    other, named = released_for(meta, cells, student, values is not None, generic=generic and values is None
                                  and find_parameters(source.nb) is not None)
     if other:
         res = done("wrong-release", other, _all_parts(parts, "wrong-release", other))
@@ -296,11 +254,7 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
     mine = [i for i, c in enumerate((c for c in cells if c["cell_type"] == "code"), 1) if checksum(c) in locked_sums]
     numbers = [i for i, c in enumerate(cells, 1) if c["cell_type"] == "code"]  # as the student sees them
     used = reference_use(code, [p.answer for p in parts], calls=calls, locked=mine, numbers=numbers)
-    for name, calls_seen in ex.reference.items():  # as it ran: whatever spelled the call (issue 36)
-        seen = [(key, cell, same) for key, cell, same in calls_seen if cell not in mine and 0 < cell <= len(numbers)]
-        if name in used and seen and (not used[name] or used[name].startswith("not followed")):
-            key, cell, same = seen[0]
-            used[name] = f"{key}() (cell {numbers[cell - 1]}, as run" + ("" if same else ": equal to its result") + ")"
+    as_run(used, ex.reference, locked=mine, numbers=numbers)
     grades = [_part_grade(p, decoded, problems, stopped, cells, ex.errors, used, reveal_hidden) for p in parts]
     describe(grades, parts, decoded, cells)
     status = worst([g.status for g in grades] + ([stopped[0]] if stopped else []))
@@ -416,33 +370,6 @@ def _hidden_verdict(result):
         else:
             hints.append(code)
     return out + (" — " + " | ".join(hints) if hints else "")
-
-
-_RELEASED_FOR = re.compile(r"#[^\S\n]*parameters of student (['\"])(.{1,200}?)\1[^\S\n]*$", re.MULTILINE)
-
-
-def _released_for(meta, cells, student, per_student, generic=False):
-    """``(why, other student)`` when the notebook is not this student's release, else ``(None, None)``: the
-    notebook released for another student (its metadata or its parameters cell name them: a copying signal for
-    the instructor, not tampering), or the generic release where each student got their own (no other student)."""
-    from .files import id_key
-
-    named = meta.get("student") if isinstance(meta.get("student"), str) else None
-    if named is None:
-        for c in cells:
-            if c["cell_type"] == "code":
-                m = _RELEASED_FOR.search(c["source"])
-                if m:
-                    named = m.group(2)
-                    break
-    if named is not None and id_key(named) != id_key(student):
-        return f"this notebook was released for {clean(named, 80)}, not for {student}", named
-    if per_student and "student" in meta and meta["student"] is None:
-        return f"this is the exercise's generic release, not the notebook released for {student}", None
-    if generic and named is not None:  # the student's own variant, graded as the generic release: not run,
-        return (f"this is the notebook released for {student} (a per-student variant), and the exercise was graded "
-                "as its generic release (--generic): grade it without --generic"), None  # never called tampered
-    return None, None
 
 
 # ================================================================================================== batch
@@ -587,7 +514,7 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
     # an instructor's mistake (the generic release graded per student, or variants with --generic) stops the run
     # here, before any grading
     if find_parameters(src.nb) is not None:
-        _same_release_as_graded(_release_kinds(plan.todo), not generic, src.exercise)
+        check_release_kinds(release_kinds(plan.todo, _read_again), not generic, src.exercise)
     for entry in plan.refused:
         record(_refused(src, entry, entry.status, entry.message))
     todo = plan.todo

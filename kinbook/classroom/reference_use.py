@@ -71,7 +71,7 @@ from .code_reading import (
     value_path,
 )
 
-__all__ = ["reference_use", "exercise_calls", "declared_calls", "ReferenceCalls", "PHI_FAMILY", "REFERENCE_CALLS",
+__all__ = ["reference_use", "as_run", "exercise_calls", "declared_calls", "ReferenceCalls", "PHI_FAMILY", "REFERENCE_CALLS",
            "DYNAMIC_CALLS", "MAX_CODE_CHARS"]
 
 #: Methods (``obj.name(...)``) and functions whose result is kinbook's reference for a graded quantity.
@@ -631,3 +631,19 @@ def reference_use(cells, answers, calls=None, locked=(), numbers=None):
             return {name: f"not followed: code nested too deeply (cell {numbers[index]})" for name in answers}
     unseen = f"not followed: code that could assign it unseen ({flow.unfollowed})" if flow.unfollowed else ""
     return {name: flow.tainted.get(name) or unseen for name in answers}
+
+
+def as_run(used, observed, locked=(), numbers=None):
+    """Add to ``used`` (:func:`reference_use`'s answer, changed in place) the reference use observed as the notebook
+    ran (:mod:`kinbook.classroom.sandbox.trace`): ``observed`` is ``{name: [(function, code cell, same object), …]}``.
+    An answer the code shows no use for (or could not follow) reads "….constraint_phi() (cell 5, as run)" — "as run:
+    equal to its result" for a copy; calls in the release's ``locked`` code cells do not count; what the code shows
+    is never replaced. ``numbers``: each code cell's position among all cells, as the student sees them."""
+    for name, calls in observed.items():
+        seen = [(key, cell, same) for key, cell, same in calls
+                if cell not in locked and (numbers is None or 0 < cell <= len(numbers))]
+        if name in used and seen and (not used[name] or used[name].startswith("not followed")):
+            key, cell, same = seen[0]
+            shown = numbers[cell - 1] if numbers is not None else cell
+            used[name] = f"{key}() (cell {shown}, as run" + ("" if same else ": equal to its result") + ")"
+    return used

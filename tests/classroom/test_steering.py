@@ -257,6 +257,7 @@ def _reading(data):
 
     from kinbook.classroom.answers import describe
     from kinbook.classroom.reference_use import reference_use
+    from kinbook.classroom.release_kind import released_for
     from kinbook.classroom.results import PartGrade
     from kinbook.classroom.variant import references
 
@@ -264,7 +265,7 @@ def _reading(data):
     src = load_source(SOURCE)
     parts = references(src)
     cells, meta = parse_submission(data, metadata=True)
-    g._released_for(meta, cells, "ana", False)
+    released_for(meta, cells, "ana", False)
     code = [c["source"] for c in cells if c["cell_type"] == "code"]
     reference_use(code, [p.answer for p in parts], calls=g._reference_calls(src), locked=[],
                   numbers=list(range(1, len(code) + 1)))

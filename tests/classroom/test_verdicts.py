@@ -19,7 +19,7 @@ import pytest
 from kinbook.classroom import grade
 from kinbook.classroom.sandbox import Sandbox, host
 from kinbook.classroom.sandbox.cgroup import PIDS_MAX
-from kinbook.classroom.sandbox.protocol import THREAD_ENV, FrameReader, cpu_seconds, wall_seconds, write_frame
+from kinbook.classroom.sandbox.protocol import RUNNING, THREAD_ENV, FrameReader, cpu_seconds, wall_seconds, write_frame
 
 from .conftest import BWRAP, ENOUGH, SOURCE, submission
 
@@ -107,7 +107,7 @@ def test_a_result_written_without_the_running_frame_is_the_graders():
     import os
 
     r, w = os.pipe()
-    write_frame(w, {"status": host.RUNNING})
+    write_frame(w, {"status": RUNNING})
     write_frame(w, {"status": "ok", "answers": {}})
     os.close(w)
     reader = FrameReader(1 << 20)

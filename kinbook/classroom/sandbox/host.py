@@ -51,14 +51,12 @@ from ...errors import GradingError
 from . import bwrap
 from . import cgroup as cgroups
 from .protocol import (
-    ANSWERS,
     ISOLATED,
     MAX_JOB_BYTES,
     MAX_RESULT_BYTES,
-    RUNNING,
     FrameError,
-    FrameReader,
     Layout,
+    ResultReader,
     cpu_seconds,
     job_frame,
     wall_seconds,
@@ -519,7 +517,7 @@ class Sandbox:
             write_frame(self.job_w, header, payload, deadline=time.monotonic() + 30)
         except FrameError as exc:
             return _grader(f"the job could not be handed to the sandbox: {exc}")
-        reading = _ResultReader(self.result_r)
+        reading = ResultReader(self.result_r)
         try:
             ended, early = self._wait(reading, timeout, memory)
         except FrameError as exc:
@@ -616,12 +614,14 @@ class Sandbox:
 
 
 def _kept(ex, reading):
-    """``ex`` of a run that ended without the worker's result, with the answers the worker sent before it stopped:
-    answers read before a failure are graded, whatever the failure."""
-    if not ex.before_code and ex.answers is None:
-        ex.answers = reading.kept()
-        if ex.answers is not None and reading.answers[1]:
-            ex.message += f" (the answers read after code cell {reading.answers[1]} are graded)"
+    """``ex`` of a run that ended without the worker's result, with the answers the worker sent before it stopped
+    (validated as a result's are): answers read before a failure are graded, whatever the failure."""
+    if not ex.before_code and ex.answers is None and reading.answers is not None:
+        answers = _validated({"status": "error", "answers": reading.kept()})
+        if not answers.message and answers.answers is not None:
+            ex.answers = answers.answers
+            if reading.answers[1]:
+                ex.message += f" (the answers read after code cell {reading.answers[1]} are graded)"
     return ex
 
 
@@ -629,53 +629,6 @@ def _grader(*args):
     """An Execution that failed before any code of the submission ran (``message``, or ``status, message``)."""
     status, message = args if len(args) == 2 else ("error", args[0])
     return Execution(status, message, before_code=True)
-
-
-class _ResultReader:
-    """The worker's frames on the result pipe: its ``running`` frame (:attr:`started`), the answers read after each
-    cell that changed them (the last kept as bytes, unread: :meth:`kept`), then its result (``reader.frame``)."""
-
-    def __init__(self, fd):
-        self.fd = fd
-        self.reader = FrameReader(MAX_RESULT_BYTES)
-        self.started = False
-        self.answers = None  # (payload, cell) of the last answers frame
-
-    def kept(self):
-        """The answers of the last ``answers`` frame, validated as a result's are, or None."""
-        if self.answers is None:
-            return None
-        try:
-            answers = json.loads(self.answers[0])
-        except (ValueError, RecursionError):
-            return None
-        ex = _validated({"status": "error", "answers": answers})
-        return ex.answers if not ex.message else None
-
-    def _next(self):
-        """Frames the worker sends before its result: taken here, the reader made ready for the next one."""
-        while self.reader.frame is not None:
-            header, payload = self.reader.frame
-            if not self.started and header == {"status": RUNNING}:
-                self.started = True  # from here on, the submission's code runs
-            elif self.started and header.get("status") == ANSWERS:
-                cell = header.get("cell")
-                self.answers = (payload, cell if isinstance(cell, int) and not isinstance(cell, bool) else None)
-            else:
-                return
-            rest, self.reader = self.reader.rest, FrameReader(MAX_RESULT_BYTES)
-            self.reader.push(rest)
-
-    def feed(self, chunks=1):
-        for _ in range(chunks):
-            try:
-                chunk = os.read(self.fd, 1 << 16)
-            except BlockingIOError:
-                return
-            if not chunk:
-                return
-            self.reader.push(chunk)
-            self._next()
 
 
 def bwrap_text(data):

@@ -34,7 +34,7 @@ import time
 from dataclasses import asdict, dataclass
 
 __all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_SUBMISSION_BYTES", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "job_frame",
-           "read_job", "RUNNING", "ANSWERS", "FrameError", "write_frame", "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper",
+           "read_job", "RUNNING", "ANSWERS", "FrameError", "write_frame", "ResultReader", "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper",
            "cpu_seconds", "wall_seconds", "THREAD_ENV"]
 
 JOB_FD = 3
@@ -311,3 +311,49 @@ def set_child_subreaper():
     """``PR_SET_CHILD_SUBREAPER``: orphans among this process's descendants become its children (so that it
     can reap — and find — a daemon a student left behind)."""
     return _prctl(_PR_SET_CHILD_SUBREAPER, 1)
+
+
+class ResultReader:
+    """The worker's frames on the result pipe, as the grading process reads them from ``fd``: its ``running`` frame
+    (:attr:`started`), the answers read after each cell that changed them (the last kept as bytes, unread until
+    :meth:`kept`), then its result (``reader.frame``)."""
+
+    def __init__(self, fd):
+        self.fd = fd
+        self.reader = FrameReader(MAX_RESULT_BYTES)
+        self.started = False
+        self.answers = None  # (payload, cell) of the last answers frame
+
+    def kept(self):
+        """The answers of the last ``answers`` frame, parsed (still to be validated), or None."""
+        if self.answers is None:
+            return None
+        try:
+            return json.loads(self.answers[0])
+        except (ValueError, RecursionError):
+            return None
+
+    def _next(self):
+        """Frames the worker sends before its result: taken here, the reader made ready for the next one."""
+        while self.reader.frame is not None:
+            header, payload = self.reader.frame
+            if not self.started and header == {"status": RUNNING}:
+                self.started = True  # from here on, the submission's code runs
+            elif self.started and header.get("status") == ANSWERS:
+                cell = header.get("cell")
+                self.answers = (payload, cell if isinstance(cell, int) and not isinstance(cell, bool) else None)
+            else:
+                return
+            rest, self.reader = self.reader.rest, FrameReader(MAX_RESULT_BYTES)
+            self.reader.push(rest)
+
+    def feed(self, chunks=1):
+        for _ in range(chunks):
+            try:
+                chunk = os.read(self.fd, 1 << 16)
+            except BlockingIOError:
+                return
+            if not chunk:
+                return
+            self.reader.push(chunk)
+            self._next()

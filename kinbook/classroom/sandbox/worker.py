@@ -182,15 +182,7 @@ def run(job, layout, channel_fd, started=None, answered=None):
             except CellTimeoutError:
                 result.update(status="timeout", message=late, cell=index + 1)
             except DeadKernelError:
-                code = km.provisioner.process.poll() if getattr(km, "provisioner", None) else None
-                result["cell"] = index + 1
-                if code is not None and code < 0 and -code == signal.SIGXCPU:
-                    result.update(status="timeout", message=f"the notebook used up its CPU time ({timeout:g} s)")
-                elif code is not None and code < 0 and -code == signal.SIGKILL and _memory_errors(nb):
-                    result.update(status="memory", message="the notebook ran out of memory")
-                else:
-                    # (the grading process tells a kernel killed for want of memory by its control group)
-                    result.update(status="error", message=f"the kernel died (exit code {code})", exit=code)
+                result.update(_why_dead(km, nb, timeout), cell=index + 1)
     except Exception as exc:  # kernel failed to start, zmq trouble…
         result.update(status="error", message=f"the notebook could not be run: {type(exc).__name__}: {exc}"[:500])
     result["answers"] = snapshot.answers
@@ -201,6 +193,17 @@ def run(job, layout, channel_fd, started=None, answered=None):
     result["errors"] = _cell_errors(nb)
     result["seconds"] = time.monotonic() - t_start
     return result
+
+
+def _why_dead(km, nb, timeout):
+    """The verdict on a kernel that died during a cell, from its exit: its CPU time used up, killed where the notebook
+    ran out of memory, else an error (the grading process tells a kernel its control group killed for memory)."""
+    code = km.provisioner.process.poll() if getattr(km, "provisioner", None) else None
+    if code is not None and code < 0 and -code == signal.SIGXCPU:
+        return {"status": "timeout", "message": f"the notebook used up its CPU time ({timeout:g} s)"}
+    if code is not None and code < 0 and -code == signal.SIGKILL and _memory_errors(nb):
+        return {"status": "memory", "message": "the notebook ran out of memory"}
+    return {"status": "error", "message": f"the kernel died (exit code {code})", "exit": code}
 
 
 class _Snapshot:
