@@ -165,9 +165,10 @@ class Entry:
         ``refused`` (a link, a device, a hard link, the instructor's own source …), ``too-large``, ``bad-id``,
         ``duplicate-id``.
     submitted : str
-        When it was handed in (ISO 8601): from the name (no zone: read in the due date's) or the file's time.
+        When it was handed in (ISO 8601): the LMS's (a pattern's ``time`` group; no zone: read in the due date's)
+        or the file's time (:func:`file_time`), never a date the student wrote in a file's name.
     submitted_from : str
-        ``"name"``, ``"file"`` or "".
+        ``"lms"``, ``"file"`` or "". (Gradebooks made before issue 36 may hold ``"name"``.)
     late : bool
         The LMS marked it late in its name.
     attempt : int
@@ -225,7 +226,8 @@ def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="la
     (:func:`kinbook.classroom.naming.read_name`, ``pattern`` an ``--id-pattern``) and, with a ``roster``
     (:class:`kinbook.classroom.roster.Roster`), are mapped to the roster's kinbook id. Several attempts of one student:
     with ``policy`` "latest" the latest is graded and the others are ``superseded``; with "best" all are graded.
-    A submission's time comes from its name, or with ``file_times`` from the file's modification time (only where
+    A submission's time comes from the LMS (a pattern's ``time`` group), or with ``file_times`` from the file's
+    modification time, never from a date in a name the student chose (the file's time is kept only where
     the download kept it: ``unzip`` does, Python's ``zipfile`` does not).
 
     Returns
