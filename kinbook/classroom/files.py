@@ -294,6 +294,8 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
         e.result = False
         return e
     known = roster.find(name.raw, name.key) if roster is not None else None
+    if known is not None and _look_alike(name.raw, known.student):
+        known = None  # 'ａｌｉｃｅ' is not alice: only the same letters, in any case or Unicode form, are
     if known is not None:
         e.student, e._raw, e.on_roster = known.student, known.student, True
     else:
@@ -307,6 +309,13 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
     elif e.ident[2] > max_bytes:
         e.status, e.message = "too-large", f"the file has {e.ident[2]:,} bytes (at most {max_bytes:,}); not read"
     return e
+
+
+def _look_alike(raw, sid):
+    """Whether ``raw`` meets the roster's ``sid`` only through Unicode compatibility forms (full-width letters,
+    ligatures, superscripts …): a look-alike, not the student (case and NFC/NFD are the same student's)."""
+    nfc = unicodedata.normalize("NFC", raw).casefold()
+    return id_key(raw) == id_key(sid) and nfc != unicodedata.normalize("NFC", sid).casefold()
 
 
 def _attempts(entries, policy):

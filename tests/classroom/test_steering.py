@@ -130,6 +130,28 @@ def test_a_file_naming_a_classmate_is_its_folders_students_and_a_look_alike_zero
         "mallory", "ａｌｉｃｅ"}
 
 
+def test_a_look_alike_folder_is_not_mapped_to_the_roster_student(tmp_path):
+    """With a roster, ``ａｌｉｃｅ/`` beside ``alice/``: alice's own file is her only attempt, the look-alike a
+    duplicate-id with a signal (before: the roster mapped both to alice, and the later file counted); ``Alice/``
+    (case only) is alice's, as an LMS's export may spell her."""
+    from kinbook.classroom.files import collect
+    from kinbook.classroom.roster import read_roster
+
+    (tmp_path / "roster.csv").write_text("student,name\nalice,Alice A\nmallory,Mallory M\n")
+    roster = read_roster(tmp_path / "roster.csv")
+    c = tmp_path / "c"
+    put(c / "alice" / "tiny.ipynb", b"{}")
+    put(c / "ａｌｉｃｅ" / "tiny.ipynb", b"{}")
+    found = {e.path.split("/c/", 1)[1]: e for e in collect([c], "tiny", max_bytes=1000, roster=roster)}
+    assert (found["alice/tiny.ipynb"].student, found["alice/tiny.ipynb"].status) == ("alice", None)
+    fake = found["ａｌｉｃｅ/tiny.ipynb"]
+    assert (fake.student, fake.status, fake.on_roster) == ("ａｌｉｃｅ", "duplicate-id", False)
+    assert fake.signals == [("look-alike", "the id 'ａｌｉｃｅ' looks like 'alice'")]
+    put(tmp_path / "d" / "Alice" / "tiny.ipynb", b"{}")
+    (e,) = collect([tmp_path / "d"], "tiny", max_bytes=1000, roster=roster)
+    assert (e.student, e.status, e.on_roster) == ("alice", None, True)
+
+
 def _stamped(tmp_path, name, mtime):
     path = put(tmp_path / name, b"{}")
     os.utime(path, (mtime, mtime))
