@@ -134,7 +134,7 @@ def steering(root):
     put(os.path.join(c, "alice", "tiny.ipynb"))
     put(os.path.join(c, "mallory", "tiny-alice-9.ipynb"), WRONG_PHI, WRONG_ANGLE)
     put(os.path.join(c, "\uff41\uff4c\uff49\uff43\uff45", "tiny.ipynb"), WRONG_PHI, WRONG_ANGLE)
-    put(os.path.join(c, "del", "tiny.ipynb"), extra=["\x7f" * 990_000] * 7)
+    put(os.path.join(c, "del", "tiny.ipynb"), extra=["#" + "\x7f" * 990_000] * 7)
     put(os.path.join(c, "prompt", "tiny.ipynb"), ">>> Phi_OA = mech.constraint_phi('1')")
     results = {r.student: r for r in grade(SOURCE, [c], os.path.join(root, "steering-graded"), timeout=300,
                                            memory=400, jobs=2)}
