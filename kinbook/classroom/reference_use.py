@@ -133,6 +133,8 @@ class _Flow:
         self.kb = {}         # name → qualified kinbook name ("kinbook.spatial"), or "" for an object from kinbook
         self.star = False    # ``from kinbook… import *``
         self.own_methods = set()  # method names the notebook's own classes define
+        self.own_classes = {}  # class the notebook defines → the methods it defines
+        self.own_instances = {}  # name → the notebook's own class it was made by (``m = M(mech)``)
         self.helpers = {}    # name → "methodcaller", "attrgetter", "partial", "sys", "sys.modules"
         self.callers = {}    # name → (helper, attribute), for ``methodcaller("symbolic")`` objects
         self.setters = {}    # function name → (globals it assigns, whether it changes an argument in place)
@@ -174,11 +176,22 @@ class _Flow:
     def reference_method(self, obj, method):
         """Whether ``obj.method`` is kinbook's reference: a reference method of an object from kinbook (or of an
         unknown object, unless the notebook's own classes define a method of that name)."""
-        if method not in self.calls.methods:
+        if method not in self.calls.methods or self.own_object(obj, method):
             return False
         if self.from_kinbook(obj):
             return True
         return self.unknown(obj) and method not in self.own_methods
+
+    def own_object(self, obj, method):
+        """Whether ``obj`` is an object of the notebook's own class that defines ``method`` itself (``M(mech)``, or
+        a name bound to one): its ``method`` is the student's, whatever kinbook objects it was given."""
+        if isinstance(obj, ast.Call) and isinstance(obj.func, ast.Name):
+            cls = obj.func.id
+        elif isinstance(obj, ast.Name):
+            cls = self.own_instances.get(obj.id)
+        else:
+            return False
+        return method in self.own_classes.get(cls, ())
 
     def reference_function(self, node):
         q = self.qualify(node)
@@ -285,6 +298,12 @@ class _Flow:
         else:
             self.callers.pop(name, None)
         q = self.qualify(value) if value is not None else None
+        own = (value.func.id if isinstance(value, ast.Call) and isinstance(value.func, ast.Name)
+               and value.func.id in self.own_classes else None)
+        if own:
+            self.own_instances[name] = own  # an object of the student's own class, whatever it was given
+        else:
+            self.own_instances.pop(name, None)
         if q:
             self.kb[name] = q
         elif value is not None and (self.from_kinbook(value) or self.unknown(value)):
@@ -355,6 +374,10 @@ class _Flow:
             found = found or self.origin(part, cell)
         self._bind(stmt.name, None, None)
         self.defined.add(stmt.name)
+        self.own_classes.pop(stmt.name, None)
+        if isinstance(stmt, ast.ClassDef):
+            self.own_classes[stmt.name] = {f.name for f in stmt.body
+                                           if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))}
         glob = [n for sub in ast.walk(stmt) if isinstance(sub, (ast.Global, ast.Nonlocal)) for n in sub.names]
         if found:
             self.functions[stmt.name] = found

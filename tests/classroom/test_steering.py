@@ -432,6 +432,11 @@ OWN = {
     "own-joint": f"class Joint:\n    def __init__(self, *a):\n        pass\n    def symbolic(self):\n"
                  f"        return {RIGHT_BY_HAND}\nPhi_OA = Joint(1, 2).symbolic()",
     "own-phi": f"class C:\n    def phi(self):\n        return {RIGHT_BY_HAND}\nPhi_OA = C().phi()",
+    # an object of the student's own class that holds kinbook's mechanism: its own method is still the student's
+    # (before: "m.constraint_phi() (cell 4)", read from the code)
+    "own-wrapper": f"class M:\n    def __init__(self, mech):\n        self.mech = mech\n"
+                   f"    def constraint_phi(self, k):\n        return {RIGHT_BY_HAND}\n"
+                   "m = M(mech)\nPhi_OA = m.constraint_phi('1')",
     "by-hand": f"Phi_OA = {RIGHT_BY_HAND}",
 }
 
