@@ -285,7 +285,7 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
     elif st is not None and file_times:
         e.submitted, e.submitted_from = file_time(st.st_mtime), "file"
     e._order = name.order + (e.mtime, e.path)
-    if name.names is not None:
+    if name.names is not None and id_key(name.names) != id_key(name.raw):
         e.signals.append(("names-another", f"the file's name {shown(parts[-1])!r} names {shown(name.names)!r}, "
                                            f"not the student of its folder"))
     if name.raw is None:

@@ -90,7 +90,8 @@ class Name:
     base : str
         The file's name without its attempt suffixes.
     names : str or None
-        Another student the file's own name names (``mallory/ex01-alice.ipynb``): a signal, not an id.
+        Another id the file's own name names (``mallory/ex01-alice.ipynb``): a signal, not an id (the caller
+        compares it with the folder's by :func:`kinbook.classroom.files.id_key`).
     order : tuple
         The LMS's order of the file among a student's files (Canvas's submission number), then the order the name
         gives (its attempt suffix, a date in it): used only to sort one student's own files.
@@ -201,8 +202,8 @@ def read_name(parts, exercise, root_name, pattern=None, keep=None):
             exercise_named, base, order = True, exercise, (-1, "", attempt, _stamp(stamp))
         elif not exercise_named and keep is not None and keep(base) and base != owner:
             named = base  # '<classmate>.ipynb' in mallory's folder
-        if named is not None and _folded(named) == _folded(owner):
-            named = None
+        if named == owner:
+            named = None  # (the same id in another case or Unicode form: told apart by the caller's id key)
         return Name(owner, "student", None, False, attempt, exercise_named, base=base, names=named, order=order)
     if base == exercise:
         return Name(root_name, "student", None, False, attempt, True, base=base, order=order)
@@ -215,9 +216,3 @@ def read_name(parts, exercise, root_name, pattern=None, keep=None):
 
 def _stamp(time):
     return time.isoformat() if time is not None else ""
-
-
-def _folded(text):
-    import unicodedata
-
-    return unicodedata.normalize("NFKC", text).casefold()
