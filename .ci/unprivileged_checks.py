@@ -96,8 +96,59 @@ def main():
         check(not [f for f in p["notebooks"] if f != "/home/student/submission.ipynb"],
               "hook off: no notebook, gradebook or canary of the grader's is visible")
         check(p["network"]["1.1.1.1"] != "connected", "hook off: no network")
+    steering(root)
     shutil.rmtree(root, ignore_errors=True)
     os.remove(CANARY)
+
+
+def steering(root):
+    """Issue 36, as the unprivileged grader: grades no student can steer (tests/classroom/test_steering.py)."""
+    import copy
+
+    import nbformat
+
+    from kinbook.classroom import grade
+    from kinbook.classroom.notebook import load_source, student_notebook
+    from kinbook.classroom.sandbox import Sandbox
+
+    sys.path.insert(0, HERE)
+    from make_submissions import RIGHT_ANGLE, RIGHT_PHI, WRONG_ANGLE, WRONG_PHI
+
+    released = student_notebook(load_source(SOURCE))
+    ids = [c["id"] for c in released.cells if c.metadata.get("kinbook", {}).get("answer")]
+
+    def put(path, a=RIGHT_PHI, b=RIGHT_ANGLE, extra=()):
+        nb = copy.deepcopy(released)
+        for c in nb.cells:
+            if c["id"] in ids:
+                c.source = a if c["id"] == ids[0] else b
+        for k, src in enumerate(extra):
+            cell = nbformat.v4.new_code_cell(src)
+            cell["id"] = f"student-{k}"
+            nb.cells.append(cell)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "wb") as f:
+            f.write(json.dumps(nb, ensure_ascii=False).encode("utf-8"))
+
+    c = os.path.join(root, "steering")
+    put(os.path.join(c, "alice", "tiny.ipynb"))
+    put(os.path.join(c, "mallory", "tiny-alice-9.ipynb"), WRONG_PHI, WRONG_ANGLE)
+    put(os.path.join(c, "\uff41\uff4c\uff49\uff43\uff45", "tiny.ipynb"), WRONG_PHI, WRONG_ANGLE)
+    put(os.path.join(c, "del", "tiny.ipynb"), extra=["#" + "\x7f" * 990_000] * 7)
+    put(os.path.join(c, "prompt", "tiny.ipynb"), ">>> Phi_OA = mech.constraint_phi('1')")
+    results = {r.student: r for r in grade(SOURCE, [c], os.path.join(root, "steering-graded"), timeout=300,
+                                           memory=400, jobs=2)}
+    got = {k: (r.status, r.score) for k, r in results.items()}
+    want = {"alice": ("ok", 6), "mallory": ("ok", 0), "\uff41\uff4c\uff49\uff43\uff45": ("duplicate-id", 0),
+            "del": ("ok", 6), "prompt": ("ok", 6)}
+    check(got == want, f"steering: a classmate's name, a look-alike, 6.9 MB of DEL, a hidden spelling: {got}")
+    check(results["prompt"].parts[0].reference.endswith("constraint_phi() (cell 4, as run)"),
+          f"steering: reference use seen as it ran ({results['prompt'].parts[0].reference!r})")
+    with Sandbox() as sb:
+        ex = sb.run(["x = [1, 2]", "import os, signal\nos.kill(-1, signal.SIGKILL)"], ["x"], timeout=120,
+                    memory_mb=400, audit_hook=False)
+    check(ex.answers is not None and ex.answers.get("x") is not None,
+          f"steering: hook off, a worker killed by the notebook: the answers read before are kept ({ex.status})")
 
 
 if __name__ == "__main__":

@@ -438,7 +438,8 @@ def _course_arguments(p):
     p.add_argument("--policy", choices=("latest", "best"), help="which of a student's attempts counts (default: the "
                    "exercise's stored policy, else latest; with latest only the latest file is graded)")
     p.add_argument("--file-times", action="store_true", help="a submission's time (for the late rule) from its "
-                   "file's modification time when its name has none — only where the download kept the times")
+                   "file's modification time when the LMS gives none (never from a date in a file's name) — only where the "
+                   "download kept the times")
     p.add_argument("--regrade", action="store_true", help="the source changed since the gradebook's results were "
                    "graded: grade every submission again with it (without this, such a run stops)")
     p.add_argument("--released-from", metavar="SOURCE", action="append", default=[], type=existing_file,

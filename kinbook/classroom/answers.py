@@ -77,7 +77,8 @@ def _assigns(code, names, name):
     """Whether a cell (its code, and the names it binds or None) assigns ``name``."""
     if names is not None:
         return name in names
-    return re.search(rf"(?m)^\s*{re.escape(name)}\s*(\[.*\])?\s*[+\-*/@]?=", code) is not None
+    # (one line at a time, linear in the cell: no part of the pattern runs over a line break)
+    return re.search(rf"(?m)^[^\S\n]*{re.escape(name)}[^\S\n]*(?:\[[^\n]*\])?[^\S\n]*[+\-*/@]?=", code) is not None
 
 
 def _first_line(text):

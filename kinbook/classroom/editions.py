@@ -22,9 +22,9 @@ Whose release a notebook is comes first (:func:`released_for`): a notebook relea
 from __future__ import annotations
 
 import difflib
-import re
 
 from .notebook import checksum, find_parameters, load_source, missing_locked, parse_submission, student_notebook
+from .release_kind import released_for  # whose release a notebook is: one rule (kinbook.classroom.release_kind)
 from .results import Refused
 from .sanitize import clean
 
@@ -186,30 +186,6 @@ def class_would_be_tampered(source, submissions, earlier, per_student):
             "students were given: the source was edited after its release. Nothing was graded. Give the source the "
             "notebooks were released from with --released-from FILE (kinbook then grades every submission under the "
             "edited source, each checked against the release its student got), or undo the edit.")
-
-_RELEASED_FOR = re.compile(r"#\s*parameters of student (['\"])(.{1,200}?)\1\s*$", re.MULTILINE)
-
-
-def released_for(meta, cells, student, per_student):
-    """``(why, other student)`` when the notebook is not this student's release, else ``(None, None)``: the
-    notebook released for another student (its metadata or its parameters cell name them: a copying signal for
-    the instructor, not tampering), or the generic release where each student got their own (no other student)."""
-    from .files import id_key
-
-    named = meta.get("student") if isinstance(meta.get("student"), str) else None
-    if named is None:
-        for c in cells:
-            if c["cell_type"] == "code":
-                m = _RELEASED_FOR.search(c["source"])
-                if m:
-                    named = m.group(2)
-                    break
-    if named is not None and id_key(named) != id_key(student):
-        return f"this notebook was released for {clean(named, 80)}, not for {student}", named
-    if per_student and "student" in meta and meta["student"] is None:
-        return f"this is the exercise's generic release, not the notebook released for {student}", None
-    return None, None
-
 
 def earlier_sources(book, source, released_from=()):
     """The other sources a submission of ``source``'s exercise may have been released from: the files

@@ -22,14 +22,16 @@ from __future__ import annotations
 import datetime as _dt
 import os
 import stat
-from dataclasses import dataclass
+import unicodedata
+from dataclasses import dataclass, field
 
 from ..core.atomic import atomic_write  # the one writer (re-exported: the classroom's callers import it from here)
 from .ids import MAX_ID_CHARS, id_key
 from .ids import id_from_path as student_id  # the one id rule (kinbook.classroom.ids); this name kept for callers
 from .results import Refused
 
-__all__ = ["atomic_write", "PUBLIC_FILE", "PUBLIC_DIR", "Entry", "collect", "read_entry", "shown", "student_id", "MAX_ID_CHARS"]
+__all__ = ["atomic_write", "PUBLIC_FILE", "PUBLIC_DIR", "Entry", "collect", "read_entry", "shown", "student_id",
+           "id_key", "file_time", "MAX_ID_CHARS"]
 
 
 
@@ -48,6 +50,23 @@ def shown(path):
     """
     text = os.fsencode(path).decode("utf-8", "backslashreplace")
     return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+
+
+def file_time(seconds):
+    """A file's modification time (seconds since 1970) as ISO 8601 in UTC. A time no calendar holds (past the
+    year 9999, before the year 1, not a number) is read as the latest or the earliest time there is: the
+    submission's problem — late, not a crash of the run.
+
+    >>> file_time(0)
+    '1970-01-01T00:00:00+00:00'
+    >>> file_time(10**12)
+    '9999-12-31T23:59:59+00:00'
+    """
+    try:
+        return _dt.datetime.fromtimestamp(int(seconds), _dt.timezone.utc).isoformat()
+    except (ValueError, OverflowError, OSError):
+        edge = _dt.datetime.max if not seconds < 0 else _dt.datetime.min
+        return edge.replace(microsecond=0, tzinfo=_dt.timezone.utc).isoformat()
 
 
 @dataclass
@@ -72,9 +91,10 @@ class Entry:
         ``refused`` (a link, a device, a hard link, the instructor's own source …), ``too-large``, ``bad-id``,
         ``duplicate-id``.
     submitted : str
-        When it was handed in (ISO 8601): from the name (no zone: read in the due date's) or the file's time.
+        When it was handed in (ISO 8601): the LMS's (a pattern's ``time`` group; no zone: read in the due date's)
+        or the file's time (:func:`file_time`), never a date the student wrote in a file's name.
     submitted_from : str
-        ``"name"``, ``"file"`` or "".
+        ``"lms"``, ``"file"`` or "". (Gradebooks made before issue 36 may hold ``"name"``.)
     late : bool
         The LMS marked it late in its name.
     attempt : int
@@ -103,6 +123,7 @@ class Entry:
     sha256: str = ""
     replace: int | None = None
     base: str = ""
+    signals: list = field(default_factory=list)
     _raw: str = ""
     _named: bool | None = None
     _order: tuple = ()
@@ -132,7 +153,8 @@ def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="la
     (:func:`kinbook.classroom.naming.read_name`, ``pattern`` an ``--id-pattern``) and, with a ``roster``
     (:class:`kinbook.classroom.roster.Roster`), are mapped to the roster's kinbook id. Several attempts of one student:
     with ``policy`` "latest" the latest is graded and the others are ``superseded``; with "best" all are graded.
-    A submission's time comes from its name, or with ``file_times`` from the file's modification time (only where
+    A submission's time comes from the LMS (a pattern's ``time`` group), or with ``file_times`` from the file's
+    modification time, never from a date in a name the student chose (the file's time is kept only where
     the download kept it: ``unzip`` does, Python's ``zipfile`` does not).
 
     Returns
@@ -187,18 +209,22 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
     name = read_name(parts, exercise, os.path.basename(os.path.realpath(root)), rx,
                      roster.knows if roster is not None else None)
     e._named, e.attempt, e.late, e.base = name.exercise_named, name.attempt, name.late, name.base
-    if name.time is not None:
-        e.submitted, e.submitted_from = name.time.isoformat(), "name"
+    if name.time is not None:  # the LMS's own field (a pattern's `time` group), never a date the student wrote
+        e.submitted, e.submitted_from = name.time.isoformat(), "lms"
     elif st is not None and file_times:
-        e.submitted = _dt.datetime.fromtimestamp(int(st.st_mtime), _dt.timezone.utc).isoformat()
-        e.submitted_from = "file"
-    e._order = (name.attempt, (name.time or _dt.datetime.min).isoformat(), e.mtime, e.path)
+        e.submitted, e.submitted_from = file_time(st.st_mtime), "file"
+    e._order = name.order + (e.mtime, e.path)
+    if name.names is not None and id_key(name.names) != id_key(name.raw):
+        e.signals.append(("names-another", f"the file's name {shown(parts[-1])!r} names {shown(name.names)!r}, "
+                                           f"not the student of its folder"))
     if name.raw is None:
         # a link, a device or a hard link (the instructor's source unpacked into collected/) says so, named or not
         e.status, e.message = problem if problem is not None else ("ignored", f"no student: the path {name.why}")
         e.result = False
         return e
     known = roster.find(name.raw, name.key) if roster is not None else None
+    if known is not None and _look_alike(name.raw, known.student):
+        known = None  # 'ａｌｉｃｅ' is not alice: only the same letters, in any case or Unicode form, are
     if known is not None:
         e.student, e._raw, e.on_roster = known.student, known.student, True
     else:
@@ -232,9 +258,20 @@ def _owner(e, parts, root, exercise, rx, roster):
     e.message = f"{kind_of_file(parts[-1])}, not a notebook (.ipynb): not graded"
 
 
+def _look_alike(raw, sid):
+    """Whether ``raw`` meets the roster's ``sid`` only through Unicode compatibility forms (full-width letters,
+    ligatures, superscripts …): a look-alike, not the student (case and NFC/NFD are the same student's)."""
+    nfc = unicodedata.normalize("NFC", raw).casefold()
+    return id_key(raw) == id_key(sid) and nfc != unicodedata.normalize("NFC", sid).casefold()
+
+
 def _attempts(entries, policy, exercise, max_bytes):
-    """Group the entries of one student: spellings that only meet once folded are a clash (``duplicate-id``);
-    several notebooks of one id are one submission's files or attempts (:func:`kinbook.classroom.choice.choose`)."""
+    """Group the entries of one student (ids compared by :func:`id_key`), then choose among their files. Spellings
+    that only meet once folded: the real student's (on the roster; else the one spelling that is its own NFKC form)
+    keeps their files, and a look-alike (``ａｌｉｃｅ`` beside ``alice``) is a signal and a ``duplicate-id`` of its own
+    — never a clash that zeroes the real one. Only where no spelling can be told real (``Ana`` and ``ana``, no
+    roster) are all of them ``duplicate-id``. Several notebooks of one id are one submission's files or attempts
+    (:func:`kinbook.classroom.choice.choose`)."""
     from .choice import choose
 
     by_key = {}
@@ -242,13 +279,25 @@ def _attempts(entries, policy, exercise, max_bytes):
         if e.student and e.status not in ("ignored",):
             by_key.setdefault(id_key(e.student), []).append(e)
     for same in by_key.values():
-        if len(same) < 2:
-            continue
-        if len({e._raw for e in same}) > 1 and not all(e.on_roster for e in same):
+        spellings = {e.student for e in same}
+        if len(spellings) > 1:
+            real = {e.student for e in same if e.on_roster} or {
+                sid for sid in spellings if unicodedata.normalize("NFKC", sid) == sid}
+            if len(real) != 1:
+                for e in same:
+                    e.status, e.message = "duplicate-id", (
+                        f"the id {e.student!r} is spelled differently by another submission (equal once case and "
+                        "Unicode forms are folded): none of them is graded; rename the folders or give a roster")
+                continue
+            (real,) = real
             for e in same:
-                others = ", ".join(o.path for o in same if o is not e)[:300]
-                e.status, e.message = "duplicate-id", (f"more than one submission for student {e.student!r} under "
-                                                       f"different spellings (also {others}); none of them is graded")
+                if e.student != real:
+                    e.status, e.message = "duplicate-id", (
+                        f"the id {e.student!r} looks like the id of another student (equal once case and Unicode "
+                        "forms are folded): not graded")
+                    e.signals.append(("look-alike", f"the id {e.student!r} looks like {real!r}"))
+            same = [e for e in same if e.student == real]
+        if len(same) < 2:
             continue
         good = sorted((e for e in same if e.status is None), key=lambda e: e._order)
         if good:

@@ -31,8 +31,9 @@ import warnings
 import numpy as np
 
 from ..errors import GradingError, KinbookError
+from ..grading.item import seed_from
 from .answers import describe, mistake_rows
-from .editions import carry_over, class_would_be_tampered, earlier_sources, edition_of, editions, released_for
+from .editions import carry_over, class_would_be_tampered, earlier_sources, edition_of, editions
 from .feedback import write_pages
 from .files import Entry, collect, read_entry, student_id
 from .gradebook import Gradebook
@@ -46,7 +47,8 @@ from .notebook import (
     parse_submission,
     readable,
 )
-from .reference_use import exercise_calls, reference_use
+from .reference_use import as_run, exercise_calls, reference_use
+from .release_kind import check_release_kinds, release_kinds, released_for
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, stopped_notice, ungraded_notice, worst
 from .sanitize import clean, clean_result
 from .serialize import decode_answers
@@ -132,17 +134,6 @@ def check_options(*, timeout=None, memory=None, jobs=None, **flags):
             raise GradingError(f"`{name}` must be True or False, got {value!r}"[:200])
 
 
-def _release_kind(data):
-    """"generic" or "student" as the notebook's kinbook metadata says, None when it cannot tell."""
-    try:
-        meta = parse_submission(data, metadata=True)[1]
-    except Refused:
-        return None
-    if "student" not in meta:
-        return None
-    return "generic" if meta["student"] is None else "student"
-
-
 def _contents(entries, with_entries=False):
     """The bytes of each entry that can still be read (the others are refused when their turn comes); with
     ``with_entries``, (student, bytes)."""
@@ -150,22 +141,6 @@ def _contents(entries, with_entries=False):
         data, refused = _read_again(entry)
         if refused is None:
             yield (entry.student, data) if with_entries else data
-
-
-def _same_release_as_graded(kinds, per_student, exercise):
-    """Stop before any grading when most submissions are the other kind of release than the one graded: the
-    generic release graded per student (every student would be refused), or per-student variants graded with
-    ``--generic``. That is the instructor's mistake, not the students'."""
-    known = [k for k in kinds if k is not None]
-    wrong = sum(1 for k in known if k == ("generic" if per_student else "student"))
-    if not known or wrong * 2 <= len(known):
-        return
-    if per_student:
-        raise GradingError(f"{wrong} of {len(known)} submissions of {exercise} are its generic release (made by "
-                           "`kinbook release`), not per-student variants: grade them with --generic. Nothing was "
-                           "graded.")
-    raise GradingError(f"{wrong} of {len(known)} submissions of {exercise} are per-student variants (made by "
-                       "`kinbook variant`): grade them without --generic. Nothing was graded.")
 
 
 def _refused(source, entry, status, message, isolation=""):
@@ -266,7 +241,8 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
         cells, meta = parse_submission(data, metadata=True)
     except Refused as exc:
         return done(exc.status, exc.message, _all_parts(parts, exc.status, exc.message))
-    other, named = released_for(meta, cells, student, values is not None)
+    other, named = released_for(meta, cells, student, values is not None, generic=generic and values is None
+                                 and find_parameters(source.nb) is not None)
     if other:
         res = done("wrong-release", other, _all_parts(parts, "wrong-release", other))
         if named is not None:  # a copying signal, for the instructor's report
@@ -291,7 +267,10 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
 
     code = [c["source"] for c in cells if c["cell_type"] == "code"]
     names = sorted({p.answer for p in parts} | {p.options["phi"] for p in parts if isinstance(p.options.get("phi"), str)})
-    ex = sandbox.run(code, names, timeout=timeout, memory_mb=memory, files={"submission.ipynb": data})
+    calls = _reference_calls(source)
+    setup = {"seed": seed_from(f"{source.exercise}:{student}"), "functions": sorted(calls.functions),
+             "methods": sorted(calls.methods)}
+    ex = sandbox.run(code, names, timeout=timeout, memory_mb=memory, files={"submission.ipynb": data}, setup=setup)
     limits = ex.limits or getattr(sandbox, "limits", "")
     if ex.status != "ok" and ex.answers is None and ex.cell is None:
         return done(ex.status, ex.message, _all_parts(parts, ex.status, ex.message), ran=limits)
@@ -305,8 +284,8 @@ def _grade_bytes(source, entry, data, *, timeout, memory, generic, reveal_hidden
     locked_sums = {checksum(c) for c in code_locked}
     mine = [i for i, c in enumerate((c for c in cells if c["cell_type"] == "code"), 1) if checksum(c) in locked_sums]
     numbers = [i for i, c in enumerate(cells, 1) if c["cell_type"] == "code"]  # as the student sees them
-    used = reference_use(code, [p.answer for p in parts], calls=_reference_calls(source), locked=mine,
-                         numbers=numbers)
+    used = reference_use(code, [p.answer for p in parts], calls=calls, locked=mine, numbers=numbers)
+    as_run(used, ex.reference, locked=mine, numbers=numbers)
     grades = [_part_grade(p, decoded, problems, stopped, cells, ex.errors, used, reveal_hidden) for p in parts]
     describe(grades, parts, decoded, cells)
     status = worst([g.status for g in grades] + ([stopped[0]] if stopped else []))
@@ -522,7 +501,8 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
         options = dict(timeout=float(timeout), memory=float(memory), generic=bool(generic),
                        reveal_hidden=bool(reveal_hidden), earlier=tuple(earlier_sources(book, src, released_from)))
         plan = _plan(book, run, src, submissions, options, force=force, regrade=regrade, policy=policy,
-                     pattern=id_pattern, roster=roster, progress=progress, file_times=file_times)
+                     pattern=id_pattern, roster=roster, progress=progress, file_times=file_times,
+                     reproduce=_options_shown(timeout, memory, generic, isolation))
         return _grade_run(src, book, run, plan, options, jobs=jobs, isolation=isolation, generic=generic,
                           progress=progress)
 
@@ -545,6 +525,12 @@ def _plan(book, run, src, submissions, options, **how):
     return plan
 
 
+def _options_shown(timeout, memory, generic, isolation):
+    """A run's options as ``kinbook grade`` takes them (for the command that reproduces a failure)."""
+    return (("--timeout", f"{float(timeout):g}", "--memory", f"{float(memory):g}") + (("--generic",) if generic else ())
+            + (() if isolation else ("--no-isolation",)))
+
+
 def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progress):
     """Grade what ``plan`` holds in ``run`` of ``book``: each result recorded as it completes (made inert, the
     source checked unchanged), then the exports and the feedback pages, then the notices."""
@@ -560,6 +546,9 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
             if res.status == "wrong-release":
                 progress(f"copying signal: {res.student} submitted a notebook that was not released for them "
                          f"({res.message})")
+            for kind, detail in res.signals:
+                if kind in ("look-alike", "names-another"):
+                    progress(f"signal: {res.student}: {detail}")
         if src.changed_on_disk():
             raise GradingError(f"the source notebook {str(src.path)!r} changed during grading; the run was stopped "
                                "(every result recorded so far is kept). Grade again once it is final.")
@@ -567,8 +556,7 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
     # an instructor's mistake (the generic release graded per student, or variants with --generic) stops the run
     # here, before any grading
     if find_parameters(src.nb) is not None:
-        _same_release_as_graded([_release_kind(d) for d in _contents(plan.todo)],
-                                not generic, src.exercise)
+        check_release_kinds(release_kinds(plan.todo, _read_again), not generic, src.exercise)
     touched.update(e.student for e in plan.entries.values() if e.student)  # a PDF's student gets a page too
     for entry in plan.refused:
         record(_refused(src, entry, entry.status, entry.message))

@@ -318,6 +318,17 @@ class Gradebook:
         return self.db.execute("SELECT id, source_sha256, status FROM attempts WHERE exercise = ? AND student = ? AND "
                                "sha256 = ? ORDER BY id DESC LIMIT 1", (exercise, student, sha256)).fetchone()
 
+    def runs_graded(self, exercise, student, sha256):
+        """How many runs set out to grade this very file (its sha256) of the student: a file the grader keeps
+        failing on (``grader-error``) is tried again a bounded number of times across runs."""
+        return self.db.execute("SELECT COUNT(DISTINCT run) FROM files WHERE exercise = ? AND student = ? AND "
+                               "sha256 = ? AND outcome = 'graded'", (exercise, student, sha256)).fetchone()[0]
+
+    def note_changed(self, exercise, student, sha256):
+        """A file different from the graded one was seen for this student (not graded again without --force)."""
+        self.db.execute("UPDATE submissions SET changed_sha256 = ? WHERE exercise = ? AND student = ?",
+                        (sha256, exercise, student))
+
     def record(self, result, run=None, replace=None):
         """Store one attempt's result (in place of attempt ``replace``, a regrade, or as a new attempt), then choose
         the attempt that counts for the student under the exercise's policy; one transaction. Returns the attempt's
@@ -364,16 +375,18 @@ class Gradebook:
 
     def select(self, exercise, student):
         """Make the attempt that counts under the policy the student's result (``submissions`` and ``parts``)."""
-        rows = self.db.execute("SELECT id, run FROM attempts WHERE exercise = ? AND student = ? AND status != "
-                               "'superseded' ORDER BY id", (exercise, student)).fetchall()
+        rows = self.db.execute("SELECT id, run, status FROM attempts WHERE exercise = ? AND student = ? AND "
+                               "status != 'superseded' ORDER BY id", (exercise, student)).fetchall()
         if not rows:
             return
+        # an attempt the grader could not grade (no score) never hides one it did: the graded one counts meanwhile
+        rows = [r for r in rows if r[2] not in UNGRADED] or rows
         ids = [r[0] for r in rows]
         rule = self.rule(exercise)
         chosen = ids[-1]
         if rule.policy == "latest":  # the latest run's files: several notebooks of one submission, the best counts
             last = rows[-1][1]
-            ids = [i for i, run in rows if run == last] if last is not None else ids[-1:]
+            ids = [i for i, run, _ in rows if run == last] if last is not None else ids[-1:]
         if len(ids) > 1:
             ext = self.extension(exercise, student)
             finals = {i: final(student, exercise, self._attempt_result(i), rule, ext).score for i in ids}

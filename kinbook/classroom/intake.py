@@ -10,6 +10,7 @@ printed say what happened to every file that is not simply graded.
 from __future__ import annotations
 
 import hashlib
+import shlex
 from dataclasses import dataclass, field
 
 from ..errors import GradingError
@@ -18,7 +19,14 @@ from .enrolment import adopt, check_matches
 from .files import collect, read_entry
 from .results import UNGRADED, Refused, SubmissionResult
 
-__all__ = ["intake", "Intake", "SourceChanged"]
+__all__ = ["intake", "Intake", "SourceChanged", "GRADER_RUNS"]
+
+#: Runs that try a file the grader failed on (``grader-error``) before it is left to the instructor, with the command
+#: that reproduces the failure (``--force`` tries it again).
+GRADER_RUNS = 3
+#: Verdicts reached without running anything, which depend on how the run is graded (``--generic``): reached again
+#: by every run (it costs no sandbox), never "graded before" — a run with the wrong option leaves nothing behind.
+UNRUN = ("tampered", "wrong-release")
 
 
 class SourceChanged(GradingError):
@@ -47,6 +55,7 @@ class Intake:
     off_roster: list = field(default_factory=list)
     stale: list = field(default_factory=list)
     entries: dict = field(default_factory=dict)
+    reproduce: tuple = ()
 
 
 def check_pin(book, src, regrade):
@@ -62,7 +71,7 @@ def check_pin(book, src, regrade):
 
 
 def intake(book, run, src, submissions, *, force=False, regrade=False, policy=None, pattern=None, roster=None,
-           max_bytes, progress=None, file_times=False):
+           max_bytes, progress=None, file_times=False, reproduce=()):
     """Plan a run (see the module docstring) and record every entry that is not graded by it.
 
     Parameters
@@ -81,6 +90,9 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
         ``--id-pattern``: a ready pattern's name or a regular expression.
     roster : Roster or None
         Stored in the gradebook when given; else the stored one (if any) maps the ids.
+    reproduce : tuple of str
+        The run's options (``--timeout``, ``--memory``, ``--generic`` …) for the command that reproduces a grader
+        failure.
     """
     check_pin(book, src, regrade)
     say = progress or (lambda item: None)
@@ -96,7 +108,7 @@ def intake(book, run, src, submissions, *, force=False, regrade=False, policy=No
         book.set_rule(src.exercise, policy=policy)
     policy = book.rule(src.exercise).policy
     book.set_pin(src)
-    plan = Intake()
+    plan = Intake(reproduce=tuple(reproduce))
     for e in entries:
         _digest(e, src, max_bytes)
         if e.on_roster is False and e.sha256:
@@ -173,7 +185,16 @@ def _decide(book, run, src, e, plan, force, say):
         e.replace = previous[0] if previous is not None else None
         plan.refused.append(e)
         book.record_file(run, ex, e, e.status, e.message, digest)
-    elif (previous is not None and previous[1] == src.sha256 and previous[2] not in ("superseded", *UNGRADED)
+    elif (previous is not None and previous[2] in UNGRADED and not force
+          and book.runs_graded(ex, e.student, digest) >= GRADER_RUNS):
+        plan.skipped += 1
+        command = " ".join(shlex.quote(str(a)) for a in (
+            "kinbook", "grade", src.path, e.path, "-o", "kinbook-reproduce", *plan.reproduce))
+        why = (f"the grader failed on this file in {GRADER_RUNS} runs (not the student's doing; no score): not tried "
+               f"again without --force — reproduce it with: {command}")
+        book.record_file(run, ex, e, "skipped", why, digest)
+        say(f"grader-error {e.path}: {why}")
+    elif (previous is not None and previous[1] == src.sha256 and previous[2] not in ("superseded", *UNGRADED, *UNRUN)
           and not force):
         plan.skipped += 1
         book.record_file(run, ex, e, "skipped", "graded before (same file, same source)", digest)
@@ -197,4 +218,5 @@ def annotate(result, plan, src):
     if e is None:
         return None
     result.submitted, result.submitted_from, result.late = e.submitted, e.submitted_from, e.late
+    result.signals = list(result.signals) + [s for s in e.signals if s not in result.signals]
     return e.replace

@@ -22,6 +22,15 @@ Either way the suffixes a browser or an LMS adds to a file handed in again are r
 student, never as another student: ``name (1).ipynb`` (a browser's second download), ``name-1.ipynb`` (Canvas, a
 file uploaded again under the same name) and a trailing timestamp. A trailing ``-<number>`` is read as an attempt
 only when the number has at most two digits and, with a roster, when the name with it is not itself on the roster.
+
+**Who and when come from the LMS, never from a name the student chose** (issue 36). A file in a folder is the
+folder's student's, whatever its own name says: ``mallory/ex01-alice.ipynb`` is mallory's, and the name naming
+alice is a signal for the instructor (:attr:`Name.names`), never an attempt of alice's. A file's own name (the part
+a student typed, or that a browser made) gives at most the order of one student's own attempts; the time of a
+submission is the LMS's — a pattern's ``time`` group, the LMS's ``late`` mark — or the file's (``--file-times``),
+never a date written in the file's name. Only in the flat layout (``<exercise>-<student>.ipynb`` with no folder) is
+the name the only place an id can come from: collect into folders, or give the LMS's pattern, where students name
+their own files.
 """
 
 from __future__ import annotations
@@ -78,6 +87,14 @@ class Name:
         Whether the file is named after the exercise (None: the pattern decides, not the name).
     why : str
         When ``raw`` is None: why no student could be read.
+    base : str
+        The file's name without its attempt suffixes.
+    names : str or None
+        Another id the file's own name names (``mallory/ex01-alice.ipynb``): a signal, not an id (the caller
+        compares it with the folder's by :func:`kinbook.classroom.files.id_key`).
+    order : tuple
+        The LMS's order of the file among a student's files (Canvas's submission number), then the order the name
+        gives (its attempt suffix, a date in it): used only to sort one student's own files.
     """
 
     raw: str | None
@@ -88,6 +105,8 @@ class Name:
     exercise_named: bool | None = None
     why: str = ""
     base: str = ""
+    names: str | None = None
+    order: tuple = ()
 
 
 def compile_pattern(pattern):
@@ -167,20 +186,33 @@ def read_name(parts, exercise, root_name, pattern=None, keep=None):
             return Name(None, why="the --id-pattern matched no student id")
         fstem = g.get("file", stem)
         fstem = fstem[:-len(".ipynb")] if fstem.endswith(".ipynb") else fstem
-        base, attempt, time = _strip_attempt(fstem)
+        base, attempt, stamp = _strip_attempt(fstem)
         if g.get("attempt", "").isdigit():
             attempt = int(g["attempt"])
-        if g.get("time"):
-            time = parse_time(g["time"]) or time
-        return Name(raw, key, time, bool(g.get("late")), attempt, None, base=base)
-    base, attempt, time = _strip_attempt(stem)
+        time = parse_time(g["time"]) if g.get("time") else None  # the LMS's field, never a date in the file's name
+        lms_order = int(g["submission"]) if g.get("submission", "").isdigit() and len(g["submission"]) < 30 else -1
+        return Name(raw, key, time, bool(g.get("late")), attempt, None, base=base,
+                    order=(lms_order, _stamp(time), attempt, _stamp(stamp)))
+    base, attempt, stamp = _strip_attempt(stem)
+    order = (-1, "", attempt, _stamp(stamp))
+    if len(parts) > 1:  # in a folder: the folder's student's file, whatever its name says
+        owner, named, exercise_named = parts[-2], None, base == exercise
+        if not exercise_named and stem.startswith(exercise + "-"):
+            named, attempt, stamp = _strip_attempt(stem[len(exercise) + 1:], keep)
+            exercise_named, base, order = True, exercise, (-1, "", attempt, _stamp(stamp))
+        elif not exercise_named and keep is not None and keep(base) and base != owner:
+            named = base  # '<classmate>.ipynb' in mallory's folder
+        if named == owner:
+            named = None  # (the same id in another case or Unicode form: told apart by the caller's id key)
+        return Name(owner, "student", None, False, attempt, exercise_named, base=base, names=named, order=order)
     if base == exercise:
-        owner = parts[-2] if len(parts) > 1 else root_name
-        return Name(owner, "student", time, False, attempt, True, base=base)
+        return Name(root_name, "student", None, False, attempt, True, base=base, order=order)
     if stem.startswith(exercise + "-"):
-        rest, attempt, time = _strip_attempt(stem[len(exercise) + 1:], keep)
-        return Name(rest, "student", time, False, attempt, True, base=exercise)
-    if len(parts) > 1:  # a notebook of another name in a student's directory
-        return Name(parts[-2], "student", time, False, attempt, False, base=base)
-    raw, attempt, time = _strip_attempt(stem, keep)
-    return Name(raw, "student", time, False, attempt, False, base=raw)
+        rest, attempt, stamp = _strip_attempt(stem[len(exercise) + 1:], keep)
+        return Name(rest, "student", None, False, attempt, True, base=exercise, order=(-1, "", attempt, _stamp(stamp)))
+    raw, attempt, stamp = _strip_attempt(stem, keep)
+    return Name(raw, "student", None, False, attempt, False, base=raw, order=(-1, "", attempt, _stamp(stamp)))
+
+
+def _stamp(time):
+    return time.isoformat() if time is not None else ""

@@ -34,6 +34,7 @@ from pathlib import Path
 from ..errors import GradingError
 from .parts import check_parameters
 from .results import Refused
+from .sandbox.protocol import MAX_SUBMISSION_BYTES
 
 __all__ = [
     "BEGIN_SOLUTION", "END_SOLUTION", "BEGIN_HIDDEN", "END_HIDDEN", "Source", "load_source", "source_from_bytes",
@@ -42,8 +43,9 @@ __all__ = [
     "find_parameters", "parse_submission", "readable", "MAX_NOTEBOOK_BYTES", "MAX_FILE_BYTES", "MAX_CELLS",
 ]
 
-#: A submission whose code and text (saved outputs left out) are larger than this is not graded (``too-large``).
-MAX_NOTEBOOK_BYTES = 8 * 1024 * 1024
+#: A submission whose code and text (saved outputs left out) are larger than this is not graded (``too-large``); the
+#: sandbox's job frame is sized from it, so that a notebook under it always fits.
+MAX_NOTEBOOK_BYTES = MAX_SUBMISSION_BYTES
 #: A file larger than this is refused unread (``too-large``), saved outputs included.
 MAX_FILE_BYTES = 128 * 1024 * 1024
 #: A submission with more cells than this is refused (``too-large``).
@@ -227,7 +229,7 @@ def find_parameters(nb):
     return found
 
 
-_ASSIGNS_PARAMETERS = re.compile(r"(?m)^\s*[A-Za-z_]\w*\s*=\s*(?:\w+\.)?parameters\s*\(")
+_ASSIGNS_PARAMETERS = re.compile(r"(?m)^[^\S\n]*[A-Za-z_]\w*[^\S\n]*=[^\S\n]*(?:\w+\.)?parameters[^\S\n]*\(")
 
 
 def parameters_code(name, values, student=None):

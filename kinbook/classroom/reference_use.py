@@ -71,7 +71,7 @@ from .code_reading import (
     value_path,
 )
 
-__all__ = ["reference_use", "exercise_calls", "declared_calls", "ReferenceCalls", "PHI_FAMILY", "REFERENCE_CALLS",
+__all__ = ["reference_use", "as_run", "exercise_calls", "declared_calls", "ReferenceCalls", "PHI_FAMILY", "REFERENCE_CALLS",
            "DYNAMIC_CALLS", "MAX_CODE_CHARS"]
 
 #: Methods (``obj.name(...)``) and functions whose result is kinbook's reference for a graded quantity.
@@ -133,6 +133,8 @@ class _Flow:
         self.kb = {}         # name → qualified kinbook name ("kinbook.spatial"), or "" for an object from kinbook
         self.star = False    # ``from kinbook… import *``
         self.own_methods = set()  # method names the notebook's own classes define
+        self.own_classes = {}  # class the notebook defines → the methods it defines
+        self.own_instances = {}  # name → the notebook's own class it was made by (``m = M(mech)``)
         self.helpers = {}    # name → "methodcaller", "attrgetter", "partial", "sys", "sys.modules"
         self.callers = {}    # name → (helper, attribute), for ``methodcaller("symbolic")`` objects
         self.setters = {}    # function name → (globals it assigns, whether it changes an argument in place)
@@ -174,11 +176,22 @@ class _Flow:
     def reference_method(self, obj, method):
         """Whether ``obj.method`` is kinbook's reference: a reference method of an object from kinbook (or of an
         unknown object, unless the notebook's own classes define a method of that name)."""
-        if method not in self.calls.methods:
+        if method not in self.calls.methods or self.own_object(obj, method):
             return False
         if self.from_kinbook(obj):
             return True
         return self.unknown(obj) and method not in self.own_methods
+
+    def own_object(self, obj, method):
+        """Whether ``obj`` is an object of the notebook's own class that defines ``method`` itself (``M(mech)``, or
+        a name bound to one): its ``method`` is the student's, whatever kinbook objects it was given."""
+        if isinstance(obj, ast.Call) and isinstance(obj.func, ast.Name):
+            cls = obj.func.id
+        elif isinstance(obj, ast.Name):
+            cls = self.own_instances.get(obj.id)
+        else:
+            return False
+        return method in self.own_classes.get(cls, ())
 
     def reference_function(self, node):
         q = self.qualify(node)
@@ -285,6 +298,12 @@ class _Flow:
         else:
             self.callers.pop(name, None)
         q = self.qualify(value) if value is not None else None
+        own = (value.func.id if isinstance(value, ast.Call) and isinstance(value.func, ast.Name)
+               and value.func.id in self.own_classes else None)
+        if own:
+            self.own_instances[name] = own  # an object of the student's own class, whatever it was given
+        else:
+            self.own_instances.pop(name, None)
         if q:
             self.kb[name] = q
         elif value is not None and (self.from_kinbook(value) or self.unknown(value)):
@@ -355,6 +374,10 @@ class _Flow:
             found = found or self.origin(part, cell)
         self._bind(stmt.name, None, None)
         self.defined.add(stmt.name)
+        self.own_classes.pop(stmt.name, None)
+        if isinstance(stmt, ast.ClassDef):
+            self.own_classes[stmt.name] = {f.name for f in stmt.body
+                                           if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))}
         glob = [n for sub in ast.walk(stmt) if isinstance(sub, (ast.Global, ast.Nonlocal)) for n in sub.names]
         if found:
             self.functions[stmt.name] = found
@@ -631,3 +654,19 @@ def reference_use(cells, answers, calls=None, locked=(), numbers=None):
             return {name: f"not followed: code nested too deeply (cell {numbers[index]})" for name in answers}
     unseen = f"not followed: code that could assign it unseen ({flow.unfollowed})" if flow.unfollowed else ""
     return {name: flow.tainted.get(name) or unseen for name in answers}
+
+
+def as_run(used, observed, locked=(), numbers=None):
+    """Add to ``used`` (:func:`reference_use`'s answer, changed in place) the reference use observed as the notebook
+    ran (:mod:`kinbook.classroom.sandbox.trace`): ``observed`` is ``{name: [(function, code cell, same object), …]}``.
+    An answer the code shows no use for (or could not follow) reads "….constraint_phi() (cell 5, as run)" — "as run:
+    equal to its result" for a copy; calls in the release's ``locked`` code cells do not count; what the code shows
+    is never replaced. ``numbers``: each code cell's position among all cells, as the student sees them."""
+    for name, calls in observed.items():
+        seen = [(key, cell, same) for key, cell, same in calls
+                if cell not in locked and (numbers is None or 0 < cell <= len(numbers))]
+        if name in used and seen and (not used[name] or used[name].startswith("not followed")):
+            key, cell, same = seen[0]
+            shown = numbers[cell - 1] if numbers is not None else cell
+            used[name] = f"{key}() (cell {shown}, as run" + ("" if same else ": equal to its result") + ")"
+    return used

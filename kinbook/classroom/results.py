@@ -23,8 +23,11 @@ bad-id             the student id taken from the path is too long: not graded (r
 duplicate-id       two files give the same student under different spellings (ids equal once case and Unicode
                    forms are folded): neither is graded
 grader-error       the grader failed before any code of the notebook ran (a kernel that did not start), each of
-                   the times it tried: not graded and no score (blank in every export, not 0) — the next run
-                   grades it again, without ``--force``
+                   the times it tried: not graded and no score (blank in every export, not 0; an earlier graded
+                   attempt counts meanwhile) — the next runs grade it again, without ``--force``, three runs at
+                   most; then the run prints the command that reproduces the failure. A limit a submission can
+                   reach before its code runs (size, cells, decoding, the job's frame) is never this: it is the
+                   submission's (``too-large``, ``corrupt-notebook``)
 =================  ==========================================================================================
 
 Entries of ``collected/`` that are not a student's result are listed, not graded (:mod:`.files`): ``ignored``
@@ -62,7 +65,8 @@ def ungraded_notice(results):
         return ""
     return (f"not graded, through a failure of the grader's, not theirs ({len(ungraded)}; no score recorded): "
             + ", ".join(ungraded[:20]) + (" …" if len(ungraded) > 20 else "") + " — run the same command again "
-            "to grade them")
+            "to grade them (a file the grader fails on in three runs is then left to you, with the command that "
+            "reproduces it)")
 
 
 def stopped_notice(why, kept, of, where):
@@ -120,10 +124,13 @@ class SubmissionResult:
         cpu)"`` (a control group held all the sandbox's processes), ``"bubblewrap; rlimits, no fork"``
         (per-process limits, the kernel unable to fork); ``""`` when nothing was run.
     submitted, submitted_from, late :
-        When it was handed in (ISO 8601), read from ``"name"`` or ``"file"``, and whether the LMS marked it late.
+        When it was handed in (ISO 8601), read from the LMS (``"lms"``: a pattern's ``time`` group) or the file's
+        time (``"file"``), never from a date in a file's name; and whether the LMS marked it late.
     signals : list of (kind, detail)
-        Copying signals for the instructor (never told to the student): ``("released-for", "<other id>")`` for a
-        notebook released for another student.
+        Signals for the instructor (never told to the student): ``("released-for", "<other id>")`` for a
+        notebook released for another student, ``("names-another", …)`` for a file whose own name names another
+        student than its folder's, ``("look-alike", …)`` for an id equal to another student's once case and
+        Unicode forms are folded.
     source_sha256 : str
         The source notebook that graded it.
     attempt : int or None

@@ -257,8 +257,9 @@ def _text(t, depth, budget, names, out):
             raise DecodeError("zero denominator")
         out.append(f"({args[0]})" if head == "Integer" else f"(({args[0]})/({args[1]}))")
     elif head == "Float":
-        if len(args) != 1 or not isinstance(args[0], str) or not re.fullmatch(r"-?(\d+\.?\d*(e[-+]?\d+)?|inf|nan)", args[0]) \
-                or len(args[0]) > 40:
+        # (the length first: the pattern backtracks quadratically on a long string of digits that does not match)
+        if len(args) != 1 or not isinstance(args[0], str) or len(args[0]) > 40 \
+                or not re.fullmatch(r"-?(\d+\.?\d*(e[-+]?\d+)?|inf|nan)", args[0]):
             raise DecodeError("bad float")
         out.append(f"({args[0]})")
     elif head in ("pi", "E"):

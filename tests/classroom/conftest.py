@@ -116,9 +116,13 @@ def make_collected(root):
     (course / "mine.ipynb").write_bytes(good)
     os.link(course / "mine.ipynb", collected / "hardlink_classmate.ipynb")
     shutil.copy(SOURCE, collected / "source_copy.ipynb")
-    # ids that clash once normalized (NFC and NFD of the same name) and one too long for a file system's taste
+    # one id in NFC and in NFD (two attempts of José), ids that clash once case is folded with none of them more
+    # real than the other (Ana, ana), a look-alike of a classmate (full-width ｇｏｏｄ beside good), and an id too
+    # long for a file system's taste
     for form in ("NFC", "NFD"):
         (collected / (unicodedata.normalize(form, "José") + ".ipynb")).write_bytes(good)
+    for name in ("Ana", "ana", "ｇｏｏｄ"):
+        (collected / f"{name}.ipynb").write_bytes(good)
     (collected / (LONG_NAME + ".ipynb")).write_bytes(good)
     (collected / (ODD_NAME + ".ipynb")).write_bytes(good)
     return collected

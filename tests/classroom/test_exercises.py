@@ -119,7 +119,7 @@ def test_a_generic_release_graded_per_student_stops_before_grading(tmp_path):
     subs = tmp_path / "subs"
     for student in ("alice", "bob", "carol"):
         write_notebook(student_notebook(source, keep_solutions=True), subs / student / f"{source.exercise}.ipynb")
-    with pytest.raises(GradingError, match=r"3 of 3 submissions of .* are its generic release .* grade them with "
+    with pytest.raises(GradingError, match=r"3 of 3 students handed in .*'s generic release .* grade them with "
                                            r"--generic\. Nothing was graded\."):
         grade(src, [subs], tmp_path / "graded", timeout=ENOUGH, memory=600, isolation=BWRAP)
     db = sqlite3.connect(tmp_path / "graded" / "gradebook.sqlite")

@@ -48,15 +48,18 @@ def test_oversized_files_are_refused_unread(tmp_path):
 
 def test_ids_are_normalized_and_clashes_reported_per_entry(tmp_path):
     for name in (unicodedata.normalize("NFC", "José"), unicodedata.normalize("NFD", "José"), "Josè", "ANA", "ana",
-                 "x" * 100):
+                 "x" * 100, "alice", "ａｌｉｃｅ"):
         (tmp_path / f"{name}.ipynb").write_text("{}")
     found = collect([tmp_path], "ex01", max_bytes=1000)
     status = {}
     for e in found:
         status.setdefault(e.student, []).append(e.status)
-    assert status["José"] == ["duplicate-id", "duplicate-id"]  # one name, two Unicode spellings
+    assert sorted(status["José"], key=str) == [None, "superseded"]  # one id in NFC and NFD: two attempts of José
     assert status["Josè"] == [None]                            # another name: graded
-    assert status["ANA"] == ["duplicate-id"] and status["ana"] == ["duplicate-id"]  # one file on a Mac
+    assert status["ANA"] == ["duplicate-id"] and status["ana"] == ["duplicate-id"]  # one file on a Mac: who is real?
+    assert status["alice"] == [None] and status["ａｌｉｃｅ"] == ["duplicate-id"]  # a look-alike never zeroes alice
+    (fake,) = [e for e in found if e.student == "ａｌｉｃｅ"]
+    assert fake.signals == [("look-alike", "the id 'ａｌｉｃｅ' looks like 'alice'")] and "tmp" not in fake.message
     (long,) = [e for e in found if e.student.startswith("xxx")]
     assert long.status == "bad-id" and len(long.student) <= 64
 

@@ -68,7 +68,10 @@ def test_good_submission_gets_full_score_among_bad_ones(batch):
     ("link_secret", "refused", 0.0),         # a link to a private file: never followed
     ("linkdir", "refused", 0.0),             # a link to a directory of classmates
     ("fifo", "refused", 0.0),                # a FIFO: never opened (the batch does not hang on it)
-    ("José", "duplicate-id", 0.0),           # NFC and NFD spellings of one name: neither is graded
+    ("José", "ok", FULL),                    # NFC and NFD spellings of one id: two attempts of José's
+    ("Ana", "duplicate-id", 0.0),            # Ana and ana, no roster: no spelling more real than the other
+    ("ana", "duplicate-id", 0.0),
+    ("ｇｏｏｄ", "duplicate-id", 0.0),          # a look-alike of good: a signal; good itself is graded (ok, above)
     (student_id(LONG_NAME)[0], "bad-id", 0.0),
     (student_id(ODD_NAME)[0], "ok", FULL),   # a name that is not UTF-8 (and has control characters)
 ] + [(name, "ok", FULL) for name in ESCAPES])  # every attempt refused; the answers themselves are right
@@ -94,7 +97,9 @@ def test_refused_entries_say_why_and_leak_nothing(batch):
     results = batch["results"]
     assert "symbolic link" in results["link_source"].message and "not followed" in results["link_source"].message
     assert "FIFO" in results["fifo"].message
-    assert "also" in results["José"].message and "none of them is graded" in results["José"].message
+    assert "none of them is graded" in results["ana"].message and "collected" not in results["ana"].message
+    assert "looks like the id of another student" in results["ｇｏｏｄ"].message  # (no classmate's path)
+    assert results["ｇｏｏｄ"].signals == [("look-alike", "the id 'ｇｏｏｄ' looks like 'good'")]
     assert "characters" in results[student_id(LONG_NAME)[0]].message
     # 20 MB is read (saved outputs do not count against the 8 MB of code and text), its 150,000 cells are not parsed
     assert "2,000 cells" in results["giant"].message and "cells" in results["many_cells"].message

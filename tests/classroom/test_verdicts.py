@@ -19,7 +19,7 @@ import pytest
 from kinbook.classroom import grade
 from kinbook.classroom.sandbox import Sandbox, host
 from kinbook.classroom.sandbox.cgroup import PIDS_MAX
-from kinbook.classroom.sandbox.protocol import THREAD_ENV, FrameReader, cpu_seconds, wall_seconds, write_frame
+from kinbook.classroom.sandbox.protocol import RUNNING, THREAD_ENV, FrameReader, cpu_seconds, wall_seconds, write_frame
 
 from .conftest import BWRAP, ENOUGH, SOURCE, submission
 
@@ -107,7 +107,7 @@ def test_a_result_written_without_the_running_frame_is_the_graders():
     import os
 
     r, w = os.pipe()
-    write_frame(w, {"status": host.RUNNING})
+    write_frame(w, {"status": RUNNING})
     write_frame(w, {"status": "ok", "answers": {}})
     os.close(w)
     reader = FrameReader(1 << 20)
@@ -189,3 +189,39 @@ def test_thread_pools_are_pinned_whatever_the_graders_environment(isolation, mon
     # to kernel_info" that way, without bubblewrap, on a busy machine)
     assert probe["transport"] == "ipc" and probe["ip"].startswith(sb.layout.work + "/"), probe
 
+
+
+def test_a_file_the_grader_keeps_failing_on_is_left_to_the_instructor_with_the_command(flaky, tmp_path,
+                                                                                    monkeypatch):
+    """Issue 36: a grader-error is tried again by the next runs, GRADER_RUNS at most; then the run skips it and
+    prints the command that reproduces it (no run costs the class its time forever). Meanwhile the student's earlier
+    graded attempt counts, not the blank."""
+    from kinbook.classroom.intake import GRADER_RUNS
+
+    monkeypatch.setattr(host, "GRADER_RETRIES", 0)
+    collected = tmp_path / "collected"
+    collected.mkdir()
+    (collected / "good.ipynb").write_bytes(open(submission("wrong"), "rb").read())
+    out = tmp_path / "graded"
+    flaky(0)
+    assert [(r.status, r.score) for r in grade(SOURCE, [collected], out, timeout=ENOUGH, memory=400,
+                                               isolation=BWRAP)] == [("ok", 0.0)]
+    (collected / "good.ipynb").write_bytes(open(submission("good"), "rb").read())  # a new attempt
+    flaky(10**6)
+    for _ in range(GRADER_RUNS):
+        (r,) = grade(SOURCE, [collected], out, timeout=ENOUGH, memory=400, isolation=BWRAP)
+        assert r.status == "grader-error"
+        with open(out / "totals.csv", newline="") as f:
+            (row,) = list(csv.DictReader(f))
+        assert (row["status"], row["score"]) == ("ok", "0")  # the graded attempt, not a blank
+    tries = len(_Flaky.tries)
+    said = []
+    assert grade(SOURCE, [collected], out, timeout=ENOUGH, memory=400, isolation=BWRAP, progress=said.append) == []
+    assert len(_Flaky.tries) == tries  # not tried a fourth time
+    (line,) = [s for s in said if isinstance(s, str) and s.startswith("grader-error")]
+    assert f"failed on this file in {GRADER_RUNS} runs" in line
+    assert f"kinbook grade {SOURCE} {collected / 'good.ipynb'} -o kinbook-reproduce --timeout {ENOUGH:g} --memory 400" \
+        in line
+    flaky(0)
+    (r,) = grade(SOURCE, [collected], out, timeout=ENOUGH, memory=400, isolation=BWRAP, force=True)
+    assert (r.status, r.score) == ("ok", FULL)

@@ -96,6 +96,10 @@ def copying(book, exercise):
     out += [{"kind": "released for another student", "students": s, "what": m}
             for s, m in book.db.execute("SELECT student, message FROM submissions WHERE exercise = ? AND status = "
                                         "'wrong-release' ORDER BY student", (exercise,)) if s not in flagged]
+    out += [{"kind": "an id that is not the file's student's", "students": s, "what": d}
+            for s, d in book.db.execute(
+                "SELECT DISTINCT student, detail FROM signals WHERE exercise = ? AND kind IN ('look-alike', "
+                "'names-another') ORDER BY student, detail", (exercise,))]
     answers = {}
     for student, part, answer, score, mx in book.db.execute(
             "SELECT student, part, answer, score, max_score FROM parts WHERE exercise = ? ORDER BY student, position",

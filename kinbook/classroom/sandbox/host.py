@@ -52,12 +52,13 @@ from . import bwrap
 from . import cgroup as cgroups
 from .protocol import (
     ISOLATED,
+    MAX_JOB_BYTES,
     MAX_RESULT_BYTES,
-    RUNNING,
     FrameError,
-    FrameReader,
     Layout,
+    ResultReader,
     cpu_seconds,
+    job_frame,
     wall_seconds,
     write_frame,
 )
@@ -70,8 +71,9 @@ STARTUP_SECONDS = 60.0
 WORKER_STATUSES = ("ok", "timeout", "memory", "error")
 #: Statuses an execution can have: the worker's, and ``grader-error`` — the run failed before any code of the
 #: submission ran (a kernel that did not start, a sandbox that stopped), :data:`GRADER_RETRIES` times more after
-#: the first: nothing to grade, and not the student's doing.
-STATUSES = WORKER_STATUSES + ("grader-error",)
+#: the first: nothing to grade, and not the student's doing; and ``too-large`` — a job over the frame limit, which
+#: only a submission over the size cap can make (:data:`~.protocol.MAX_JOB_BYTES`): the submission's, not run.
+STATUSES = WORKER_STATUSES + ("grader-error", "too-large")
 #: Times a run that failed before any code of the submission ran is tried again, each in a new sandbox.
 GRADER_RETRIES = 2
 _MAX_ANSWERS = 100
@@ -114,6 +116,10 @@ class Execution:
         failure is the grader's (tried again by :meth:`Sandbox.run`).
     tries : int
         How many times the notebook was run (more than 1 after failures of the grader's).
+    reference : dict
+        {answer name: [(the reference function's qualified name, the code cell it ran in, whether the answer is its
+        very result or an equal copy), …]} (the latest first, at most four) for the answers that are the result of a
+        call into the exercise's reference, as observed in the kernel (:mod:`.trace`).
     """
 
     status: str
@@ -125,6 +131,7 @@ class Execution:
     limits: str = ""
     before_code: bool = False
     tries: int = 1
+    reference: dict = field(default_factory=dict)
 
 
 def _text(value, limit):
@@ -150,7 +157,16 @@ def _validated(header):
         return Execution("error", "the sandbox returned no answers")
     cell = header.get("cell")
     cell = cell if isinstance(cell, int) and not isinstance(cell, bool) and 0 < cell <= 1_000_000 else None
-    return Execution(status, _text(header.get("message"), 500), answers, errors, cell=cell)
+    reference = {}
+    raw = header.get("reference")
+    for name, entries in (raw.items() if isinstance(raw, dict) else ()):
+        if isinstance(name, str) and answers is not None and name in answers and isinstance(entries, list):
+            kept = [(e[0][:200], e[1], e[2] == 1) for e in entries[:4]
+                    if isinstance(e, list) and len(e) == 3 and isinstance(e[0], str) and isinstance(e[1], int)
+                    and not isinstance(e[1], bool) and 0 < e[1] <= 1_000_000 and e[2] in (0, 1)]
+            if kept:
+                reference[name] = kept
+    return Execution(status, _text(header.get("message"), 500), answers, errors, cell=cell, reference=reference)
 
 
 def _clean_env(extra=None):
@@ -421,7 +437,7 @@ class Sandbox:
             return False
 
     # ----------------------------------------------------------------------------------------------- run
-    def run(self, cells, names, *, timeout=60.0, memory_mb=1000, files=None, audit_hook=True):
+    def run(self, cells, names, *, timeout=60.0, memory_mb=1000, files=None, audit_hook=True, setup=None):
         """Run code cells in a fresh worker and kernel; read the named answers.
 
         Parameters
@@ -443,20 +459,19 @@ class Sandbox:
         audit_hook : bool
             Install the kernel's audit hook (always, when grading). False only to test what the
             operating-system sandbox holds on its own.
+        setup : dict, optional
+            ``{"seed": int, "functions": [...], "methods": [...]}``: the seed of the notebook's random generators
+            and the reference's calls to observe (:func:`.trace.setup`), before the first cell.
 
         Returns
         -------
         Execution
         """
-        import nbformat
-
         t0 = time.monotonic()
-        nb = nbformat.v4.new_notebook()
-        nb.cells = [nbformat.v4.new_code_cell(c) for c in cells]
-        files = dict(files or {})
-        header = {"timeout": float(timeout), "names": list(names), "notebook": nbformat.writes(nb),
-                  "files": [[os.path.basename(k), len(v)] for k, v in files.items()]}
-        payload = b"".join(files.values())
+        header, payload = job_frame(cells, names, timeout, files, setup)
+        if len(payload) > MAX_JOB_BYTES - (1 << 20):  # (only a caller past the submission cap gets here)
+            return Execution("too-large", f"the notebook's code and its copy take {len(payload):,} bytes (at most "
+                                          f"{MAX_JOB_BYTES - (1 << 20):,} in a job): not run", seconds=0.0)
         limits = {"memory_mb": float(memory_mb), "cpu_s": cpu_seconds(timeout), "audit": bool(audit_hook)}
         for tries in range(1, GRADER_RETRIES + 2):
             if tries > 1:
@@ -502,21 +517,21 @@ class Sandbox:
             write_frame(self.job_w, header, payload, deadline=time.monotonic() + 30)
         except FrameError as exc:
             return _grader(f"the job could not be handed to the sandbox: {exc}")
-        reading = _ResultReader(self.result_r)
+        reading = ResultReader(self.result_r)
         try:
             ended, early = self._wait(reading, timeout, memory)
         except FrameError as exc:
-            return (Execution if reading.started else _grader)(
-                "error", f"the sandbox returned an unreadable result: {exc}")
+            return _kept((Execution if reading.started else _grader)(
+                "error", f"the sandbox returned an unreadable result: {exc}"), reading)
         if early is not None:
-            return early
+            return _kept(early, reading)
         frame = reading.reader.frame
         if not reading.started:  # whatever the worker said: nothing of the submission ran
             said = _validated(frame[0]).message if frame is not None else f"it ended: {ended}"
             return _grader(said or "the kernel did not start")
-        if frame is None:
-            return self._out_of_memory(memory) or Execution(
-                "error", f"the grading worker stopped without a result ({ended})")
+        if frame is None:  # the worker stopped (killed at the memory limit, the sandbox's directories full …)
+            return _kept(self._out_of_memory(memory) or Execution(
+                "error", f"the grading worker stopped without a result ({ended})"), reading)
         ex = _validated(frame[0])
         oom = self._out_of_memory(memory, reached=ex.status == "timeout")
         if oom is not None and ex.status in ("ok", "error", "timeout"):
@@ -598,34 +613,22 @@ class Sandbox:
             self.close()
 
 
+def _kept(ex, reading):
+    """``ex`` of a run that ended without the worker's result, with the answers the worker sent before it stopped
+    (validated as a result's are): answers read before a failure are graded, whatever the failure."""
+    if not ex.before_code and ex.answers is None and reading.answers is not None:
+        answers = _validated({"status": "error", "answers": reading.kept()})
+        if not answers.message and answers.answers is not None:
+            ex.answers = answers.answers
+            if reading.answers[1]:
+                ex.message += f" (the answers read after code cell {reading.answers[1]} are graded)"
+    return ex
+
+
 def _grader(*args):
     """An Execution that failed before any code of the submission ran (``message``, or ``status, message``)."""
     status, message = args if len(args) == 2 else ("error", args[0])
     return Execution(status, message, before_code=True)
-
-
-class _ResultReader:
-    """The worker's frames on the result pipe: its ``running`` frame (:attr:`started`), then its result
-    (``reader.frame``)."""
-
-    def __init__(self, fd):
-        self.fd = fd
-        self.reader = FrameReader(MAX_RESULT_BYTES)
-        self.started = False
-
-    def feed(self, chunks=1):
-        for _ in range(chunks):
-            try:
-                chunk = os.read(self.fd, 1 << 16)
-            except BlockingIOError:
-                return
-            if not chunk:
-                return
-            self.reader.push(chunk)
-            if self.reader.frame is not None and not self.started and self.reader.frame[0] == {"status": RUNNING}:
-                self.started = True  # from here on, the submission's code runs
-                rest, self.reader = self.reader.rest, FrameReader(MAX_RESULT_BYTES)
-                self.reader.push(rest)
 
 
 def bwrap_text(data):

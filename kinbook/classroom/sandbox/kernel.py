@@ -226,7 +226,10 @@ def preload():
 
     import kinbook  # noqa: F401
     import kinbook.classroom.parts  # noqa: F401
+    import kinbook.classroom.sandbox.trace
     import kinbook.classroom.serialize  # noqa: F401
+
+    kinbook.classroom.sandbox.trace.load_reference_modules()  # (for the reference's calls to be observed)
 
     sympy.lambdify([sympy.Symbol("x")], sympy.sin(sympy.Symbol("x")) ** 2, "numpy")(0.5)
     import matplotlib

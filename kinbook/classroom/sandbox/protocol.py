@@ -33,14 +33,20 @@ import select
 import time
 from dataclasses import asdict, dataclass
 
-__all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "RUNNING", "FrameError",
-           "write_frame", "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper",
+__all__ = ["Layout", "JOB_FD", "RESULT_FD", "MAX_SUBMISSION_BYTES", "MAX_JOB_BYTES", "MAX_RESULT_BYTES", "job_frame",
+           "read_job", "RUNNING", "ANSWERS", "FrameError", "write_frame", "ResultReader", "read_frame", "FrameReader", "die_with_parent", "set_dumpable", "set_child_subreaper",
            "cpu_seconds", "wall_seconds", "THREAD_ENV"]
 
 JOB_FD = 3
 RESULT_FD = 4
-#: A job carries the notebook to run and a copy of the submission (each refused above 8 MB before).
-MAX_JOB_BYTES = 40 * 1024 * 1024
+#: The largest submission graded (a larger one is ``too-large``, refused unread: :mod:`kinbook.classroom.notebook`).
+MAX_SUBMISSION_BYTES = 8 * 1024 * 1024
+#: A job carries the code cells as UTF-8 (never more bytes than they take in the submission's JSON: a character
+#: is at least as long there, escaped or not) and a copy of the submission, after a header of a few kilobytes
+#: (:func:`job_frame`): a submission under the cap always fits, whatever its characters — a frame limit that
+#: does not follow from the cap lets a student's file make the grader fail (a notebook of 6.9 MB of DEL
+#: characters, written JSON inside JSON, once took 48.5 MB).
+MAX_JOB_BYTES = 2 * MAX_SUBMISSION_BYTES + (1 << 20)
 #: The answers (at most 2 MB each, 100 of them in principle; far less in practice) and cell errors.
 MAX_RESULT_BYTES = 16 * 1024 * 1024
 _MAGIC = b"KBF1"
@@ -53,6 +59,9 @@ THREAD_ENV = {name: "1" for name in (
     "RAYON_NUM_THREADS", "TBB_NUM_THREADS")}
 #: The status of the worker's first frame: the kernel is up and the first cell is about to be sent.
 RUNNING = "running"
+#: The status of the worker's frames between ``running`` and its result: the answers as read after a cell (in the
+#: payload, kept unread by the grading process until the run ends without a result).
+ANSWERS = "answers"
 
 
 def cpu_seconds(timeout):
@@ -106,6 +115,49 @@ class Layout:
 
 #: The layout inside bubblewrap (every directory a size-capped tmpfs of the sandbox).
 ISOLATED = Layout(home="/home/student", tmp="/tmp", work="/run/kinbook/work", isolated=True)
+
+
+def job_frame(cells, names, timeout, files=None, setup=None):
+    """The job of one run as a frame's ``(header, payload)``: the code cells' sources and the files' bytes in the
+    payload (the cells as UTF-8, lone surrogates kept), their sizes, the answer names and the kernel's ``setup``
+    (the seed and the reference's names: :func:`kinbook.classroom.sandbox.trace.setup`) in the header.
+
+    >>> header, payload = job_frame(["x = 1", "y = '\\x7f'"], ["x"], 5.0, {"a.ipynb": b"{}"})
+    >>> read_job(header, payload)[0]
+    ['x = 1', "y = '\\x7f'"]
+    """
+    files = dict(files or {})
+    code = [str(c).encode("utf-8", "surrogatepass") for c in cells]
+    setup = dict(setup or {})
+    header = {"timeout": float(timeout), "names": [str(n) for n in names], "cells": [len(c) for c in code],
+              "files": [[os.path.basename(k), len(v)] for k, v in files.items()],
+              "setup": {"seed": int(setup.get("seed", 0)), "functions": sorted(map(str, setup.get("functions", ()))),
+                        "methods": sorted(map(str, setup.get("methods", ())))}}
+    return header, b"".join(code) + b"".join(files.values())
+
+
+def read_job(header, payload):
+    """``(cells, names, timeout, files, setup)`` of a job frame (:func:`job_frame`); :class:`FrameError` when it
+    does not hold together."""
+    try:
+        sizes = [int(n) for n in header["cells"]] + [int(size) for _, size in header["files"]]
+        names = [str(n) for n in header["names"]]
+        timeout = float(header["timeout"])
+        setup = header.get("setup") or {}
+        setup = {"seed": int(setup.get("seed", 0)), "functions": [str(f) for f in setup.get("functions", [])],
+                 "methods": [str(m) for m in setup.get("methods", [])]}
+    except (KeyError, TypeError, ValueError, AttributeError):
+        raise FrameError("the job's header is malformed") from None
+    if any(n < 0 for n in sizes) or sum(sizes) != len(payload):
+        raise FrameError("the job's sizes do not add up to its payload")
+    pieces, offset = [], 0
+    for n in sizes:
+        pieces.append(payload[offset:offset + n])
+        offset += n
+    cells = [p.decode("utf-8", "surrogatepass") for p in pieces[:len(header["cells"])]]
+    files = {os.path.basename(str(name)) or "file": data
+             for (name, _), data in zip(header["files"], pieces[len(header["cells"]):])}
+    return cells, names, timeout, files, setup
 
 
 class FrameError(ValueError):
@@ -259,3 +311,49 @@ def set_child_subreaper():
     """``PR_SET_CHILD_SUBREAPER``: orphans among this process's descendants become its children (so that it
     can reap — and find — a daemon a student left behind)."""
     return _prctl(_PR_SET_CHILD_SUBREAPER, 1)
+
+
+class ResultReader:
+    """The worker's frames on the result pipe, as the grading process reads them from ``fd``: its ``running`` frame
+    (:attr:`started`), the answers read after each cell that changed them (the last kept as bytes, unread until
+    :meth:`kept`), then its result (``reader.frame``)."""
+
+    def __init__(self, fd):
+        self.fd = fd
+        self.reader = FrameReader(MAX_RESULT_BYTES)
+        self.started = False
+        self.answers = None  # (payload, cell) of the last answers frame
+
+    def kept(self):
+        """The answers of the last ``answers`` frame, parsed (still to be validated), or None."""
+        if self.answers is None:
+            return None
+        try:
+            return json.loads(self.answers[0])
+        except (ValueError, RecursionError):
+            return None
+
+    def _next(self):
+        """Frames the worker sends before its result: taken here, the reader made ready for the next one."""
+        while self.reader.frame is not None:
+            header, payload = self.reader.frame
+            if not self.started and header == {"status": RUNNING}:
+                self.started = True  # from here on, the submission's code runs
+            elif self.started and header.get("status") == ANSWERS:
+                cell = header.get("cell")
+                self.answers = (payload, cell if isinstance(cell, int) and not isinstance(cell, bool) else None)
+            else:
+                return
+            rest, self.reader = self.reader.rest, FrameReader(MAX_RESULT_BYTES)
+            self.reader.push(rest)
+
+    def feed(self, chunks=1):
+        for _ in range(chunks):
+            try:
+                chunk = os.read(self.fd, 1 << 16)
+            except BlockingIOError:
+                return
+            if not chunk:
+                return
+            self.reader.push(chunk)
+            self._next()

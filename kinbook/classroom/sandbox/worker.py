@@ -35,7 +35,7 @@ import sys
 import time
 from pathlib import Path
 
-from .protocol import MAX_JOB_BYTES, RUNNING, FrameError, read_frame, wall_seconds, write_frame
+from .protocol import ANSWERS, MAX_JOB_BYTES, RUNNING, FrameError, read_frame, read_job, wall_seconds, write_frame
 
 __all__ = ["main", "preload", "STARTUP_SECONDS", "MAX_ANSWER_CHARS", "SNAPSHOT_CHARS"]
 
@@ -70,12 +70,8 @@ def _kernel_spec_dir(layout, channel_fd):
 
 
 def _read_job(job_fd):
-    header, payload = read_frame(job_fd, MAX_JOB_BYTES, timeout=60)
-    files, offset = {}, 0
-    for name, size in header.pop("files"):
-        files[os.path.basename(str(name)) or "file"] = payload[offset:offset + int(size)]
-        offset += int(size)
-    return header, files
+    cells, names, timeout, files, setup = read_job(*read_frame(job_fd, MAX_JOB_BYTES, timeout=60))
+    return {"cells": cells, "names": names, "timeout": timeout, "setup": setup}, files
 
 
 def _vm_bytes():
@@ -102,7 +98,9 @@ def main(layout, job_fd, result_fd, channel_fd, limits):
         os.close(job_fd)
     for name, data in files.items():
         Path(layout.home, name).write_bytes(data)
-    result = run(job, layout, channel_fd, started=lambda: write_frame(result_fd, {"status": RUNNING}))
+    result = run(job, layout, channel_fd, started=lambda: write_frame(result_fd, {"status": RUNNING}),
+                 answered=lambda answers, cell: write_frame(result_fd, {"status": ANSWERS, "cell": cell},
+                                                            json.dumps(answers).encode()))
     write_frame(result_fd, result)
 
 
@@ -120,16 +118,18 @@ def _client_class():
     return Client
 
 
-def run(job, layout, channel_fd, started=None):
-    """Run the job's notebook (``job["notebook"]``: nbformat JSON, code cells only) and read its answers;
-    returns the result. ``started`` is called once the kernel is up, before the first cell is sent to it."""
+def run(job, layout, channel_fd, started=None, answered=None):
+    """Run the job's code cells (``job["cells"]``: their sources) and read its answers;
+    returns the result. ``started`` is called once the kernel is up, before the first cell is sent to it;
+    ``answered(answers, cell)`` whenever the answers read after a cell changed, so that they reach the grading
+    process before whatever may stop this worker (its memory, the sandbox's full directories, a kill)."""
     import nbformat
     from jupyter_client import AsyncKernelManager
     from jupyter_client.kernelspec import KernelSpecManager
     from jupyter_core.utils import run_sync
     from nbclient.exceptions import CellTimeoutError, DeadKernelError
 
-    nb = nbformat.reads(job["notebook"], as_version=4)
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(c) for c in job["cells"]])
     names = list(job["names"])
     ksm = KernelSpecManager(kernel_dirs=[str(_kernel_spec_dir(layout, channel_fd))])
     # the kernel's ZeroMQ sockets are Unix sockets in the run's own control directory, not TCP ports: ports chosen
@@ -162,6 +162,8 @@ def run(job, layout, channel_fd, started=None):
             index = -1
             if started is not None:
                 started()  # no code of the submission has run before this
+            if job.get("setup"):  # seeds and the reference's calls observed, before the first cell
+                run_sync(snapshot.setup)(client, job["setup"], left())
             try:
                 for index, cell in enumerate(nb.cells):
                     client.execute_cell(cell, index)
@@ -169,26 +171,22 @@ def run(job, layout, channel_fd, started=None):
                         result.update(status="memory", message="the notebook ran out of memory (MemoryError)",
                                       cell=index + 1)
                         break
-                    if not run_sync(snapshot.take)(client, left()):
+                    before = snapshot.answers
+                    if not run_sync(snapshot.take)(client, left(), index + 1):
                         result.update(status="timeout", message=late, cell=index + 1)
                         break
+                    if answered is not None and snapshot.answers is not before:
+                        answered(snapshot.answers, index + 1)
                 else:
                     result["status"] = "ok"
             except CellTimeoutError:
                 result.update(status="timeout", message=late, cell=index + 1)
             except DeadKernelError:
-                code = km.provisioner.process.poll() if getattr(km, "provisioner", None) else None
-                result["cell"] = index + 1
-                if code is not None and code < 0 and -code == signal.SIGXCPU:
-                    result.update(status="timeout", message=f"the notebook used up its CPU time ({timeout:g} s)")
-                elif code is not None and code < 0 and -code == signal.SIGKILL and _memory_errors(nb):
-                    result.update(status="memory", message="the notebook ran out of memory")
-                else:
-                    # (the grading process tells a kernel killed for want of memory by its control group)
-                    result.update(status="error", message=f"the kernel died (exit code {code})", exit=code)
+                result.update(_why_dead(km, nb, timeout), cell=index + 1)
     except Exception as exc:  # kernel failed to start, zmq trouble…
         result.update(status="error", message=f"the notebook could not be run: {type(exc).__name__}: {exc}"[:500])
     result["answers"] = snapshot.answers
+    result["reference"] = snapshot.reference
     if result["status"] == "ok" and snapshot.answers is None:
         result.update(status="error", message="the answers could not be read" + (
             f" ({snapshot.problem})" if snapshot.problem else ""))
@@ -197,33 +195,82 @@ def run(job, layout, channel_fd, started=None):
     return result
 
 
+def _why_dead(km, nb, timeout):
+    """The verdict on a kernel that died during a cell, from its exit: its CPU time used up, killed where the notebook
+    ran out of memory, else an error (the grading process tells a kernel its control group killed for memory)."""
+    code = km.provisioner.process.poll() if getattr(km, "provisioner", None) else None
+    if code is not None and code < 0 and -code == signal.SIGXCPU:
+        return {"status": "timeout", "message": f"the notebook used up its CPU time ({timeout:g} s)"}
+    if code is not None and code < 0 and -code == signal.SIGKILL and _memory_errors(nb):
+        return {"status": "memory", "message": "the notebook ran out of memory"}
+    return {"status": "error", "message": f"the kernel died (exit code {code})", "exit": code}
+
+
 class _Snapshot:
-    """The named answers as they stand after each cell (the last good reading is kept)."""
+    """The named answers as they stand after each cell (the last good reading is kept), and which of them are the
+    very results of the reference's calls (:mod:`.trace`)."""
 
     def __init__(self, names):
         self.expression = (f"__import__('kinbook.classroom.serialize', fromlist=['dumps']).dumps({names!r}, "
                            "get_ipython().user_ns)")
+        self.trace = (f"__import__('kinbook.classroom.sandbox.trace', fromlist=['report']).report({names!r}, "
+                      "get_ipython().user_ns, {cell})")
+        self.names = list(names)
         self.text = None
         self.answers = None
         self.problem = ""
+        self.reference = {}
 
-    async def take(self, client, timeout):
-        """Ask the kernel for the answers; False when no reply came within ``timeout`` seconds."""
+    async def setup(self, client, setup, timeout):
+        """Have the kernel seed its generators and observe the reference's calls (:func:`.trace.setup`)."""
+        code = (f"__import__('kinbook.classroom.sandbox.trace', fromlist=['setup']).setup({int(setup['seed'])!r}, "
+                f"{list(setup['functions'])!r}, {list(setup['methods'])!r})")
+        return await self._ask(client, code, {}, timeout) is not None
+
+    async def take(self, client, timeout, cell=0):
+        """Ask the kernel for the answers after code cell ``cell``; False when no reply came within ``timeout``
+        seconds."""
+        trace = self.trace.replace("{cell}", str(int(cell)))
+        reply = await self._ask(client, "", {"kinbook": self.expression, "trace": trace}, timeout)
+        if reply is None:
+            return False
+        found = reply.get("content", {}).get("user_expressions", {})
+        self._read(found.get("kinbook", {}))
+        self._read_trace(found.get("trace", {}))
+        return True
+
+    async def _ask(self, client, code, expressions, timeout):
         kc = client.kc
-        msg_id = kc.execute("", silent=True, store_history=False, user_expressions={"kinbook": self.expression})
+        msg_id = kc.execute(code, silent=True, store_history=False, user_expressions=expressions)
         end = time.monotonic() + timeout
         while True:
             remaining = end - time.monotonic()
             if remaining <= 0:
-                return False
+                return None
             try:
                 reply = await kc.get_shell_msg(timeout=remaining)
             except Exception:  # queue.Empty (timeout), a dead kernel
-                return False
+                return None
             if reply.get("parent_header", {}).get("msg_id") == msg_id:
-                break
-        self._read(reply.get("content", {}).get("user_expressions", {}).get("kinbook", {}))
-        return True
+                return reply
+
+    def _read_trace(self, value):
+        text = value.get("data", {}).get("text/plain") if value.get("status") == "ok" else None
+        if not isinstance(text, str) or len(text) > 64 * 1024:
+            return
+        try:
+            found = json.loads(ast.literal_eval(text))
+        except (ValueError, SyntaxError, MemoryError, RecursionError):
+            return
+        if isinstance(found, dict):
+            self.reference = {}  # as the answers stand now
+            for name in self.names:
+                entries = found.get(name)
+                entries = [[e[0][:200], e[1], e[2]] for e in (entries if isinstance(entries, list) else [])[:4]
+                           if isinstance(e, list) and len(e) == 3 and isinstance(e[0], str) and isinstance(e[1], int)
+                           and e[2] in (0, 1)]
+                if entries:
+                    self.reference[name] = entries
 
     def _read(self, value):
         if value.get("status") != "ok":
