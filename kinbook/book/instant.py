@@ -168,7 +168,16 @@ def _rotation_mistakes(e, context):
 
 
 # ------------------------------------------------------------------------------------------------- rows
-QUANTITY = {"phi": "Phi", "jacobian": "Phi_q", "nu": "nu", "gamma": "gamma"}
+def _quantity(name):
+    """The quantity a checker grades (:mod:`kinbook.grading.quantities`), or None for a numeric checker."""
+    from ..grading import CHECKERS
+
+    return CHECKERS[name].quantity if name in CHECKERS else None
+
+
+def _factor_rule(q):
+    """The page's name for a quantity's factor rule: Φ rows up to any constant, Φ_q rows up to ±1, ν and γ none."""
+    return "any" if not q.derived else "sign" if q.per_coordinate else "one"
 
 
 def _points(s):
@@ -211,10 +220,11 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
     from ..grading.target import target_for
 
     t = target_for(target)
-    quantity = QUANTITY[name]
-    which = "generic" if quantity == "Phi" else "assembled"
+    q = _quantity(name)
+    quantity = q.name
+    which = "assembled" if q.derived else "generic"
     s = t.samples(which)
-    if quantity != "Phi" and not s.on_manifold:
+    if q.derived and not s.on_manifold:
         which = "generic"
     w = _witness_points(t, which) if s.N else None
     rtol, refuse = _options(options, RTOL, t.n)
@@ -224,17 +234,17 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
             "points": {"samples": _points(s)},
             "reference": {"samples": _ref(t.reference(which), quantity)},
             "rule": {"rtol": rtol, "zero_tol": zero_tol(rtol),
-                     "factor": {"Phi": "any", "Phi_q": "sign", "nu": "one", "gamma": "one"}[quantity],
-                     "order": options.get("order") or ("any" if quantity == "Phi" else "book"),
+                     "factor": _factor_rule(q),
+                     "order": options.get("order") or ("book" if q.derived else "any"),
                      "wrap": {str(k): p for k, p in t.wrap.items()},
                      "decides": not ({"phi", "at"} & set(options)), "refuse": refuse},
             "mistakes": []}
     if w is not None:
         spec["points"]["witness"] = _points(w)
         spec["reference"]["witness"] = _ref(t.evaluate(w), quantity)
-    if quantity == "Phi_q":  # rows that hold anyway (a spatial joint's normalization rows): free in a combination
+    if q.per_coordinate:  # rows that hold anyway (a spatial joint's normalization rows): free in a combination
         spec["reference"]["free"] = _arr(t.reference(which)["free_q"])
-    if quantity == "Phi":  # where each constraint alone holds: a row that vanishes there may be an equivalent
+    if not q.derived:  # where each constraint alone holds: a row that vanishes there may be an equivalent
         spec["blocks"] = []
         for c in t.constraints:
             own = t.own_target(c).samples("assembled")
@@ -331,7 +341,7 @@ def spec(checker, target, options=None, *, lookalikes=(), wrong_forms=()):
     name = _checker_name(checker)
     if name == "iterates":
         return _iterates_spec(target, options)
-    if name in QUANTITY:
+    if _quantity(name) is not None:
         return _rows_spec(name, target, options, lookalikes, wrong_forms)
     named = [("wrong_data", np.asarray(v, float), detail, None) for v, detail in lookalikes]
     return _value_spec(name, target, options, named)
