@@ -97,10 +97,14 @@ def choose(same, policy, exercise, read):
                     e.message = (f"a blank copy of the release (no answer cell edited) beside {shown}: not graded")
             good = with_answers
     if policy == "latest" and len(good) > 1:
-        last = max(e._order[:2] for e in good)  # (attempt number, time from the name)
-        later = [e for e in good if e._order[:2] == last]
+        # the LMS's attempt time, then the name's attempt suffix (a browser's "(1)", Canvas's "-1" for a file uploaded
+        # again under its name); not Canvas's attachment id (a download holds the current submission only: its
+        # files are one submission, named by attachment — lib/content_zipper.rb), nor the file time or path
+        order = {id(e): e._order[1:-2] for e in good}
+        last = max(order.values())
+        later = [e for e in good if order[id(e)] == last]
         for e in good:
-            if e._order[:2] != last:
+            if order[id(e)] != last:
                 e.status, e.result = "superseded", False
                 e.message = (f"an earlier attempt of {e.student} than {later[-1].path} (policy: latest)")
 

@@ -185,15 +185,20 @@ def test_a_time_the_lms_writes_in_its_own_field_is_read():
     assert (name.raw, name.time.isoformat()) == ("ana", "2026-02-06T00:00:00")
 
 
-def test_canvas_orders_a_students_files_by_its_own_submission_numbers(tmp_path):
-    """Canvas numbers the files it keeps: the later upload counts, whatever suffix the student gave its name."""
+def test_canvas_attachment_ids_are_files_of_one_submission(tmp_path):
+    """Canvas's download holds a student's current submission only, each file named by its attachment id
+    (lib/content_zipper.rb): two notebooks of one standing are both graded and the best counts; the id orders
+    nothing, and a name's attempt suffix orders only the student's own files."""
     from kinbook.classroom.files import collect
 
     c = tmp_path / "c"
-    put(c / "garciaana_123456_900_tiny-99.ipynb", b"{}")    # the earlier upload, named as if a 99th attempt
+    put(c / "garciaana_123456_900_tiny.ipynb", b"{}")
     put(c / "garciaana_123456_901_tiny.ipynb", b"{}")
+    put(c / "ruizluis_123457_905_tiny.ipynb", b"{}")
+    put(c / "ruizluis_123457_902_tiny-1.ipynb", b"{}")    # Canvas's "-1": the same name uploaded again
     found = {e.path.rsplit("/", 1)[1]: e.status for e in collect([c], "tiny", max_bytes=1000, pattern="canvas")}
-    assert found == {"garciaana_123456_900_tiny-99.ipynb": "superseded", "garciaana_123456_901_tiny.ipynb": None}
+    assert found == {"garciaana_123456_900_tiny.ipynb": None, "garciaana_123456_901_tiny.ipynb": None,
+                     "ruizluis_123457_905_tiny.ipynb": "superseded", "ruizluis_123457_902_tiny-1.ipynb": None}
 
 
 @pytest.mark.skipif(not os.path.isdir("/dev/shm"), reason="needs a tmpfs (ext4 holds no time past the year 2446)")
