@@ -23,7 +23,7 @@ import numbers
 
 import numpy as np
 
-from . import aftermatch, diagnose, evaluate, match, report, sample, witness
+from . import aftermatch, diagnose, evaluate, match, report, rounding, sample, witness
 from ._i18n import Msg
 from .quantities import quantity_of
 from .read import Refused, as_numbers, read
@@ -122,11 +122,13 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
     bad = _options("Phi", target, rtol, at, symbolic)
     if bad is not None:
         return bad
+    rtol_given = rtol
     try:
         A = read(answer, target, "Phi")
         A = as_numbers(A) if at is not None else A
         if A.kind == "numbers":
             return _numbers("Phi", A, target, at, rtol, order)
+        A, near = rounding.exact(A, target, raw=answer)
         rtol = match.RTOL if rtol is None else rtol
         data = evaluate.phi_data(target, A)
     except Refused as exc:
@@ -138,7 +140,8 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
     result = report.phi_result(target, m, order)
     if symbolic and A.kind == "symbolic":
         result = _confirm(result, target, A, m)
-    return result
+    return rounding.named(result, near, lambda swap: check_phi(A.matrix.xreplace(swap), mechanism, order=order,
+                                                               rtol=rtol_given, at=at, symbolic=symbolic))
 
 
 # ================================================================================================ Φ_q, ν, γ
@@ -202,12 +205,13 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
     bad = _options(quantity, target, rtol, at, symbolic)
     if bad is not None:
         return bad
-    notes = []
+    notes, rtol_given = [], rtol
     try:
         A = read(answer, target, quantity)
         A = as_numbers(A) if at is not None else A
         if A.kind == "numbers" and at is not None:
             return _numbers(quantity, A, target, at, rtol, order)
+        A, near = rounding.exact(A, target, quantity, raw=answer)
         constant = A.kind == "numbers"
         rtol = match.RTOL if rtol is None else rtol
         s = target.samples("assembled")
@@ -248,7 +252,8 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
                                    extra_codes=["transposed"] if data.transposed else [])
     if symbolic and A.kind == "symbolic":
         result = _confirm(result, target, A, m, quantity)
-    return result
+    return rounding.named(result, near, lambda swap: _derived(quantity, A.matrix.xreplace(swap), mechanism, phi, order,
+                                                              rtol_given, at, symbolic))
 
 
 def _own(target, phi, quantity, data, rtol, notes):
