@@ -238,12 +238,15 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
         if all(r.status == "ok" for r in m.rows) and not m.missing:
             return report.derived_result(target, quantity, m, data, rtol, transposed=True, notes=notes)
     if constant:  # numbers without a configuration: right only as constants valid everywhere (ν = 0 of a joint)
-        if all(r.status == "ok" for r in m.rows) and not m.missing and not data.transposed:
-            return report.derived_result(target, quantity, m, data, rtol, notes=notes)
+        if own is None:  # the same factor rule as for text: [[0, 0, 2]] for a driver's Φ_q is scaled
+            aftermatch.run(Q.without_own, target, quantity, data, m, rtol)
+        named = [r for r in m.rows if r.status != "ok"]
+        if all(r.status == "wrong" and r.code for r in named) and not m.missing and not data.transposed:
+            return report.derived_result(target, quantity, m, data, rtol, notes=notes)  # right, or named as text is
         R = np.asarray(data.R, float)
-        if not Q.right_hand_side or R.size == 0 or np.ptp(R, axis=0).max() > rtol * max(np.abs(R).max(), 1.0):
+        if R.size == 0 or np.ptp(R, axis=0).max() > rtol * max(np.abs(R).max(), 1.0):
             return _refused(quantity, Refused("malformed", "needs_configuration"))
-        # ν or γ constant (a constant-speed driver): the numbers are an answer, diagnosed as one
+        # a constant reference (a driver's Φ_q, a constant-speed ν or γ): the numbers are an answer, diagnosed as one
     diagnose.derived(target, quantity, A, data, m, rtol, own)
     if own is None:
         aftermatch.run(Q.without_own, target, quantity, data, m, rtol)
