@@ -128,7 +128,6 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
         A = as_numbers(A) if at is not None else A
         if A.kind == "numbers":
             return _numbers("Phi", A, target, at, rtol, order)
-        A, near = rounding.exact(A, target, raw=answer)
         rtol = match.RTOL if rtol is None else rtol
         data = evaluate.phi_data(target, A)
     except Refused as exc:
@@ -140,8 +139,9 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
     result = report.phi_result(target, m, order)
     if symbolic and A.kind == "symbolic":
         result = _confirm(result, target, A, m)
-    return rounding.named(result, near, lambda swap: check_phi(A.matrix.xreplace(swap), mechanism, order=order,
-                                                               rtol=rtol_given, at=at, symbolic=symbolic))
+    return rounding.graded(result, A, target, "Phi", answer, lambda M: check_phi(M, mechanism, order=order,
+                                                                                  rtol=rtol_given, at=at,
+                                                                                  symbolic=symbolic))
 
 
 # ================================================================================================ Φ_q, ν, γ
@@ -211,7 +211,6 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
         A = as_numbers(A) if at is not None else A
         if A.kind == "numbers" and at is not None:
             return _numbers(quantity, A, target, at, rtol, order)
-        A, near = rounding.exact(A, target, quantity, raw=answer)
         constant = A.kind == "numbers"
         rtol = match.RTOL if rtol is None else rtol
         s = target.samples("assembled")
@@ -255,8 +254,8 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
                                    extra_codes=["transposed"] if data.transposed else [])
     if symbolic and A.kind == "symbolic":
         result = _confirm(result, target, A, m, quantity)
-    return rounding.named(result, near, lambda swap: _derived(quantity, A.matrix.xreplace(swap), mechanism, phi, order,
-                                                              rtol_given, at, symbolic))
+    return rounding.graded(result, A, target, quantity, answer, lambda M: _derived(quantity, M, mechanism, phi, order,
+                                                                                   rtol_given, at, symbolic))
 
 
 def _own(target, phi, quantity, data, rtol, notes):

@@ -25,7 +25,7 @@ from .quantities import quantity_of
 from .read import Answer
 
 __all__ = ["MIN_DIGITS", "NEAR", "exact_constants", "significant_digits", "typed_digits", "is_rounding", "exact",
-           "named"]
+           "graded", "named"]
 
 MIN_DIGITS = 3
 """The fewest significant digits a rounded constant may have."""
@@ -64,26 +64,27 @@ def exact_constants(target, quantity="Phi"):
     if quantity_of(quantity).right_hand_side:  # what a driver's f(t) puts in ν and γ
         rows += [sp.diff(row, t, k) for row in list(rows) if t in row.free_symbols for k in (1, 2)]
     found = {}
+    nodes = set()
     for row in rows:
-        for node in sp.preorder_traversal(row):
-            parts = []
-            if node.is_number:
-                parts.append(node)
-            elif node.is_Add or node.is_Mul:
-                coeff = node.as_independent(*(symbols & node.free_symbols))[0]
-                parts.append(coeff)
-            for c in parts:
-                if c.is_Integer:
-                    found.setdefault(("integer", int(abs(c))), c)
-                if not c.is_number or c.is_Integer or c == 0:
-                    continue
-                try:
-                    value = float(c)
-                except (TypeError, ValueError):
-                    continue
-                if math.isfinite(value):
-                    found.setdefault(value, c)
-                    found.setdefault(-value, -c)
+        nodes |= row.atoms(sp.Number, sp.Add, sp.Mul)  # each distinct sub-expression once
+    for node in nodes:
+        if node.is_Number:
+            parts = [node]
+        else:  # the numeric part of a sum or a product: 3π/4 of φ2 − 3π/4 − 100t, √5/2 of (√5/2)·cos φ
+            numeric = [a for a in node.args if not (a.free_symbols & symbols)]
+            parts = [node.func(*numeric)] if numeric else []
+        for c in parts:
+            if c.is_Integer:
+                found.setdefault(("integer", int(abs(c))), c)
+            if not c.is_number or c.is_Integer or c == 0:
+                continue
+            try:
+                value = float(c)
+            except (TypeError, ValueError):
+                continue
+            if math.isfinite(value):
+                found.setdefault(value, c)
+                found.setdefault(-value, -c)
     target.store[key] = found
     return found
 
@@ -120,6 +121,31 @@ def _texts(raw, depth=0):
             yield from _texts(x, depth + 1)
 
 
+def _numbers_in(matrix):
+    """The distinct numbers of a matrix's entries, walking each distinct sub-expression once (a derived γ is a
+    graph of a few hundred nodes written out as 10⁵)."""
+    seen, found, stack = set(), set(), list(matrix)
+    while stack:
+        e = stack.pop()
+        if e in seen:
+            continue
+        seen.add(e)
+        if e.is_Number:
+            found.add(e)
+        else:
+            stack.extend(e.args)
+    return found
+
+
+def _data_numbers(target):
+    """The numbers written in the graded rows themselves (their decimals and integers), built once per target."""
+    if "data_numbers" not in target.store:
+        import sympy as sp
+
+        target.store["data_numbers"] = set().union(*(row.atoms(sp.Number) for row in target.symbolic_phi()))
+    return target.store["data_numbers"]
+
+
 def exact(answer, target, quantity="Phi", raw=None):
     """A symbolic answer with each decimal that is a correct rounding of an exact constant replaced by that
     constant; and the near misses ``[(decimal, constant)]`` (decimals near a constant that are no rounding of it).
@@ -130,7 +156,10 @@ def exact(answer, target, quantity="Phi", raw=None):
     import sympy as sp
 
     typed = typed_digits(raw) if raw is not None else {}
-    numbers = [x for x in answer.matrix.atoms(sp.Number) if x.is_Float or (x.is_Integer and abs(x) >= 100)]
+    numbers = [x for x in _numbers_in(answer.matrix) if x.is_Float or (x.is_Integer and abs(x) >= 100)]
+    if numbers:  # decimals that are the exercise's own data, as written: nothing to judge (kinbook's own rows)
+        data = _data_numbers(target)
+        numbers = [x for x in numbers if x not in data]
     if not numbers:
         return answer, []
     constants = exact_constants(target, quantity)
@@ -160,6 +189,20 @@ def exact(answer, target, quantity="Phi", raw=None):
     if swap:
         answer = Answer("symbolic", matrix=answer.matrix.xreplace(swap))
     return answer, near
+
+
+def graded(result, answer, target, quantity, raw, recheck):
+    """The verdict under the rounding rule: a failed ``result`` of a symbolic answer with decimals is checked
+    again (``recheck(matrix)``) with the exercise's constants in place of their correct roundings, and its near
+    misses are named (:func:`named`). A right answer costs nothing here: only a failed one is looked at again."""
+    if result.passed or answer.kind != "symbolic":
+        return result
+    exact_answer, near = exact(answer, target, quantity, raw)
+    if exact_answer is not answer:
+        result = recheck(exact_answer.matrix)
+        if result.passed:
+            return result
+    return named(result, near, lambda swap: recheck(exact_answer.matrix.xreplace(swap)))
 
 
 def named(result, near, recheck):
