@@ -19,7 +19,8 @@ A check runs one way through small stages, each one concept in one module. The m
 * the face — ``checks`` (check_phi, check_jacobian, check_nu, check_gamma: the pipeline of Φ, Φ_q, ν, γ),
   ``item`` (one graded item and the table of checkers), ``quantities`` (Φ, Φ_q, ν, γ declared once);
 * target — ``target`` (what is graded against: a mechanism or one constraint, its cached reference);
-* read — ``read`` (the safe reader of answers: text, sympy, a function, numbers);
+* read — ``read`` (the safe reader of answers: text, sympy, a function, numbers), ``rounding`` (decimals that
+  are the exercise's constants rounded);
 * sample — ``sample`` (seeded configurations on the manifold);
 * evaluate — ``evaluate`` (answer and reference at the samples), ``jets`` (values and derivatives of an
   expression without deriving it);

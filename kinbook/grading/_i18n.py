@@ -27,6 +27,8 @@ class Msg(Message):
 
     def __init__(self, key, **fields):
         if key not in _TEXT:
+            _register_all()
+        if key not in _TEXT:
             raise KeyError(f"no feedback template {key!r}")
         super().__init__(_TEXT[key], **fields)
         self.key = key
@@ -61,6 +63,8 @@ def render(x, lang=None):
 
 
 def _template(key, lang, n):
+    if key not in _TEXT:
+        _register_all()
     return translate(_TEXT[key], lang, n)
 
 
@@ -272,6 +276,19 @@ _TEXT = {
                          "order: pass your own Φ as phi=... so that the rows are matched to it, or use order='any'"),
     "row_order_msg": N_("the rows are right but not in the book's order"),
 }
+
+
+_OWNERS = ("catalogue", "expected", "numbers", "newton")
+"""The modules that register templates of their own (:func:`add_texts`)."""
+
+
+def _register_all():
+    """Load every module that registers templates: ``kinbook.grading`` loads its modules when first used, and a
+    sentence of one module may be made in another (the catalogue's ``d.…`` details in the mistakes)."""
+    import importlib  # here: those modules import this one
+
+    for name in _OWNERS:
+        importlib.import_module(f"{__package__}.{name}")
 
 
 def add_texts(table):

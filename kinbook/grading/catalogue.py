@@ -204,6 +204,10 @@ _ENTRIES = [
        N_("off by a constant factor"),
        N_("the answer is the expected one times a simple factor; look for a forgotten factor (2, ½, a length) or a "
            "unit conversion applied twice")),
+    _m("not_rounded",
+       N_("a constant that is not the exercise's, rounded"),
+       N_("a decimal that stands for an exact constant (3π/4, √3/2, a length) must be that constant correctly "
+          "rounded to at least 3 significant digits — or write it exactly: 3*pi/4, sqrt(3)/2")),
     _m("not_orthogonal",
        N_("not an orthogonal matrix"),
        N_("a rotation matrix satisfies AᵀA = I: its columns are unit vectors, perpendicular to each other")),
@@ -372,6 +376,8 @@ add_texts({
     "d.jacobian_of": N_("the Jacobian of {c}·{ref}: the derivative of {ref} keeps all its factors (the 2 of ∂(dᵀd)/∂q = "
                         "2dᵀ∂d/∂q, of A(p) = 2[…]); pass your own Φ as phi= if you scaled it"),
     "d.degrees_value": N_("{got} is {expected} rad in degrees"),
+    "d.not_rounded": N_("a constant differs from the exercise's: {value} is not {exact} rounded ({digits} significant "
+                        "digits); round it correctly to at least 3 digits, or write {exact}"),
     "d.on_body": N_("{what} on body {body} only"),
     "d.motion_degrees": N_("the motion f(t) − f(0) (its amplitude or its rate) in degrees"),
     "d.cross_terms": N_("the cross terms (products of one body's velocities with the other's)"),

@@ -23,7 +23,7 @@ import numbers
 
 import numpy as np
 
-from . import aftermatch, diagnose, evaluate, match, report, sample, witness
+from . import aftermatch, diagnose, evaluate, match, report, rounding, sample, witness
 from ._i18n import Msg
 from .quantities import quantity_of
 from .read import Refused, as_numbers, read
@@ -122,6 +122,7 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
     bad = _options("Phi", target, rtol, at, symbolic)
     if bad is not None:
         return bad
+    rtol_given = rtol
     try:
         A = read(answer, target, "Phi")
         A = as_numbers(A) if at is not None else A
@@ -138,7 +139,9 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
     result = report.phi_result(target, m, order)
     if symbolic and A.kind == "symbolic":
         result = _confirm(result, target, A, m)
-    return result
+    return rounding.graded(result, A, target, "Phi", answer, lambda M: check_phi(M, mechanism, order=order,
+                                                                                  rtol=rtol_given, at=at,
+                                                                                  symbolic=symbolic))
 
 
 # ================================================================================================ Φ_q, ν, γ
@@ -202,7 +205,7 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
     bad = _options(quantity, target, rtol, at, symbolic)
     if bad is not None:
         return bad
-    notes = []
+    notes, rtol_given = [], rtol
     try:
         A = read(answer, target, quantity)
         A = as_numbers(A) if at is not None else A
@@ -234,12 +237,15 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
         if all(r.status == "ok" for r in m.rows) and not m.missing:
             return report.derived_result(target, quantity, m, data, rtol, transposed=True, notes=notes)
     if constant:  # numbers without a configuration: right only as constants valid everywhere (ν = 0 of a joint)
-        if all(r.status == "ok" for r in m.rows) and not m.missing and not data.transposed:
-            return report.derived_result(target, quantity, m, data, rtol, notes=notes)
+        if own is None:  # the same factor rule as for text: [[0, 0, 2]] for a driver's Φ_q is scaled
+            aftermatch.run(Q.without_own, target, quantity, data, m, rtol)
+        named = [r for r in m.rows if r.status != "ok"]
+        if all(r.status == "wrong" and r.code for r in named) and not m.missing and not data.transposed:
+            return report.derived_result(target, quantity, m, data, rtol, notes=notes)  # right, or named as text is
         R = np.asarray(data.R, float)
-        if not Q.right_hand_side or R.size == 0 or np.ptp(R, axis=0).max() > rtol * max(np.abs(R).max(), 1.0):
+        if R.size == 0 or np.ptp(R, axis=0).max() > rtol * max(np.abs(R).max(), 1.0):
             return _refused(quantity, Refused("malformed", "needs_configuration"))
-        # ν or γ constant (a constant-speed driver): the numbers are an answer, diagnosed as one
+        # a constant reference (a driver's Φ_q, a constant-speed ν or γ): the numbers are an answer, diagnosed as one
     diagnose.derived(target, quantity, A, data, m, rtol, own)
     if own is None:
         aftermatch.run(Q.without_own, target, quantity, data, m, rtol)
@@ -248,7 +254,8 @@ def _derived(quantity, answer, mechanism, phi, order, rtol, at, symbolic):
                                    extra_codes=["transposed"] if data.transposed else [])
     if symbolic and A.kind == "symbolic":
         result = _confirm(result, target, A, m, quantity)
-    return result
+    return rounding.graded(result, A, target, quantity, answer, lambda M: _derived(quantity, M, mechanism, phi, order,
+                                                                                   rtol_given, at, symbolic))
 
 
 def _own(target, phi, quantity, data, rtol, notes):

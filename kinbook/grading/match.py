@@ -6,8 +6,10 @@ The rule, for all four checkers:
 * An answer **row is right** when it is a reference row multiplied by a nonzero constant — the same
   constant at every sample. For Φ any constant (Φ is a set of equations: −Φ_4 or 2Φ_4 is the same
   constraint). For Φ_q, ν and γ the constant is the one of the row of Φ they come from: given by the
-  student's own Φ (``phi=``) when there is one; otherwise 1 for ν and γ (a negated ν or γ *is* the
-  classic sign mistake), while a Φ_q row, whose entries show their factor, may carry any constant.
+  student's own Φ (``phi=``) when there is one — or 1, the reference's own row; otherwise 1 for ν and γ (a
+  negated ν or γ *is* the classic sign mistake) and ±1 for Φ_q (the Jacobian of ±Φ_k; another constant c is
+  the Jacobian of c·Φ_k, named ``scaled`` by :mod:`~kinbook.grading.aftermatch`). Numbers, text and sympy
+  answers follow the same rule.
 * A **Φ row** that is not such a multiple is still right when it is an *equivalent formulation*: it vanishes
   wherever the mechanism is assembled (the assembled samples) and its gradient there lies in the span of the
   reference rows' gradients (and, in space, of the bodies' normalization rows) — the same zero set, locally,
@@ -277,7 +279,8 @@ def match_rows(S, R, rtol, order="book", free=False, factors=None, own=None, ato
 
 def _rows_of_own(S, R, rtol, free, factors, own, atol):
     """With the student's Φ: row k must be its factor × the reference row it stands for, or follow from the
-    student's own Φ (``own``)."""
+    student's own Φ (``own``); the reference row itself is right too ("reference": correct, although it does not
+    follow from their Φ)."""
     ms, m = S.shape[1], R.shape[1]
     rows = []
     for k in range(ms):
@@ -294,6 +297,9 @@ def _rows_of_own(S, R, rtol, free, factors, own, atol):
         if ok_ref or ok_own:
             how = "both" if ok_ref and ok_own else ("own" if ok_own else "multiple")
             rows.append(Row(k, ref, "ok", c, how))
+        elif ref is not None and not free and \
+                scale_match(S[:, k], R[:, ref], rtol, False, atol=atol, zeros=True) is not None:
+            rows.append(Row(k, ref, "ok", 1.0, "reference"))  # the reference's own row: right, not from their Φ
         elif ref is None and (own is None or k >= own.shape[1]):
             rows.append(Row(k, None, "extra"))
         else:

@@ -254,6 +254,9 @@ def derived_result(target, quantity, matching, data, rtol, transposed=False, not
                 messages.append(Msg("row_line_short", label=label, text=msg))
             elif r.how == "both":
                 msg = Msg("consistent_correct")
+            elif r.how == "reference":
+                msg = Msg("correct_not_consistent")
+                messages.append(Msg("row_line_short", label=label, text=msg))
             elif r.how == "equivalent":
                 msg = Msg("row_equivalent_jacobian", refs=", ".join(target.label(j) for j in r.covers), N=data.S.shape[0])
             elif per_coordinate and r.factor not in (None, 1.0):

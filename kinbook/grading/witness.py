@@ -114,7 +114,7 @@ def samples(target, answer):
 def derived(target, quantity, answer, data, matching, rtol, s):
     """Φ_q, ν or γ rows accepted as the reference's, compared again at the configurations ``s`` of
     :func:`samples`."""
-    rows = [r for r in matching.rows if r.status == "ok" and r.how == "multiple" and r.ref is not None
+    rows = [r for r in matching.rows if r.status == "ok" and r.how in ("multiple", "reference") and r.ref is not None
             and not isinstance(r.ref, tuple)]
     if s is None or not rows:
         return

@@ -63,6 +63,18 @@ def corpus_cases(lines):
             c.answer, t(c.mech, c.constraint), **c.options))
 
 
+def new_corpora(lines):
+    """The corpora grown for issue 30's rules (absent from a dump of an older version: additions, not changes)."""
+    from . import corpus_rounding
+
+    checks = {"phi": "check_phi", "nu": "check_nu", "gamma": "check_gamma", "jacobian": "check_jacobian"}
+    from kinbook import grading
+
+    for case in corpus_rounding.cases():
+        _run(lines, f"rounding {case.id}", lambda c=case: getattr(grading, checks[c.check])(
+            c.answer(), corpus_rounding.target(c)))
+
+
 def tryit_cases(lines):
     from .tryits import all_tryits
 
@@ -127,7 +139,7 @@ def part_run_cases(lines):
                 _run(lines, f"part.run {path.stem[:4]}/{p.name} {k}", lambda p=p, a=answer: p.run(a, {}))
 
 
-SECTIONS = [corpus_cases, tryit_cases, registry_cases, part_run_cases, generated_cases]
+SECTIONS = [corpus_cases, tryit_cases, registry_cases, part_run_cases, generated_cases, new_corpora]
 
 
 def main(argv=None):

@@ -101,13 +101,17 @@ def test_numeric_answers_at_the_stated_configuration():
 def test_numbers_without_a_configuration_are_refused_for_every_checker():
     """γ = [0] for a driver 0.3 + 0.5 sin 4t used to pass (graded at t = 0 only)."""
     driver = target("pendulum", "driver 1")
-    for check, numbers in ((check_phi, [0.0]), (check_jacobian, [[0, 0, 0]]), (check_nu, [0.0]), (check_gamma, [0.0])):
+    for check, numbers in ((check_phi, [0.0]), (check_nu, [0.0]), (check_gamma, [0.0])):
         r = check(numbers, driver)
         assert (r.passed, r.mistakes) == (False, ["malformed"]), (check, r)
         assert "give the configuration" in r.messages[0]
-    # numbers that are right everywhere are constants: ν = 0 of a joint, Φ_q of a driver
+    # numbers that are right everywhere are constants: ν = 0 of a joint, Φ_q of a driver ([0, 0, 1] at every q and
+    # t); against a constant reference, numbers are an answer graded by the rule text gets — a zero row is named
     assert check_nu([0, 0], target("ch13_example1", "1")).passed
     assert check_jacobian([[0, 0, 1]], driver).passed
+    r = check_jacobian([[0, 0, 0]], driver)
+    assert not r.passed and r.mistakes and r.mistakes != ["malformed"], r
+    assert check_jacobian([[0, 0, 0]], driver).mistakes == check_jacobian([["0", "0", "0"]], driver).mistakes
 
 
 # ------------------------------------------------------------------------------- robustness
