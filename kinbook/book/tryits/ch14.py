@@ -224,7 +224,7 @@ register("14-4/try-1", "my_Phi_s", check_phi, _t14_4_1, _s14_4_1, data={"s_i_P":
 def _s14_4_2(*, vec_i, vec_j):
     import sympy as sp
 
-    from ...spatial import E, a_bar
+    from kinbook.spatial import E, a_bar
 
     par_i, par_j = sp.Matrix(sp.symbols("e01 e11 e21 e31", real=True)), sp.Matrix(sp.symbols("e02 e12 e22 e32", real=True))
     loc_i, loc_j = sp.Matrix(vec_i), sp.Matrix(vec_j)
@@ -252,7 +252,7 @@ register("14-4/try-2", "my_Phi_q_n1", check_jacobian, _t14_4_2, _s14_4_2, data={
 def _s14_4_3(*, P_hinge):
     import sympy as sp
 
-    from ...spatial import skew
+    from kinbook.spatial import skew
 
     sym_i, sym_j = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True), sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)
     rot_1, rot_2 = A_from_p(list(sym_i[3:])), A_from_p(list(sym_j[3:]))
@@ -341,7 +341,7 @@ register("14-5/try-1", "my_gamma_4", check_value, _t14_5_1, _s14_5_1, {"name": "
 def _s14_5_2(mech):
     import sympy as sp
 
-    from ...spatial import E, a_bar
+    from kinbook.spatial import E, a_bar
 
     par_3, par_4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
     dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)      # ∂(A a)/∂p: B_k or C_k
@@ -360,7 +360,7 @@ register("14-5/try-2", "my_Phi_q_B", check_jacobian, lambda: _fourbar().constrai
 def _s14_5_3(mech):
     import sympy as sp
 
-    from ...spatial import E, a_bar
+    from kinbook.spatial import E, a_bar
 
     dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)
     k_2, k_3 = mech.index("e02"), mech.index("e03")
