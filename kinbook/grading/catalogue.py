@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..i18n import N_, translate
+from ..i18n import N_, Np_, translate
 from ._i18n import add_texts
 
 __all__ = ["Mistake", "MISTAKES", "explain", "codes", "CONTEXTS"]
@@ -380,4 +380,15 @@ add_texts({
                                "configurations compared: it vanishes in between"),
     "d.only_at_samples": N_("equal to {ref} at the sampled configurations, but not at {where}"),
     "d.vanishing_at": N_("your row vanishes at {where}, where {ref} = {value} does not"),
+    # the same details, the term described and not written (a try-it: the term written out is the answer)
+    "d.sign_of_kind": N_("the term with the wrong sign is {kind}"),
+    "d.missing_kind": N_("the one missing is {kind}"),
+    "d.or_sign_of_kind": N_("the same expression as a term's sign slipped ({kind}): check both"),
+    "k.constant": N_("a constant"),
+    "k.time": N_("a term of t alone (from the driver's function of time)"),
+    "k.velocity_squared": N_("a term quadratic in the velocities"),
+    "k.velocity": N_("a term linear in the velocities"),
+    "k.rotation": N_("a term of a body's rotation (its angle or Euler parameters)"),
+    "k.origin": N_("a term of a body's origin (x, y, z)"),
+    "k.of_bodies": Np_("{what}, of body {bodies}", "{what}, of bodies {bodies}"),
 })

@@ -188,7 +188,8 @@ def _ch13():
         (example("ch13_example3")[0].Phi_q(example("ch13_example3")[1], 0.0)[7, 8], "wrong_data")]))
     T.append(Notebook("13-6/try-1", ["0"] * 8 + ["5*(20 + 100*t)"], [
         (["0"] * 8 + ["-100 - 500*t"], "nu_sign"), (["0"] * 9, "nu_missing"),
-        (["0"] * 8 + [f"{100 * DEG} + {500 * DEG}*t"], "degrees"), (["0"] * 8 + ["100"], "missing_term")]))
+        (["0"] * 8 + [f"{100 * DEG} + {500 * DEG}*t"], "degrees"),
+        (["0"] * 8 + ["100"], "wrong_data")]))   # the book's driver, printed above: named so before "missing term"
     m3, q3, qd3, qdd3 = example("ch13_example3")
     w3 = qd3[8]
     T.append(Notebook("13-6/try-2", abs(2 * w3), [

@@ -44,7 +44,7 @@ def _s14_1_1(*, axes_given):
 register("14-1/try-1", "my_A", check_rotation, lambda axes_given: X.A_from_axes(*axes_given), _s14_1_1, {"name": "A"},
          data={"axes_given": _AXES[0]}, ranges={"axes_given": _AXES}, statement=_axes_text,
          explanation=N_("eq. 7: the columns of A are the body's unit vectors in global components, so that "
-                        "s = A s' (a local vector's global components). The axes as rows give Aᵀ."))
+                        "s = A s' (a local vector's global components). The axes as rows give Aᵀ."), library=("A_from_axes",))
 
 _S_GLOBAL = [[2, 1, -1], [1, -2, 3], [0, 2, 1], [-1, 1, 2], [3, 0, -2], [2, -1, 1]]
 
@@ -73,7 +73,7 @@ register("14-1/try-3", "my_rQ", check_value,
          _s14_1_3, {"name": "r^Q"}, data={"axes_given": _AXES[0], "r_O": [0.5, -1.0, 2.0], "s_Q": [0.4, 0.0, 1.5]},
          ranges={"axes_given": _AXES, "r_O": [[0.5, -1.0, 2.0], [1.0, 0.5, -0.5], [-2.0, 1.0, 0.0]],
                  "s_Q": [[0.4, 0.0, 1.5], [1.0, 0.5, 0.0], [0.0, -0.8, 1.2], [0.6, 0.6, 0.6]]},
-         statement=lambda axes_given, r_O, s_Q: f"{_axes_text(axes_given)}; r = {r_O}, s'^Q = {s_Q}")
+         statement=lambda axes_given, r_O, s_Q: f"{_axes_text(axes_given)}; r = {r_O}, s'^Q = {s_Q}", library=("point_position",))
 
 
 # ------------------------------------------------------------------------------------------------- 14-2
@@ -94,7 +94,7 @@ def _s14_2_1(*, psi_deg, theta_deg, phi_deg):
 
 register("14-2/try-1", "my_A", check_rotation,
          lambda psi_deg, theta_deg, phi_deg: X.A_from_euler(*np.radians([psi_deg, theta_deg, phi_deg])), _s14_2_1,
-         {"name": "A(ψ, θ, φ)"}, data=_ANG, ranges=_ANG_RANGES, statement=_ANG_TEXT)
+         {"name": "A(ψ, θ, φ)"}, data=_ANG, ranges=_ANG_RANGES, statement=_ANG_TEXT, library=("A_from_euler",))
 
 
 def _s14_2_2(*, theta_deg, phi_deg, psi_rate, theta_rate, phi_rate):
@@ -113,7 +113,7 @@ register("14-2/try-2", "my_omega_body", check_value,
              np.radians([psi_deg, theta_deg, phi_deg]), [psi_rate, theta_rate, phi_rate], frame="body"), _s14_2_2,
          {"name": "ω' (rad/s)"}, data=_RATES,
          ranges=dict(_ANG_RANGES, psi_rate=(-3.0, 3.0), theta_rate=(-2.0, 2.0), phi_rate=(-3.0, 3.0)),
-         statement=_ANG_TEXT + ", ψ̇ = {psi_rate}, θ̇ = {theta_rate}, φ̇ = {phi_rate} rad/s")
+         statement=_ANG_TEXT + ", ψ̇ = {psi_rate}, θ̇ = {theta_rate}, φ̇ = {phi_rate} rad/s", library=("omega_from_euler_rates",))
 
 _A_14_2_3 = np.array([[2.0, -1.0, 2.0], [2.0, 2.0, -1.0], [-1.0, 2.0, 2.0]]) / 3
 _A_GIVEN = [_A_14_2_3] + [np.round(R.A_from_euler(*np.radians(a)), 6) for a in
@@ -134,7 +134,7 @@ register("14-2/try-3", "my_angles", check_value, lambda A_given: X.euler_from_A(
                                                                  separator=", ").replace("\n", ""),
          explanation=N_("the third row of A = A_z(ψ) A_x(θ) A_z(φ) is [sin θ sin φ, sin θ cos φ, cos θ] and its "
                         "third column [sin ψ sin θ, −cos ψ sin θ, cos θ]. arccos gives θ in [0, π]; the triple "
-                        "(ψ + π, −θ, φ + π) gives the same A and is accepted too."))
+                        "(ψ + π, −θ, φ + π) gives the same A and is accepted too."), library=("euler_from_A",))
 
 
 # ------------------------------------------------------------------------------------------------- 14-3
@@ -150,7 +150,7 @@ register("14-3/try-1", "my_p", check_euler_parameters,
          data={"axis_u": [0, 1, 1], "chi_deg": 90},
          ranges={"axis_u": [[0, 1, 1], [1, 0, 1], [1, 1, 0], [1, 2, 2], [2, -1, 2], [1, -1, 1], [0, 3, 4]],
                  "chi_deg": list(range(30, 331, 30))},
-         statement=N_("χ = {chi_deg}° about u = {axis_u}"))
+         statement=N_("χ = {chi_deg}° about u = {axis_u}"), library=("p_from_axis_angle",))
 
 _P_TRY = [[0.5, 0.5, 0.5, 0.5], [0.2, 0.4, 0.4, 0.8], [0.8, 0.4, 0.4, 0.2], [6 / 7, 2 / 7, 3 / 7, 0.0],
           [2 / 9, 4 / 9, 5 / 9, 6 / 9], [0.6, 0.0, 0.8, 0.0], [4 / 9, 4 / 9, 7 / 9, 0.0]]
@@ -170,7 +170,7 @@ register("14-3/try-2", "my_A_p", check_rotation, lambda p_try: X.A_from_p(p_try)
          statement=lambda p_try: "p = [" + ", ".join(f"{e:.6g}" for e in p_try) + "]",
          explanation=N_("A sends [1, 0, 0] to its first column. For p = [½, ½, ½, ½] that is [0, 1, 0], and "
                         "[0, 1, 0] goes to [0, 0, 1]: x → y → z → x, the turn of 120° about [1, 1, 1] of section 1 "
-                        "(e0 = cos 60° = 0.5, e = u sin 60° with u = [1, 1, 1]/√3)."))
+                        "(e0 = cos 60° = 0.5, e = u sin 60° with u = [1, 1, 1]/√3)."), library=("A_from_p",))
 
 
 def _s14_3_3(*, p_dot):
@@ -185,7 +185,7 @@ register("14-3/try-3", "my_omega", check_value, lambda p_dot: X.omega_from_p_dot
          _s14_3_3, {"name": "ω (rad/s)"}, data={"p_dot": [-0.1, 0.3, -0.1, -0.1]},
          ranges={"p_dot": [[-0.1, 0.3, -0.1, -0.1], [0.1, -0.1, 0.2, -0.2], [0.2, 0.0, -0.1, -0.1],
                            [0.0, 0.1, -0.2, 0.1], [0.3, -0.1, -0.1, -0.1], [-0.2, 0.1, 0.1, 0.0]]},
-         statement="ṗ = {p_dot}")
+         statement="ṗ = {p_dot}", library=("omega_from_p_dot",))
 
 
 # ------------------------------------------------------------------------------------------------- 14-4
@@ -335,7 +335,7 @@ def _msg(key, **fields):
 
 register("14-5/try-1", "my_gamma_4", check_value, _t14_5_1, _s14_5_1, {"name": "γ_4"},
          context=lambda: {"mech": _fourbar()}, data={"t_n": 0.15},
-         ranges={"t_n": [round(0.05 * k, 2) for k in range(1, 20)]}, statement="t = {t_n} s")
+         ranges={"t_n": [round(0.05 * k, 2) for k in range(1, 20)]}, statement="t = {t_n} s", library=("gamma",))
 
 
 def _s14_5_2(mech):
@@ -395,4 +395,4 @@ register("14-5/try-3", "my_gamma_A", check_gamma, lambda: _fourbar().constraint(
                         "2a ṗᵀṗ — a vector along a. For the coupler a = s'^A_3 = 0 and nothing is lost; for the "
                         "crank a = s'^A_2 = (1, 0, 0), so only the x row, Φ_16, changes: the checker rejects that "
                         "row alone. (On the unit sphere the two forms differ only by this term, the same 2apᵀ "
-                        "difference between ∂(Aa)/∂p and ∂(EGᵀa)/∂p seen in notebook 14-3.)"))
+                        "difference between ∂(Aa)/∂p and ∂(EGᵀa)/∂p seen in notebook 14-3.)"), library=("gamma",))

@@ -11,6 +11,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from ...grading._i18n import add_texts
 from ...i18n import N_, Message, translate
 
 __all__ = ["TryIt", "TRY_ITS", "register", "same_data", "table_text", "text_message"]
@@ -63,6 +64,14 @@ class TryIt:
         ``wrong_forms(**data)`` → [(rows, code, detail, erratum)]: wrong formulations the equivalence rule cannot
         tell from the reference on its samples (the book's global rows 1–2 of s̃_i s_j, which lose rank where s_i
         lies in the x-y plane): an answer whose rows are these, up to order and factor, is named, never passed.
+    numbers_at : float or None
+        For a symbolic try-it whose answer may be typed as numbers (ν): the time they are read at. Numbers are then
+        compared with the reference at that instant — right there, they are named "the values at one instant only"
+        (the question asks for formulas of t); wrong there, they get the diagnosis of a wrong value, not "malformed".
+    library : tuple of str
+        Names of kinbook functions or methods that compute the asked quantity itself (``"gamma"`` for
+        ``mech.gamma(q, qd, t)[7]``): a right answer whose cell calls one is named "kinbook's own answer", not
+        plainly "correct" — the exercise is to build it.
     """
 
     id: str
@@ -78,6 +87,8 @@ class TryIt:
     explanation: Any = None
     lookalikes: Any = None
     wrong_forms: Any = None
+    numbers_at: Any = None
+    library: tuple = ()
 
     def _data(self, data):
         return dict(self.data) if data is None else dict(data)
@@ -97,10 +108,44 @@ class TryIt:
             named = self._wrong_form(answer, target, data, result)
             if named is not None:
                 return named
-        if result.passed or result.mistakes not in (["wrong_value"], ["malformed"]):
+        if result.passed:
             return result
+        if self.numbers_at is not None and result.mistakes == ["malformed"] and _numbers(answer):
+            return described(self._numbers(answer, target, options, result._quantity))
         copied = self._copied(answer, data, options, result._quantity)
-        return result if copied is None else copied
+        return described(result if copied is None else copied)
+
+    def _numbers(self, answer, target, options, quantity):
+        """Numbers typed for a formula of t: compared with the reference at ``numbers_at``."""
+        from ...grading.result import CheckResult
+
+        t = float(self.numbers_at)
+        q = target.solve_position(t)
+        at = {"q": q, "qd": target.solve_velocity(q, t), "t": t}
+        there = self.checker(answer, target, at=at, **options)
+        if there.passed:
+            return CheckResult(False, 0.0, [_msg("x.numbers_right_at", t=_literal(t))], ["only_at_samples"], (),
+                               quantity)
+        return CheckResult(False, there.score, [_msg("x.numbers_read_at", t=_literal(t))] + list(there.notes),
+                           there.mistakes, there.rows, quantity, there.columns)
+
+    def library_answer(self, source):
+        """The ``library`` name a cell's source calls (``mech.gamma(...)``), or None."""
+        import ast
+
+        if not self.library or not source:
+            return None
+        try:
+            tree = ast.parse(source)
+        except SyntaxError:
+            return None
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Call):
+                f = node.func
+                name = f.attr if isinstance(f, ast.Attribute) else getattr(f, "id", None)
+                if name in self.library:
+                    return name
+        return None
 
     def _wrong_form(self, answer, target, data, result):
         """The answer's rows are one of ``wrong_forms`` (up to their order and a factor each): a failed result
@@ -220,6 +265,45 @@ class TryIt:
         return translate(self.statement).format(**{k: _literal(v) for k, v in data.items()})
 
 
+def _numbers(answer):
+    """The answer is plain numbers (a number, or a list/array of them), not formulas."""
+    try:
+        a = np.asarray(answer)
+    except (TypeError, ValueError):
+        return False
+    return a.dtype.kind in "iuf" and a.size > 0
+
+
+_DESCRIBED = {"d.missing_term": "d.missing_kind", "d.sign_of_term": "d.sign_of_kind",
+              "d.or_sign_of_term": "d.or_sign_of_kind"}
+"""A detail that writes a term out (the answer's last step) → the same detail saying what kind of term it is."""
+
+
+def described(result):
+    """``result`` with every term that a detail writes out described instead ("a term is missing: a term of t alone
+    …" for "the term 500.0*t is missing"): a try-it's hint points at a step, never at a term to copy."""
+    from ...grading._i18n import Msg
+    from ...grading.result import CheckResult, RowResult
+
+    def swap(x):
+        if isinstance(x, Msg):
+            if x.key in _DESCRIBED and "kind" in x.fields:
+                return Msg(_DESCRIBED[x.key], kind=x.fields["kind"])
+            fields = {k: swap(v) for k, v in x.fields.items()}
+            return x if all(fields[k] is x.fields[k] for k in fields) else Msg(x.key, **fields)
+        if isinstance(x, list):
+            out = [swap(v) for v in x]
+            return x if all(a is b for a, b in zip(out, x)) else out
+        if isinstance(x, tuple):
+            out = tuple(swap(v) for v in x)
+            return x if all(a is b for a, b in zip(out, x)) else out
+        return x
+
+    notes = [swap(m) for m in result.notes]
+    rows = [RowResult(r._label, r.status, swap(r._message), r.mistake, r.entries, r.score) for r in result.rows]
+    return CheckResult(result.passed, result.score, notes, result.mistakes, rows, result._quantity, result.columns)
+
+
 def same_data(a, b):
     """Two sets of data are the same (arrays compared by value)."""
     return a.keys() == b.keys() and all(np.array_equal(np.asarray(a[k], dtype=object), np.asarray(b[k], dtype=object))
@@ -259,12 +343,12 @@ def table_text(key, lang, **fields):
 
 
 def register(id, answer, checker, target, solution, options=None, context=None, *, data=None, ranges=None,
-             statement=None, explanation=None, lookalikes=None, wrong_forms=None):
+             statement=None, explanation=None, lookalikes=None, wrong_forms=None, numbers_at=None, library=()):
     """Add a :class:`TryIt` to :data:`TRY_ITS` (used by the chapter modules); returns it."""
     if id in TRY_ITS:
         raise ValueError(f"try-it {id!r} is registered twice")
     item = TryIt(id, answer, checker, target, solution, dict(options or {}), context or dict, dict(data or {}),
-                 dict(ranges or {}), statement, explanation, lookalikes, wrong_forms)
+                 dict(ranges or {}), statement, explanation, lookalikes, wrong_forms, numbers_at, tuple(library))
     TRY_ITS[id] = item
     return item
 
@@ -286,6 +370,15 @@ _TEXT = {
     "with_data": N_("for the data {data}"),
     "notebook_data": N_("the answer for the notebook's data, not for this variant's"),
     "why": N_("Why"),
+    "library": N_("this is kinbook's own answer ({name}): right, and a good check of your own — now build it by hand "
+                  "(the worked answer shows how)"),
 }
+
+add_texts({
+    "x.numbers_right_at": N_("these are the right values at t = {t} only: the question asks for each row as a formula "
+                             "of t (a string such as \"2*t\"), which the numbers of one instant do not show"),
+    "x.numbers_read_at": N_("your numbers are read as the values at t = {t} (the question asks for formulas of t); "
+                            "there they are not right:"),
+})
 
 
