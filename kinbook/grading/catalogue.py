@@ -270,6 +270,10 @@ _ENTRIES += [
        N_("lever arm from the wrong point"),
        N_("∂(A s')/∂φ = B s': the lever arm s' runs from the body's own origin (a rocker's O_3, its midpoint in the "
           "book's examples) to the point, not from the pivot it turns about")),
+    _m("own_arm",
+       N_("each body's own arm in s_iᵀs_j"),
+       N_("∂(s_iᵀ s_j)/∂p_i = s_jᵀ C_i: the derivative of body i's arm times the other body's arm s_j (Table 14.1's "
+          "n1 row), not s_iᵀ C_i")),
     _m("newton_step",
        N_("not a Newton–Raphson step"),
        N_("each step solves Φ_q(q_k) Δq = −Φ(q_k) at the current iterate, then q_{k+1} = q_k + Δq: mind the minus "

@@ -100,9 +100,12 @@ def test_another_draws_the_next_variant_and_refuses_a_bad_k():
         assert (first.k, second.k) == (1, 2)
         with pytest.raises(InputError, match="k must be a whole number"):
             another("13-5/try-3", -1)
-        assert "no other data" in repr(another("14-5/try-2"))
     finally:
         another("13-5/try-3", 0)
+
+
+def test_every_try_it_has_other_data_to_draw():
+    assert not [i.id for i in TRY_ITS.values() if not i.ranges], "kb.another has nothing to draw for these"
 
 
 def test_a_copied_printed_answer_is_named_other_data():
@@ -222,3 +225,22 @@ def test_a_library_one_liner_is_named_kinbooks_own_answer():
         seen[what] = ns["result"]
     assert seen["library"].passed and "kinbook's own answer (gamma)" in seen["library"].messages[0]
     assert seen["by hand"].passed and "kinbook's own answer" not in repr(seen["by hand"])
+
+
+def test_the_own_arm_in_the_n1_row_is_named_not_a_missing_chain_rule():
+    """14-5 try-it 2 with s_3ᵀC_3, s_4ᵀC_4 in the universal joint's n1 row (each body's own arm)."""
+    import sympy as sp
+
+    from kinbook.spatial import A_from_p, E, a_bar
+
+    item = tryits.get("14-5/try-2")
+    mech = item.context()["mech"]
+    right = item.reference_answer()
+    par_3, par_4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
+    dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)  # noqa: E731
+    arm_3, arm_4 = A_from_p(par_3) * sp.Matrix([0, 1, 0]), A_from_p(par_4) * sp.Matrix([1, 0, 0])
+    z = sp.zeros(1, 3)
+    own = sp.Matrix.hstack(z, arm_3.T * dAa(par_3, [0, 1, 0]), z, arm_4.T * dAa(par_4, [1, 0, 0]))
+    r = item.check(sp.Matrix.vstack(right[:3, :], own))
+    assert r.mistakes == ["own_arm"] and "chain-rule" not in repr(r) and "s_4ᵀC_3" in repr(r)
+    assert 0 < r.score < 1

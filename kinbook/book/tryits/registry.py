@@ -104,7 +104,7 @@ class TryIt:
             target = self._with_lookalikes(target, data)
             return self.checker(answer, target, **options)
         result = self.checker(answer, target, **options)
-        if self.wrong_forms is not None and (result.passed or result.mistakes == ["wrong_value"]):
+        if self.wrong_forms is not None:
             named = self._wrong_form(answer, target, data, result)
             if named is not None:
                 return named
@@ -164,17 +164,29 @@ class TryIt:
             A = read(answer, t, q_name)
         except Refused:
             return None
-        if A.kind != "symbolic" or A.matrix.shape[1] != 1:
+        if A.kind != "symbolic":
             return None
         s = t.samples("generic")
-        S = t.tape(list(A.matrix), aliases=True)(s.Q, s.QD, s.T)["value"]
+
+        def by_row(matrix, aliases):  # (samples × columns, one per row): a row of Φ_q is compared whole
+            import sympy as sp
+
+            M = sp.Matrix(matrix)
+            if M.shape[1] != 1 and q_name != "Phi_q":
+                return None
+            V = t.tape(list(M), aliases=aliases)(s.Q, s.QD, s.T)["value"]
+            return V.reshape(len(V), M.shape[0], M.shape[1]).transpose(1, 0, 2).reshape(M.shape[0], -1)
+
+        S = by_row(A.matrix, True)
+        if S is None:
+            return None
         for rows, code, detail, erratum in self.wrong_forms(**data):
-            W = t.tape(list(rows))(s.Q, s.QD, s.T)["value"]
-            if S.shape[1] != W.shape[1]:
+            W = by_row(rows, False)
+            if W is None or S.shape != W.shape:
                 continue
-            left = list(range(W.shape[1]))
-            for k in range(S.shape[1]):
-                hit = next((j for j in left if scale_match(S[:, k], W[:, j], 1e-6) is not None), None)
+            left = list(range(W.shape[0]))
+            for k in range(S.shape[0]):
+                hit = next((j for j in left if scale_match(S[k], W[j], 1e-6) is not None), None)
                 if hit is None:
                     break
                 left.remove(hit)
@@ -182,9 +194,18 @@ class TryIt:
                 notes = [detail] + ([_msg("book_misprint", id=erratum)] if erratum else [])
                 if result.passed:
                     return CheckResult(False, 0.0, notes + hints([code], {}), [code], (), quantity)
-                kept = list(result.notes[:-1])  # without the generic hint, the last note
+                # the failed result keeps its rows and score; its notes and rows lose the name it gave them
+                # (the last note is its hint), but keep which entries are wrong where that name was "wrong value"
+                from ...grading._i18n import render
+                from ...grading.catalogue import explain
+                from ...grading.result import RowResult
+
+                other = [explain(m, "en")[0] for m in result.mistakes if m not in (code, "wrong_value")]
+                kept = [n for n in result.notes[:-1] if not any(o in render(n, "en") for o in other)]
+                rows = tuple(RowResult(r._label, r.status, detail, code, r.entries, r.score)
+                             if r.mistake not in (None, "wrong_value", code) else r for r in result.rows)
                 return CheckResult(False, result.score, kept[:1] + notes + kept[1:] + hints([code], {}), [code],
-                                   result.rows, quantity, result.columns)
+                                   rows, quantity, result.columns)
         return None
 
     def _copied(self, answer, data, options, quantity):
