@@ -17,10 +17,105 @@ from ..notation import html_math, html_text
 from . import ch13, ch14
 from .erratum import KINDS, Erratum, Evidence
 
-__all__ = ["Erratum", "Evidence", "ERRATA", "KINDS", "table", "show", "get"]
+__all__ = ["Erratum", "Evidence", "ERRATA", "BOOK_ORDER", "KINDS", "SHOWN_IN", "table", "show", "get", "anchor", "links"]
 
-ERRATA = ch13.ERRATA + ch14.ERRATA
-"""Every erratum, in the book's order: chapter 13 (:mod:`.ch13`), then chapter 14 (:mod:`.ch14`)."""
+BOOK_ORDER = """
+13.5-q-elements 13.5-eq4-text 13.5-revolute-words 13.5-eq21 13.5-eq24 13.5-eq25 13.5-rt-collinearity
+13.5-ex1-eq-ref 13.5-ex1-solution 13.5-ex2-translational 13.5-ex2-l3 13.5-ex2-driver 13.5-motrices
+13.5-joint-labels 13.5-ex3-system 13.5-ex3-x2 13.5-ex4-phi8-substituted 13.5-ex4-phi8 13.5-ex4-phi8-system
+13.6-q-example1 13.6-previous-chapter 13.6-table-13.1-text 13.6-table-13.2 13.6-table-13.3 13.6-table-13.4 13.7-velocity-rhs
+13.7-ex5-reference 13.7-ex5-ground-points 13.7-ex5-phi8-row 13.7-ex5-joint3-working 13.7-ex5-velocities 13.8-revolute-Phiq-qd
+13.8-gamma-sign 13.8-table-13.5-rr 13.8-table-13.5-t 13.8-driver-second-derivative 13.8-ex6-point-A
+13.8-ex6-joint-label 13.8-ex6-point-acceleration 13.8-ex6-accelerations 14.2-termas 14.2-elementary-rotations
+14.2-A21-row2-first 14.2-A21-row3 14.2-A-theta-second 14.2-omega-matrix 14.2-rates-inverse-first
+14.3-euler-theorem 14.3-A-of-p 14.3-p-from-A 14.3-G-row2 14.3-Ep-Gp 14.3-p-dot 14.3-a-bar 14.3-A-ddot-a
+14.4-n2-primes 14.4-p1-local-form 14.4-p1-two-rows 14.4-universal-primes 14.4-revolute-tilde
+14.5-cross-references 14.5-n1-rj 14.5-A-ddot-a 14.5-gamma-n1 14.5-gamma-n1-table
+""".split()
+"""Every erratum id in the order of the passages in the book (the section, then where in it: an example's slips
+after the text before the example, in the example's own order); :data:`ERRATA` follows it."""
+
+ERRATA = sorted(ch13.ERRATA + ch14.ERRATA, key=lambda e: BOOK_ORDER.index(e.id))
+"""Every erratum, in the book's order (:data:`BOOK_ORDER`): chapter 13 (:mod:`.ch13`), then chapter 14 (:mod:`.ch14`)."""
+
+SHOWN_IN = {
+    "13.5-q-elements": "13-1-transformation-matrix",
+    "13.5-eq4-text": "13-1-transformation-matrix",
+    "13.5-revolute-words": "13-2-joints",
+    "13.5-eq21": "13-2-joints",
+    "13.5-eq24": "13-2-joints",
+    "13.5-eq25": "13-2-joints",
+    "13.5-rt-collinearity": "13-2-joints",
+    "13.5-ex1-eq-ref": "13-3-position-analysis",
+    "13.5-ex1-solution": "13-3-position-analysis",
+    "13.5-ex2-translational": "13-3-position-analysis",
+    "13.5-ex2-l3": "13-3-position-analysis",
+    "13.5-ex2-driver": "13-3-position-analysis",
+    "13.5-motrices": "13-3-position-analysis",
+    "13.5-joint-labels": "13-3-position-analysis",
+    "13.5-ex3-system": "13-3-position-analysis",
+    "13.5-ex3-x2": "13-3-position-analysis",
+    "13.5-ex4-phi8-substituted": "13-3-position-analysis",
+    "13.5-ex4-phi8": "13-3-position-analysis",
+    "13.5-ex4-phi8-system": "13-3-position-analysis",
+    "13.6-q-example1": "13-5-jacobian",
+    "13.6-previous-chapter": "13-5-jacobian",
+    "13.6-table-13.1-text": "13-5-jacobian",
+    "13.6-table-13.2": "13-5-jacobian",
+    "13.6-table-13.3": "13-5-jacobian",
+    "13.6-table-13.4": "13-5-jacobian",
+    "13.7-velocity-rhs": "13-6-velocity-analysis",
+    "13.7-ex5-reference": "13-6-velocity-analysis",
+    "13.7-ex5-ground-points": "13-5-jacobian",
+    "13.7-ex5-phi8-row": "13-5-jacobian",
+    "13.7-ex5-joint3-working": "13-5-jacobian",
+    "13.7-ex5-velocities": "13-6-velocity-analysis",
+    "13.8-revolute-Phiq-qd": "13-7-acceleration-analysis",
+    "13.8-gamma-sign": "13-7-acceleration-analysis",
+    "13.8-table-13.5-rr": "13-7-acceleration-analysis",
+    "13.8-table-13.5-t": "13-7-acceleration-analysis",
+    "13.8-driver-second-derivative": "13-7-acceleration-analysis",
+    "13.8-ex6-point-A": "13-7-acceleration-analysis",
+    "13.8-ex6-joint-label": "13-7-acceleration-analysis",
+    "13.8-ex6-point-acceleration": "13-7-acceleration-analysis",
+    "13.8-ex6-accelerations": "13-7-acceleration-analysis",
+    "14.2-termas": "14-2-euler-angles",
+    "14.2-elementary-rotations": "14-2-euler-angles",
+    "14.2-A21-row2-first": "14-2-euler-angles",
+    "14.2-A21-row3": "14-2-euler-angles",
+    "14.2-A-theta-second": "14-2-euler-angles",
+    "14.2-omega-matrix": "14-2-euler-angles",
+    "14.2-rates-inverse-first": "14-2-euler-angles",
+    "14.3-euler-theorem": "14-3-euler-parameters",
+    "14.3-A-of-p": "14-3-euler-parameters",
+    "14.3-p-from-A": "14-3-euler-parameters",
+    "14.3-G-row2": "14-3-euler-parameters",
+    "14.3-Ep-Gp": "14-3-euler-parameters",
+    "14.3-p-dot": "14-3-euler-parameters",
+    "14.3-a-bar": "14-3-euler-parameters",
+    "14.3-A-ddot-a": "14-3-euler-parameters",
+    "14.4-n2-primes": "14-4-spatial-constraints",
+    "14.4-p1-local-form": "14-4-spatial-constraints",
+    "14.4-p1-two-rows": "14-4-spatial-constraints",
+    "14.4-universal-primes": "14-4-spatial-constraints",
+    "14.4-revolute-tilde": "14-4-spatial-constraints",
+    "14.5-cross-references": "14-5-spatial-analysis",
+    "14.5-n1-rj": "14-5-spatial-analysis",
+    "14.5-A-ddot-a": "14-5-spatial-analysis",
+    "14.5-gamma-n1": "14-5-spatial-analysis",
+    "14.5-gamma-n1-table": "14-5-spatial-analysis",
+}
+"""The chapter notebook (file name without .ipynb) that shows each erratum where the book's passage is rebuilt;
+its card links there, and that notebook lists its errata with links to their cards on the errata page
+(tests/book/test_errata.py checks both against the notebooks)."""
+
+PAGE = "errata"
+"""The errata notebook (chapters/errata.ipynb)."""
+
+
+def anchor(erratum_id):
+    """The HTML id of an erratum's card: ``erratum-13.5-ex1-solution``."""
+    return f"erratum-{erratum_id}"
 
 
 def get(erratum_id):
@@ -52,15 +147,34 @@ class ErrataTable:
         for e, ev in self.rows:
             parts = [f"<p style='margin:0 0 4px 0'><b>{html_text(e.where)}</b> "
                      f"<span style='color:#777'>[{html.escape(e.id)}, {e.kind}]</span></p>",
-                     f"<p style='margin:0'>The book prints: {html_math(e.printed, display=True)}</p>",
-                     f"<p style='margin:0'>Correct: {html_math(e.correct, display=True)}</p>"]
+                     f"<p style='margin:0'>The book prints:</p>{_formula(e.printed)}",
+                     f"<p style='margin:0'>Correct:</p>{_formula(e.correct)}"]
             if ev is not None:
                 parts.append(f"<p style='margin:4px 0 0 0'>Evidence: {html_text(ev.text)}</p>")
             if e.note:
                 parts.append(f"<p style='margin:4px 0 0 0'><i>{html_text(e.note)}</i></p>")
-            cards.append("<div style='text-align:left; border-left:4px solid #c62828; padding:4px 10px; "
-                         "margin:10px 0; background:#fdf6f6'>" + "".join(parts) + "</div>")
+            parts.append(_links(e))
+            cards.append(f"<div id='{anchor(e.id)}' style='text-align:left; border-left:4px solid #c62828; "
+                         "padding:4px 10px; margin:10px 0; background:#fdf6f6; max-width:100%; box-sizing:border-box'>"
+                         + "".join(parts) + "</div>")
         return "".join(cards)
+
+
+def _formula(tex):
+    """A displayed formula in a box of its own that scrolls sideways when it is wider than the card (the card's
+    other formulas and text stay put; a scrollbar at the foot of a long page would hide which formula it moves)."""
+    return (f"<div style='overflow-x:auto; overflow-y:hidden; max-width:100%; margin:0 0 2px 0'>"
+            f"{html_math(tex, display=True)}</div>")
+
+
+def _links(e):
+    """The card's way back: to the notebook that rebuilds the book's passage, and to the card on the errata page."""
+    home = SHOWN_IN.get(e.id)
+    out = []
+    if home:
+        out.append(f"<a href='{home}.ipynb#{anchor(e.id)}'>the passage, rebuilt in notebook {home[:4]}</a>")
+    out.append(f"<a href='{PAGE}.ipynb#{anchor(e.id)}'>this erratum among all errata</a>")
+    return f"<p style='margin:4px 0 0 0; font-size:90%'>{' · '.join(out)}</p>"
 
 
 def show(*ids):
@@ -71,3 +185,14 @@ def show(*ids):
 def table(prefix=""):
     """The errata whose id starts with ``prefix`` (e.g. "13", "14.3"; all by default), evidence computed."""
     return ErrataTable([e for e in ERRATA if e.id.startswith(prefix)])
+
+
+def links(notebook):
+    """Markdown: the errata a chapter notebook shows, each a link to its card on the errata page (the cell that
+    closes every chapter notebook with errata)."""
+    ids = [i for i, home in SHOWN_IN.items() if home == notebook]
+    if not ids:
+        return ""
+    items = ", ".join(f"[{i}]({PAGE}.ipynb#{anchor(i)})" for i in ids)
+    return (f"**Errata of this section.** {items} — each with the evidence kinbook computes, on the "
+            f"[errata page]({PAGE}.ipynb).")

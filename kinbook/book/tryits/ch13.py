@@ -278,8 +278,10 @@ def _s13_4_1(*, rho_sun, rho_planet):
 
 register("13-4/try-1", "my_gear_row", check_phi,
          lambda rho_sun, rho_planet: _planetary(rho_sun, rho_planet, 1.0).constraints[3], _s13_4_1,
-         data={"rho_sun": 2, "rho_planet": 1}, ranges={"rho_sun": (1.5, 3.0), "rho_planet": (0.5, 1.5)},
-         statement="ρ_1 = {rho_sun}, ρ_3 = {rho_planet}")
+         data={"rho_sun": 3, "rho_planet": 1}, ranges={"rho_sun": (1.5, 3.0), "rho_planet": (0.5, 1.5)},
+         statement="ρ_1 = {rho_sun}, ρ_3 = {rho_planet}",
+         lookalikes=lambda **_: [(_planetary(2, 1, 1.0).constraints[3], _printed(
+             N_("the gear row of the train printed above (ρ_1 = 2, ρ_3 = 1)")))])
 
 _TRAIN = {"w_arm": 1.5, "rho_sun": 2.5, "rho_planet": 1.0}
 
