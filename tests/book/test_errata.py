@@ -151,7 +151,8 @@ def test_card_formulas_typeset_in_mathjax(tmp_path):
     if node is None or not MATHJAX.is_dir():
         pytest.skip("needs node and MathJax 3 (make web-env)")
     cards = errata.table()._repr_html_()
-    texs = sorted({m for t in _prose(cards) for m in INLINE.findall(t)})
+    texs = sorted({m for t in _prose(cards) for m in INLINE.findall(t)}
+                  | {errata.lines(f) for e in errata.ERRATA for f in (e.printed, e.correct)})  # the displayed lines
     script = tmp_path / "tex2mml.js"
     script.write_text(TEX2MML)
     run = subprocess.run([node, str(script), str(MATHJAX)], input=json.dumps(texs), capture_output=True, text=True,
@@ -229,7 +230,13 @@ def test_each_formula_of_a_card_scrolls_on_its_own():
     """A formula wider than the card scrolls in its own box, never the whole page (the only scrollbar at the foot of
     a 30-card group hid the slip it moved)."""
     cards = errata.table()._repr_html_()
+    for e in errata.ERRATA:  # a long formula comes in lines that fit a card at 1200 px
+        for f in (e.printed, e.correct):
+            if errata._as_prose(f) is None:  # words wrap as a paragraph
+                for line in errata.lines(f).split(" \\\\ &"):
+                    rows = line.split("\\\\") if "bmatrix" in line else [line]  # a matrix: as wide as a row
+                    assert max(errata._visible(r) for r in rows) <= 1.6 * errata.WIDTH, (e.id, line)
     displayed = cards.count("\\[")
-    assert displayed == 2 * len(errata.ERRATA)
+    assert displayed == sum(errata._as_prose(f) is None for e in errata.ERRATA for f in (e.printed, e.correct))
     assert cards.count("<div style='overflow-x:auto; overflow-y:hidden; max-width:100%; margin:0 0 2px 0'>\\[") == \
         displayed

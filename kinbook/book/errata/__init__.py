@@ -17,7 +17,8 @@ from ..notation import html_math, html_text
 from . import ch13, ch14
 from .erratum import KINDS, Erratum, Evidence
 
-__all__ = ["Erratum", "Evidence", "ERRATA", "BOOK_ORDER", "KINDS", "SHOWN_IN", "table", "show", "get", "anchor", "links"]
+__all__ = ["Erratum", "Evidence", "ERRATA", "BOOK_ORDER", "KINDS", "SHOWN_IN", "table", "show", "get", "anchor", "links",
+           "lines"]
 
 BOOK_ORDER = """
 13.5-q-elements 13.5-eq4-text 13.5-revolute-words 13.5-eq21 13.5-eq24 13.5-eq25 13.5-rt-collinearity
@@ -161,10 +162,103 @@ class ErrataTable:
 
 
 def _formula(tex):
-    """A displayed formula in a box of its own that scrolls sideways when it is wider than the card (the card's
-    other formulas and text stay put; a scrollbar at the foot of a long page would hide which formula it moves)."""
+    """A displayed formula, broken into lines where it is long (:func:`lines`), in a box of its own that scrolls
+    sideways should a line still be wider than the card (the card's other formulas and text stay put; a scrollbar
+    at the foot of a long page would hide which formula it moves). Words (``\\text{…}`` with at most short math
+    between) are set as a paragraph that wraps."""
+    prose = _as_prose(tex)
+    if prose is not None:
+        return f"<p style='margin:0 0 4px 1.5em'>{prose}</p>"
     return (f"<div style='overflow-x:auto; overflow-y:hidden; max-width:100%; margin:0 0 2px 0'>"
-            f"{html_math(tex, display=True)}</div>")
+            f"{html_math(lines(tex), display=True)}</div>")
+
+
+def _as_prose(tex):
+    """HTML for a "formula" that is words — ``\\text{…}`` groups with short math between them — or None."""
+    parts, k, words = [], 0, 0
+    while k < len(tex):
+        j = tex.find("\\text{", k)
+        if j < 0:
+            parts.append(("math", tex[k:]))
+            break
+        parts.append(("math", tex[k:j]))
+        depth, m = 0, j + 5
+        while m < len(tex):
+            depth += {"{": 1, "}": -1}.get(tex[m], 0)
+            if depth == 0:
+                break
+            m += 1
+        parts.append(("text", tex[j + 6:m]))
+        words += m - j - 6
+        k = m + 1
+    math = [p.strip().strip("\\ ").strip() for kind, p in parts if kind == "math"]
+    if words < 40 or words < 2 * sum(len(p) for p in math):
+        return None
+    return "".join(html.escape(p) if kind == "text" else (html_math(p.strip()) if p.strip().strip("\\ ").strip()
+                                                          else " ") for kind, p in parts)
+
+
+WIDTH = 64
+"""About how many characters of a formula fit a line of a card at 1200 px (a TeX command counts as one)."""
+
+
+def _visible(tex):
+    """About how many characters ``tex`` sets: a command counts as one, braces and scripts' marks as none."""
+    import re
+
+    return len(re.sub(r"[{}^_]", "", re.sub(r"\\[A-Za-z]+|\\[,;:! ]", "x", tex)))
+
+
+def _split_top(tex, seps):
+    """``tex`` cut at the separators ``seps`` that stand outside every brace and parenthesis; each cut keeps its
+    separator at the start of the next part (at the end of the part for a comma)."""
+    parts, depth, start, k = [], 0, 0, 0
+    while k < len(tex):
+        c = tex[k]
+        if c == "\\" and tex[k + 1:k + 5] in ("left", "righ"):
+            k += 5
+            continue
+        if tex.startswith("\\begin{", k) or tex.startswith("\\end{", k):  # a matrix is one piece
+            depth += 1 if tex[k + 1] == "b" else -1
+        if c in "{([":
+            depth += 1
+        elif c in "})]":
+            depth -= 1
+        elif depth == 0:
+            for sep in seps:
+                if tex.startswith(sep, k) and k > start:
+                    cut = k + len(sep) if sep.startswith(",") else k
+                    parts.append(tex[start:cut].strip())
+                    start = cut
+                    k += len(sep) - 1
+                    break
+        k += 1
+    parts.append(tex[start:].strip())
+    return [p for p in parts if p]
+
+
+def lines(tex):
+    """A long formula as several lines: first at its top-level list separators (``,\\ ``, ``\\quad``), then a part
+    still too long at its top-level + and − signs. A formula that fits is returned as it is."""
+    if _visible(tex) <= WIDTH:
+        return tex
+    out = []
+    for part in _split_top(tex, (",\\ ", ",\\quad", ",\\qquad", "\\quad", "\\ \\text{")):
+        if _visible(part) > WIDTH:
+            terms = _split_top(part, (" - ", " + ", " = "))
+            line = ""
+            for term in terms:
+                if line and _visible(line + term) > WIDTH:
+                    out.append(line)
+                    line = "\\qquad " + term
+                else:
+                    line = f"{line} {term}".strip()
+            out.append(line)
+        else:
+            out.append(part)
+    if len(out) == 1:
+        return tex
+    return "\\begin{aligned}" + " \\\\ ".join("&" + line for line in out) + "\\end{aligned}"
 
 
 def _links(e):

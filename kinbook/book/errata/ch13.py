@@ -496,8 +496,8 @@ ERRATA = [
             r"There is no chapter 3 in these chapters: example 3 (the four-bar with a revolute–revolute joint) is "
             r"in §13.5, where its constraint equations and its solution at $t = 0$ are obtained."),
     Erratum("13.6-previous-chapter", "§13.6, the paragraph before Table 13.1",
-            "Ya se comentó en el capítulo anterior que las ecuaciones de restricción tienen como variables …",
-            "Ya se comentó en el apartado anterior (§13.5) …", "wording",
+            r"\text{“Ya se comentó en el capítulo anterior que las ecuaciones de restricción …”}",
+            r"\text{“Ya se comentó en el apartado anterior (§13.5) …”}", "wording",
             note=r"The constraint equations and their variables $\mathbf q_i$, $\mathbf q_j$ are the subject of §13.5, "
                  r"the section before, in the same chapter."),
     Erratum("13.6-table-13.1-text", "§13.6, the derivation under Table 13.1",

@@ -218,8 +218,8 @@ def _ev_a_bar_explicit():
 
 ERRATA = [
     Erratum("14.2-termas", "§14.2, the opening paragraph",
-            "de las termas posibles se ha generalizado la constituida por los ángulos de precesión, nutación y rotación propia",
-            "de las ternas posibles …", "wording",
+            r"\text{“… y de las termas posibles se ha generalizado …”}",
+            r"\text{“… y de las ternas posibles se ha generalizado …”}", "wording",
             note="“Ternas” (triples): of the possible triples of angles, the one of precession, nutation and spin is the "
                  "usual choice."),
     Erratum("14.2-elementary-rotations", "§14.2, the three elementary rotations (first set)",
