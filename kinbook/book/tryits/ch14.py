@@ -4,6 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
+    import tomli as tomllib
+
 from ... import examples
 from ...grading import check_euler_parameters, check_gamma, check_jacobian, check_phi, check_rotation, check_value
 from ...grading import expected as X
@@ -349,8 +354,6 @@ _B_RANGES = {"sB_coupler": [[3.2, 0, 0], [3, 0.2, 0], [2.8, 0, -0.3], [3.1, -0.2
 def _fourbar_with(sB_coupler=None, sB_rocker=None, cross_coupler=None, cross_rocker=None, sA_crank=None,
                   sA_coupler=None):
     """The spatial four-bar with other points and cross arms at its joints A and B (a try-it's variant)."""
-    import tomllib
-
     from ...files import build
 
     data = tomllib.loads(examples.path("spatial_fourbar").read_text(encoding="utf-8"))
