@@ -235,7 +235,7 @@ def test_each_formula_of_a_card_scrolls_on_its_own():
             if errata._as_prose(f) is None:  # words wrap as a paragraph
                 for line in errata.lines(f).split(" \\\\ &"):
                     rows = line.split("\\\\") if "bmatrix" in line else [line]  # a matrix: as wide as a row
-                    assert max(errata._visible(r) for r in rows) <= 1.6 * errata.WIDTH, (e.id, line)
+                    assert max(errata._visible(r) for r in rows) <= 2 * errata.WIDTH, (e.id, line)
     displayed = cards.count("\\[")
     assert displayed == sum(errata._as_prose(f) is None for e in errata.ERRATA for f in (e.printed, e.correct))
     assert cards.count("<div style='overflow-x:auto; overflow-y:hidden; max-width:100%; margin:0 0 2px 0'>\\[") == \

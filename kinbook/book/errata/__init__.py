@@ -11,6 +11,7 @@ The book's printed numbers and formulas appear here only as the thing under test
 from __future__ import annotations
 
 import html
+import re
 
 from ...errors import InputError
 from ..notation import html_math, html_text
@@ -150,10 +151,11 @@ class ErrataTable:
                      f"<span style='color:#777'>[{html.escape(e.id)}, {e.kind}]</span></p>",
                      f"<p style='margin:0'>The book prints:</p>{_formula(e.printed)}",
                      f"<p style='margin:0'>Correct:</p>{_formula(e.correct)}"]
+            # a long inline formula cannot wrap: its paragraph scrolls, not the card
             if ev is not None:
-                parts.append(f"<p style='margin:4px 0 0 0'>Evidence: {html_text(ev.text)}</p>")
+                parts.append(f"<p style='margin:4px 0 0 0; overflow-x:auto'>Evidence: {html_text(ev.text)}</p>")
             if e.note:
-                parts.append(f"<p style='margin:4px 0 0 0'><i>{html_text(e.note)}</i></p>")
+                parts.append(f"<p style='margin:4px 0 0 0; overflow-x:auto'><i>{html_text(e.note)}</i></p>")
             parts.append(_links(e))
             cards.append(f"<div id='{anchor(e.id)}' style='text-align:left; border-left:4px solid #c62828; "
                          "padding:4px 10px; margin:10px 0; background:#fdf6f6; max-width:100%; box-sizing:border-box'>"
@@ -198,14 +200,16 @@ def _as_prose(tex):
                                                           else " ") for kind, p in parts)
 
 
-WIDTH = 64
-"""About how many characters of a formula fit a line of a card at 1200 px (a TeX command counts as one)."""
+WIDTH = 54
+"""About how many characters of a formula fit a line of a card at 1200 px (the book's text column is 600 px wide;
+a TeX command counts as one)."""
 
 
 def _visible(tex):
     """About how many characters ``tex`` sets: a command counts as one, braces and scripts' marks as none."""
     import re
 
+    tex = re.sub(r"\\(sin|cos|tan|sen|operatorname\{\w+\})(?![A-Za-z])", "xxx", tex)   # set as three letters
     return len(re.sub(r"[{}^_]", "", re.sub(r"\\[A-Za-z]+|\\[,;:! ]", "x", tex)))
 
 
@@ -244,7 +248,11 @@ def lines(tex):
         return tex
     out = []
     for part in _split_top(tex, (",\\ ", ",\\quad", ",\\qquad", "\\quad", "\\ \\text{")):
-        if _visible(part) > WIDTH:
+        words = re.fullmatch(r"(\\ )?\\text\{(.*)\}", part)
+        if words and _visible(part) > WIDTH and "; " in words.group(2):  # a long remark: one clause a line
+            clauses = words.group(2).split("; ")
+            out += [f"\\text{{{c}{';' if k < len(clauses) - 1 else ''}}}" for k, c in enumerate(clauses)]
+        elif _visible(part) > WIDTH:
             terms = _split_top(part, (" - ", " + ", " = "))
             line = ""
             for term in terms:
