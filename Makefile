@@ -93,7 +93,8 @@ test-lms: $(LMS_STAMP)
 NB ?= chapters/*.ipynb exercises/*.ipynb
 notebooks: $(STAMP)
 	$(BIN)/jupyter nbconvert --to notebook --execute --inplace --ExecutePreprocessor.kernel_name=kinbook \
-		--ExecutePreprocessor.record_timing=False --ExecutePreprocessor.timeout=300 $(wildcard $(NB))
+		--ExecutePreprocessor.record_timing=False --ExecutePreprocessor.timeout=300 \
+		--NotebookExporter.preprocessors=nbconvert.preprocessors.CoalesceStreamsPreprocessor $(wildcard $(NB))
 
 # The chapters as standalone HTML pages that work offline: MathJax comes from the jupyter-server-mathjax package
 # (copied next to the pages) instead of a CDN; the animation players need no icon font. Open build/html/*.html.

@@ -256,7 +256,7 @@ def test_the_try_its_read_in_spanish_with_tu():
         assert tryits.get("13-1/try-1").stated() == "φ = 120°"  # notation alone: not a message of the catalogue
         copied = item.check(item.reference_answer(), {"phi_deg": 150})  # a variant asked, the notebook's answered
         assert copied.mistakes == ["wrong_data"]
-        assert copied.messages[1] == "corresponde a la respuesta para los datos del cuaderno, no para los de esta variante"
+        assert copied.messages[1] == "esto es la respuesta para los datos del cuaderno, no para los de esta variante"
     finally:
         kinbook.set_language("en")
     assert tryits.reveal("13-1/try-1").why.startswith("eq. 6 with the angle in radians: np.cos and np.sin take radians")

@@ -71,14 +71,23 @@ LAB_PYTHON = Path(os.environ.get("KINBOOK_PYTHON", ROOT / ".venv" / "bin" / "pyt
 # site's own Pyodide while it starts (loadPyodideOptions; web/pyodide_site.py); %pip only makes sure of them (from
 # the site's piplite index). Then matplotlib's font list, which Pyodide builds anew at each visit: here, quietly,
 # rather than as a red "Matplotlib is building the font cache" box under the chapter's first plot.
+# When kinbook itself cannot be installed (a copy of the site without its wheel), %pip says nothing and the next
+# cell would fail with "No module named 'kinbook'": the cell says so plainly instead (its red stderr box).
 INSTALL_CELL = """\
 # Running in your browser (JupyterLite): this cell makes sure kinbook and ipywidgets are installed.
 %pip install -q kinbook ipywidgets
-import logging
-fonts_log = logging.getLogger("matplotlib.font_manager")
-fonts_log.setLevel(logging.ERROR)
-import matplotlib.font_manager  # matplotlib lists its fonts (once per visit)
-fonts_log.setLevel(logging.NOTSET)"""
+import importlib.util, sys
+if importlib.util.find_spec("kinbook") is None:
+    print("kinbook could not be installed: this site has no copy of it that your browser could load (its wheel "
+          "is missing from the site), so the cells that use kinbook cannot run. The notebook and its stored "
+          "outputs are here to read; ask whoever runs the site to publish the whole site folder, then reload.",
+          file=sys.stderr)
+else:
+    import logging
+    fonts_log = logging.getLogger("matplotlib.font_manager")
+    fonts_log.setLevel(logging.ERROR)
+    import matplotlib.font_manager  # matplotlib lists its fonts (once per visit)
+    fonts_log.setLevel(logging.NOTSET)"""
 
 LITE_KERNELSPEC = {"name": "python", "display_name": "Python (Pyodide)", "language": "python"}
 
@@ -121,7 +130,7 @@ def book_notebook(nb, name):
             "notebook in your browser: no install (JupyterLite; the first start downloads Python, then the "
             "browser keeps it).</p>")
     nb["cells"].insert(_after_title(nb), _cell("markdown", link, "kinbook-open-live"))
-    return instant_cells(nb, name)
+    return instant_cells(_html_links(nb), name)
 
 
 def instant_cells(nb, name):
@@ -146,6 +155,23 @@ def instant_cells(nb, name):
                 '<div data-verdict aria-live="polite"></div><div data-echo></div></div>' + scripts)
         cells.append(_cell("markdown", html, f"kinbook-instant-{tryit.replace('/', '-')}"))
     nb["cells"] = cells
+    return nb
+
+
+_NOTEBOOK_LINK = re.compile(r"(?<=[(\"'])([\w.-]+)\.ipynb(?=[#)\"'])")
+"""A link to a sibling notebook (``errata.ipynb#erratum-13.5-ex1``) in Markdown or an HTML output."""
+
+
+def _html_links(nb):
+    """Links between the notebooks (the errata cards and each chapter's list of its errata) point at the book's
+    pages: ``errata.ipynb#…`` → ``errata.html#…``. Jupyter Book rewrites links in Markdown it resolves, not in
+    stored HTML outputs, nor links with an anchor to another notebook's output."""
+    for cell in nb["cells"]:
+        if cell["cell_type"] == "markdown":
+            cell["source"] = _NOTEBOOK_LINK.sub(r"\1.html", _joined(cell["source"]))
+        for out in cell.get("outputs", []):
+            if "text/html" in out.get("data", {}):
+                out["data"]["text/html"] = _NOTEBOOK_LINK.sub(r"\1.html", _joined(out["data"]["text/html"]))
     return nb
 
 

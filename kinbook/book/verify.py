@@ -102,8 +102,9 @@ class Comparison:
             cells = "".join(f"<td style='text-align:center;color:{'#155724' if ok else '#b00020'}'>{'✓' if ok else '✗'}"
                             f"</td>" for ok in row)
             body.append(f"<tr><td>{html_math(self.rows[r])}</td>{cells}</tr>")
-        return (f"<p><b>{html.escape(self.title)}</b> — {html.escape(self.summary())}</p>"
-                f"<table><tr><th></th>{head}</tr>{''.join(body)}</table>")
+        return folded(f"<p><b>{html.escape(self.title)}</b> — {html.escape(self.summary())}</p>",
+                      f"<table><tr><th></th>{head}</tr>{''.join(body)}</table>",
+                      f"entry by entry ({self.errors.size} entries)", show=not self.all_agree)
 
     def latex_disagreements(self):
         """For every entry that differs, two aligned LaTeX lines "row, column: printed …" and "kinbook …", in
@@ -184,6 +185,17 @@ def gamma_path(mech, q, qd, t=0.0, h=1e-4):
     return float(np.abs(Phi_dd + mech.gamma(q, qd, t)).max())
 
 
+FOLD_AFTER = 3
+"""A table of checks longer than this shows a sentence, the table folded below it (open when a check fails)."""
+
+
+def folded(sentence, table, what, show=False):
+    """A sentence, then ``table`` folded in an HTML ``<details>`` ("show …"), open when ``show`` (a disagreement is
+    what the reader came for): a long column of ✓ reads as a lesson's result, not as a test report."""
+    return (f"{sentence}<details{' open' if show else ''}><summary style='cursor:pointer;color:#555'>{what}</summary>"
+            f"{table}</details>")
+
+
 class Check:
     """One line of a cross-check table: what was compared, the largest difference, the tolerance."""
 
@@ -213,7 +225,16 @@ class Checks(list):
     def _repr_html_(self):
         rows = "".join(f"<tr><td>{'✓' if c.ok else '✗'}</td><td style='text-align:left'>{html.escape(c.what)}</td>"
                        f"<td style='text-align:left'>{html.escape(c.verdict())}</td></tr>" for c in self)
-        return f"<table>{rows}</table>"
+        table = f"<table>{rows}</table>"
+        if len(self) <= FOLD_AFTER:
+            return table
+        bad = [c for c in self if not c.ok]
+        if not bad:
+            sentence = f"All {len(self)} checks agree."
+        else:
+            sentence = (f"{len(self) - len(bad)} of {len(self)} checks agree; not: "
+                        + "; ".join(html.escape(c.what) for c in bad) + ".")
+        return folded(f"<p>{sentence}</p>", table, f"the {len(self)} checks", show=bool(bad))
 
 
 def checks(*items):
@@ -440,7 +461,14 @@ class Table:
         body = "".join("<tr>" + "".join(f"<td style='{self._style(c)}'>{html.escape(self._text(c))}</td>" for c in r)
                        + "</tr>" for r in self.rows)
         caption = f"<p>{html.escape(self.caption)}</p>" if self.caption else ""
-        return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>{caption}"
+        table = f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+        verdicts = [c for r in self.rows for c in r if isinstance(c, Check)]
+        if len(self.rows) <= FOLD_AFTER or not verdicts:
+            return table + caption
+        bad = sum(not c.ok for c in verdicts)
+        sentence = (f"All {len(verdicts)} checks of the {len(self.rows)} rows below pass." if not bad else
+                    f"{bad} of {len(verdicts)} checks of the {len(self.rows)} rows below fail (marked ✗).")
+        return folded(f"<p>{sentence}</p>", table, f"the {len(self.rows)} rows", show=bool(bad)) + caption
 
 
 def _small(x):
@@ -551,7 +579,7 @@ def gamma_table(mech, states, *, h=1e-4, tol=1e-12, fd_tol=1e-6):
                 err["table"] = max(err["table"], np.abs(gam - table.gamma_rows(c, q[cols], qd[cols])).max())
         rows.append([c.name, f"({c.label})", Check("sympy", err["sympy"], tol), Check("fd", err["fd"], fd_tol),
                      Check("table", err["table"], tol) if table is not None else "—"])
-    return Table(["constraint", "type", "kernel − sympy", "kernel − (Φ_q q̈ − Φ̈), relative", "kernel − γ table"],
+    return Table(["constraint", "type", "kernel − sympy", "kernel − (Φ_q q̈ − d²Φ/ds²), relative", "kernel − γ table"],
                  rows, f"Largest difference over {len(states)} states (q, q̇, q̈).")
 
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..i18n import N_, translate
+from ..i18n import N_, Np_, translate
 from ._i18n import add_texts
 
 __all__ = ["Mistake", "MISTAKES", "explain", "codes", "CONTEXTS"]
@@ -276,6 +276,10 @@ _ENTRIES += [
        N_("lever arm from the wrong point"),
        N_("∂(A s')/∂φ = B s': the lever arm s' runs from the body's own origin (a rocker's O_3, its midpoint in the "
           "book's examples) to the point, not from the pivot it turns about")),
+    _m("own_arm",
+       N_("each body's own arm in s_iᵀs_j"),
+       N_("∂(s_iᵀ s_j)/∂p_i = s_jᵀ C_i: the derivative of body i's arm times the other body's arm s_j (Table 14.1's "
+          "n1 row), not s_iᵀ C_i")),
     _m("newton_step",
        N_("not a Newton–Raphson step"),
        N_("each step solves Φ_q(q_k) Δq = −Φ(q_k) at the current iterate, then q_{k+1} = q_k + Δq: mind the minus "
@@ -388,4 +392,15 @@ add_texts({
                                "configurations compared: it vanishes in between"),
     "d.only_at_samples": N_("equal to {ref} at the sampled configurations, but not at {where}"),
     "d.vanishing_at": N_("your row vanishes at {where}, where {ref} = {value} does not"),
+    # the same details, the term described and not written (a try-it: the term written out is the answer)
+    "d.sign_of_kind": N_("the term with the wrong sign is {kind}"),
+    "d.missing_kind": N_("the one missing is {kind}"),
+    "d.or_sign_of_kind": N_("the same expression as a term's sign slipped ({kind}): check both"),
+    "k.constant": N_("a constant"),
+    "k.time": N_("a term of t alone (from the driver's function of time)"),
+    "k.velocity_squared": N_("a term quadratic in the velocities"),
+    "k.velocity": N_("a term linear in the velocities"),
+    "k.rotation": N_("a term of a body's rotation (its angle or Euler parameters)"),
+    "k.origin": N_("a term of a body's origin (x, y, z)"),
+    "k.of_bodies": Np_("{what}, of body {bodies}", "{what}, of bodies {bodies}"),
 })

@@ -200,7 +200,8 @@ def _also_a_sign(target, data, r, j, rtol):
     for expr, term in cands:
         vals = target.tape([expr])(G.Q, G.QD, G.T)["value"][:, 0]
         if scale_match(data.S_G[:, r.k], vals, rtol) is not None:
-            r.detail = Msg("d.or_sign_of_term", term=_term_detail("sign_flip", term).fields["term"])
+            named = _term_detail("sign_flip", term)
+            r.detail = Msg("d.or_sign_of_term", term=named.fields["term"], kind=named.fields["kind"])
             return
 
 
@@ -261,12 +262,14 @@ def term_variants(expr):
 
 
 def _term_detail(code, term):
+    """The term named in a row's message; ``kind`` says what sort of term it is without writing it (a try-it shows
+    that instead: the term written out is the answer's last step)."""
     if term is None:
         return None
     import sympy as sp
 
     text = sp.sstr(term).replace("phi", "φ").replace("**", "^")
-    return Msg("d.sign_of_term" if code == "sign_flip" else "d.missing_term", term=text)
+    return Msg("d.sign_of_term" if code == "sign_flip" else "d.missing_term", term=text, kind=slips.term_kind(term))
 
 
 def _terms_phi(target, data, wrong, free, rtol):

@@ -58,6 +58,10 @@ add_texts({
     "v.direction_right": N_("your vector points the right way; its length is not right"),
     "v.got_type": N_("{what}: expected real numbers (a number, a list or an array), got {type}"),
     "v.scaled_units": N_("your answer is the expected one multiplied by {c} (a unit conversion: m and mm?)"),
+    "v.scaled_step": N_("your answer is off by one constant factor throughout: {step}"),
+    "v.step_units": N_("check the units of each length (m and mm?)"),
+    "v.step_angle": N_("check the step where an angle is put in radians (from degrees, turns or a fraction of a turn)"),
+    "v.step_factor": N_("check each constant factor of the formula you used (a number in it, a diameter for a radius)"),
     "v.of_type": N_("an object of type {type}"),
     "v.container_of": N_("a {type} of {inner}"),
     "v.empty_container": N_("an empty {type}"),
@@ -285,6 +289,8 @@ def compare(answer, exp, rtol, atol, name, degrees=True, per=None, extra=None, r
         if close(a, np.asarray(value, float).reshape(e.shape), rtol, atol, per):
             return CheckResult(True, 1.0, [why], [], (), name)
     code, detail, erratum, note = _diagnose(a, e, exp, rtol, atol, per, degrees, extra, name)
+    if not reveal and isinstance(detail, Msg) and "step" in detail.fields:  # the factor itself would be the answer
+        detail = Msg("v.scaled_step", step=detail.fields["step"])
     notes = _head(a, e, rtol, atol, per, name, reveal)
     if note is not None:
         notes.append(note)
@@ -428,8 +434,17 @@ def _scaled(a, e, rtol, atol):
     for p in _PLAUSIBLE:
         if abs(c - p) <= 1e-3 * abs(p):
             key = "v.scaled_units" if p in (1000.0, 1e-3) else "value_scaled"
-            return "scaled", Msg(key, c=fmt(p)), None, None
+            return "scaled", Msg(key, c=fmt(p), step=Msg(_scaled_step(p))), None, None
     return "wrong_value", None, None, None
+
+
+def _scaled_step(p):
+    """The step a plausible factor points at, named without the factor (which would give the answer away)."""
+    if p in (1000.0, 1e-3):
+        return "v.step_units"
+    if any(abs(p - a) <= 1e-9 * abs(a) for a in (np.pi, 1 / np.pi, 2 * np.pi, 1 / (2 * np.pi), np.pi / 180)):
+        return "v.step_angle"
+    return "v.step_factor"
 
 
 def _wrong_entries(a, e, rtol, atol, per):

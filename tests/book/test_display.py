@@ -51,3 +51,18 @@ def test_small_as_a_relation_never_reads_equals_less_than():
     assert display.small(3.2e-5, 1e-9, relation=True) == "= 3.2e-05"
     assert display.small(2.35, relation=True) == "= 2.4"
     assert display.small(4.7e-7, 1e-6, relation=True) == "< 1e-6"
+
+
+def test_stored_notebooks_keep_each_stream_in_one_output():
+    """A cell's printed lines are one output (make notebooks coalesces them): split chunks are invisible when
+    rendered but make the stored notebook and its diffs read as noise."""
+    import json
+    import pathlib
+
+    root = pathlib.Path(__file__).resolve().parents[2]
+    for path in sorted(root.glob("chapters/*.ipynb")):
+        for cell in json.loads(path.read_text())["cells"]:
+            outs = cell.get("outputs", [])
+            split = [a for a, b in zip(outs, outs[1:]) if a["output_type"] == b["output_type"] == "stream"
+                     and a["name"] == b["name"]]
+            assert not split, f"{path.name}: a {split[0]['name']} stream split in chunks"

@@ -151,7 +151,8 @@ def test_card_formulas_typeset_in_mathjax(tmp_path):
     if node is None or not MATHJAX.is_dir():
         pytest.skip("needs node and MathJax 3 (make web-env)")
     cards = errata.table()._repr_html_()
-    texs = sorted({m for t in _prose(cards) for m in INLINE.findall(t)})
+    texs = sorted({m for t in _prose(cards) for m in INLINE.findall(t)}
+                  | {errata.lines(f) for e in errata.ERRATA for f in (e.printed, e.correct)})  # the displayed lines
     script = tmp_path / "tex2mml.js"
     script.write_text(TEX2MML)
     run = subprocess.run([node, str(script), str(MATHJAX)], input=json.dumps(texs), capture_output=True, text=True,
@@ -163,3 +164,79 @@ def test_card_formulas_typeset_in_mathjax(tmp_path):
     phi_q = re.sub(r"<mrow[^>]*>|</mrow>|\s+", "", unescape(mml[r"\boldsymbol\Phi_{\mathbf q}\dot{\mathbf q}"]))
     assert '<msub><mimathvariant="bold">Φ</mi><mimathvariant="bold">q</mi></msub>' in phi_q, phi_q
     assert '<mover><mimathvariant="bold">q</mi><mo>˙</mo></mover>' in phi_q, phi_q
+
+
+# ------------------------------------------------------------------------------------------- order, kinds, links
+def _section(e):
+    return tuple(int(x) for x in re.search(r"§(\d+)\.(\d+)", e.where).groups())
+
+
+def test_the_errata_are_in_the_books_order():
+    """Sections never go back, and within a section the worked examples come in their own order (example 1's
+    slips before example 2's); BOOK_ORDER lists every erratum once."""
+    assert sorted(errata.BOOK_ORDER) == sorted(e.id for e in errata.ERRATA)
+    assert len(set(errata.BOOK_ORDER)) == len(errata.BOOK_ORDER)
+    sections = [_section(e) for e in errata.ERRATA]
+    assert sections == sorted(sections), [e.id for e in errata.ERRATA]
+    for sec in set(sections):
+        examples = [int(m.group(1)) for e in errata.ERRATA if _section(e) == sec
+                    for m in [re.search(r"example (\d+)", e.where)] if m]
+        assert examples == sorted(examples), (sec, examples)
+
+
+def test_the_kinds_are_used_by_their_definitions():
+    kinds = {e.kind for e in errata.ERRATA}
+    assert {"typo", "inconsistency"} <= kinds <= set(errata.KINDS)
+    for e in errata.ERRATA:
+        if e.kind == "typo":  # one letter, index, prime or accent for another: measured like a formula
+            assert e.evidence is not None, e.id
+
+
+def _chapter_cells():
+    for path in sorted((ROOT / "chapters").glob("1*.ipynb")):
+        yield path.stem, json.loads(path.read_text())["cells"]
+
+
+def test_every_card_links_to_its_section_and_every_section_to_its_entries():
+    first = {}
+    for stem, cells in _chapter_cells():
+        for cell in cells:
+            if cell["cell_type"] != "code":
+                continue
+            src = "".join(cell["source"])
+            for call in re.findall(r"errata\.show\(([^)]*)\)", src):
+                for i in re.findall(r'"([^"]+)"', call):
+                    first.setdefault(i, stem)
+            for prefix in re.findall(r'errata\.table\("([^"]*)"\)', src):
+                for e in errata.ERRATA:
+                    if e.id.startswith(prefix):
+                        first.setdefault(e.id, stem)
+    assert first == errata.SHOWN_IN, "SHOWN_IN must name the notebook that first shows each erratum"
+    cards = errata.table()._repr_html_()
+    for e in errata.ERRATA:
+        home = errata.SHOWN_IN[e.id]
+        assert f"id='{errata.anchor(e.id)}'" in cards
+        assert f"href='{home}.ipynb#{errata.anchor(e.id)}'" in cards
+    for stem, cells in _chapter_cells():
+        text = errata.links(stem)
+        last = "".join(cells[-1]["source"]) if cells[-1]["cell_type"] == "markdown" else ""
+        assert (last == text) if text else "Errata of this section" not in last, stem
+        for e in errata.ERRATA:
+            if errata.SHOWN_IN[e.id] == stem:
+                assert f"(errata.ipynb#{errata.anchor(e.id)})" in last
+
+
+def test_each_formula_of_a_card_scrolls_on_its_own():
+    """A formula wider than the card scrolls in its own box, never the whole page (the only scrollbar at the foot of
+    a 30-card group hid the slip it moved)."""
+    cards = errata.table()._repr_html_()
+    for e in errata.ERRATA:  # a long formula comes in lines that fit a card at 1200 px
+        for f in (e.printed, e.correct):
+            if errata._as_prose(f) is None:  # words wrap as a paragraph
+                for line in errata.lines(f).split(" \\\\ &"):
+                    rows = line.split("\\\\") if "bmatrix" in line else [line]  # a matrix: as wide as a row
+                    assert max(errata._visible(r) for r in rows) <= 2 * errata.WIDTH, (e.id, line)
+    displayed = cards.count("\\[")
+    assert displayed == sum(errata._as_prose(f) is None for e in errata.ERRATA for f in (e.printed, e.correct))
+    assert cards.count("<div style='overflow-x:auto; overflow-y:hidden; max-width:100%; margin:0 0 2px 0'>\\[") == \
+        displayed

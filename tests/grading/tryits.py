@@ -154,9 +154,9 @@ def _ch13():
     T.append(Notebook("13-3/try-3", [r3[0] + 2.0 * _c(p3) - 0.5 * _s(p3), r3[1] + 2.0 * _s(p3) + 0.5 * _c(p3)], [
         (r3 + _A(p3).T @ sC, "A_transposed"), (r3 + sC, "local_vector"), (r3 + _A(p3) @ [2.0, -0.5], "sign_flip"),
         (r3 + _A(p3 * DEG) @ sC, "degrees"), (m1.point_position(q1, "rocker", "B"), "wrong_data")]))
-    T.append(Notebook("13-4/try-1", ["2*phi1 - 3*phi2 + phi3"], [
-        (["2*phi1 + phi3"], "missing_term"), (["1*(phi1 - phi2) + 2*(phi3 - phi2)"], "swapped_bodies"),
-        (["2*(phi1 - phi2) - 1*(phi3 - phi2)"], "sign_flip")]))
+    T.append(Notebook("13-4/try-1", ["3*phi1 - 4*phi2 + phi3"], [   # ρ_1 = 3, ρ_3 = 1: not the train printed above
+        (["3*phi1 + phi3"], "missing_term"), (["1*(phi1 - phi2) + 3*(phi3 - phi2)"], "swapped_bodies"),
+        (["3*(phi1 - phi2) - 1*(phi3 - phi2)"], "sign_flip"), (["2*phi1 - 3*phi2 + phi3"], "wrong_data")]))
     T.append(Notebook("13-4/try-2", 5.25, [
         (3.75, "relative_speed"), (3.0, "wrong_data"), (-2.25, "sign_flip"), (5.25 * DEG, "degrees"),
         (-5.25, "sign_flip")]))
@@ -188,7 +188,8 @@ def _ch13():
         (example("ch13_example3")[0].Phi_q(example("ch13_example3")[1], 0.0)[7, 8], "wrong_data")]))
     T.append(Notebook("13-6/try-1", ["0"] * 8 + ["5*(20 + 100*t)"], [
         (["0"] * 8 + ["-100 - 500*t"], "nu_sign"), (["0"] * 9, "nu_missing"),
-        (["0"] * 8 + [f"{100 * DEG} + {500 * DEG}*t"], "degrees"), (["0"] * 8 + ["100"], "missing_term")]))
+        (["0"] * 8 + [f"{100 * DEG} + {500 * DEG}*t"], "degrees"),
+        (["0"] * 8 + ["100"], "wrong_data")]))   # the book's driver, printed above: named so before "missing term"
     m3, q3, qd3, qdd3 = example("ch13_example3")
     w3 = qd3[8]
     T.append(Notebook("13-6/try-2", abs(2 * w3), [

@@ -237,3 +237,54 @@ def test_without_python_the_page_says_so(browser, proxy, screenshots, tmp_path):
     finally:
         server.close()
     assert proxy.requests[before:] == []
+
+
+def test_the_page_names_what_it_loads_and_for_how_long(browser, site, proxy, screenshots):
+    """While Python starts, a notice at the foot of the page names what is loading (Pyodide and the packages the
+    kernel loads) and counts the seconds; past its threshold (set to 0 here: every start is "slow") it says the
+    start is slow but going. It goes when the kernel answers."""
+    before = len(proxy.requests)
+    context = browser.new_context(viewport={"width": 1280, "height": 800})
+    context.add_init_script("window.kinbookSlowAfter = 0;")
+    page = context.new_page()
+    page.goto(f"{site.url}/live/notebooks/index.html?path=13-1-transformation-matrix.ipynb")
+    notice = page.locator("#kinbook-starting")
+    notice.wait_for(timeout=120_000)
+    page.wait_for_function("() => /with .*numpy.*kinbook/.test(document.querySelector('#kinbook-starting')"
+                           "?.textContent || '')", timeout=60_000)
+    text = notice.inner_text()
+    assert "Starting Python (Pyodide) with" in text and "sympy" in text and "s so far" in text, text
+    assert "slower than usual" in text and "still going" in text, text
+    page.screenshot(path=str(screenshots / "live-starting-notice.png"))
+    notice.wait_for(state="detached", timeout=600_000)      # the kernel answered: the notice is gone
+    assert page.locator("#kinbook-no-python").count() == 0
+    context.close()
+    assert proxy.requests[before:] == []
+
+
+def test_a_missing_kinbook_wheel_is_said_plainly(browser, proxy, screenshots, tmp_path):
+    """A copy of the site without kinbook's wheel: the install cell says that kinbook could not be installed (not a
+    silent cell, then "No module named 'kinbook'" in the next one)."""
+    copy = site_copy(tmp_path / "site")
+    wheels = list((copy / "live").rglob("kinbook-*.whl"))
+    assert wheels, "the built site has no kinbook wheel to remove"
+    for wheel in wheels:
+        wheel.unlink()
+    server = StaticServer(copy)
+    before = len(proxy.requests)
+    try:
+        page = browser.new_page(viewport={"width": 1280, "height": 800})
+        page.set_default_timeout(120_000)
+        page.goto(f"{server.url}/live/notebooks/index.html?path={NOTEBOOK}")
+        install = code_cell(page, "%pip install")
+        install.wait_for()
+        page.locator("#kinbook-starting").wait_for(state="detached", timeout=600_000)
+        out = run_and_wait(page, install, timeout=600)
+        text = out.inner_text()
+        assert "kinbook could not be installed" in text and "wheel" in text, text
+        assert "No module named" not in text, text
+        page.screenshot(path=str(screenshots / "live-no-kinbook-wheel.png"))
+        page.close()
+    finally:
+        server.close()
+    assert proxy.requests[before:] == []

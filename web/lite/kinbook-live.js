@@ -1,4 +1,4 @@
-// kinbook's live site: say in the page when Python cannot be downloaded.
+// kinbook's live site: say in the page what Python is loading and for how long, and when it cannot be downloaded.
 //
 // The notebooks run on Pyodide (Python compiled to WebAssembly), which the kernel's web worker downloads from
 // the address in jupyter-lite.json (pyodideUrl: this site's static/pyodide/, web/pyodide_site.py). When that
@@ -74,10 +74,79 @@
     }, 2000);
   }
 
-  if (document.readyState === 'loading') {
-    document.addEventListener('DOMContentLoaded', function () { probe(); watchKernel(); });
-  } else {
+  // While Python starts, a small notice at the foot of the page names what is loading (Pyodide and the packages
+  // jupyter-lite.json has the kernel load) and counts the seconds, so that a student is not left wondering why
+  // the first cell waits; past `slowAfter` seconds it says that this is slow but still going. It goes away when
+  // the kernel answers (its kernel_info reply: Python is ready) or when the banner above says Python cannot be had.
+  var KERNEL_OWN = ['micropip', 'piplite', 'pyodide_kernel', 'ipykernel', 'comm', 'ssl', 'sqlite3', 'jedi', 'ipython'];
+
+  function packages() {
+    return fetch(new URL('jupyter-lite.json', root), { cache: 'no-cache' })
+      .then(function (r) { return r.json(); })
+      .then(function (config) {
+        var settings = ((config['jupyter-config-data'] || {}).litePluginSettings || {})[
+          '@jupyterlite/pyodide-kernel-extension:kernel'] || {};
+        return ((settings.loadPyodideOptions || {}).packages || []).filter(function (p) {
+          return KERNEL_OWN.indexOf(p) < 0;
+        });
+      }).catch(function () { return []; });
+  }
+
+  function kernelReady() {
+    var app = window.jupyterapp;
+    var widget = app && app.shell && app.shell.currentWidget;
+    var kernel = widget && widget.sessionContext && widget.sessionContext.session &&
+      widget.sessionContext.session.kernel;
+    if (kernel && !kernel.__kinbookAsked) {
+      kernel.__kinbookAsked = true;
+      Promise.resolve(kernel.info).then(function () { kernel.__kinbookReady = true; }, function () {});
+    }
+    if (kernel && kernel.__kinbookReady) return true;
+    // without the app (another JupyterLite page): a cell that has run means Python is there
+    return !!document.querySelector('.jp-InputPrompt') &&
+      /\[\d+\]/.test(Array.prototype.map.call(document.querySelectorAll('.jp-InputPrompt'),
+        function (p) { return p.textContent; }).join(' '));
+  }
+
+  function startingNotice() {
+    if (!/\/(notebooks|lab)\//.test(location.pathname)) return;
+    var slowAfter = typeof window.kinbookSlowAfter === 'number' ? window.kinbookSlowAfter : 40;
+    var t0 = Date.now();
+    var box = document.createElement('div');
+    box.id = 'kinbook-starting';
+    box.setAttribute('role', 'status');
+    box.style.cssText = 'position:fixed;bottom:8px;right:12px;z-index:9999;max-width:560px;padding:6px 12px;' +
+      'background:#eef5ff;color:#0b3d91;border-left:4px solid #1f6feb;box-shadow:0 1px 4px rgba(0,0,0,.15);' +
+      'font:13px/1.45 -apple-system,BlinkMacSystemFont,"Segoe UI",Helvetica,Arial,sans-serif';
+    var what = 'Python (Pyodide)';
+    packages().then(function (names) { if (names.length) what = 'Python (Pyodide) with ' + names.join(', '); });
+    function update() {
+      if (shown || kernelReady()) {
+        clearInterval(timer);
+        box.remove();
+        return;
+      }
+      var s = Math.round((Date.now() - t0) / 1000);
+      box.textContent = 'Starting ' + what + ' in your browser: ' + s + ' s so far. ' + (s >= slowAfter
+        ? 'This is slower than usual (a slow connection or a busy computer) but still going; the page stays ' +
+          'readable meanwhile.'
+        : 'A first visit takes up to a minute; later visits reuse the copy your browser keeps. Cells you run ' +
+          'now wait until it is ready.');
+      if (!box.isConnected) document.body.appendChild(box);
+    }
+    var timer = setInterval(update, 1000);
+    update();
+  }
+
+  function start() {
     probe();
     watchKernel();
+    startingNotice();
+  }
+
+  if (document.readyState === 'loading') {
+    document.addEventListener('DOMContentLoaded', start);
+  } else {
+    start();
   }
 })();

@@ -172,6 +172,32 @@ def _ev_q_13_6():
                     rf"configurations the difference {below(err)}).", float(len(missing)), float(len(outside) + err))
 
 
+def _ev_ex5_phi8_row():
+    """Example 5's numeric Φ_8 row: the right formula (the corrected Table 13.3, as the example's own lever arms
+    use it), evaluated at the configuration of example 1/3, which does not assemble."""
+    m = example("ch13_example3")
+    printed = np.asarray(EX5["J"], dtype=float)[7, 3:]
+    q = m.solve_position(0.0)
+    kinbook_row = m.Phi_q(q, 0.0)[7, 3:]
+
+    def formula(q, rA, rB):  # the corrected Table 13.3 with i = 2 (A), j = 3 (B), written out
+        d, arm_i, arm_j = rA - rB, rA - q[3:5], rB - q[6:8]
+        return np.array([2 * d[0], 2 * d[1], -2 * d[0] * arm_i[1] + 2 * d[1] * arm_i[0],
+                         -2 * d[0], -2 * d[1], 2 * d[0] * arm_j[1] - 2 * d[1] * arm_j[0]])
+
+    corrected = formula(q, m.point_position(q, "crank", "A"), m.point_position(q, "rocker", "B"))
+    qb = np.asarray(EX5["q"], dtype=float)
+    at_book = formula(qb, m.point_position(qb, "crank", "A"), m.point_position(qb, "rocker", "B"))
+    p_err, c_err = compare([(printed, corrected, kinbook_row)])
+    return Evidence(
+        rf"kinbook's row 8 of $\boldsymbol\Phi_{{\mathbf q}}$ at the assembled $\mathbf q(0)$ (columns $x_2 \dots \varphi_3$): "
+        rf"${notation.latex(sp.Matrix([np.round(kinbook_row, 4)]))}$; the printed row differs by up to {p_err:.3f}. The "
+        rf"corrected Table 13.3, written out at that $\mathbf q(0)$, agrees (difference {below(c_err, 1e-9)}); the same formula "
+        rf"at the book's configuration (examples 1/3, not assembled) gives the printed numbers to "
+        rf"{small(float(np.abs(at_book - printed).max()), 1e-4, 2)}: the row is right, its configuration is not.",
+        p_err, c_err, tolerance=1e-9)
+
+
 def _ev_ex5_ground_points():
     m = example("ch13_example3")
     rows = []
@@ -339,12 +365,17 @@ def _ev_ex5_velocity():
     qd = m.solve_velocity(q, 0.0)
     vB = m.point_velocity(q, qd, "rocker", "B")
     printed = np.array([-190.7802, 117.1410])
+    # the card's "correct" line: ẋ2, ẏ2, q̇3, v_B, |v_B| as it states them, against kinbook's rounded alike
+    stated = np.array([-70.71, -70.71, -96.22, 53.78, 73.49, -192.44, 107.56, 220.46])
+    computed = np.round(np.r_[qd[3:5], qd[6:9], vB, np.linalg.norm(vB)], 2)
+    corrected_error = float(np.abs(stated - computed).max())
     return Evidence(
         rf"kinbook: $\dot{{\mathbf q}}_3 = ({qd[6]:.2f}, {qd[7]:.2f}, {qd[8]:.2f})$, "
         rf"$\mathbf v^B = ({vB[0]:.2f}, {vB[1]:.2f})$, $|\mathbf v^B| = {np.linalg.norm(vB):.2f}$; the printed "
         rf"$\mathbf v^B = (-190.78, 117.14)$ is off by {np.linalg.norm(printed - vB):.2f} because it is computed at "
-        rf"the unassembled printed configuration.",
-        float(np.linalg.norm(printed - vB)), 0.0)
+        rf"the unassembled printed configuration. The corrected line's values are kinbook's to their two decimals "
+        rf"(difference {below(corrected_error, 1e-9)}).",
+        float(np.linalg.norm(printed - vB)), corrected_error)
 
 
 def _ev_ex6_acceleration():
@@ -355,11 +386,16 @@ def _ev_ex6_acceleration():
     aB = m.point_acceleration(q, qd, qdd, "rocker", "B")
     printed = np.array([4084.136, -22111.679])
     g = m.gamma(q, qd, 0.0)
+    # the card's "correct" line: γ_6, γ_7, γ_8 and a_B as it states them, against kinbook's rounded alike
+    stated = np.array([3952.10, 7071.08, 396.38, 4582.90, -21121.33])
+    corrected_error = float(np.abs(stated - np.round(np.r_[g[5:8], aB], 2)).max())
     return Evidence(
         rf"kinbook: $\gamma_6, \gamma_7, \gamma_8 = {g[5]:.2f}, {g[6]:.2f}, {g[7]:.2f}$, "
         rf"$\ddot{{\mathbf q}}_3 = ({qdd[6]:.2f}, {qdd[7]:.2f}, {qdd[8]:.2f})$, "
         rf"$\mathbf a^B = ({aB[0]:.2f}, {aB[1]:.2f})$, $|\mathbf a^B| = {np.linalg.norm(aB):.2f}$; the printed "
-        rf"$\mathbf a^B$ is off by {np.linalg.norm(printed - aB):.1f}.", float(np.linalg.norm(printed - aB)), 0.0)
+        rf"$\mathbf a^B$ is off by {np.linalg.norm(printed - aB):.1f}. The corrected line's values are kinbook's to "
+        rf"their two decimals (difference {below(corrected_error, 1e-9)}).", float(np.linalg.norm(printed - aB)),
+        corrected_error)
 
 
 # ----------------------------------------------------------------------------------------------- the list
@@ -382,14 +418,14 @@ ERRATA = [
             r"middle is left of $O_A$), and so do example 5's Jacobian and example 6."),
     Erratum("13.5-ex3-system", r"§13.5, example 3: the assembled system, $\Phi_6$ and $\Phi_7$",
             r"\ldots - x_4 - 1.5\cos\varphi_3,\ \ldots - y_4 - 1.5\sin\varphi_3",
-            r"\ldots - x_3 - 1.5\cos\varphi_3,\ \ldots - y_3 - 1.5\sin\varphi_3", "formula", _ev_ex3_system,
+            r"\ldots - x_3 - 1.5\cos\varphi_3,\ \ldots - y_3 - 1.5\sin\varphi_3", "typo", _ev_ex3_system,
             r"Example 3 has three bodies; there is no $x_4$ (the joint-2 section itself prints $x_3$, $y_3$)."),
     Erratum("13.5-ex4-phi8-substituted", "§13.5, example 4, joint 3: the general row with the points substituted",
             r"(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)(y_1 - y_1 - \sin\varphi_1) - "
             r"(y_3 + 3\sin\varphi_3 - y_1\sin\varphi_1)(x_1 - x_1 - \cos\varphi_1)",
             r"(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)(y_1 - y_1 - \sin\varphi_1) - "
             r"(y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)(x_1 - x_1 - \cos\varphi_1)",
-            "formula", _ev_ex4_phi8_substituted, r"$y_i^P - y_j^Q = y_3 + 3\sin\varphi_3 - (y_1 + \sin\varphi_1)$: "
+            "typo", _ev_ex4_phi8_substituted, r"$y_i^P - y_j^Q = y_3 + 3\sin\varphi_3 - (y_1 + \sin\varphi_1)$: "
             r"a minus sign is missing, which makes $y_1\sin\varphi_1$ a product."),
     Erratum("13.5-ex4-phi8", r"§13.5, example 4, joint 3: $\Phi_8$ simplified",
             r"(x_3 + 3\cos\varphi_3 - x_1\cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)\cos\varphi_1",
@@ -399,7 +435,7 @@ ERRATA = [
     Erratum("13.5-ex4-phi8-system", r"§13.5, example 4: $\Phi_8$ in the assembled system",
             r"(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1\sin\varphi_1)\cos\varphi_1",
             r"-(x_3 + 3\cos\varphi_3 - x_1 - \cos\varphi_1)\sin\varphi_1 + (y_3 + 3\sin\varphi_3 - y_1 - \sin\varphi_1)\cos\varphi_1",
-            "formula", _ev_ex4_phi8_system, r"The system repeats neither the simplified row nor its slips: here "
+            "inconsistency", _ev_ex4_phi8_system, r"The system repeats neither the simplified row nor its slips: here "
             r"the $x$ part is right but its sign is not, and the $y$ part has the substituted row's "
             r"$y_1\sin\varphi_1$."),
     Erratum("13.5-ex2-translational", "§13.5, example 2, joint 2: the general translational row",
@@ -451,7 +487,7 @@ ERRATA = [
             r"up.)"),
     Erratum("13.7-ex5-ground-points", r"§13.7, example 5: global coordinates of $O_A$ and $O_B$ at $t = 0$",
             r"y^{O_A} = y_1 + \eta_1^{O_A}\,\text{sen}\,\varphi_1,\quad y^{O_B} = y_1 + \eta_1^{O_B}\,\text{sen}\,\varphi_1",
-            r"y^{P} = y_1 + \xi_1^{P}\sin\varphi_1\ \ (\eta_1^P = 0)", "formula", _ev_ex5_ground_points,
+            r"y^{P} = y_1 + \xi_1^{P}\sin\varphi_1\ \ (\eta_1^P = 0)", "typo", _ev_ex5_ground_points,
             r"The simplified transformation just printed, $y_i^P = y_i + \xi_i^P \operatorname{sen}\varphi_i$, has "
             r"$\xi$; the $x$ rows have $\xi$ too."),
     Erratum("13.7-ex5-reference", "§13.7, example 5, the sentence after the statement",
@@ -459,6 +495,11 @@ ERRATA = [
             r"\text{the mechanism of example 3, §13.5 (this chapter)}", "wording", None,
             r"There is no chapter 3 in these chapters: example 3 (the four-bar with a revolute–revolute joint) is "
             r"in §13.5, where its constraint equations and its solution at $t = 0$ are obtained."),
+    Erratum("13.6-previous-chapter", "§13.6, the paragraph before Table 13.1",
+            r"\text{“Ya se comentó en el capítulo anterior que las ecuaciones de restricción …”}",
+            r"\text{“Ya se comentó en el apartado anterior (§13.5) …”}", "wording",
+            note=r"The constraint equations and their variables $\mathbf q_i$, $\mathbf q_j$ are the subject of §13.5, "
+                 r"the section before, in the same chapter."),
     Erratum("13.6-table-13.1-text", "§13.6, the derivation under Table 13.1",
             r"\partial\Phi_1/\partial\varphi_i = -(y_i^P - y_j^P),\ \ldots",
             r"-(y_i^P - y_i),\ (y_j^P - y_j),\ (x_i^P - x_i),\ -(x_j^P - x_j)", "formula", _ev_table_13_1_text,
@@ -477,6 +518,12 @@ ERRATA = [
     Erratum("13.6-table-13.4", r"§13.6, Tables 13.4 and 13.5 (revolute–translational joint), $\partial\Phi/\partial\varphi_j$",
             r"(y_i^P - y_i)(y_j^P - y_j^Q) + (x_i^P - x_i)(x_j^P - x_j^Q)",
             r"(y_i^P - y_j)(y_j^P - y_j^Q) + (x_i^P - x_j)(x_j^P - x_j^Q)", "formula", _ev_table_13_4),
+    Erratum("13.7-ex5-phi8-row", r"§13.7, example 5, joint 3 (r-r): the numeric row $\Phi_8$ of the Jacobian",
+            r"\Phi_8:\ [-11.968,\ -2.2848,\ 10.0781,\ 11.968,\ 2.2848,\ -13.5053]",
+            r"\Phi_8:\ [-11.7557,\ -2.409,\ 10.016,\ 11.7557,\ 2.409,\ -13.6295]\ \text{at the assembled } \mathbf q(0)",
+            "number", _ev_ex5_phi8_row,
+            r"The row follows from the right formula, but at the configuration of example 1/3, which does not "
+            r"assemble ($|AB| = 6.092$); the velocities of example 5 are solved with it (13.7-ex5-velocities)."),
     Erratum("13.7-ex5-joint3-working", "§13.7, example 5, joint 3 (r-r): the values substituted into the general row",
             r"(x_i^p - x_j^p) = (x^A - x^B) = -1.4142 + 0.7071,\ (y_i^p - y_j^p) = 1.4142 - 0.7071,\ "
             r"(x_j^p - x_j^p) = (x^B - x^3),\ (y_j^p - y_j^p) = (y^B - y^3)",

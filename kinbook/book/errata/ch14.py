@@ -217,6 +217,11 @@ def _ev_a_bar_explicit():
 
 
 ERRATA = [
+    Erratum("14.2-termas", "§14.2, the opening paragraph",
+            r"\text{“… y de las termas posibles se ha generalizado …”}",
+            r"\text{“… y de las ternas posibles se ha generalizado …”}", "wording",
+            note="“Ternas” (triples): of the possible triples of angles, the one of precession, nutation and spin is the "
+                 "usual choice."),
     Erratum("14.2-elementary-rotations", "§14.2, the three elementary rotations (first set)",
             r"A^\psi = \begin{bmatrix}\cos\psi & \sin\psi & 0\\ \sin\psi & \cos\psi & 0\\ 0&0&1\end{bmatrix}",
             r"A^\psi = \begin{bmatrix}\cos\psi & \sin\psi & 0\\ -\sin\psi & \cos\psi & 0\\ 0&0&1\end{bmatrix}",
@@ -425,7 +430,7 @@ ERRATA += [
     Erratum("14.4-n2-primes", r"§14.4, Vectores perpendiculares: $\Phi^{(n2,1)}$ in local components",
             r"\Phi^{(n2,1)} = s_i^T A_i^T (r_j + A_j s_j^B - r_i - A_i s_i^B)",
             r"\Phi^{(n2,1)} = s_i'^T A_i^T (r_j + A_j s_j'^B - r_i - A_i s_i'^B)",
-            "formula", _ev_14_4_n2_primes, r"The primes of the three local vectors are missing; the n1 formula "
+            "typo", _ev_14_4_n2_primes, r"The primes of the three local vectors are missing; the n1 formula "
             r"just above ($\mathbf s_i'^T\mathbf A_i^T\mathbf A_j\mathbf s'_j$) has them."),
     Erratum("14.4-p1-local-form", r"§14.4, Vectores paralelos: $\Phi^{(p1,2)}$ in local components",
             r"\tilde s_i s_j = A_i \tilde s_i^T A_i^T A_j s_j^B",
@@ -443,10 +448,10 @@ ERRATA += [
             r"(docs/conventions.md), two rows that stay independent in every orientation."),
     Erratum("14.4-universal-primes", r"§14.4, Junta universal: $\Phi^{(s,3)}$",
             r"r_i + A_i s_i^P - A_j s_j^P - r_j", r"r_i + A_i s_i'^P - A_j s_j'^P - r_j",
-            "formula", _ev_14_4_universal_primes, "The spherical-joint section just before prints it with the primes."),
+            "typo", _ev_14_4_universal_primes, "The spherical-joint section just before prints it with the primes."),
     Erratum("14.4-revolute-tilde", r"§14.4, Junta de revolución: $\Phi^{(p1,2)}$ in local components",
             r"A_i s_i' A_i^T A_j s_j' = 0", r"A_i \tilde s_i' A_i^T A_j s_j' = 0",
-            "formula", _ev_14_4_revolute_tilde, "Without the tilde the product is undefined (3×1 times 3×3)."),
+            "typo", _ev_14_4_revolute_tilde, "Without the tilde the product is undefined (3×1 times 3×3)."),
 ]
 
 # ------------------------------------------------------------------------------------------- §14.5 evidence

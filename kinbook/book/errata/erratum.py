@@ -35,9 +35,17 @@ class Evidence:
     tolerance: float = 1e-9
 
 
-KINDS = ("number", "formula", "sign", "wording")
-"""What an erratum is: a wrong printed number; a wrong formula (a wrong term, symbol, factor, point or shape); a
-sign slip alone (in a formula or a number); wrong words (a reference, a label, a claim in prose, notation)."""
+KINDS = ("number", "formula", "sign", "typo", "inconsistency", "wording")
+"""What an erratum is, each kind by its definition:
+
+* ``number`` — a printed value that the computation it reports does not give;
+* ``formula`` — a wrong formula: a wrong term, factor, point or shape, which changes what is computed;
+* ``sign`` — a sign slip alone (in a formula or a number);
+* ``typo`` — a slip of the pen in a formula whose intent the text around it states: one letter, index, prime,
+  accent or operator written for another (x_4 for x_3, η for ξ, s for s', a dropped tilde or minus);
+* ``inconsistency`` — the book prints one thing in two places and the two disagree (an assembled system that
+  repeats neither its own row nor that row's slips);
+* ``wording`` — wrong words: a reference, a label, a claim in prose, notation."""
 
 
 @dataclass(frozen=True)

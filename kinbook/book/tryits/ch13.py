@@ -61,7 +61,7 @@ register("13-1/try-1", "my_A", check_value, lambda phi_deg: X.A(np.radians(phi_d
          {"name": "A(φ)"}, data={"phi_deg": 120}, ranges={"phi_deg": [d for d in DEGREES if d % 90]},
          statement="φ = {phi_deg}°",
          explanation=N_("eq. 6 with the angle in radians: np.cos and np.sin take radians, so convert first "
-                        "(np.radians). The columns of A are the body's ξ and η axes in global components."))
+                        "(np.radians). The columns of A are the body's ξ and η axes in global components."), library=("A",))
 
 _BODY = {"x_Oi": 1.5, "y_Oi": -0.5, "phi_i_deg": 45, "xi_Q": 0.8, "eta_Q": 0.3}
 _BODY_RANGES = {"x_Oi": (-2.0, 2.0), "y_Oi": (-2.0, 2.0), "phi_i_deg": DEGREES, "xi_Q": (0.3, 1.5),
@@ -80,7 +80,7 @@ register("13-1/try-2", "my_rQ", check_value,
          lambda x_Oi, y_Oi, phi_i_deg, xi_Q, eta_Q: X.point_position([x_Oi, y_Oi], np.radians(phi_i_deg), [xi_Q, eta_Q]),
          _s13_1_2, {"name": "r_i^Q"}, data=_BODY, ranges=_BODY_RANGES, statement=_BODY_TEXT,
          explanation=N_("r^Q = r + A s'^Q (eq. 4): the local coordinates are turned by A into global "
-                        "components before they are added to the origin's position."))
+                        "components before they are added to the origin's position."), library=("point_position",))
 
 _MOTION = dict(_BODY, xd_i=0.2, yd_i=0.0, w_i=2.0, a_i=-1.0)
 _MOTION_RANGES = dict(_BODY_RANGES, xd_i=(-1.0, 1.0), yd_i=(-1.0, 1.0), w_i=(0.5, 3.0), a_i=(-2.0, 2.0))
@@ -103,7 +103,7 @@ register("13-1/try-3", "my_vaQ", check_value, _t13_1_3, _s13_1_3, {"name": "[v_Q
          statement=_BODY_TEXT + ", ṙ_i = [{xd_i}, {yd_i}] m/s, φ̇_i = {w_i} rad/s, r̈_i = 0, φ̈_i = {a_i} rad/s²",
          explanation=N_("eq. 10 differentiates A s' into B s' φ̇ (B = dA/dφ); eq. 13 differentiates once more: "
                         "a tangential part B s' φ̈ and a centripetal part −A s' φ̇², which points from Q back to "
-                        "the body's origin."))
+                        "the body's origin."), library=("point_velocity", "point_acceleration"))
 
 
 # ------------------------------------------------------------------------------------------------- 13-2
@@ -229,7 +229,7 @@ register("13-3/try-2", "my_iterates", check_iterates,
          explanation=N_("each pass solves the linear system Φ_q(q_k, t) Δq = −Φ(q_k, t) at the current iterate "
                         "and steps to q_k + Δq. Near the solution the error is squared at every step (quadratic "
                         "convergence): max |Φ| goes roughly 1e-1, 1e-2, 1e-5, 1e-10. Further passes change "
-                        "nothing."))
+                        "nothing."), library=("solve_position",))
 
 
 def _s13_3_3(q1, *, xi_C, eta_C):
@@ -250,7 +250,7 @@ register("13-3/try-3", "my_rC", check_value,
                                               [xi_C, eta_C]), _s13_3_3,
          {"name": "r^C"}, context=lambda: {"q1": _example("ch13_example1")[1]}, data={"xi_C": 2.0, "eta_C": 0.5},
          ranges={"xi_C": (-3.0, 3.0), "eta_C": (-1.0, 1.0)}, statement="(ξ_3^C, η_3^C) = ({xi_C}, {eta_C})",
-         lookalikes=_l13_3_3)
+         lookalikes=_l13_3_3, library=("point_position",))
 
 
 # ------------------------------------------------------------------------------------------------- 13-4
@@ -278,8 +278,10 @@ def _s13_4_1(*, rho_sun, rho_planet):
 
 register("13-4/try-1", "my_gear_row", check_phi,
          lambda rho_sun, rho_planet: _planetary(rho_sun, rho_planet, 1.0).constraints[3], _s13_4_1,
-         data={"rho_sun": 2, "rho_planet": 1}, ranges={"rho_sun": (1.5, 3.0), "rho_planet": (0.5, 1.5)},
-         statement="ρ_1 = {rho_sun}, ρ_3 = {rho_planet}")
+         data={"rho_sun": 3, "rho_planet": 1}, ranges={"rho_sun": (1.5, 3.0), "rho_planet": (0.5, 1.5)},
+         statement="ρ_1 = {rho_sun}, ρ_3 = {rho_planet}",
+         lookalikes=lambda **_: [(_planetary(2, 1, 1.0).constraints[3], _printed(
+             N_("the gear row of the train printed above (ρ_1 = 2, ρ_3 = 1)")))])
 
 _TRAIN = {"w_arm": 1.5, "rho_sun": 2.5, "rho_planet": 1.0}
 
@@ -394,7 +396,7 @@ def _l13_5_3(t_J):
 register("13-5/try-3", "my_J88", check_value, _t13_5_3, _s13_5_3, {"name": "∂Φ_8/∂φ_3"},
          context=lambda: {"mech": _example("ch13_example3")[0]}, data={"t_J": 0.004},
          ranges={"t_J": [round(0.001 * k, 3) for k in range(-9, 22) if k]}, statement="t = {t_J} s",
-         lookalikes=_l13_5_3)
+         lookalikes=_l13_5_3, library=("Phi_q",))
 
 
 # ------------------------------------------------------------------------------------------------- 13-6
@@ -409,7 +411,7 @@ register("13-6/try-1", "my_nu", check_nu,
          ranges={"w_drive": list(range(50, 151, 10)), "alpha_drive": list(range(-1000, 1001, 250))},
          statement="φ_2 = 3π/4 + {w_drive} t + ½·{alpha_drive} t²",
          lookalikes=lambda **_: [(_example("ch13_example3")[0], _printed(
-             N_("ν of the book's driver φ_2 = 3π/4 + 100 t, printed above")))])
+             N_("ν of the book's driver φ_2 = 3π/4 + 100 t, printed above")))], numbers_at=0.0, library=("nu",))
 
 
 @lru_cache(maxsize=None)
@@ -435,7 +437,7 @@ def _t13_6_2(d_D):
 
 register("13-6/try-2", "my_speed_D", check_value, _t13_6_2, _s13_6_2, {"name": "|v_D| (m/s)"},
          context=lambda: {"qd0": _ex3_motion()[2]}, data={"d_D": 2}, ranges={"d_D": (0.5, 2.9)},
-         statement="|O_B D| = {d_D} m")
+         statement="|O_B D| = {d_D} m", library=("point_velocity",))
 
 
 def _s13_6_3(q0, qd0, *, xi_C3, eta_C3):
@@ -459,7 +461,7 @@ register("13-6/try-3", "my_vC", check_value,
                                                 [xi_C3, eta_C3]), _s13_6_3,
          {"name": "v_C (m/s)"}, context=lambda: {"q0": _ex3_motion()[1], "qd0": _ex3_motion()[2]},
          data={"xi_C3": 0.5, "eta_C3": 0.4}, ranges={"xi_C3": (-1.5, 1.5), "eta_C3": (-0.8, 0.8)},
-         statement="(ξ_3^C, η_3^C) = ({xi_C3}, {eta_C3})", lookalikes=_l13_6("v"))
+         statement="(ξ_3^C, η_3^C) = ({xi_C3}, {eta_C3})", lookalikes=_l13_6("v"), library=("point_velocity",))
 
 
 # ------------------------------------------------------------------------------------------------- 13-7
@@ -510,10 +512,12 @@ def _l13_7_2(t_g):
 register("13-7/try-2", "my_gamma_8", check_value, _t13_7_2, _s13_7_2, {"name": "γ_8"},
          context=lambda: {"mech": _ex3_motion()[0]}, data={"t_g": 0.004},
          ranges={"t_g": [round(0.001 * k, 3) for k in range(-9, 22) if k]}, statement="t = {t_g} s",
-         lookalikes=_l13_7_2)
+         lookalikes=_l13_7_2, library=("gamma",))
 
 
 def _s13_7_3(q0, qd0, qdd0, *, xi_C3, eta_C3):
+    from kinbook.planar import A, B
+
     x3dd, y3dd, a3, w3, phi3 = qdd0[6], qdd0[7], qdd0[8], qd0[8], q0[8]
     s_C = np.array([xi_C3, eta_C3])
     my_aC = np.array([x3dd, y3dd]) + B(phi3) @ s_C * a3 - A(phi3) @ s_C * w3**2      # eq. 13
@@ -525,5 +529,5 @@ register("13-7/try-3", "my_aC", check_value,
                                                     _ex3_motion()[3][8], [xi_C3, eta_C3]), _s13_7_3,
          {"name": "a_C (m/s²)"}, context=lambda: dict(zip(("q0", "qd0", "qdd0"), _ex3_motion()[1:])),
          data={"xi_C3": 0.5, "eta_C3": 0.4}, ranges={"xi_C3": (-1.5, 1.5), "eta_C3": (-0.8, 0.8)},
-         statement="(ξ_3^C, η_3^C) = ({xi_C3}, {eta_C3})", lookalikes=_l13_6("a"))
+         statement="(ξ_3^C, η_3^C) = ({xi_C3}, {eta_C3})", lookalikes=_l13_6("a"), library=("point_acceleration",))
 

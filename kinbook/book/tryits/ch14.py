@@ -4,13 +4,19 @@ from __future__ import annotations
 
 import numpy as np
 
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
+    import tomli as tomllib
+
+from ... import examples
 from ...grading import check_euler_parameters, check_gamma, check_jacobian, check_phi, check_rotation, check_value
 from ...grading import expected as X
 from ...grading._i18n import add_texts
 from ...i18n import N_, Message
 from ...spatial import A_from_p
 from ...spatial import rotations as R
-from .registry import register
+from .registry import register, same_data
 
 __all__ = []  # nothing to import from here: importing the module registers its try-its
 
@@ -44,7 +50,7 @@ def _s14_1_1(*, axes_given):
 register("14-1/try-1", "my_A", check_rotation, lambda axes_given: X.A_from_axes(*axes_given), _s14_1_1, {"name": "A"},
          data={"axes_given": _AXES[0]}, ranges={"axes_given": _AXES}, statement=_axes_text,
          explanation=N_("eq. 7: the columns of A are the body's unit vectors in global components, so that "
-                        "s = A s' (a local vector's global components). The axes as rows give Aᵀ."))
+                        "s = A s' (a local vector's global components). The axes as rows give Aᵀ."), library=("A_from_axes",))
 
 _S_GLOBAL = [[2, 1, -1], [1, -2, 3], [0, 2, 1], [-1, 1, 2], [3, 0, -2], [2, -1, 1]]
 
@@ -73,7 +79,7 @@ register("14-1/try-3", "my_rQ", check_value,
          _s14_1_3, {"name": "r^Q"}, data={"axes_given": _AXES[0], "r_O": [0.5, -1.0, 2.0], "s_Q": [0.4, 0.0, 1.5]},
          ranges={"axes_given": _AXES, "r_O": [[0.5, -1.0, 2.0], [1.0, 0.5, -0.5], [-2.0, 1.0, 0.0]],
                  "s_Q": [[0.4, 0.0, 1.5], [1.0, 0.5, 0.0], [0.0, -0.8, 1.2], [0.6, 0.6, 0.6]]},
-         statement=lambda axes_given, r_O, s_Q: f"{_axes_text(axes_given)}; r = {r_O}, s'^Q = {s_Q}")
+         statement=lambda axes_given, r_O, s_Q: f"{_axes_text(axes_given)}; r = {r_O}, s'^Q = {s_Q}", library=("point_position",))
 
 
 # ------------------------------------------------------------------------------------------------- 14-2
@@ -94,7 +100,7 @@ def _s14_2_1(*, psi_deg, theta_deg, phi_deg):
 
 register("14-2/try-1", "my_A", check_rotation,
          lambda psi_deg, theta_deg, phi_deg: X.A_from_euler(*np.radians([psi_deg, theta_deg, phi_deg])), _s14_2_1,
-         {"name": "A(ψ, θ, φ)"}, data=_ANG, ranges=_ANG_RANGES, statement=_ANG_TEXT)
+         {"name": "A(ψ, θ, φ)"}, data=_ANG, ranges=_ANG_RANGES, statement=_ANG_TEXT, library=("A_from_euler",))
 
 
 def _s14_2_2(*, theta_deg, phi_deg, psi_rate, theta_rate, phi_rate):
@@ -113,7 +119,7 @@ register("14-2/try-2", "my_omega_body", check_value,
              np.radians([psi_deg, theta_deg, phi_deg]), [psi_rate, theta_rate, phi_rate], frame="body"), _s14_2_2,
          {"name": "ω' (rad/s)"}, data=_RATES,
          ranges=dict(_ANG_RANGES, psi_rate=(-3.0, 3.0), theta_rate=(-2.0, 2.0), phi_rate=(-3.0, 3.0)),
-         statement=_ANG_TEXT + ", ψ̇ = {psi_rate}, θ̇ = {theta_rate}, φ̇ = {phi_rate} rad/s")
+         statement=_ANG_TEXT + ", ψ̇ = {psi_rate}, θ̇ = {theta_rate}, φ̇ = {phi_rate} rad/s", library=("omega_from_euler_rates",))
 
 _A_14_2_3 = np.array([[2.0, -1.0, 2.0], [2.0, 2.0, -1.0], [-1.0, 2.0, 2.0]]) / 3
 _A_GIVEN = [_A_14_2_3] + [np.round(R.A_from_euler(*np.radians(a)), 6) for a in
@@ -134,7 +140,7 @@ register("14-2/try-3", "my_angles", check_value, lambda A_given: X.euler_from_A(
                                                                  separator=", ").replace("\n", ""),
          explanation=N_("the third row of A = A_z(ψ) A_x(θ) A_z(φ) is [sin θ sin φ, sin θ cos φ, cos θ] and its "
                         "third column [sin ψ sin θ, −cos ψ sin θ, cos θ]. arccos gives θ in [0, π]; the triple "
-                        "(ψ + π, −θ, φ + π) gives the same A and is accepted too."))
+                        "(ψ + π, −θ, φ + π) gives the same A and is accepted too."), library=("euler_from_A",))
 
 
 # ------------------------------------------------------------------------------------------------- 14-3
@@ -150,7 +156,7 @@ register("14-3/try-1", "my_p", check_euler_parameters,
          data={"axis_u": [0, 1, 1], "chi_deg": 90},
          ranges={"axis_u": [[0, 1, 1], [1, 0, 1], [1, 1, 0], [1, 2, 2], [2, -1, 2], [1, -1, 1], [0, 3, 4]],
                  "chi_deg": list(range(30, 331, 30))},
-         statement=N_("χ = {chi_deg}° about u = {axis_u}"))
+         statement=N_("χ = {chi_deg}° about u = {axis_u}"), library=("p_from_axis_angle",))
 
 _P_TRY = [[0.5, 0.5, 0.5, 0.5], [0.2, 0.4, 0.4, 0.8], [0.8, 0.4, 0.4, 0.2], [6 / 7, 2 / 7, 3 / 7, 0.0],
           [2 / 9, 4 / 9, 5 / 9, 6 / 9], [0.6, 0.0, 0.8, 0.0], [4 / 9, 4 / 9, 7 / 9, 0.0]]
@@ -170,7 +176,7 @@ register("14-3/try-2", "my_A_p", check_rotation, lambda p_try: X.A_from_p(p_try)
          statement=lambda p_try: "p = [" + ", ".join(f"{e:.6g}" for e in p_try) + "]",
          explanation=N_("A sends [1, 0, 0] to its first column. For p = [½, ½, ½, ½] that is [0, 1, 0], and "
                         "[0, 1, 0] goes to [0, 0, 1]: x → y → z → x, the turn of 120° about [1, 1, 1] of section 1 "
-                        "(e0 = cos 60° = 0.5, e = u sin 60° with u = [1, 1, 1]/√3)."))
+                        "(e0 = cos 60° = 0.5, e = u sin 60° with u = [1, 1, 1]/√3)."), library=("A_from_p",))
 
 
 def _s14_3_3(*, p_dot):
@@ -185,7 +191,7 @@ register("14-3/try-3", "my_omega", check_value, lambda p_dot: X.omega_from_p_dot
          _s14_3_3, {"name": "ω (rad/s)"}, data={"p_dot": [-0.1, 0.3, -0.1, -0.1]},
          ranges={"p_dot": [[-0.1, 0.3, -0.1, -0.1], [0.1, -0.1, 0.2, -0.2], [0.2, 0.0, -0.1, -0.1],
                            [0.0, 0.1, -0.2, 0.1], [0.3, -0.1, -0.1, -0.1], [-0.2, 0.1, 0.1, 0.0]]},
-         statement="ṗ = {p_dot}")
+         statement="ṗ = {p_dot}", library=("omega_from_p_dot",))
 
 
 # ------------------------------------------------------------------------------------------------- 14-4
@@ -224,7 +230,7 @@ register("14-4/try-1", "my_Phi_s", check_phi, _t14_4_1, _s14_4_1, data={"s_i_P":
 def _s14_4_2(*, vec_i, vec_j):
     import sympy as sp
 
-    from ...spatial import E, a_bar
+    from kinbook.spatial import E, a_bar
 
     par_i, par_j = sp.Matrix(sp.symbols("e01 e11 e21 e31", real=True)), sp.Matrix(sp.symbols("e02 e12 e22 e32", real=True))
     loc_i, loc_j = sp.Matrix(vec_i), sp.Matrix(vec_j)
@@ -252,7 +258,7 @@ register("14-4/try-2", "my_Phi_q_n1", check_jacobian, _t14_4_2, _s14_4_2, data={
 def _s14_4_3(*, P_hinge):
     import sympy as sp
 
-    from ...spatial import skew
+    from kinbook.spatial import skew
 
     sym_i, sym_j = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True), sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)
     rot_1, rot_2 = A_from_p(list(sym_i[3:])), A_from_p(list(sym_j[3:]))
@@ -335,64 +341,122 @@ def _msg(key, **fields):
 
 register("14-5/try-1", "my_gamma_4", check_value, _t14_5_1, _s14_5_1, {"name": "γ_4"},
          context=lambda: {"mech": _fourbar()}, data={"t_n": 0.15},
-         ranges={"t_n": [round(0.05 * k, 2) for k in range(1, 20)]}, statement="t = {t_n} s")
+         ranges={"t_n": [round(0.05 * k, 2) for k in range(1, 20)]}, statement="t = {t_n} s", library=("gamma",))
 
 
-def _s14_5_2(mech):
+_B_DATA = {"sB_coupler": [3.2, 0, 0], "sB_rocker": [0, 1.5, 0], "cross_coupler": [0, 1, 0], "cross_rocker": [1, 0, 0]}
+_B_RANGES = {"sB_coupler": [[3.2, 0, 0], [3, 0.2, 0], [2.8, 0, -0.3], [3.1, -0.2, 0.1]],
+             "sB_rocker": [[0, 1.5, 0], [0, 1.2, 0.3], [0.2, 1.4, 0], [0, 1.6, -0.2]],
+             "cross_coupler": [[0, 1, 0], [0, 0, 1], [0, 0.6, 0.8], [0, 0.8, -0.6]],
+             "cross_rocker": [[1, 0, 0], [0.8, 0, 0.6], [0, 0, 1], [0.6, 0.8, 0]]}
+
+
+def _fourbar_with(sB_coupler=None, sB_rocker=None, cross_coupler=None, cross_rocker=None, sA_crank=None,
+                  sA_coupler=None):
+    """The spatial four-bar with other points and cross arms at its joints A and B (a try-it's variant)."""
+    from ...files import build
+
+    data = tomllib.loads(examples.path("spatial_fourbar").read_text(encoding="utf-8"))
+    body = {b["name"]: b for b in data["bodies"]}
+    for name, point, vector, value in (("coupler", "B", None, sB_coupler), ("rocker", "B", None, sB_rocker),
+                                       ("coupler", None, "cross", cross_coupler), ("rocker", None, "axis", cross_rocker),
+                                       ("crank", "A", None, sA_crank), ("coupler", "A", None, sA_coupler)):
+        if value is not None:
+            body[name]["points" if point else "vectors"][point or vector] = [float(x) for x in value]
+    return build(data, source="spatial_fourbar, a try-it's variant")
+
+
+def _s14_5_2(mech, *, sB_coupler, sB_rocker, cross_coupler, cross_rocker):
     import sympy as sp
 
-    from ...spatial import E, a_bar
+    from kinbook.spatial import E, a_bar
 
     par_3, par_4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
     dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)      # ∂(A a)/∂p: B_k or C_k
-    arm_3, arm_4 = A_from_p(par_3) * sp.Matrix([0, 1, 0]), A_from_p(par_4) * sp.Matrix([1, 0, 0])   # the cross arms, global
+    arm_3, arm_4 = A_from_p(par_3) * sp.Matrix(cross_coupler), A_from_p(par_4) * sp.Matrix(cross_rocker)  # global
     eye3, zero13 = sp.eye(3), sp.zeros(1, 3)
     my_Phi_q_B = sp.Matrix.vstack(
-        sp.Matrix.hstack(eye3, dAa(par_3, [3.2, 0, 0]), -eye3, -dAa(par_4, [0, 1.5, 0])),          # (s,3):  I, B_i, −I, −B_j
-        sp.Matrix.hstack(zero13, arm_4.T * dAa(par_3, [0, 1, 0]), zero13, arm_3.T * dAa(par_4, [1, 0, 0])))  # (n1,1): 0, s_jᵀC_i, 0, s_iᵀC_j
+        sp.Matrix.hstack(eye3, dAa(par_3, sB_coupler), -eye3, -dAa(par_4, sB_rocker)),      # (s,3):  I, B_i, −I, −B_j
+        sp.Matrix.hstack(zero13, arm_4.T * dAa(par_3, cross_coupler), zero13,
+                         arm_3.T * dAa(par_4, cross_rocker)))                        # (n1,1): 0, s_jᵀC_i, 0, s_iᵀC_j
     return my_Phi_q_B
 
 
-register("14-5/try-2", "my_Phi_q_B", check_jacobian, lambda: _fourbar().constraint("B"), _s14_5_2,
-         context=lambda: {"mech": _fourbar()})
+def _t14_5_2(**data):
+    return (_fourbar() if same_data(data, _B_DATA) else _fourbar_with(**data)).constraint("B")
 
 
-def _s14_5_3(mech):
+def _w14_5_2(**data):
+    """The n1 row with each body's own arm (s_iᵀC_i, s_jᵀC_j): named, not "missing chain-rule term"."""
     import sympy as sp
 
+    right = _s14_5_2(_fourbar(), **data)
+    mech = _fourbar()
+    par_3, par_4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
     from ...spatial import E, a_bar
+
+    dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)  # noqa: E731
+    arm_3 = A_from_p(par_3) * sp.Matrix(data["cross_coupler"])
+    arm_4 = A_from_p(par_4) * sp.Matrix(data["cross_rocker"])
+    z = sp.zeros(1, 3)
+    own = sp.Matrix.hstack(z, arm_3.T * dAa(par_3, data["cross_coupler"]), z, arm_4.T * dAa(par_4, data["cross_rocker"]))
+    return [(sp.Matrix.vstack(right[:3, :], own), "own_arm", _msg("x.own_arm"), None)]
+
+
+register("14-5/try-2", "my_Phi_q_B", check_jacobian, _t14_5_2, _s14_5_2, context=lambda: {"mech": _fourbar()},
+         data=_B_DATA, ranges=_B_RANGES, wrong_forms=_w14_5_2,
+         statement="s'^B_3 = {sB_coupler}, s'^B_4 = {sB_rocker}, cross arms s'_3 = {cross_coupler}, s'_4 = {cross_rocker}")
+
+
+_A_DATA = {"sA_crank": [1, 0, 0], "sA_coupler": [0, 0, 0]}
+_A_RANGES = {"sA_crank": [[1, 0, 0], [0.8, 0.3, 0], [1, 0, 0.2], [0.6, -0.4, 0.3]],
+             "sA_coupler": [[0, 0, 0], [0.2, 0, 0], [0, 0.1, -0.1], [-0.3, 0, 0.2]]}
+
+
+def _s14_5_3(mech, *, sA_crank, sA_coupler):
+    import sympy as sp
+
+    from kinbook.spatial import E, a_bar
 
     dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)
     k_2, k_3 = mech.index("e02"), mech.index("e03")
     pdot_2, pdot_3 = sp.Matrix(mech.qd[k_2:k_2 + 4, 0]), sp.Matrix(mech.qd[k_3:k_3 + 4, 0])
-    my_gamma_A = -dAa(pdot_2, [1, 0, 0]) * pdot_2 + dAa(pdot_3, [0, 0, 0]) * pdot_3        # γ = −b_i + b_j, b_k = B_k(ṗ_k) ṗ_k
+    my_gamma_A = -dAa(pdot_2, sA_crank) * pdot_2 + dAa(pdot_3, sA_coupler) * pdot_3   # γ = −b_i + b_j, b_k = B_k(ṗ_k) ṗ_k
     return my_gamma_A
 
 
-def _w14_5_3():
-    """The book's 2ĖĠᵀa for the crank's b (the 2a ṗᵀṗ of B(ṗ)ṗ dropped)."""
+def _t14_5_3(**data):
+    return (_fourbar() if same_data(data, _A_DATA) else _fourbar_with(**data)).constraint("A")
+
+
+def _w14_5_3(sA_crank, sA_coupler):
+    """The book's 2ĖĠᵀa for both bodies' b (the 2a ṗᵀṗ of B(ṗ)ṗ dropped)."""
     import sympy as sp
 
     from ...spatial import E, a_bar
 
     mech = _fourbar()
-    k_2 = mech.index("e02")
-    pdot_2 = sp.Matrix(mech.qd[k_2:k_2 + 4, 0])
-    return [(list(-2 * E(pdot_2, check=False) * a_bar(sp.Matrix([1, 0, 0])) * pdot_2), "missing_term",
-             _msg("x.eg_gamma"), None)]
+    k_2, k_3 = mech.index("e02"), mech.index("e03")
+    pdot_2, pdot_3 = sp.Matrix(mech.qd[k_2:k_2 + 4, 0]), sp.Matrix(mech.qd[k_3:k_3 + 4, 0])
+    b_2 = 2 * E(pdot_2, check=False) * a_bar(sp.Matrix(sA_crank)) * pdot_2
+    b_3 = 2 * E(pdot_3, check=False) * a_bar(sp.Matrix(sA_coupler)) * pdot_3
+    return [(list(-b_2 + b_3), "missing_term", _msg("x.eg_gamma"), None)]
 
 
 add_texts({
     "x.global_rows": N_("rows 1-2 of s̃_i s_j in global components, the book's choice: they lose rank wherever s_i lies in "
                         "the global x-y plane (the singular values above); take the two rows in body i's frame"),
+    "x.own_arm": N_("the n1 row multiplies each body's C by its own arm (s_3ᵀC_3, s_4ᵀC_4); the derivative of s_3ᵀs_4 "
+                    "with respect to p_3 is s_4ᵀC_3: the other body's arm"),
     "x.eg_gamma": N_("the book's 2ĖĠᵀa alone: it lacks 2a ṗᵀṗ, the part of B(ṗ)ṗ = 2E(ṗ)āṗ + 2a ṗᵀṗ along a"),
 })
 
 
-register("14-5/try-3", "my_gamma_A", check_gamma, lambda: _fourbar().constraint("A"), _s14_5_3,
-         context=lambda: {"mech": _fourbar()}, wrong_forms=_w14_5_3,
+register("14-5/try-3", "my_gamma_A", check_gamma, _t14_5_3, _s14_5_3,
+         context=lambda: {"mech": _fourbar()}, wrong_forms=_w14_5_3, data=_A_DATA, ranges=_A_RANGES,
+         statement="s'^A_2 = {sA_crank}, s'^A_3 = {sA_coupler}",
          explanation=N_("B(ṗ)ṗ = 2E(ṗ)āṗ + 2a(ṗᵀṗ) and 2ĖĠᵀa = 2E(ṗ)āṗ (because Gᵀa = āp), so the book's form lacks "
                         "2a ṗᵀṗ — a vector along a. For the coupler a = s'^A_3 = 0 and nothing is lost; for the "
                         "crank a = s'^A_2 = (1, 0, 0), so only the x row, Φ_16, changes: the checker rejects that "
                         "row alone. (On the unit sphere the two forms differ only by this term, the same 2apᵀ "
-                        "difference between ∂(Aa)/∂p and ∂(EGᵀa)/∂p seen in notebook 14-3.)"))
+                        "difference between ∂(Aa)/∂p and ∂(EGᵀa)/∂p seen in notebook 14-3.)"), library=("gamma",))

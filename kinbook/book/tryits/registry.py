@@ -11,6 +11,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from ...grading._i18n import add_texts
 from ...grading.item import Item, checker_for
 from ...i18n import N_, Message, translate
 
@@ -66,6 +67,14 @@ class TryIt(Item):
         ``wrong_forms(**data)`` → [(rows, code, detail, erratum)]: wrong formulations the equivalence rule cannot
         tell from the reference on its samples (the book's global rows 1–2 of s̃_i s_j, which lose rank where s_i
         lies in the x-y plane): an answer whose rows are these, up to order and factor, is named, never passed.
+    numbers_at : float or None
+        For a symbolic try-it whose answer may be typed as numbers (ν): the time they are read at. Numbers are then
+        compared with the reference at that instant — right there, they are named "the values at one instant only"
+        (the question asks for formulas of t); wrong there, they get the diagnosis of a wrong value, not "malformed".
+    library : tuple of str
+        Names of kinbook functions or methods that compute the asked quantity itself (``"gamma"`` for
+        ``mech.gamma(q, qd, t)[7]``): a right answer whose cell calls one is named "kinbook's own answer", not
+        plainly "correct" — the exercise is to build it.
     """
 
     id: str
@@ -75,6 +84,8 @@ class TryIt(Item):
     explanation: Any = None
     lookalikes: Any = None
     wrong_forms: Any = None
+    numbers_at: Any = None
+    library: tuple = ()
 
     def check(self, answer, data=None):
         """Run the checker on ``answer`` (a :class:`kinbook.grading.CheckResult`) for ``data`` (default: the
@@ -87,14 +98,48 @@ class TryIt(Item):
             target = self._with_lookalikes(target, data)
             return self.checker(answer, target, **options)
         result = self.checker(answer, target, **options)
-        if self.wrong_forms is not None and (result.passed or result.mistakes == ["wrong_value"]):
+        if self.wrong_forms is not None:
             named = self._wrong_form(answer, target, data, result)
             if named is not None:
                 return named
-        if result.passed or result.mistakes not in (["wrong_value"], ["malformed"]):
+        if result.passed:
             return result
+        if self.numbers_at is not None and result.mistakes == ["malformed"] and _numbers(answer):
+            return described(self._numbers(answer, target, options, result._quantity))
         copied = self._copied(answer, data, options, result._quantity)
-        return result if copied is None else copied
+        return described(result if copied is None else copied)
+
+    def _numbers(self, answer, target, options, quantity):
+        """Numbers typed for a formula of t: compared with the reference at ``numbers_at``."""
+        from ...grading.result import CheckResult
+
+        t = float(self.numbers_at)
+        q = target.solve_position(t)
+        at = {"q": q, "qd": target.solve_velocity(q, t), "t": t}
+        there = self.checker(answer, target, at=at, **options)
+        if there.passed:
+            return CheckResult(False, 0.0, [_msg("x.numbers_right_at", t=_literal(t))], ["only_at_samples"], (),
+                               quantity)
+        return CheckResult(False, there.score, [_msg("x.numbers_read_at", t=_literal(t))] + list(there.notes),
+                           there.mistakes, there.rows, quantity, there.columns)
+
+    def library_answer(self, source):
+        """The ``library`` name a cell's source calls (``mech.gamma(...)``), or None."""
+        import ast
+
+        if not self.library or not source:
+            return None
+        try:
+            tree = ast.parse(source)
+        except SyntaxError:
+            return None
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Call):
+                f = node.func
+                name = f.attr if isinstance(f, ast.Attribute) else getattr(f, "id", None)
+                if name in self.library:
+                    return name
+        return None
 
     def _wrong_form(self, answer, target, data, result):
         """The answer's rows are one of ``wrong_forms`` (up to their order and a factor each): a failed result
@@ -114,17 +159,29 @@ class TryIt(Item):
             A = read(answer, t, q_name)
         except Refused:
             return None
-        if A.kind != "symbolic" or A.matrix.shape[1] != 1:
+        if A.kind != "symbolic":
             return None
         s = t.samples("generic")
-        S = t.tape(list(A.matrix), aliases=True)(s.Q, s.QD, s.T)["value"]
+
+        def by_row(matrix, aliases):  # (samples × columns, one per row): a row of Φ_q is compared whole
+            import sympy as sp
+
+            M = sp.Matrix(matrix)
+            if M.shape[1] != 1 and q_name != "Phi_q":
+                return None
+            V = t.tape(list(M), aliases=aliases)(s.Q, s.QD, s.T)["value"]
+            return V.reshape(len(V), M.shape[0], M.shape[1]).transpose(1, 0, 2).reshape(M.shape[0], -1)
+
+        S = by_row(A.matrix, True)
+        if S is None:
+            return None
         for rows, code, detail, erratum in self.wrong_forms(**data):
-            W = t.tape(list(rows))(s.Q, s.QD, s.T)["value"]
-            if S.shape[1] != W.shape[1]:
+            W = by_row(rows, False)
+            if W is None or S.shape != W.shape:
                 continue
-            left = list(range(W.shape[1]))
-            for k in range(S.shape[1]):
-                hit = next((j for j in left if scale_match(S[:, k], W[:, j], 1e-6) is not None), None)
+            left = list(range(W.shape[0]))
+            for k in range(S.shape[0]):
+                hit = next((j for j in left if scale_match(S[k], W[j], 1e-6) is not None), None)
                 if hit is None:
                     break
                 left.remove(hit)
@@ -132,9 +189,18 @@ class TryIt(Item):
                 notes = [detail] + ([_msg("book_misprint", id=erratum)] if erratum else [])
                 if result.passed:
                     return CheckResult(False, 0.0, notes + hints([code], {}), [code], (), quantity)
-                kept = list(result.notes[:-1])  # without the generic hint, the last note
+                # the failed result keeps its rows and score; its notes and rows lose the name it gave them
+                # (the last note is its hint), but keep which entries are wrong where that name was "wrong value"
+                from ...grading._i18n import render
+                from ...grading.catalogue import explain
+                from ...grading.result import RowResult
+
+                other = [explain(m, "en")[0] for m in result.mistakes if m not in (code, "wrong_value")]
+                kept = [n for n in result.notes[:-1] if not any(o in render(n, "en") for o in other)]
+                rows = tuple(RowResult(r._label, r.status, detail, code, r.entries, r.score)
+                             if r.mistake not in (None, "wrong_value", code) else r for r in result.rows)
                 return CheckResult(False, result.score, kept[:1] + notes + kept[1:] + hints([code], {}), [code],
-                                   result.rows, quantity, result.columns)
+                                   rows, quantity, result.columns)
         return None
 
     def _copied(self, answer, data, options, quantity):
@@ -215,6 +281,45 @@ class TryIt(Item):
         return translate(self.statement).format(**{k: _literal(v) for k, v in data.items()})
 
 
+def _numbers(answer):
+    """The answer is plain numbers (a number, or a list/array of them), not formulas."""
+    try:
+        a = np.asarray(answer)
+    except (TypeError, ValueError):
+        return False
+    return a.dtype.kind in "iuf" and a.size > 0
+
+
+_DESCRIBED = {"d.missing_term": "d.missing_kind", "d.sign_of_term": "d.sign_of_kind",
+              "d.or_sign_of_term": "d.or_sign_of_kind"}
+"""A detail that writes a term out (the answer's last step) → the same detail saying what kind of term it is."""
+
+
+def described(result):
+    """``result`` with every term that a detail writes out described instead ("a term is missing: a term of t alone
+    …" for "the term 500.0*t is missing"): a try-it's hint points at a step, never at a term to copy."""
+    from ...grading._i18n import Msg
+    from ...grading.result import CheckResult, RowResult
+
+    def swap(x):
+        if isinstance(x, Msg):
+            if x.key in _DESCRIBED and "kind" in x.fields:
+                return Msg(_DESCRIBED[x.key], kind=x.fields["kind"])
+            fields = {k: swap(v) for k, v in x.fields.items()}
+            return x if all(fields[k] is x.fields[k] for k in fields) else Msg(x.key, **fields)
+        if isinstance(x, list):
+            out = [swap(v) for v in x]
+            return x if all(a is b for a, b in zip(out, x)) else out
+        if isinstance(x, tuple):
+            out = tuple(swap(v) for v in x)
+            return x if all(a is b for a, b in zip(out, x)) else out
+        return x
+
+    notes = [swap(m) for m in result.notes]
+    rows = [RowResult(r._label, r.status, swap(r._message), r.mistake, r.entries, r.score) for r in result.rows]
+    return CheckResult(result.passed, result.score, notes, result.mistakes, rows, result._quantity, result.columns)
+
+
 def same_data(a, b):
     """Two sets of data are the same (arrays compared by value)."""
     return a.keys() == b.keys() and all(np.array_equal(np.asarray(a[k], dtype=object), np.asarray(b[k], dtype=object))
@@ -250,13 +355,14 @@ def table_text(key, lang, **fields):
 
 
 def register(id, answer, checker, target, solution, options=None, context=None, *, data=None, ranges=None,
-             statement=None, explanation=None, lookalikes=None, wrong_forms=None):
+             statement=None, explanation=None, lookalikes=None, wrong_forms=None, numbers_at=None, library=()):
     """Add a :class:`TryIt` to :data:`TRY_ITS` (used by the chapter modules); returns it."""
     if id in TRY_ITS:
         raise ValueError(f"try-it {id!r} is registered twice")
     item = TryIt(answer=answer, checker=checker_for(checker), target=target, options=dict(options or {}),
                  data=dict(data or {}), ranges=dict(ranges or {}), id=id, solution=solution, context=context or dict,
-                 statement=statement, explanation=explanation, lookalikes=lookalikes, wrong_forms=wrong_forms)
+                 statement=statement, explanation=explanation, lookalikes=lookalikes, wrong_forms=wrong_forms,
+                 numbers_at=numbers_at, library=tuple(library))
     TRY_ITS[id] = item
     return item
 
@@ -278,6 +384,15 @@ _TEXT = {
     "with_data": N_("for the data {data}"),
     "notebook_data": N_("the answer for the notebook's data, not for this variant's"),
     "why": N_("Why"),
+    "library": N_("this is kinbook's own answer ({name}): right, and a good check of your own — now build it by hand "
+                  "(the worked answer shows how)"),
 }
+
+add_texts({
+    "x.numbers_right_at": N_("these are the right values at t = {t} only: the question asks for each row as a formula "
+                             "of t (a string such as \"2*t\"), which the numbers of one instant do not show"),
+    "x.numbers_read_at": N_("your numbers are read as the values at t = {t} (the question asks for formulas of t); "
+                            "there they are not right:"),
+})
 
 
