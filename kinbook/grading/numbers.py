@@ -29,10 +29,10 @@ from .read import Refused, numbers_of
 from .report import fmt, hints
 from .result import CheckResult, RowResult
 
-__all__ = ["real_option", "tolerances", "periodic_mask", "name_option", "angles_option", "reveal_option",
+__all__ = ["PLAUSIBLE_FACTORS", "real_option", "tolerances", "periodic_mask", "name_option", "angles_option", "reveal_option",
            "read_numbers", "expected_of", "close", "compare", "failed"]
 
-_PLAUSIBLE = (2.0, 0.5, -2.0, -0.5, np.pi, 1 / np.pi, 2 * np.pi, 1 / (2 * np.pi), np.pi / 180, 3.0, 1 / 3, 1000.0,
+PLAUSIBLE_FACTORS = (2.0, 0.5, -2.0, -0.5, np.pi, 1 / np.pi, 2 * np.pi, 1 / (2 * np.pi), np.pi / 180, 3.0, 1 / 3, 1000.0,
               1e-3)
 """Factors a slip can put on a whole answer (a forgotten 2, π, a unit); "multiplied by c" only for these."""
 _MAX_RTOL = 0.1
@@ -431,7 +431,7 @@ def _scaled(a, e, rtol, atol):
     c = float(flat_a @ flat_e) / ee
     if not np.isfinite(c) or not close(a, c * e, rtol, atol):
         return "wrong_value", None, None, None
-    for p in _PLAUSIBLE:
+    for p in PLAUSIBLE_FACTORS:
         if abs(c - p) <= 1e-3 * abs(p):
             key = "v.scaled_units" if p in (1000.0, 1e-3) else "value_scaled"
             return "scaled", Msg(key, c=fmt(p), step=Msg(_scaled_step(p))), None, None

@@ -154,7 +154,8 @@ class TryIt(Item):
         from ...grading.target import target_for
 
         t = target_for(target)
-        q_name = quantity_of(quantity, PHI).name
+        qty = quantity_of(quantity, PHI)
+        q_name = qty.name
         try:
             A = read(answer, t, q_name)
         except Refused:
@@ -167,7 +168,7 @@ class TryIt(Item):
             import sympy as sp
 
             M = sp.Matrix(matrix)
-            if M.shape[1] != 1 and q_name != "Phi_q":
+            if M.shape[1] != 1 and not qty.per_coordinate:
                 return None
             V = t.tape(list(M), aliases=aliases)(s.Q, s.QD, s.T)["value"]
             return V.reshape(len(V), M.shape[0], M.shape[1]).transpose(1, 0, 2).reshape(M.shape[0], -1)
