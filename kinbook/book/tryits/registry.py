@@ -178,6 +178,9 @@ class TryIt:
                                                                                 what=text_message("notebook_data"))))
         for value, detail in seen:
             target.variants.insert(0, ("wrong_data", np.asarray(value, float), detail, None))
+        from .mutations import mutant_values  # the worked answer's slips, after the catalogue's own (issue 29)
+
+        target.variants += [(code, value, None, None) for code, _, value in mutant_values(self, data)]
         return target
 
     def reference_answer(self, data=None):

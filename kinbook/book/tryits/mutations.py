@@ -1,0 +1,184 @@
+"""The try-its tested the way a student will break them: every mutant of each try-it's reference
+(:mod:`kinbook.grading.mutants`) checked by the try-it's own check, on the notebook's data and on variants drawn as
+``kb.another`` draws them (``kinbook validate --mutations --try-its``).
+
+A symbolic try-it (Φ, Φ_q, ν, γ) is mutated in the library's own symbolic reference; a numeric one in the code of
+its worked answer (what ``kb.reveal`` shows), run on the same data. A mutant that passes is a **blind spot**: of
+the **data** when the mutant's value equals the reference's at those data (the data cannot tell the mistake from
+the answer), of the **checker** otherwise.
+"""
+
+from __future__ import annotations
+
+import inspect
+from functools import lru_cache
+
+import numpy as np
+
+from ...grading import mutants as MU
+from .registry import TRY_ITS, same_data
+
+__all__ = ["SYMBOLIC", "variant_data", "item_mutants", "mutation_tally", "mutation_tallies", "answer_of",
+           "mutant_values"]
+
+SYMBOLIC = {"check_phi": "Phi", "check_jacobian": "Phi_q", "check_nu": "nu", "check_gamma": "gamma"}
+"""The symbolic checkers and the quantity each one grades."""
+
+
+def variant_data(item, k):
+    """The data of variant ``k`` of a try-it as ``kb.another(id, k)`` draws them (0: the notebook's), or None."""
+    from ...classroom.variant import draw, seed_from
+    from ...errors import KinbookError
+    from . import MAX_DRAWS
+
+    if k == 0 or not item.ranges:
+        return dict(item.data) if k == 0 else None
+    for attempt in range(MAX_DRAWS):
+        data = draw(item.ranges, item.data, seed_from(f"try-it:{item.id}:{k}:{attempt}"))
+        if same_data(data, item.data):
+            continue
+        try:
+            item.target(**data)
+        except KinbookError:
+            continue
+        return data
+    return None
+
+
+def _names(item):
+    return [p.name for p in inspect.signature(item.solution).parameters.values() if p.kind == p.KEYWORD_ONLY]
+
+
+def _run(item, data):
+    names = _names(item)
+
+    def run(f):
+        return f(**item.context(), **{n: data[n] for n in names})
+
+    return run
+
+
+def answer_of(item, mutant, data):
+    """The answer a student making ``mutant``'s mistake hands in for ``data``: the mutated worked answer's value
+    (code), or the mutated rows as the strings a student types (symbolic)."""
+    v = mutant.value
+    if callable(v):
+        return _run(item, data)(v)
+    import sympy as sp
+
+    M = sp.Matrix(v)
+    if M.shape[1] > 1:
+        return [[str(M[i, j]) for j in range(M.shape[1])] for i in range(M.shape[0])]
+    return [str(M[i, 0]) for i in range(M.shape[0])]
+
+
+def item_mutants(item, data, datas=None):
+    """The mutants of a try-it for ``data`` (symbolic: made from the reference at these data; code: from the
+    worked answer, told apart from it on ``datas``)."""
+    quantity = SYMBOLIC.get(getattr(item.checker, "__name__", ""))
+    if quantity is not None:
+        return _symbolic_mutants(item, data, quantity)
+    runs = [_run(item, d) for d in (datas or [data])]
+    return MU.code_mutants(item.solution, runs=runs)
+
+
+def _symbolic_mutants(item, data, quantity):
+    from ...grading.mistakes import structural
+    from ...grading.target import target_for
+
+    target = item.target(**data)
+    rows, q, qd, t, blocks, drivers = MU.reference_rows(target, quantity)
+    extra = []
+    if quantity == "Phi":
+        T = target_for(target)
+        for c in T.constraints:
+            for v in structural(T, c):
+                if len(T.constraints) == 1 and v.code not in ("book_misprint",):
+                    extra.append((v.code, list(v.exprs), f"catalogue: {v.code}"
+                                  + (f" ({v.detail})" if v.detail is not None else "")))
+    return MU.expression_mutants(rows, quantity=quantity, blocks=blocks, drivers=drivers, structural=extra, q=q,
+                                 qd=qd, t=t)
+
+
+@lru_cache(maxsize=256)
+def _cached_values(id, key):
+    item = TRY_ITS[id]
+    data = dict(key)
+    return tuple((m.code, m.operator, np.asarray(answer_of(item, m, data), float))
+                 for m in MU.code_mutants(item.solution, runs=[_run(item, data)]))
+
+
+def mutant_values(item, data):
+    """(code, operator, value) of the worked answer's code mutants at ``data`` — the wrong answers a numeric
+    try-it names (cached per data)."""
+    try:
+        key = tuple((k, _hashable(v)) for k, v in sorted(data.items()))
+        return _cached_values(item.id, key)
+    except Exception:  # noqa: BLE001 — a worked answer that cannot be mutated names nothing more
+        return ()
+
+
+def _hashable(v):
+    if isinstance(v, np.ndarray):
+        return ("array", v.shape, tuple(v.ravel().tolist()))
+    if isinstance(v, (list, tuple)):
+        return tuple(_hashable(x) for x in v)
+    return v
+
+
+def _unhashable(v):
+    if isinstance(v, tuple) and v and v[0] == "array":
+        return np.array(v[2]).reshape(v[1])
+    if isinstance(v, tuple):
+        return [_unhashable(x) for x in v]
+    return v
+
+
+def _value_of(item, data):
+    return np.asarray(item.reference_answer(data), float)
+
+
+def mutation_tally(item, variants=2, limit=None):
+    """A :class:`~kinbook.grading.mutants.Tally` of one try-it: its mutants checked on the notebook's data and on
+    ``variants`` drawn variants."""
+    datas = [d for d in (variant_data(item, k) for k in range(variants + 1)) if d is not None]
+    tally = MU.Tally(item.id)
+    quantity = SYMBOLIC.get(getattr(item.checker, "__name__", ""))
+    shared = None if quantity is not None else item_mutants(item, datas[0], datas)
+    for k, data in enumerate(datas):
+        where = "the notebook's data" if k == 0 else f"variant {k} ({item.stated(data)})"
+        found = shared if shared is not None else item_mutants(item, data)
+        if limit is not None:
+            found = MU.sample(found, limit)
+        for m in found:
+            try:
+                answer = answer_of(item, m, data)
+            except Exception:  # noqa: BLE001 — a code mutant that fails on these data: not an answer here
+                continue
+            result = item.check(answer, data)
+            outcome, given = MU.classify(result, m)
+            why = ""
+            if outcome == "blind":
+                why = "the checker lets it through"
+                if quantity is None:
+                    try:
+                        if np.allclose(np.asarray(answer, float), _value_of(item, data), rtol=1e-3, atol=1e-9):
+                            why = "the data cannot tell it apart (the same value)"
+                    except (TypeError, ValueError):
+                        pass
+            tally.add(m, outcome, given, where, why)
+    return tally
+
+
+def mutation_tallies(ids=None, variants=2, limit=None, progress=None):
+    """Tallies of the try-its ``ids`` (default: all of them, in notebook order)."""
+    from . import _load
+
+    _load()
+    out = []
+    for id in ids or list(TRY_ITS):
+        t = mutation_tally(TRY_ITS[id], variants, limit)
+        out.append(t)
+        if progress:
+            progress(t)
+    return out

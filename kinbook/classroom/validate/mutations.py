@@ -1,0 +1,108 @@
+"""``kinbook validate --mutations SOURCE``: the exercise tested the way a student will break it.
+
+Every part's reference is turned into the mistakes students make (:mod:`kinbook.grading.mutants`: each term's
+sign, sin ↔ cos, the other body's angle, a term dropped, degrees, a factor 2, Aᵀ for A, a driver row left out …)
+and each mutant is graded by the part's own check (:meth:`kinbook.classroom.parts.Part.run`, what ``kinbook grade``
+runs), on the source's data and on the variants of a few sample students. A mutant that passes is a **blind spot**;
+one refused with "wrong value" or with another mistake's name is **unnamed**. The author's own question tests
+(``part(..., tests=[...])``) are run too: each wrong answer must be refused and named by its declared code, each
+right answer in another form must pass.
+"""
+
+from __future__ import annotations
+
+from ...grading import mutants as MU
+
+__all__ = ["mutation_tallies", "part_mutants", "question_tests", "SYMBOLIC"]
+
+SYMBOLIC = {"phi": "Phi", "jacobian": "Phi_q", "nu": "nu", "gamma": "gamma"}
+"""The parts' symbolic checks and the quantity each grades."""
+
+ANGLES = ("rotation", "euler_parameters")
+
+
+def part_mutants(p):
+    """The mutants of one part's reference (its target's symbolic quantity, or its expected value)."""
+    quantity = SYMBOLIC.get(p.check)
+    if quantity is None:
+        angles = bool(p.options.get("angles")) or getattr(p.expected, "kind", "") == "angles"
+        return MU.value_mutants(p.expected, angles=angles)
+    rows, q, qd, t, blocks, drivers = MU.reference_rows(p.target, quantity)
+    extra = []
+    if quantity == "Phi":
+        from ...grading.mistakes import structural
+        from ...grading.target import target_for
+
+        T = target_for(p.target)
+        if len(T.constraints) == 1:
+            extra = [(v.code, list(v.exprs), f"catalogue: {v.code}") for v in structural(T, T.constraints[0])
+                     if v.code != "book_misprint"]
+    return MU.expression_mutants(rows, quantity=quantity, blocks=blocks, drivers=drivers, structural=extra, q=q,
+                                 qd=qd, t=t)
+
+
+def _answer(mutant):
+    import numpy as np
+    import sympy as sp
+
+    v = mutant.value
+    if isinstance(v, np.ndarray):
+        return v
+    M = sp.Matrix(v)
+    if M.shape[1] > 1:
+        return [[str(M[i, j]) for j in range(M.shape[1])] for i in range(M.shape[0])]
+    return [str(M[i, 0]) for i in range(M.shape[0])]
+
+
+def question_tests(p, where="the source's data"):
+    """The outcomes of a part's own question tests (``part(..., tests=[...])``): a list of (ok, text)."""
+    out = []
+    for k, test in enumerate(getattr(p, "tests", None) or ()):
+        answer, expect = test["answer"], test.get("named")
+        result = p.run(answer)
+        if expect is None:
+            ok = result.passed
+            text = f"test {k + 1} (a right answer) {'passes' if ok else 'is refused: ' + ', '.join(result.mistakes)}"
+        else:
+            ok = not result.passed and expect in (result.mistakes or ())
+            got = "passes" if result.passed else "is named " + (", ".join(result.mistakes) or "—")
+            text = f"test {k + 1} (must be named {expect}) {got}"
+        out.append((ok, f"part {p.name} at {where}: {text}"))
+    return out
+
+
+def mutation_tallies(source, *, students=None, variants=2, limit=None, progress=None):
+    """Per part, a :class:`~kinbook.grading.mutants.Tally` of its mutants on the source's data and on the variants
+    of ``students`` (default: the first ``variants`` of :data:`~kinbook.classroom.validate.SAMPLE_STUDENTS` when
+    the exercise has parameters); and the question tests' failures.
+
+    Returns
+    -------
+    (list of Tally, list of str)
+    """
+    from ..notebook import find_parameters, load_source
+    from ..variant import references, student_parameters
+    from . import SAMPLE_STUDENTS
+
+    src = load_source(source)
+    datas = [("the source's data", None)]
+    if find_parameters(src.nb) is not None:
+        for s in (list(students) if students else list(SAMPLE_STUDENTS[:variants])):
+            datas.append((f"{s}'s variant", student_parameters(src, s)))
+    tallies, failures = {}, []
+    for where, values in datas:
+        for p in references(src, values):
+            tally = tallies.setdefault(p.name, MU.Tally(f"{src.exercise}:{p.name}"))
+            found = part_mutants(p)
+            if limit is not None:
+                found = MU.sample(found, limit)
+            for m in found:
+                result = p.run(_answer(m))
+                outcome, given = MU.classify(result, m)
+                tally.add(m, outcome, given, where, "the checker lets it through")
+            failures += [text for ok, text in question_tests(p, where) if not ok]
+    out = list(tallies.values())
+    if progress:
+        for t in out:
+            progress(t)
+    return out, failures

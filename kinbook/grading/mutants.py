@@ -1,0 +1,611 @@
+"""Mutants: the reference answer turned into the mistakes students make, each carrying its catalogue code.
+
+Where :mod:`kinbook.grading.mistakes` makes the mistakes a checker *names*, this module makes the mistakes a
+question must *refuse and name*, so that a question can be tested the way a student will break it (``kinbook
+validate --mutations``). Three families, one per form of reference:
+
+* **expressions** (Φ, Φ_q, ν, γ as sympy rows): each additive term's sign, each term dropped (γ's φ̇² and 2φ̇ terms,
+  the ∂/∂t terms of ν and γ), sin ↔ cos of one angle, Aᵀ for A (sin φ → −sin φ), one angle in degrees or in
+  radians of radians, the bodies' coordinates exchanged (all of them, or the angle or the rate alone), a factor 2
+  lost, a driver row left out or written twice, the whole ν or γ with the wrong sign — and the catalogue's own
+  structural mistakes of the constraint (points s_i ↔ s_j, A omitted …, :func:`kinbook.grading.mistakes.structural`);
+* **code** (a numeric worked answer, a Python function): the same slips made in its source — ``np.sin`` ↔
+  ``np.cos`` at one call, ``np.radians`` left out or applied twice, the sign of one term, one term dropped, a
+  ``.T`` left out or added, A(φ) ↔ B(φ), a name of body i for the one of body j, ``arctan`` for ``arctan2``, a
+  ``/ 2`` or a ``2 *`` lost, a square lost, a chain of turns multiplied in reverse order;
+* **values** (a number or an array, when nothing else is known): its sign, one entry's sign, degrees, radians of
+  radians, a factor 2, the matrix transposed, two entries exchanged.
+
+A mutant equal to the reference *as a function* (on every configuration, for code on every set of data tried) is
+dropped: it is not a mistake. One equal to it on the data of a question but not elsewhere is kept — that is what a
+blind spot of the data looks like.
+
+:func:`classify` reads a checker's result against the mutant it was given: ``"blind"`` (it passed), ``"named"``
+(refused with the mutant's code or one of its synonyms, :data:`SYNONYMS`), ``"unnamed"`` (refused with the
+generic "wrong value" or another name). :class:`Tally` sums outcomes into the rows of a mutation table.
+"""
+
+from __future__ import annotations
+
+import ast
+import functools
+import inspect
+import itertools
+import textwrap
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["Mutant", "mutants", "expression_mutants", "row_mutants", "code_mutants", "value_mutants", "reference_rows",
+           "classify", "Tally", "compiled_mutants", "sample", "SYNONYMS", "format_table", "distinct", "MAX_TERMS"]
+
+MAX_TERMS = 12
+"""Rows with more terms than this get no term-by-term mutants (each term's sign and its dropping)."""
+
+DEG = 180.0 / np.pi
+
+SYNONYMS = {
+    "sign_flip": {"sign_flip", "nu_sign", "gamma_sign", "A_transposed", "A_for_AT", "swapped_entries"},
+    "missing_term": {"missing_term", "nu_missing", "missing_qt_term", "missing_tt_term", "missing_chain_rule",
+                     "local_vector", "wrong_frame", "missing_square", "rate_exchanged"},
+    "sin_cos": {"sin_cos"},
+    "other_body": {"other_body", "swapped_bodies", "swapped_points", "wrong_data"},
+    "swapped_bodies": {"swapped_bodies", "other_body", "swapped_points"},
+    "degrees": {"degrees"},
+    "radians_twice": {"radians_twice"},
+    "A_transposed": {"A_transposed", "A_for_AT", "transposed"},
+    "A_for_AT": {"A_for_AT", "A_transposed", "transposed"},
+    "A_for_B": {"A_for_B"},
+    "factor_2_missing": {"factor_2_missing", "full_angle", "scaled"},
+    "factor_2_extra": {"factor_2_extra", "scaled"},
+    "missing_square": {"missing_square"},
+    "arctan_quadrant": {"arctan_quadrant"},
+    "extrinsic_order": {"extrinsic_order", "transposed"},
+    "transposed": {"transposed", "A_transposed", "A_for_AT"},
+    "swapped_entries": {"swapped_entries", "extrinsic_order"},
+    "missing_row": {"missing_row"},
+    "extra_row": {"extra_row", "dependent_row"},
+    "nu_sign": {"nu_sign", "sign_flip"},
+    "gamma_sign": {"gamma_sign", "sign_flip"},
+}
+"""Mutant code → the catalogue codes that name that mistake (a dropped ∂/∂t term of γ is "missing_tt_term" …).
+Codes not listed here are named by themselves only."""
+
+
+@dataclass
+class Mutant:
+    """One mistake made on a reference.
+
+    Attributes
+    ----------
+    code : str
+        The catalogue code the mistake must be named by (:mod:`kinbook.grading.catalogue`).
+    operator : str
+        What was done, for the instructor's table ("sin↔cos of phi2", "drop term 3 of row 1").
+    value : object
+        The wrong answer: sympy rows (a list, or a Matrix for Φ_q), a Python function (code), or an array.
+    """
+
+    code: str
+    operator: str
+    value: object = field(repr=False)
+
+
+def mutants(reference, **options):
+    """The mutants of a reference: :func:`expression_mutants` for sympy rows or a Matrix, :func:`code_mutants` for
+    a function, :func:`value_mutants` for numbers. ``options`` go to the one called."""
+    import sympy as sp
+
+    if callable(reference) and not isinstance(reference, sp.Basic):
+        return code_mutants(reference, **options)
+    if isinstance(reference, sp.MatrixBase) or (isinstance(reference, (list, tuple)) and reference
+                                               and all(isinstance(x, sp.Basic) for x in reference)):
+        return expression_mutants(reference, **options)
+    return value_mutants(reference, **options)
+
+
+# ============================================================================================== expressions
+def reference_rows(target, quantity):
+    """The library's symbolic reference of a checker's target: ``(rows, q, qd, t, blocks, drivers)``.
+
+    ``target`` is what a checker is given (a mechanism or one of its constraints); ``quantity`` one of "Phi",
+    "Phi_q", "nu", "gamma". For a constraint, Φ_q has the columns of its own bodies (the book's tables). ``blocks``
+    lists, per constraint, its rows and its bodies' coordinate symbols (with their velocities) — the ``blocks`` of
+    :func:`expression_mutants`; ``drivers`` the rows of Φ that drivers write.
+    """
+    from .target import target_for
+
+    t = target_for(target)
+    mech = t.mech
+    if len(t.constraints) == 1 and t.constraint is not None:
+        d = mech.derivation(t.constraint)
+    else:
+        d = mech.symbolic()
+    rows = {"Phi": d.Phi, "Phi_q": d.Phi_q, "nu": d.nu, "gamma": d.gamma}[quantity]
+    q = list(mech.q)
+
+    def groups(c):
+        return [(list(mech.body_symbols(b.name)), [mech.qd[q.index(x)] for x in mech.body_symbols(b.name)])
+                for b in c.bodies]
+
+    blocks, drivers, row = [], [], 0
+    for c in t.constraints:
+        block = list(range(row, row + c.n_eq))
+        blocks.append((block, groups(c)))
+        if c.kind == "driver":
+            drivers += block
+        row += c.n_eq
+    return rows, list(mech.q), list(mech.qd), mech.t, blocks, drivers
+
+
+def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=(), structural=(), q=None, qd=None,
+                       t=None, rng=0, terms=True, keep_all=False):
+    """Mutants of symbolic rows (a list for Φ, ν, γ; a Matrix for Φ_q), each a :class:`Mutant` whose value has
+    the shape of ``rows``; those equal to ``rows`` at every one of a few random points are dropped.
+
+    Parameters
+    ----------
+    quantity : {"Phi", "Phi_q", "nu", "gamma"}
+    groups : list of (coordinates, velocities)
+        The symbols of each body (for the bodies', the angles' and the rates' exchanges).
+    blocks : list of (row indices, groups), optional
+        Instead of ``groups``: the bodies of each constraint and its rows (a whole Φ), exchanged joint by joint.
+    drivers : list of int
+        Rows of Φ written by drivers (left out, written twice).
+    structural : list of (code, rows, what)
+        Mistakes made elsewhere (the catalogue's structural variants carried through the derivation), kept when
+        they differ from ``rows``.
+    terms : bool
+        Also each term's sign, each term dropped, a factor 2 lost (False: the other operators only, the ones a
+        checker's own term search does not make — :func:`row_mutants`).
+    q, qd, t : symbols
+        For the equality test (default: the rows' free symbols).
+    """
+    import sympy as sp
+
+    M = sp.Matrix(rows) if not isinstance(rows, sp.MatrixBase) else rows
+    matrix = isinstance(rows, sp.MatrixBase) and M.shape[1] > 1
+    out = []
+
+    def add(code, op, N):
+        out.append(Mutant(code, op, N if matrix else list(N)))
+
+    def entry_map(f):
+        return M.applyfunc(f)
+
+    # each term's sign, each term dropped, a factor 2 lost — entry by entry
+    for (i, j) in itertools.product(range(M.shape[0]), range(M.shape[1])):
+        e = M[i, j]
+        if e == 0:
+            continue
+        parts = sp.Add.make_args(sp.expand(e))
+        where = f"({i + 1}, {j + 1})" if matrix else f"row {i + 1}"
+        if len(parts) <= MAX_TERMS:
+            for k, term in enumerate(parts):
+                if len(parts) > 1 and terms:
+                    N = M.copy()
+                    N[i, j] = e - 2 * term
+                    add("sign_flip", f"sign of term {k + 1} of {where}", N)
+                    N = M.copy()
+                    N[i, j] = e - term
+                    add(_dropped_code(term, quantity, qd, t), f"drop term {k + 1} of {where}", N)
+                coeff, _ = term.as_coeff_Mul()
+                if coeff.is_number and abs(float(coeff)) >= 2 and float(coeff) % 2 == 0:
+                    N = M.copy()
+                    N[i, j] = e - term / 2
+                    add("factor_2_missing", f"factor 2 of term {k + 1} of {where} lost", N)
+                elif quantity == "gamma" and _velocity_degree(term, qd) == 2 and len(parts) > 1:
+                    N = M.copy()
+                    N[i, j] = e + term
+                    add("factor_2_extra", f"term {k + 1} of {where} doubled", N)
+        if terms and quantity in ("nu", "gamma") and not matrix and M.shape[0] > 1:
+            N = M.copy()
+            N[i, j] = -e
+            add("sign_flip", f"sign of {where}", N)
+    # sin ↔ cos, Aᵀ for A, degrees, radians of radians — one angle at a time
+    angles = sorted({a.args[0] for a in M.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
+    for a in angles:
+        swap = {sp.sin(a): sp.Symbol("_c"), sp.cos(a): sp.Symbol("_s")}
+        back = {sp.Symbol("_c"): sp.cos(a), sp.Symbol("_s"): sp.sin(a)}
+        add("sin_cos", f"sin↔cos of {a}", entry_map(lambda x, s=swap, b=back: x.subs(s).subs(b)))
+        add("A_transposed", f"sin({a}) → −sin({a}) (Aᵀ for A)", entry_map(lambda x, a=a: x.subs(sp.sin(a), -sp.sin(a))))
+    for s in sorted({x for a in angles for x in a.free_symbols if x != t}, key=sp.default_sort_key):
+        for code, f in (("degrees", DEG), ("radians_twice", 1 / DEG)):
+            def scaled(x, s=s, f=f):
+                return x.replace(lambda y: isinstance(y, (sp.sin, sp.cos)) and y.has(s),
+                                 lambda y: y.func(y.args[0].xreplace({s: f * s})))
+            add(code, f"{s} {'in degrees' if code == 'degrees' else 'in radians of radians'}", entry_map(scaled))
+    # the bodies' coordinates exchanged: all of them, the angle alone, the rate alone — within each constraint's
+    # rows (a whole Φ's bodies are exchanged joint by joint)
+    for rows_of, body_groups in (blocks if blocks is not None else [(None, groups)]):
+        def within(f, rows_of=rows_of):
+            N = M.copy()
+            for i in (range(M.shape[0]) if rows_of is None else rows_of):
+                for j in range(M.shape[1]):
+                    N[i, j] = f(M[i, j])
+            return N
+
+        for (qa, va), (qb, vb) in itertools.combinations(body_groups, 2):
+            both = dict(zip(qa + va, qb + vb))
+            both.update(zip(qb + vb, qa + va))
+            if M.free_symbols & set(both):
+                add("swapped_bodies", f"bodies {qa[0]}… ↔ {qb[0]}…", within(lambda x, m=both: x.xreplace(m)))
+            ka = [k for k, s in enumerate(qa) if s.name.startswith("phi")]
+            if len(ka) == 1:  # planar: the angle, then its rate
+                k = ka[0]
+                for what, m in (("angle", {qa[k]: qb[k], qb[k]: qa[k], va[k]: vb[k], vb[k]: va[k]}),
+                                ("rate", {va[k]: vb[k], vb[k]: va[k]})):
+                    if M.free_symbols & set(m):
+                        add("other_body", f"the other body's {what} ({qa[k]}↔{qb[k]})",
+                            within(lambda x, m=m: x.xreplace(m)))
+    # rows: a driver's row left out or written twice; the whole ν or γ with the wrong sign
+    if not matrix and terms:
+        for i in drivers:
+            if i < M.shape[0]:
+                rows_ = [M[k, 0] for k in range(M.shape[0])]
+                add("missing_row", f"driver row {i + 1} left out", sp.Matrix(rows_[:i] + rows_[i + 1:]))
+                add("extra_row", f"driver row {i + 1} written twice", sp.Matrix(rows_[:i + 1] + rows_[i:]))
+        if quantity in ("nu", "gamma"):
+            add(f"{quantity}_sign", f"−{quantity}", -M)
+    for code, S, what in structural:
+        add(code, what, sp.Matrix(S) if not matrix else S)
+    return out if keep_all else distinct(out, M, q, qd, t, rng=rng)
+
+
+def row_mutants(expr, *, quantity="Phi", groups=()):
+    """(code, operator, expression) of one row's mistakes that a search over its terms does not make: sin ↔ cos,
+    Aᵀ for A, an angle in degrees or radians of radians, the other body's coordinates, angle or rate — for a
+    checker naming a wrong row (:mod:`kinbook.grading.diagnose`). Not filtered: the checker compares."""
+    return [(m.code, m.operator, m.value[0]) for m in
+            expression_mutants([expr], quantity=quantity, groups=groups, terms=False, keep_all=True)]
+
+
+def _dropped_code(term, quantity, qd, t):
+    """The code a dropped term stands for: a ∂/∂t term of γ, the centripetal or Coriolis term, any term."""
+    if quantity == "gamma" and t is not None and term.has(t) and _velocity_degree(term, qd) == 0:
+        return "missing_tt_term"
+    if quantity == "nu" and t is not None and term.has(t):
+        return "missing_term"
+    return "missing_term"
+
+
+def _velocity_degree(term, qd):
+    if not qd:
+        return 0
+    import sympy as sp
+
+    try:
+        return sp.Poly(term, *[v for v in qd if term.has(v)]).total_degree() if any(term.has(v) for v in qd) else 0
+    except sp.PolynomialError:
+        return 0
+
+
+def distinct(found, reference, q=None, qd=None, t=None, *, rng=0, points=6):
+    """``found`` without the mutants equal to ``reference`` (or to an earlier mutant of the same code) at
+    ``points`` random points: an equal one is no mistake, a repeated one is counted once."""
+    import sympy as sp
+
+    from .jets import Tape
+
+    ref = sp.Matrix(reference)
+    syms = sorted(ref.free_symbols | set().union(*[sp.Matrix(m.value).free_symbols for m in found] or [set()]),
+                  key=lambda s: s.name)
+    if q is None:
+        q, qd, t = syms, [], sp.Symbol("t", real=True)
+    else:
+        extra = [s for s in syms if s not in set(q) | set(qd or ()) | {t}]
+        q = list(q) + extra
+    gen = np.random.default_rng(rng)
+    Q = gen.uniform(-1.3, 1.3, (points, len(q)))
+    QD = gen.uniform(-1.3, 1.3, (points, len(qd or ())))
+    T = gen.uniform(0.1, 1.1, points)
+
+    def values(M):
+        M = sp.Matrix(M)
+        flat = [M[i, j] for i in range(M.shape[0]) for j in range(M.shape[1])]
+        return np.asarray(Tape(flat, list(q), list(qd or ()), t)(Q, QD if qd else None, T)["value"], float)
+
+    R = values(ref)
+    kept, seen = [], []
+    for m in found:
+        try:
+            V = values(m.value)
+        except Exception:  # noqa: BLE001 — a mutant that cannot be evaluated (a division by zero …) is no test
+            continue
+        if V.shape == R.shape and _close(V, R):
+            continue
+        if any(code == m.code and W.shape == V.shape and _close(V, W) for code, W in seen):
+            continue
+        seen.append((m.code, V))
+        kept.append(m)
+    return kept
+
+
+def _close(a, b, rtol=1e-9):
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    return bool(np.all(np.abs(a - b) <= rtol * (1.0 + np.maximum(np.abs(a), np.abs(b)))))
+
+
+# ============================================================================================== code
+class _Site:
+    """One place in a function's AST where an operator applies (found by walking, applied to a fresh copy)."""
+
+    def __init__(self, code, operator, index, apply):
+        self.code, self.operator, self.index, self.apply = code, operator, index, apply
+
+
+def _sites(tree):
+    """Every (code, operator, node index, rewrite) the code operators find in ``tree``."""
+    nodes = list(ast.walk(tree))
+    names = sorted({n.id for n in nodes if isinstance(n, ast.Name)} |
+                   {a.arg for n in nodes if isinstance(n, ast.arguments) for a in n.args + n.kwonlyargs})
+    out = []
+    for k, n in enumerate(nodes):
+        if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute):
+            f = n.func.attr
+            pair = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin"}.get(f)
+            if pair:
+                out.append(_Site("sin_cos", f"np.{f} → np.{pair}", k, lambda n, p=pair: _set_attr(n, p)))
+            if f == "radians" and n.args:
+                out.append(_Site("degrees", "np.radians left out", k, lambda n: n.args[0]))
+                out.append(_Site("radians_twice", "np.radians applied twice", k,
+                                 lambda n: ast.Call(n.func, [n], [])))
+            if f == "arctan2" and len(n.args) == 2:
+                out.append(_Site("arctan_quadrant", "np.arctan(y / x) for np.arctan2(y, x)", k,
+                                 lambda n: ast.Call(ast.Attribute(n.func.value, "arctan", ast.Load()),
+                                                    [ast.BinOp(n.args[0], ast.Div(), n.args[1])], [])))
+        if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in ("A", "B"):
+            other = "B" if n.func.id == "A" else "A"
+            out.append(_Site("A_for_B" if other == "A" else "A_for_B", f"{n.func.id}(…) → {other}(…)", k,
+                             lambda n, o=other: ast.Call(ast.Name(o, ast.Load()), n.args, n.keywords)))
+        if isinstance(n, ast.BinOp) and isinstance(n.op, (ast.Add, ast.Sub)):
+            flip = ast.Sub() if isinstance(n.op, ast.Add) else ast.Add()
+            out.append(_Site("sign_flip", "the sign of a term (+ ↔ −)", k,
+                             lambda n, f=flip: ast.BinOp(n.left, f, n.right)))
+            out.append(_Site("missing_term", "a term dropped (the right one)", k, lambda n: n.left))
+            out.append(_Site("missing_term", "a term dropped (the left one)", k,
+                             lambda n: n.right if isinstance(n.op, ast.Add) else ast.UnaryOp(ast.USub(), n.right)))
+        if isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.USub):
+            out.append(_Site("sign_flip", "a minus sign left out", k, lambda n: n.operand))
+        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and _const(n.right) == 2:
+            out.append(_Site("missing_square", "a square left out", k, lambda n: n.left))
+        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) and _const(n.right) == 2:
+            out.append(_Site("factor_2_missing", "a / 2 left out", k, lambda n: n.left))
+        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Mult) and 2 in (_const(n.left), _const(n.right)):
+            out.append(_Site("factor_2_missing", "a factor 2 left out", k,
+                             lambda n: n.right if _const(n.left) == 2 else n.left))
+        if isinstance(n, ast.Attribute) and n.attr == "T":
+            out.append(_Site("A_for_AT", "a transpose (.T) left out", k, lambda n: n.value))
+        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult):
+            if isinstance(n.left, ast.BinOp) and isinstance(n.left.op, ast.MatMult):
+                out.append(_Site("extrinsic_order", "the turns multiplied in reverse order", k, _reversed_chain))
+            elif not isinstance(n.left, ast.Attribute) or n.left.attr != "T":
+                out.append(_Site("A_transposed", "Aᵀ for A (the matrix transposed)", k,
+                                 lambda n: ast.BinOp(ast.Attribute(n.left, "T", ast.Load()), ast.MatMult(), n.right)))
+    for a, b in _body_pairs(names):
+        out.append(_Site("other_body", f"{a} ↔ {b}", None, lambda tree, a=a, b=b: _rename(tree, {a: b, b: a})))
+    return out
+
+
+def _const(n):
+    return n.value if isinstance(n, ast.Constant) and isinstance(n.value, (int, float)) else None
+
+
+def _set_attr(n, attr):
+    return ast.Call(ast.Attribute(n.func.value, attr, ast.Load()), n.args, n.keywords)
+
+
+def _reversed_chain(n):
+    items = []
+
+    def walk(x):
+        if isinstance(x, ast.BinOp) and isinstance(x.op, ast.MatMult):
+            walk(x.left)
+            walk(x.right)
+        else:
+            items.append(x)
+
+    walk(n)
+    out = items[-1]
+    for x in reversed(items[:-1]):
+        out = ast.BinOp(out, ast.MatMult(), x)
+    return out
+
+
+def _body_pairs(names):
+    """Pairs of names that differ only in a body's mark: a digit (phi2, phi3), i/j (w_i, w_j), 1/2 (xi_1A)."""
+    out = []
+    for a, b in itertools.combinations(names, 2):
+        if len(a) != len(b):
+            continue
+        diff = [k for k in range(len(a)) if a[k] != b[k]]
+        if len(diff) != 1:
+            continue
+        x, y = a[diff[0]], b[diff[0]]
+        if (x.isdigit() and y.isdigit()) or {x, y} == {"i", "j"}:
+            out.append((a, b))
+    return out
+
+
+def _rename(tree, mapping):
+    class R(ast.NodeTransformer):
+        def visit_Name(self, node):
+            if node.id in mapping:
+                return ast.copy_location(ast.Name(mapping[node.id], node.ctx), node)
+            return node
+
+    return R().visit(tree)
+
+
+def _function_tree(fn):
+    src = textwrap.dedent(inspect.getsource(fn))
+    return ast.parse(src)
+
+
+@functools.lru_cache(maxsize=128)
+def compiled_mutants(fn):
+    """Every syntactic code mutant of ``fn``: (code, operator, function) — compiled once, in ``fn``'s module."""
+    tree = _function_tree(fn)
+    out = []
+    for site in _sites(tree):
+        fresh = _function_tree(fn)
+        if site.index is None:
+            new = site.apply(fresh)
+        else:
+            node = list(ast.walk(fresh))[site.index]
+            new = _replace(fresh, node, site.apply(node))
+        ast.fix_missing_locations(new)
+        try:
+            ns = {}
+            exec(compile(new, f"<mutant of {fn.__name__}>", "exec"), fn.__globals__, ns)  # the library's own code
+            out.append((site.code, site.operator, ns[fn.__name__]))
+        except Exception:  # noqa: BLE001 — an operator that does not make valid code here
+            continue
+    return tuple(out)
+
+
+def code_mutants(fn, *, runs=(), rng=0):
+    """Mutants of a function's code (a numeric worked answer): each a :class:`Mutant` whose value is the mutated
+    function, compiled in ``fn``'s module. ``runs`` is a list of callables ``run(f) -> value`` (the function
+    called with one set of data each, the first being the question's own); a mutant whose values equal ``fn``'s in
+    every run is dropped, as is one that fails to run on the question's data, and one whose values repeat an
+    earlier mutant's."""
+    refs = []
+    for run in runs:
+        try:
+            refs.append(np.asarray(run(fn), float))
+        except Exception:  # noqa: BLE001 — a set of data the reference itself cannot run: not compared
+            refs.append(None)
+    out, seen = [], []
+    for code, operator, f in compiled_mutants(fn):
+        vals, same = [], True
+        for run, ref in zip(runs, refs):
+            try:
+                with np.errstate(all="ignore"):
+                    v = np.asarray(run(f), float)
+            except Exception:  # noqa: BLE001 — a mutant that fails to run
+                v = None
+            vals.append(v)
+            if ref is not None and (v is None or v.shape != ref.shape or not _close(v, ref)):
+                same = False
+        if runs and (vals[0] is None or same):
+            continue
+        key = [None if v is None else np.round(v, 9).tobytes() for v in vals]
+        if any(k == key for k in seen):
+            continue
+        seen.append(key)
+        out.append(Mutant(code, operator, f))
+    return out
+
+
+def _replace(tree, old, new):
+    class R(ast.NodeTransformer):
+        def generic_visit(self, node):
+            if node is old:
+                return new
+            return super().generic_visit(node)
+
+    if tree is old:
+        return new
+    return R().visit(tree)
+
+
+# ============================================================================================== values
+def value_mutants(value, *, angles=False):
+    """Mutants of a number or an array: its sign, one entry's sign, a factor 2, degrees and radians of radians
+    (``angles``: the value is an angle or holds angles), the matrix transposed, two entries exchanged."""
+    v = np.asarray(getattr(value, "value", value), float)
+    out = [Mutant("sign_flip", "sign of the whole answer", -v),
+           Mutant("factor_2_missing", "half the answer", v / 2), Mutant("factor_2_extra", "twice the answer", 2 * v)]
+    if v.size > 1:
+        for k in range(v.size):
+            w = v.copy().ravel()
+            w[k] = -w[k]
+            out.append(Mutant("sign_flip", f"sign of entry {k + 1}", w.reshape(v.shape)))
+    if angles:
+        out += [Mutant("degrees", "degrees for radians", v * DEG), Mutant("radians_twice", "radians of radians", v / DEG)]
+    if v.ndim == 2 and v.shape[0] == v.shape[1]:
+        out.append(Mutant("transposed", "the matrix transposed", v.T.copy()))
+    if v.ndim == 1 and 1 < v.size <= 4:
+        for a, b in itertools.combinations(range(v.size), 2):
+            w = v.copy()
+            w[[a, b]] = w[[b, a]]
+            out.append(Mutant("swapped_entries", f"entries {a + 1} and {b + 1} exchanged", w))
+    kept = []
+    for m in out:
+        if not _close(m.value, v) and not any(_close(m.value, k.value) for k in kept):
+            kept.append(m)
+    return kept
+
+
+def sample(found, limit):
+    """At most ``limit`` of ``found``, every code represented: taken in turn from each code's list (in order), so a
+    large Jacobian's hundreds of term slips leave room for its one sin ↔ cos. Deterministic."""
+    if len(found) <= limit:
+        return list(found)
+    by_code = {}
+    for m in found:
+        by_code.setdefault(m.code, []).append(m)
+    queues = [list(v) for v in by_code.values()]
+    picked = []
+    while len(picked) < limit:
+        for q in queues:
+            if q and len(picked) < limit:
+                # spread over the list: first, last, middle …
+                picked.append(q.pop(0 if len(q) % 2 else len(q) // 2))
+    order = {id(m): k for k, m in enumerate(found)}
+    return sorted(picked, key=lambda m: order[id(m)])
+
+
+# ============================================================================================== outcomes
+def classify(result, mutant):
+    """``"blind"`` when ``result`` (a CheckResult) passed the mutant, ``"named"`` when it names the mutant's mistake
+    (:data:`SYNONYMS`), else ``"unnamed"`` — with the names given."""
+    if result.passed:
+        return "blind", ()
+    given = tuple(c for c in (result.mistakes or ()) if c)
+    ok = SYNONYMS.get(mutant.code, {mutant.code})
+    if any(c in ok for c in given):
+        return "named", given
+    return "unnamed", given
+
+
+@dataclass
+class Tally:
+    """The outcomes of one item's mutants (a try-it, an exercise part): counts and the cases worth reading."""
+
+    item: str
+    mutants: int = 0
+    named: int = 0
+    unnamed: int = 0
+    blind: int = 0
+    blind_cases: list = field(default_factory=list)
+    unnamed_cases: list = field(default_factory=list)
+
+    def add(self, mutant, outcome, given=(), where="", why=""):
+        self.mutants += 1
+        if outcome == "named":
+            self.named += 1
+        elif outcome == "blind":
+            self.blind += 1
+            self.blind_cases.append(f"{mutant.code} ({mutant.operator}) passes at {where}: {why}")
+        else:
+            self.unnamed += 1
+            self.unnamed_cases.append(f"{mutant.code} ({mutant.operator}) at {where} named "
+                                      f"{', '.join(given) or '—'}")
+
+
+def format_table(tallies, detail=True):
+    """The mutation table: one line per item (mutants, named, unnamed, blind spots), the totals, and — with
+    ``detail`` — each blind spot and unnamed mutant under its item."""
+    lines = [f"{'item':<28} {'mutants':>7} {'named':>6} {'unnamed':>7} {'blind':>5}"]
+    for t in tallies:
+        lines.append(f"{t.item:<28} {t.mutants:>7} {t.named:>6} {t.unnamed:>7} {t.blind:>5}")
+        if detail:
+            lines += [f"    BLIND   {c}" for c in t.blind_cases]
+            lines += [f"    unnamed {c}" for c in t.unnamed_cases]
+    n = sum(t.mutants for t in tallies)
+    named = sum(t.named for t in tallies)
+    lines.append(f"{'total':<28} {n:>7} {named:>6} {sum(t.unnamed for t in tallies):>7} "
+                 f"{sum(t.blind for t in tallies):>5}   named {100.0 * named / max(n, 1):.1f} %")
+    return "\n".join(lines)
