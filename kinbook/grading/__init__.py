@@ -18,14 +18,21 @@ A check runs one way through small stages, each its own module: read (the safe r
 → match (the one equivalence rule) → diagnose (the mistake catalogue) → report (:mod:`kinbook.grading.checks`).
 """
 
-from . import expected
+from . import checks, expected, rotation_values, values
 from ._i18n import get_language, set_language
 from .catalogue import MISTAKES, explain
-from .checks import check_gamma, check_jacobian, check_nu, check_phi
+from .echo import echoed
 from .lms import assert_passed, nbgrader_score
 from .result import CheckResult, RowResult
-from .rotation_values import check_euler_parameters, check_rotation
-from .values import check_value
+
+# the package's checkers show the answer as they read it, before the verdict (kinbook.grading.echo)
+check_phi = echoed(checks.check_phi, "Phi")
+check_jacobian = echoed(checks.check_jacobian, "Phi_q")
+check_nu = echoed(checks.check_nu, "nu")
+check_gamma = echoed(checks.check_gamma, "gamma")
+check_value = echoed(values.check_value)
+check_rotation = echoed(rotation_values.check_rotation)
+check_euler_parameters = echoed(rotation_values.check_euler_parameters)
 
 CHECKERS = {
     "phi": check_phi,

@@ -37,7 +37,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 __all__ = ["Mutant", "mutants", "expression_mutants", "row_mutants", "code_mutants", "value_mutants", "reference_rows",
-           "classify", "Tally", "compiled_mutants", "sample", "SYNONYMS", "format_table", "distinct", "MAX_TERMS"]
+           "classify", "Tally", "compiled_mutants", "sample", "samples_for",
+           "reference_mutants", "SYNONYMS", "format_table", "distinct", "MAX_TERMS"]
 
 MAX_TERMS = 12
 """Rows with more terms than this get no term-by-term mutants (each term's sign and its dropping)."""
@@ -52,6 +53,7 @@ SYNONYMS = {
     "other_body": {"other_body", "swapped_bodies", "swapped_points", "wrong_data"},
     "swapped_bodies": {"swapped_bodies", "other_body", "swapped_points"},
     "degrees": {"degrees"},
+    "local_vector": {"local_vector", "missing_chain_rule", "wrong_frame"},
     "radians_twice": {"radians_twice"},
     "A_transposed": {"A_transposed", "A_for_AT", "transposed"},
     "A_for_AT": {"A_for_AT", "A_transposed", "transposed"},
@@ -89,6 +91,8 @@ class Mutant:
     code: str
     operator: str
     value: object = field(repr=False)
+    also: set = field(default_factory=set)
+    """Codes of other mistakes that give the same wrong answer (it may be named by any of them)."""
 
 
 def mutants(reference, **options):
@@ -138,8 +142,17 @@ def reference_rows(target, quantity):
     return rows, list(mech.q), list(mech.qd), mech.t, blocks, drivers
 
 
+def samples_for(target, quantity):
+    """(Q, QD, T): the configurations a checker compares ``quantity`` at — generic ones for Φ, assembled ones (with
+    velocities that satisfy the velocity equations) for Φ_q, ν and γ (:meth:`kinbook.grading.target.Target.samples`)."""
+    from .target import target_for
+
+    s = target_for(target).samples("generic" if quantity == "Phi" else "assembled")
+    return s.Q, s.QD, s.T
+
+
 def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=(), structural=(), q=None, qd=None,
-                       t=None, rng=0, terms=True, keep_all=False):
+                       t=None, rng=0, terms=True, keep_all=False, samples=None, angles=True):
     """Mutants of symbolic rows (a list for Φ, ν, γ; a Matrix for Φ_q), each a :class:`Mutant` whose value has
     the shape of ``rows``; those equal to ``rows`` at every one of a few random points are dropped.
 
@@ -160,6 +173,11 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
         checker's own term search does not make — :func:`row_mutants`).
     q, qd, t : symbols
         For the equality test (default: the rows' free symbols).
+    samples : (Q, QD, T), optional
+        The configurations the equality test uses (in the order of ``q``, ``qd``; default: random points).
+    angles : bool
+        Also the slips made in A(φ) itself — Aᵀ for A, an angle in degrees, the other body's angle —, which in Φ_q,
+        ν and γ are made in Φ and carried through the derivation instead (:func:`reference_mutants`).
     """
     import sympy as sp
 
@@ -203,13 +221,16 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
             N[i, j] = -e
             add("sign_flip", f"sign of {where}", N)
     # sin ↔ cos, Aᵀ for A, degrees, radians of radians — one angle at a time
+    in_A = angles
     angles = sorted({a.args[0] for a in M.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
     for a in angles:
         swap = {sp.sin(a): sp.Symbol("_c"), sp.cos(a): sp.Symbol("_s")}
         back = {sp.Symbol("_c"): sp.cos(a), sp.Symbol("_s"): sp.sin(a)}
         add("sin_cos", f"sin↔cos of {a}", entry_map(lambda x, s=swap, b=back: x.subs(s).subs(b)))
-        add("A_transposed", f"sin({a}) → −sin({a}) (Aᵀ for A)", entry_map(lambda x, a=a: x.subs(sp.sin(a), -sp.sin(a))))
-    for s in sorted({x for a in angles for x in a.free_symbols if x != t}, key=sp.default_sort_key):
+        if in_A:
+            add("A_transposed", f"sin({a}) → −sin({a}) (Aᵀ for A)",
+                entry_map(lambda x, a=a: x.subs(sp.sin(a), -sp.sin(a))))
+    for s in sorted({x for a in angles for x in a.free_symbols if x != t} if in_A else (), key=sp.default_sort_key):
         for code, f in (("degrees", DEG), ("radians_twice", 1 / DEG)):
             def scaled(x, s=s, f=f):
                 return x.replace(lambda y: isinstance(y, (sp.sin, sp.cos)) and y.has(s),
@@ -228,14 +249,14 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
         for (qa, va), (qb, vb) in itertools.combinations(body_groups, 2):
             both = dict(zip(qa + va, qb + vb))
             both.update(zip(qb + vb, qa + va))
-            if M.free_symbols & set(both):
+            if in_A and M.free_symbols & set(both):
                 add("swapped_bodies", f"bodies {qa[0]}… ↔ {qb[0]}…", within(lambda x, m=both: x.xreplace(m)))
             ka = [k for k, s in enumerate(qa) if s.name.startswith("phi")]
             if len(ka) == 1:  # planar: the angle, then its rate
                 k = ka[0]
                 for what, m in (("angle", {qa[k]: qb[k], qb[k]: qa[k], va[k]: vb[k], vb[k]: va[k]}),
                                 ("rate", {va[k]: vb[k], vb[k]: va[k]})):
-                    if M.free_symbols & set(m):
+                    if M.free_symbols & set(m) and (in_A or what == "rate"):
                         add("other_body", f"the other body's {what} ({qa[k]}↔{qb[k]})",
                             within(lambda x, m=m: x.xreplace(m)))
     # rows: a driver's row left out or written twice; the whole ν or γ with the wrong sign
@@ -249,7 +270,7 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
             add(f"{quantity}_sign", f"−{quantity}", -M)
     for code, S, what in structural:
         add(code, what, sp.Matrix(S) if not matrix else S)
-    return out if keep_all else distinct(out, M, q, qd, t, rng=rng)
+    return out if keep_all else distinct(out, M, q, qd, t, rng=rng, samples=samples)
 
 
 def row_mutants(expr, *, quantity="Phi", groups=()):
@@ -258,6 +279,57 @@ def row_mutants(expr, *, quantity="Phi", groups=()):
     checker naming a wrong row (:mod:`kinbook.grading.diagnose`). Not filtered: the checker compares."""
     return [(m.code, m.operator, m.value[0]) for m in
             expression_mutants([expr], quantity=quantity, groups=groups, terms=False, keep_all=True)]
+
+
+def reference_mutants(target, quantity):
+    """Every mutant of a checker's reference (a mechanism or a constraint; ``quantity`` "Phi", "Phi_q", "nu" or
+    "gamma"), told apart from it where the checker compares: the slips of :func:`expression_mutants` made in the
+    quantity itself, the slips of A(φ) and the catalogue's structural mistakes
+    (:func:`kinbook.grading.mistakes.structural`) made in Φ — and, for Φ_q, ν and γ, carried through the
+    derivation as a student carries them."""
+    import sympy as sp
+
+    from ..core.symbolic import derive
+    from .mistakes import structural
+    from .target import target_for
+
+    rows, q, qd, t, blocks, drivers = reference_rows(target, quantity)
+    T = target_for(target)
+    found = expression_mutants(rows, quantity=quantity, blocks=blocks, drivers=drivers, q=q, qd=qd, t=t,
+                               keep_all=True, angles=quantity == "Phi")
+    phi_level = []
+    if len(T.constraints) == 1:
+        phi_level += [Mutant(v.code, "catalogue: " + v.code + (f" ({v.detail})" if v.detail is not None else ""),
+                             list(v.exprs)) for v in structural(T, T.constraints[0]) if v.code != "book_misprint"]
+    Q, QD, TT = samples_for(target, "Phi_q")
+
+    def equivalent(m):  # a Φ that vanishes wherever the mechanism is assembled: another formulation, no mistake
+        try:
+            V = np.asarray(T.tape(list(sp.Matrix(m.value)))(Q, QD, TT)["value"], float)
+        except Exception:  # noqa: BLE001
+            return False
+        R = np.asarray(T.tape(list(sp.Matrix(Phi_rows)))(Q, QD, TT)["value"], float)
+        return V.shape == R.shape and bool(np.all(np.abs(V) <= 1e-8 * (1.0 + np.abs(V).max())))
+
+    Phi_rows = reference_rows(target, "Phi")[0]
+    if quantity == "Phi":
+        found = [m for m in found if not equivalent(m)] + [m for m in phi_level if not equivalent(m)]
+    else:
+        Phi, _, _, _, _, _ = reference_rows(target, "Phi")
+        d = T.mech.derivation(T.constraint) if len(T.constraints) == 1 and T.constraint is not None \
+            else T.mech.symbolic()
+        in_A = [m for m in expression_mutants(Phi, quantity="Phi", blocks=blocks, terms=False, keep_all=True)
+                if m.code != "sin_cos"] + phi_level
+        for m in in_A:
+            if equivalent(m):
+                continue
+            try:
+                D = derive(sp.Matrix(m.value), d.q, d.qd, d.t)
+            except Exception:  # noqa: BLE001 — a variant that cannot be derived is no test
+                continue
+            found.append(Mutant(m.code, m.operator + ", carried through the derivation",
+                                {"Phi_q": D.Phi_q, "nu": D.nu, "gamma": D.gamma}[quantity]))
+    return distinct(found, rows, q, qd, t, samples=samples_for(target, quantity))
 
 
 def _dropped_code(term, quantity, qd, t):
@@ -280,9 +352,11 @@ def _velocity_degree(term, qd):
         return 0
 
 
-def distinct(found, reference, q=None, qd=None, t=None, *, rng=0, points=6):
-    """``found`` without the mutants equal to ``reference`` (or to an earlier mutant of the same code) at
-    ``points`` random points: an equal one is no mistake, a repeated one is counted once."""
+def distinct(found, reference, q=None, qd=None, t=None, *, rng=0, points=6, samples=None):
+    """``found`` without the mutants equal to ``reference`` — at ``points`` random points, or at ``samples`` = (Q,
+    QD, T), the configurations the checker compares at (Φ_q, ν and γ on the assembled ones: a mutant equal there
+    is right wherever the mechanism can be) — and with each repeated value counted once: a later mutant equal to
+    an earlier one adds its code to the earlier one's :attr:`Mutant.also` (one wrong answer, two readings)."""
     import sympy as sp
 
     from .jets import Tape
@@ -292,13 +366,16 @@ def distinct(found, reference, q=None, qd=None, t=None, *, rng=0, points=6):
                   key=lambda s: s.name)
     if q is None:
         q, qd, t = syms, [], sp.Symbol("t", real=True)
-    else:
+    elif samples is None:
         extra = [s for s in syms if s not in set(q) | set(qd or ()) | {t}]
         q = list(q) + extra
-    gen = np.random.default_rng(rng)
-    Q = gen.uniform(-1.3, 1.3, (points, len(q)))
-    QD = gen.uniform(-1.3, 1.3, (points, len(qd or ())))
-    T = gen.uniform(0.1, 1.1, points)
+    if samples is not None:
+        Q, QD, T = samples
+    else:
+        gen = np.random.default_rng(rng)
+        Q = gen.uniform(-1.3, 1.3, (points, len(q)))
+        QD = gen.uniform(-1.3, 1.3, (points, len(qd or ())))
+        T = gen.uniform(0.1, 1.1, points)
 
     def values(M):
         M = sp.Matrix(M)
@@ -309,14 +386,17 @@ def distinct(found, reference, q=None, qd=None, t=None, *, rng=0, points=6):
     kept, seen = [], []
     for m in found:
         try:
-            V = values(m.value)
+            with np.errstate(all="ignore"):
+                V = values(m.value)
         except Exception:  # noqa: BLE001 — a mutant that cannot be evaluated (a division by zero …) is no test
             continue
-        if V.shape == R.shape and _close(V, R):
+        if not np.all(np.isfinite(V)) or (V.shape == R.shape and _close(V, R)):
             continue
-        if any(code == m.code and W.shape == V.shape and _close(V, W) for code, W in seen):
+        twin = next((k for k, W in seen if W.shape == V.shape and _close(V, W)), None)
+        if twin is not None:
+            twin.also.add(m.code)
             continue
-        seen.append((m.code, V))
+        seen.append((m, V))
         kept.append(m)
     return kept
 
@@ -491,10 +571,12 @@ def code_mutants(fn, *, runs=(), rng=0):
         if runs and (vals[0] is None or same):
             continue
         key = [None if v is None else np.round(v, 9).tobytes() for v in vals]
-        if any(k == key for k in seen):
+        twin = next((m for k, m in seen if k == key), None)
+        if twin is not None:
+            twin.also.add(code)
             continue
-        seen.append(key)
         out.append(Mutant(code, operator, f))
+        seen.append((key, out[-1]))
     return out
 
 
@@ -524,6 +606,7 @@ def value_mutants(value, *, angles=False):
             out.append(Mutant("sign_flip", f"sign of entry {k + 1}", w.reshape(v.shape)))
     if angles:
         out += [Mutant("degrees", "degrees for radians", v * DEG), Mutant("radians_twice", "radians of radians", v / DEG)]
+    out = [Mutant(m.code, m.operator, np.asarray(m.value, float)) for m in out]
     if v.ndim == 2 and v.shape[0] == v.shape[1]:
         out.append(Mutant("transposed", "the matrix transposed", v.T.copy()))
     if v.ndim == 1 and 1 < v.size <= 4:
@@ -564,7 +647,7 @@ def classify(result, mutant):
     if result.passed:
         return "blind", ()
     given = tuple(c for c in (result.mistakes or ()) if c)
-    ok = SYNONYMS.get(mutant.code, {mutant.code})
+    ok = set().union(*(SYNONYMS.get(c, {c}) for c in {mutant.code} | set(mutant.also)))
     if any(c in ok for c in given):
         return "named", given
     return "unnamed", given

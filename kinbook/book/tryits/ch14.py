@@ -105,7 +105,7 @@ def _s14_2_2(*, theta_deg, phi_deg, psi_rate, theta_rate, phi_rate):
     return my_omega_body
 
 
-_RATES = dict(_ANG, psi_rate=2.0, theta_rate=0.0, phi_rate=-1.0)
+_RATES = dict(_ANG, psi_rate=2.0, theta_rate=0.5, phi_rate=-1.0)  # θ̇ ≠ 0: its terms are tested too
 
 
 register("14-2/try-2", "my_omega_body", check_value,
@@ -115,7 +115,7 @@ register("14-2/try-2", "my_omega_body", check_value,
          ranges=dict(_ANG_RANGES, psi_rate=(-3.0, 3.0), theta_rate=(-2.0, 2.0), phi_rate=(-3.0, 3.0)),
          statement=_ANG_TEXT + ", ψ̇ = {psi_rate}, θ̇ = {theta_rate}, φ̇ = {phi_rate} rad/s")
 
-_A_14_2_3 = np.array([[2.0, -1.0, 2.0], [2.0, 2.0, -1.0], [-1.0, 2.0, 2.0]]) / 3
+_A_14_2_3 = np.array([[2.0, 2.0, -1.0], [-1.0, 2.0, 2.0], [2.0, -1.0, 2.0]]) / 3  # 14-1's body turned back: Aᵀ
 _A_GIVEN = [_A_14_2_3] + [np.round(R.A_from_euler(*np.radians(a)), 6) for a in
                           ([30, 50, 70], [-120, 35, 20], [150, 110, -45], [60, 140, 160], [-30, 80, -100],
                            [100, 20, 10], [-80, 65, 135])]
@@ -147,7 +147,7 @@ def _s14_3_1(*, axis_u, chi_deg):
 
 register("14-3/try-1", "my_p", check_euler_parameters,
          lambda axis_u, chi_deg: X.p_from_axis_angle(axis_u, np.radians(chi_deg)), _s14_3_1, {"name": "p"},
-         data={"axis_u": [0, 1, 1], "chi_deg": 90},
+         data={"axis_u": [0, 1, 1], "chi_deg": 120},
          ranges={"axis_u": [[0, 1, 1], [1, 0, 1], [1, 1, 0], [1, 2, 2], [2, -1, 2], [1, -1, 1], [0, 3, 4]],
                  "chi_deg": list(range(30, 331, 30))},
          statement=N_("χ = {chi_deg}° about u = {axis_u}"))

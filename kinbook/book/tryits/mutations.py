@@ -18,7 +18,7 @@ import numpy as np
 from ...grading import mutants as MU
 from .registry import TRY_ITS, same_data
 
-__all__ = ["SYMBOLIC", "variant_data", "item_mutants", "mutation_tally", "mutation_tallies", "answer_of",
+__all__ = ["SYMBOLIC", "variant_data", "function_mutants", "blind_spots", "REFERENCE_DRAWS", "item_mutants", "mutation_tally", "mutation_tallies", "answer_of",
            "mutant_values"]
 
 SYMBOLIC = {"check_phi": "Phi", "check_jacobian": "Phi_q", "check_nu": "nu", "check_gamma": "gamma"}
@@ -40,6 +40,8 @@ def variant_data(item, k):
         try:
             item.target(**data)
         except KinbookError:
+            continue
+        if blind_spots(item, data):  # data under which a slip passes: not drawn (issue 29)
             continue
         return data
     return None
@@ -83,21 +85,7 @@ def item_mutants(item, data, datas=None):
 
 
 def _symbolic_mutants(item, data, quantity):
-    from ...grading.mistakes import structural
-    from ...grading.target import target_for
-
-    target = item.target(**data)
-    rows, q, qd, t, blocks, drivers = MU.reference_rows(target, quantity)
-    extra = []
-    if quantity == "Phi":
-        T = target_for(target)
-        for c in T.constraints:
-            for v in structural(T, c):
-                if len(T.constraints) == 1 and v.code not in ("book_misprint",):
-                    extra.append((v.code, list(v.exprs), f"catalogue: {v.code}"
-                                  + (f" ({v.detail})" if v.detail is not None else "")))
-    return MU.expression_mutants(rows, quantity=quantity, blocks=blocks, drivers=drivers, structural=extra, q=q,
-                                 qd=qd, t=t)
+    return MU.reference_mutants(item.target(**data), quantity)
 
 
 @lru_cache(maxsize=256)
@@ -132,6 +120,49 @@ def _unhashable(v):
     if isinstance(v, tuple):
         return [_unhashable(x) for x in v]
     return v
+
+
+REFERENCE_DRAWS = 6
+"""Variants drawn (unfiltered) to tell a code mutant from the worked answer as a function."""
+
+
+@lru_cache(maxsize=None)
+def function_mutants(id):
+    """The code mutants of a numeric try-it that differ from its worked answer as functions — on the notebook's data
+    or on one of :data:`REFERENCE_DRAWS` raw draws (a symbolic try-it's mutants are made per data: none here)."""
+    from ...classroom.variant import draw, seed_from
+
+    item = TRY_ITS[id]
+    if SYMBOLIC.get(getattr(item.checker, "__name__", "")) is not None:
+        return ()
+    datas = [dict(item.data)]
+    if item.ranges:
+        datas += [draw(item.ranges, item.data, seed_from(f"try-it:{id}:reference:{k}")) for k in range(REFERENCE_DRAWS)]
+    runs = [_run(item, d) for d in datas]
+    return tuple(MU.code_mutants(item.solution, runs=runs))
+
+
+def blind_spots(item, data):
+    """The mutants of a numeric try-it its own check passes at ``data``: the slips these data cannot tell from the
+    worked answer (an empty list for data that tell every one apart)."""
+    try:
+        ref = np.asarray(item.reference_answer(data), float)
+    except Exception:  # noqa: BLE001 — data the worked answer cannot run on are refused elsewhere
+        return []
+    out = []
+    for m in function_mutants(item.id):
+        try:
+            with np.errstate(all="ignore"):
+                v = np.asarray(answer_of(item, m, data), float)
+        except Exception:  # noqa: BLE001 — a slip that fails on these data is no answer here
+            continue
+        if v.shape != ref.shape or not np.all(np.isfinite(v)):
+            continue
+        near = np.abs(v - ref) <= 1e-2 * (1.0 + np.abs(ref))
+        near |= np.abs(np.mod(v - ref + np.pi, 2 * np.pi) - np.pi) <= 1e-2  # angles compared modulo 2π
+        if np.all(near) and item.check(v, data).passed:
+            out.append(m)
+    return out
 
 
 def _value_of(item, data):

@@ -6,6 +6,11 @@ student would hand it in and graded by :func:`kinbook.classroom.grade_submission
 full marks. Then the released notebook, blank as a student gets it, is graded too: it must fail cleanly — no points,
 every part ``missing-answer`` (not a crash of the grader, a timeout, a tampered cell or a corrupt notebook), which also
 shows that no locked cell gives an answer away.
+
+Then the author's question tests (``part(..., tests=[(answer, code), …])``) are run on the source's data: each wrong
+answer must be refused and named by its code, each right one (code ``None``) must pass — and a part whose tests
+hold a right answer must be declared in the hidden checks, where no student reads it. ``kinbook validate
+--mutations`` adds the generated tests (:mod:`kinbook.classroom.validate.mutations`).
 """
 
 from __future__ import annotations
@@ -51,6 +56,25 @@ def _blank(result):
     problems += [f"part {p.part}: {p.status} — {p.message[:300]} (a blank notebook must fail cleanly: missing-answer)"
                  for p in result.parts if p.status not in ("missing-answer", "ok")]
     return problems
+
+
+def _question_tests(src):
+    """A Check of the parts' own question tests on the source's data (None when no part declares any)."""
+    from ..variant import references
+    from .mutations import question_tests
+
+    parts = [p for p in references(src) if p.tests]
+    if not parts:
+        return None
+    problems, n = [], 0
+    for p in parts:
+        results = question_tests(p)
+        n += len(results)
+        problems += [text for ok, text in results if not ok]
+        if not p.hidden and any(code is None for _, code in p.tests):
+            problems.append(f"part {p.name}: a right answer among its tests is shown to students — declare the "
+                            f"part with its tests between ### BEGIN HIDDEN CHECKS and ### END HIDDEN CHECKS")
+    return Check(f"the question tests ({n})", n - len([x for x in problems if " test " in x]), n, problems)
 
 
 def validate(source, *, students=None, timeout=60.0, memory=1000, isolation=True, progress=None):
@@ -102,6 +126,11 @@ def validate(source, *, students=None, timeout=60.0, memory=1000, isolation=True
         if has_params and who:
             run(student_notebook(src, student_parameters(src, who[0]), who[0]), who[0],
                 f"{who[0]}'s variant, blank", _blank)
+    c = _question_tests(src)
+    if c is not None:
+        checks.append(c)
+        if progress:
+            progress(c)
     bad = [c for c in checks if not c.ok]
     if bad:
         raise GradingError(f"{src.exercise} is not valid: " + "; ".join(f"{c.what}: {c.problems[0]}" for c in bad))

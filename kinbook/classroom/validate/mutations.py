@@ -27,18 +27,7 @@ def part_mutants(p):
     if quantity is None:
         angles = bool(p.options.get("angles")) or getattr(p.expected, "kind", "") == "angles"
         return MU.value_mutants(p.expected, angles=angles)
-    rows, q, qd, t, blocks, drivers = MU.reference_rows(p.target, quantity)
-    extra = []
-    if quantity == "Phi":
-        from ...grading.mistakes import structural
-        from ...grading.target import target_for
-
-        T = target_for(p.target)
-        if len(T.constraints) == 1:
-            extra = [(v.code, list(v.exprs), f"catalogue: {v.code}") for v in structural(T, T.constraints[0])
-                     if v.code != "book_misprint"]
-    return MU.expression_mutants(rows, quantity=quantity, blocks=blocks, drivers=drivers, structural=extra, q=q,
-                                 qd=qd, t=t)
+    return MU.reference_mutants(p.target, quantity)
 
 
 def _answer(mutant):
@@ -46,7 +35,7 @@ def _answer(mutant):
     import sympy as sp
 
     v = mutant.value
-    if isinstance(v, np.ndarray):
+    if isinstance(v, (np.ndarray, np.generic, float, int)):
         return v
     M = sp.Matrix(v)
     if M.shape[1] > 1:
@@ -57,8 +46,7 @@ def _answer(mutant):
 def question_tests(p, where="the source's data"):
     """The outcomes of a part's own question tests (``part(..., tests=[...])``): a list of (ok, text)."""
     out = []
-    for k, test in enumerate(getattr(p, "tests", None) or ()):
-        answer, expect = test["answer"], test.get("named")
+    for k, (answer, expect) in enumerate(p.tests):
         result = p.run(answer)
         if expect is None:
             ok = result.passed
