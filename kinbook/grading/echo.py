@@ -47,7 +47,8 @@ def read_as(value):
     import sympy as sp
 
     if isinstance(value, sp.MatrixBase):
-        M = value.applyfunc(lambda e: e.xreplace({f: sp.Float(f, 6) for f in e.atoms(sp.Float)}))
+        M = value.applyfunc(lambda e: e.xreplace({f: (sp.Integer(0) if abs(f) < 1e-12 else sp.Float(f, 6))
+                                                  for f in e.atoms(sp.Float)}))
         rows = [[sp.sstr(M[i, j]) for j in range(M.shape[1])] for i in range(M.shape[0])]
         text = "[" + ", ".join(r[0] if len(r) == 1 else "[" + ", ".join(r) + "]" for r in rows) + "]"
         if sum(sp.count_ops(e) for e in M) > 600:
@@ -59,8 +60,10 @@ def read_as(value):
         return None
     if a.ndim > 2 or a.size > 400 or not np.all(np.isfinite(a)):
         return None
+    # round-off is zero (4e-17 beside 0.33 reads 0): an echo is identical on every machine
+    a = np.where(np.abs(a) <= 1e-12 * max(1.0, float(np.abs(a).max(initial=0.0))), 0.0, a)
     fmt = lambda x: f"{x:.6g}"  # noqa: E731
-    text = np.array2string(a, formatter={"float_kind": fmt}, separator=", ", max_line_width=10**6)
+    text = np.array2string(a, formatter={"float_kind": fmt}, separator=", ", max_line_width=10**6).replace("\n", "")
     if a.ndim == 0:
         return text, fmt(float(a))
     rows = a.reshape(-1, 1) if a.ndim == 1 else a

@@ -53,7 +53,7 @@ SYNONYMS = {
     "other_body": {"other_body", "swapped_bodies", "swapped_points", "wrong_data"},
     "swapped_bodies": {"swapped_bodies", "other_body", "swapped_points"},
     "degrees": {"degrees"},
-    "local_vector": {"local_vector", "missing_chain_rule", "wrong_frame"},
+    "local_vector": {"local_vector", "missing_chain_rule", "wrong_frame", "missing_term"},
     "radians_twice": {"radians_twice"},
     "A_transposed": {"A_transposed", "A_for_AT", "transposed"},
     "A_for_AT": {"A_for_AT", "A_transposed", "transposed"},
@@ -183,6 +183,8 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
 
     M = sp.Matrix(rows) if not isinstance(rows, sp.MatrixBase) else rows
     matrix = isinstance(rows, sp.MatrixBase) and M.shape[1] > 1
+    if qd is None:  # the velocities of the bodies named (γ's squared rates)
+        qd = [v for _, bg in (blocks if blocks is not None else [(None, groups)]) for _, vs in bg for v in vs]
     out = []
 
     def add(code, op, N):
@@ -616,7 +618,12 @@ def value_mutants(value, *, angles=False):
             out.append(Mutant("swapped_entries", f"entries {a + 1} and {b + 1} exchanged", w))
     kept = []
     for m in out:
-        if not _close(m.value, v) and not any(_close(m.value, k.value) for k in kept):
+        if _close(m.value, v):
+            continue
+        twin = next((k for k in kept if k.value.shape == m.value.shape and _close(m.value, k.value)), None)
+        if twin is not None:
+            twin.also.add(m.code)
+        else:
             kept.append(m)
     return kept
 

@@ -149,6 +149,12 @@ def blind_spots(item, data):
         ref = np.asarray(item.reference_answer(data), float)
     except Exception:  # noqa: BLE001 — data the worked answer cannot run on are refused elsewhere
         return []
+    try:
+        usable = item.check(ref, data).passed
+    except Exception:  # noqa: BLE001 — a reference the checker refuses (a γ of 1e-31: every rate zero)
+        usable = False
+    if not usable:
+        return [MU.Mutant("wrong_value", "the worked answer itself is not accepted at these data", None)]
     out = []
     for m in function_mutants(item.id):
         try:
