@@ -281,7 +281,13 @@ _ENTRIES += [
     _m("sin_cos",
        N_("sin and cos exchanged"),
        N_("in A(φ) = [[cos φ, −sin φ], [sin φ, cos φ]] the cosine sits on the diagonal: ξ goes with cos φ in x and "
-          "with sin φ in y (eq. 5); write each product from A's row, not from memory")),
+          "with sin φ in y (eq. 5); write each product from A's row, not from memory"),
+       rotation=N_("each elementary turn has its cosines on the diagonal and ±sin off it: write A_z and A_x from "
+                   "their definitions (§14.2), not from memory"),
+       angles=N_("θ = arccos a33, not arcsin: the third row of A is [sin θ sin φ, sin θ cos φ, cos θ] (§14.2)"),
+       omega=N_("write ω' = [ψ̇ sin θ sin φ + θ̇ cos φ, ψ̇ sin θ cos φ − θ̇ sin φ, ψ̇ cos θ + φ̇] term by term: each "
+                "sine and cosine belongs to one angle's projection (§14.2)"),
+       parameters=N_("e0 = cos(χ/2) and e = u sin(χ/2): the cosine goes with e0, the sine with the axis")),
     _m("other_body",
        N_("the other body's coordinate"),
        N_("each point turns with its own body: A_i s'_i takes body i's angle φ_i (and its rate φ̇_i), A_j s'_j body "

@@ -4,8 +4,8 @@ shown before the verdict, so that ``sin(phi2)*x1 - …`` typed with a slip is se
 
 :func:`echoed` wraps a checker: after it has run, the answer is read again by the checkers' own reader
 (:func:`kinbook.grading.read.read` for Φ, Φ_q, ν, γ; numbers as an array for the value checkers) and attached to the
-result (:meth:`kinbook.grading.result.CheckResult.read`). An answer the reader refuses is not echoed: the
-result's message says what could not be read.
+result (:attr:`kinbook.grading.result.CheckResult.read`) — lazily: the answer is read again and typeset only when the
+result is shown. An answer the reader refuses is not echoed: the result's message says what could not be read.
 """
 
 from __future__ import annotations
@@ -77,13 +77,9 @@ def echoed(checker, quantity=None):
     @functools.wraps(checker)
     def check(answer, reference, *args, **kwargs):
         result = checker(answer, reference, *args, **kwargs)
-        if getattr(result, "read", None) is None:
-            try:
-                found = read_as(_read(answer, reference, quantity))
-            except Exception:  # noqa: BLE001 — an answer the reader refuses: its message says why
-                found = None
-            if found is not None:
-                result.echo(*found)
+        if getattr(result, "_echo", None) is None and "malformed" not in (result.mistakes or ()):
+            kept = answer.copy() if isinstance(answer, np.ndarray) else answer  # as it was when checked
+            result.echo(lambda: read_as(_read(kept, reference, quantity)))  # read again only when shown
         return result
 
     return check

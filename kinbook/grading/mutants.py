@@ -46,32 +46,36 @@ MAX_TERMS = 12
 DEG = 180.0 / np.pi
 
 SYNONYMS = {
-    "sign_flip": {"sign_flip", "nu_sign", "gamma_sign", "A_transposed", "A_for_AT", "swapped_entries"},
+    "sign_flip": {"sign_flip", "nu_sign", "gamma_sign", "A_transposed", "A_for_AT", "swapped_entries", "transposed",
+                  "left_handed", "not_orthogonal", "newton_step"},
     "missing_term": {"missing_term", "nu_missing", "missing_qt_term", "missing_tt_term", "missing_chain_rule",
-                     "local_vector", "wrong_frame", "missing_square", "rate_exchanged"},
+                     "local_vector", "wrong_frame", "missing_square", "rate_exchanged", "relative_speed",
+                     "not_orthogonal", "newton_step"},
     "sin_cos": {"sin_cos"},
     "other_body": {"other_body", "swapped_bodies", "swapped_points", "wrong_data"},
     "swapped_bodies": {"swapped_bodies", "other_body", "swapped_points"},
     "degrees": {"degrees"},
-    "local_vector": {"local_vector", "missing_chain_rule", "wrong_frame", "missing_term"},
+    "local_vector": {"local_vector", "missing_chain_rule", "wrong_frame", "missing_term", "book_misprint"},
     "radians_twice": {"radians_twice"},
     "A_transposed": {"A_transposed", "A_for_AT", "transposed"},
     "A_for_AT": {"A_for_AT", "A_transposed", "transposed"},
     "A_for_B": {"A_for_B"},
-    "factor_2_missing": {"factor_2_missing", "full_angle", "scaled"},
-    "factor_2_extra": {"factor_2_extra", "scaled"},
-    "missing_square": {"missing_square"},
+    "factor_2_missing": {"factor_2_missing", "full_angle", "scaled", "not_orthogonal", "not_normalized"},
+    "factor_2_extra": {"factor_2_extra", "scaled", "not_orthogonal", "not_normalized"},
+    "missing_square": {"missing_square", "missing_term", "not_orthogonal"},
     "arctan_quadrant": {"arctan_quadrant"},
     "extrinsic_order": {"extrinsic_order", "transposed"},
     "transposed": {"transposed", "A_transposed", "A_for_AT"},
-    "swapped_entries": {"swapped_entries", "extrinsic_order"},
+    "swapped_entries": {"swapped_entries", "extrinsic_order", "not_orthogonal"},
     "missing_row": {"missing_row"},
     "extra_row": {"extra_row", "dependent_row"},
     "nu_sign": {"nu_sign", "sign_flip"},
     "gamma_sign": {"gamma_sign", "sign_flip"},
 }
-"""Mutant code → the catalogue codes that name that mistake (a dropped ∂/∂t term of γ is "missing_tt_term" …).
-Codes not listed here are named by themselves only."""
+"""Mutant code → the catalogue codes that name the wrong answer it makes: the same slip seen in the quantity asked (a
+dropped ∂/∂t term of γ is "missing_tt_term", A omitted on one body in γ a missing centripetal term), or by the
+property it breaks (one entry's sign in a rotation matrix: "not an orthogonal matrix"; −A: "det A = −1"; a sign in a
+Newton update: "not a Newton–Raphson step"). Codes not listed here are named by themselves only."""
 
 
 @dataclass
@@ -283,12 +287,13 @@ def row_mutants(expr, *, quantity="Phi", groups=()):
             expression_mutants([expr], quantity=quantity, groups=groups, terms=False, keep_all=True)]
 
 
-def reference_mutants(target, quantity):
+def reference_mutants(target, quantity, limit=None):
     """Every mutant of a checker's reference (a mechanism or a constraint; ``quantity`` "Phi", "Phi_q", "nu" or
     "gamma"), told apart from it where the checker compares: the slips of :func:`expression_mutants` made in the
     quantity itself, the slips of A(φ) and the catalogue's structural mistakes
     (:func:`kinbook.grading.mistakes.structural`) made in Φ — and, for Φ_q, ν and γ, carried through the
-    derivation as a student carries them."""
+    derivation as a student carries them. ``limit``: at most 3 × ``limit`` are compared (:func:`sample`, every
+    code kept), for a caller that grades ``limit`` of them."""
     import sympy as sp
 
     from ..core.symbolic import derive
@@ -322,6 +327,8 @@ def reference_mutants(target, quantity):
             else T.mech.symbolic()
         in_A = [m for m in expression_mutants(Phi, quantity="Phi", blocks=blocks, terms=False, keep_all=True)
                 if m.code != "sin_cos"] + phi_level
+        if limit is not None:
+            in_A = sample(in_A, limit)
         for m in in_A:
             if equivalent(m):
                 continue
@@ -331,6 +338,8 @@ def reference_mutants(target, quantity):
                 continue
             found.append(Mutant(m.code, m.operator + ", carried through the derivation",
                                 {"Phi_q": D.Phi_q, "nu": D.nu, "gamma": D.gamma}[quantity]))
+    if limit is not None:
+        found = sample(found, 3 * limit)
     return distinct(found, rows, q, qd, t, samples=samples_for(target, quantity))
 
 
@@ -436,6 +445,8 @@ def _sites(tree):
                 out.append(_Site("arctan_quadrant", "np.arctan(y / x) for np.arctan2(y, x)", k,
                                  lambda n: ast.Call(ast.Attribute(n.func.value, "arctan", ast.Load()),
                                                     [ast.BinOp(n.args[0], ast.Div(), n.args[1])], [])))
+        if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "abs" and len(n.args) == 1:
+            out.append(_Site("sign_flip", "abs(…) left out (a length's sign)", k, lambda n: n.args[0]))
         if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in ("A", "B"):
             other = "B" if n.func.id == "A" else "A"
             out.append(_Site("A_for_B" if other == "A" else "A_for_B", f"{n.func.id}(…) → {other}(…)", k,
@@ -597,8 +608,13 @@ def _replace(tree, old, new):
 # ============================================================================================== values
 def value_mutants(value, *, angles=False):
     """Mutants of a number or an array: its sign, one entry's sign, a factor 2, degrees and radians of radians
-    (``angles``: the value is an angle or holds angles), the matrix transposed, two entries exchanged."""
+    (``angles``: the value is an angle or holds angles), the matrix transposed, two entries exchanged. Those equal to
+    the value, or to one of its other right answers (an :class:`~kinbook.grading.expected.Expected`'s
+    ``equivalents``: −p for p), are dropped; one equal to a catalogued wrong answer of it (its ``variants``) carries
+    that code in :attr:`Mutant.also`."""
     v = np.asarray(getattr(value, "value", value), float)
+    right = [np.asarray(e, float) for e, _ in getattr(value, "equivalents", ())]
+    known = [(code, np.asarray(w, float)) for code, w, *_ in getattr(value, "variants", ())]
     out = [Mutant("sign_flip", "sign of the whole answer", -v),
            Mutant("factor_2_missing", "half the answer", v / 2), Mutant("factor_2_extra", "twice the answer", 2 * v)]
     if v.size > 1:
@@ -618,12 +634,13 @@ def value_mutants(value, *, angles=False):
             out.append(Mutant("swapped_entries", f"entries {a + 1} and {b + 1} exchanged", w))
     kept = []
     for m in out:
-        if _close(m.value, v):
+        if _close(m.value, v) or any(e.size == m.value.size and _close(m.value.ravel(), e.ravel()) for e in right):
             continue
         twin = next((k for k in kept if k.value.shape == m.value.shape and _close(m.value, k.value)), None)
         if twin is not None:
             twin.also.add(m.code)
         else:
+            m.also |= {code for code, w in known if w.size == m.value.size and _close(m.value.ravel(), w.ravel())}
             kept.append(m)
     return kept
 

@@ -95,7 +95,7 @@ class CheckResult:
     rows: tuple
     _quantity: object
     columns: tuple
-    read = None
+    _echo = None
 
     def __init__(self, passed, score, messages=(), mistakes=(), rows=(), quantity="", columns=()):
         object.__setattr__(self, "passed", bool(passed))
@@ -117,9 +117,25 @@ class CheckResult:
     def __bool__(self):
         return bool(self.passed)
 
-    def echo(self, text, latex=None):
-        """Attach the answer as read (plain ``text`` and ``latex``); returns self."""
-        object.__setattr__(self, "read", (str(text), latex))
+    @property
+    def read(self):
+        """The answer as read, ``(text, latex)``, or None (made when first asked for: a result never shown costs
+        nothing)."""
+        echo = self._echo
+        if callable(echo):
+            try:
+                echo = echo()
+            except Exception:  # noqa: BLE001 — an answer that cannot be shown as read is not echoed
+                echo = None
+            object.__setattr__(self, "_echo", echo)
+        return echo
+
+    def echo(self, found):
+        """Attach the answer as read: ``(text, latex)``, or a function returning it (or None) when first shown, or
+        another CheckResult whose echo this one shares; returns self."""
+        if isinstance(found, CheckResult):
+            found = found._echo
+        object.__setattr__(self, "_echo", found)
         return self
 
     def __repr__(self):

@@ -114,3 +114,32 @@ def test_format_table_totals():
     t.add(MU.Mutant("sign_flip", "s", 0), "blind", where="the notebook's data", why="the data")
     text = MU.format_table([t])
     assert "BLIND" in text and "named 50.0 %" in text
+
+
+def test_the_new_codes_are_named_on_realistic_answers(four_bar):
+    """sin_cos, other_body, radians_twice, arctan_quadrant, factor_2_extra: each named on the answer a student
+    writes, by the checker (never the generic 'wrong value')."""
+    from kinbook.book.tryits import TRY_ITS, get
+
+    c = four_bar.constraint("4")  # revolute coupler–rocker
+    rows = [str(e) for e in four_bar.constraint_phi(c)]
+    a, b = (f"phi{body.number}" for body in c.bodies)
+    swapped = [r.replace(a, "PHI").replace(b, a).replace("PHI", b) for r in rows]  # each point turned by the other angle
+    assert check_phi(swapped, c).mistakes == ["other_body"]
+    one_angle = [r.replace(f"sin({a})", "SIN").replace(f"cos({a})", f"sin({a})").replace("SIN", f"cos({a})")
+                 for r in rows]
+    assert check_phi(one_angle, c).mistakes == ["sin_cos"]
+    g = [str(e) for e in four_bar.derivation(c).gamma]
+    doubled = [e.replace(f"d{a}**2", f"2*d{a}**2") for e in g]
+    assert "factor_2_extra" in check_gamma(doubled, c).mistakes
+    get("13-1/try-1")
+    item = TRY_ITS["13-1/try-2"]
+    d = item.data
+    phi = np.radians(np.radians(d["phi_i_deg"]))
+    twice = [d["x_Oi"] + d["xi_Q"] * np.cos(phi) - d["eta_Q"] * np.sin(phi),
+             d["y_Oi"] + d["xi_Q"] * np.sin(phi) + d["eta_Q"] * np.cos(phi)]
+    assert item.check(twice).mistakes == ["radians_twice"]
+    item = TRY_ITS["14-2/try-3"]
+    A = np.asarray(item.data["A_given"])
+    quadrant = [np.arctan(A[0, 2] / -A[1, 2]), np.arccos(A[2, 2]), np.arctan2(A[2, 0], A[2, 1])]
+    assert item.check(quadrant).mistakes == ["arctan_quadrant"]

@@ -64,6 +64,8 @@ def answer_of(item, mutant, data):
     """The answer a student making ``mutant``'s mistake hands in for ``data``: the mutated worked answer's value
     (code), or the mutated rows as the strings a student types (symbolic)."""
     v = mutant.value
+    if isinstance(v, np.ndarray):
+        return v
     if callable(v):
         return _run(item, data)(v)
     import sympy as sp
@@ -74,24 +76,20 @@ def answer_of(item, mutant, data):
     return [str(M[i, 0]) for i in range(M.shape[0])]
 
 
-def item_mutants(item, data, datas=None):
+def item_mutants(item, data, datas=None, limit=None):
     """The mutants of a try-it for ``data`` (symbolic: made from the reference at these data; code: from the
     worked answer, told apart from it on ``datas``)."""
     quantity = SYMBOLIC.get(getattr(item.checker, "__name__", ""))
     if quantity is not None:
-        return _symbolic_mutants(item, data, quantity)
+        return MU.reference_mutants(item.target(**data), quantity, limit)
     runs = [_run(item, d) for d in (datas or [data])]
     return MU.code_mutants(item.solution, runs=runs)
-
-
-def _symbolic_mutants(item, data, quantity):
-    return MU.reference_mutants(item.target(**data), quantity)
 
 
 @lru_cache(maxsize=256)
 def _cached_values(id, key):
     item = TRY_ITS[id]
-    data = dict(key)
+    data = {k: _unhashable(v) for k, v in key}
     return tuple((m.code, m.operator, np.asarray(answer_of(item, m, data), float))
                  for m in MU.code_mutants(item.solution, runs=[_run(item, data)]))
 
@@ -171,6 +169,19 @@ def blind_spots(item, data):
     return out
 
 
+def _angles(item):
+    return bool(item.options.get("angles"))
+
+
+def _expected(item, data):
+    """The try-it's expected value with its other right answers and catalogued wrong ones (an Expected), or its
+    worked answer's value."""
+    from ...grading.expected import Expected
+
+    found = item.target(**data)
+    return found if isinstance(found, Expected) else _value_of(item, data)
+
+
 def _value_of(item, data):
     return np.asarray(item.reference_answer(data), float)
 
@@ -184,7 +195,11 @@ def mutation_tally(item, variants=2, limit=None):
     shared = None if quantity is not None else item_mutants(item, datas[0], datas)
     for k, data in enumerate(datas):
         where = "the notebook's data" if k == 0 else f"variant {k} ({item.stated(data)})"
-        found = shared if shared is not None else item_mutants(item, data)
+        found = list(shared) if shared is not None else item_mutants(item, data, limit=limit)
+        if shared is not None and len(shared) < 3:  # a worked answer with few operators (a column_stack): the
+            found += [v for v in MU.value_mutants(_expected(item, data), angles=_angles(item))  # its value's slips
+                      if not (item.checker.__name__ == "check_euler_parameters"  # −p: p's other right answer
+                              and v.operator == "sign of the whole answer")]
         if limit is not None:
             found = MU.sample(found, limit)
         for m in found:
@@ -193,7 +208,7 @@ def mutation_tally(item, variants=2, limit=None):
             except Exception:  # noqa: BLE001 — a code mutant that fails on these data: not an answer here
                 continue
             result = item.check(answer, data)
-            outcome, given = MU.classify(result, m)
+            outcome, given = MU.classify(result, _readings(item, data, m, answer) if quantity is None else m)
             why = ""
             if outcome == "blind":
                 why = "the checker lets it through"
@@ -205,6 +220,25 @@ def mutation_tally(item, variants=2, limit=None):
                         pass
             tally.add(m, outcome, given, where, why)
     return tally
+
+
+def _readings(item, data, m, answer):
+    """``m`` with the codes of the try-it's catalogued wrong answers its value equals (one wrong number, two readings:
+    −e0 at χ = 120° is also χ for χ/2)."""
+    import dataclasses
+
+    from ...grading.expected import Expected
+
+    X = item.target(**data)
+    if not isinstance(X, Expected):
+        return m
+    try:
+        a = np.asarray(answer, float).ravel()
+    except (TypeError, ValueError):
+        return m
+    codes = {code for code, w, *_ in X.variants
+             if np.asarray(w).size == a.size and np.allclose(np.asarray(w, float).ravel(), a, rtol=1e-6, atol=1e-9)}
+    return dataclasses.replace(m, also=set(m.also) | codes) if codes else m
 
 
 def mutation_tallies(ids=None, variants=2, limit=None, progress=None):

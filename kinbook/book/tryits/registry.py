@@ -96,13 +96,13 @@ class TryIt:
         if self.wrong_forms is not None and (result.passed or result.mistakes == ["wrong_value"]):
             named = self._wrong_form(answer, target, data, result)
             if named is not None:
-                return named.echo(*result.read) if result.read else named
+                return named.echo(result)
         if result.passed or result.mistakes not in (["wrong_value"], ["malformed"]):
             return result
         copied = self._copied(answer, data, options, result._quantity)
         if copied is None:
             return result
-        return copied.echo(*result.read) if result.read else copied
+        return copied.echo(result)
 
     def _wrong_form(self, answer, target, data, result):
         """The answer's rows are one of ``wrong_forms`` (up to their order and a factor each): a failed result

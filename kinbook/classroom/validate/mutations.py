@@ -21,13 +21,16 @@ SYMBOLIC = {"phi": "Phi", "jacobian": "Phi_q", "nu": "nu", "gamma": "gamma"}
 ANGLES = ("rotation", "euler_parameters")
 
 
-def part_mutants(p):
+def part_mutants(p, limit=None):
     """The mutants of one part's reference (its target's symbolic quantity, or its expected value)."""
     quantity = SYMBOLIC.get(p.check)
     if quantity is None:
         angles = bool(p.options.get("angles")) or getattr(p.expected, "kind", "") == "angles"
-        return MU.value_mutants(p.expected, angles=angles)
-    return MU.reference_mutants(p.target, quantity)
+        found = MU.value_mutants(p.expected, angles=angles)
+        if p.check == "euler_parameters":  # −p is p's other right answer (the same rotation)
+            found = [m for m in found if m.operator != "sign of the whole answer"]
+        return found
+    return MU.reference_mutants(p.target, quantity, limit)
 
 
 def _answer(mutant):
@@ -81,7 +84,7 @@ def mutation_tallies(source, *, students=None, variants=2, limit=None, progress=
     for where, values in datas:
         for p in references(src, values):
             tally = tallies.setdefault(p.name, MU.Tally(f"{src.exercise}:{p.name}"))
-            found = part_mutants(p)
+            found = part_mutants(p, limit)
             if limit is not None:
                 found = MU.sample(found, limit)
             for m in found:
