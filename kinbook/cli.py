@@ -215,7 +215,7 @@ def _cmd_validate(args):
 
 def _mutations(args, students):
     """``kinbook validate --mutations``: the mutation tables, exit status 1 on a blind spot or a failed test."""
-    from .grading.mutants import format_table
+    from .grading.mutant_names import format_table
 
     tallies, failures = [], []
     if args.source is not None:

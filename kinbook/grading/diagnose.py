@@ -13,7 +13,7 @@ import itertools
 import numpy as np
 
 from . import mistakes as M
-from . import slips
+from . import mutant_names, slips
 from ._i18n import Msg
 from .compare import same, scale_match, scale_of
 
@@ -44,7 +44,7 @@ def phi(target, answer, data, matching, rtol):
         _terms_phi(target, data, wrong, free, rtol)
     wrong = [r for r in wrong if r.code is None]
     if wrong and free:
-        _mutants_phi(target, data, wrong, free, rtol)
+        mutant_names.name_phi_rows(target, data, wrong, free, rtol)
     wrong = [r for r in wrong if r.code is None]
     if wrong:
         for r, j in _pair(target, answer, wrong, free):
@@ -292,40 +292,6 @@ def _terms_phi(target, data, wrong, free, rtol):
             free.remove(j)
 
 
-def _groups(target, c):
-    """Each body's (coordinates, velocities) symbols of constraint ``c`` (for the other body's angle or rate)."""
-    mech = target.mech
-    q, out = list(mech.q), []
-    for b in c.bodies:
-        qs = list(mech.body_symbols(b.name))
-        out.append((qs, [mech.qd[q.index(x)] for x in qs]))
-    return out
-
-
-def _mutants_phi(target, data, wrong, free, rtol):
-    """Wrong rows that are another mutant of a reference row (:func:`kinbook.grading.mutants.row_mutants`: sin ↔
-    cos, the other body's angle, an angle in degrees …): named by its code."""
-    from .mutants import row_mutants
-
-    G = target.samples("generic")
-    for j in list(free):
-        left = [r for r in wrong if r.code is None]
-        if not left:
-            return
-        cands = row_mutants(target.symbolic_row(j), groups=_groups(target, target.owner(j)))
-        if not cands:
-            continue
-        vals = target.tape([e for _, _, e in cands])(G.Q, G.QD, G.T)["value"]
-        for i, (code, _, _) in enumerate(cands):
-            if not np.all(np.isfinite(vals[:, i])) or _phi_equal(vals[:, i], data.R_G[:, j], rtol):
-                continue
-            hit = next((r for r in left if _phi_equal(data.S_G[:, r.k], vals[:, i], rtol)), None)
-            if hit is not None:
-                hit.ref, hit.code = j, code
-                free.remove(j)
-                break
-
-
 def _pair(target, answer, wrong, free):
     """Which reference rows the remaining wrong rows were meant to be: by the coordinates they use (symbolic
     answers), else in order; rows left over are extra."""
@@ -431,7 +397,7 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
         if quantity != "Phi_q":
             if r.code is None:
                 hit = _terms_derived(target, ex, r, own, S, expected, rtol) or \
-                    _mutants_derived(target, ex, r, own, S, expected, rtol)
+                    mutant_names.name_derived_row(target, ex, r, own, S, expected, rtol)
                 r.code, r.detail, r.erratum = hit if hit is not None else ("wrong_value", None, None)
             r.score = 0.0
             continue
@@ -439,12 +405,12 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
         if r.code is None:
             named = [e for e in r.entries if e not in ("ok", "wrong_value")]
             hit = None if named else (_terms_derived(target, ex, r, own, S, expected, rtol)
-                                      or _mutants_derived(target, ex, r, own, S, expected, rtol))
+                                      or mutant_names.name_derived_row(target, ex, r, own, S, expected, rtol))
             if hit is not None:  # the Jacobian of Φ with a term's sign flipped or a term dropped
                 r.code, r.detail, r.erratum = hit
                 r.entries, r.score = _entries(S, expected, rtol, r.code, cand)
             elif not named:  # a slip inside the wrong entries themselves (a term's sign, sin ↔ cos …)
-                r.entries = _entry_mutants(target, ex, r, S, r.entries, rtol)
+                r.entries = mutant_names.name_entries(target, ex, r, S, r.entries, rtol)
                 named = [e for e in r.entries if e not in ("ok", "wrong_value")]
                 r.code = named[0] if named else "wrong_value"
             else:
@@ -691,80 +657,6 @@ def _terms_derived(target, ex, r, own, S, expected, rtol):
         if not same(V, expected, rtol) and same(S, V, rtol):
             return code, _term_detail(code, term), None
     return None
-
-
-def _mutants_derived(target, ex, r, own, S, expected, rtol):
-    """The other mutants (:func:`kinbook.grading.mutants.row_mutants`) of the reference's Φ row carried through
-    the derivation, and of the expected ν or γ row itself: (code, None, None) of the one the row equals."""
-    if r.ref is None or own is not None or isinstance(r.ref, tuple):
-        return None
-    import sympy as sp
-
-    from .mutants import row_mutants
-
-    Phi = target.symbolic_row(r.ref)
-    if sp.count_ops(Phi) > 200:
-        return None
-    groups = _groups(target, target.owner(r.ref))
-    f = 1.0 if r.factor is None or np.isnan(r.factor) else r.factor
-    s = ex.s
-    q_name = ex.quantity
-    cands = row_mutants(f * Phi, groups=groups)
-    vals = []
-    if cands:
-        d = target.tape([e for _, _, e in cands]).derived(s.Q, s.QD, s.T)
-        vals += [(code, d["Phi_q"][:, i][:, ex.data.cols] if q_name == "Phi_q" else d[q_name][:, i][:, None])
-                 for i, (code, _, _) in enumerate(cands)]
-    if q_name != "Phi_q":
-        mech = target.mech
-        q, qd, t = list(mech.q), list(mech.qd), mech.t
-        syms = [x for x in q if x in Phi.free_symbols]
-        D = lambda e: sum(sp.diff(e, x) * qd[q.index(x)] for x in syms) + sp.diff(e, t)  # noqa: E731
-        expr = f * (-sp.diff(Phi, t) if q_name == "nu" else -D(D(Phi)))
-        own_cands = row_mutants(expr, quantity=q_name, groups=groups)
-        if own_cands:
-            V = target.tape([e for _, _, e in own_cands])(s.Q, s.QD, s.T)["value"]
-            vals += [(code, V[:, i][:, None]) for i, (code, _, _) in enumerate(own_cands)]
-    for code, V in vals:
-        if _finite(V) and not same(V, expected, rtol) and same(S, V, rtol):
-            return code, None, None
-    return None
-
-
-def _entry_mutants(target, ex, r, S, entries, rtol):
-    """``entries`` with each wrong entry of a Φ_q row named by the mutant of its own symbolic entry it equals
-    (a term's sign or a term dropped, :func:`term_variants`; sin ↔ cos, the other body's angle …,
-    :func:`kinbook.grading.mutants.row_mutants`)."""
-    if r.ref is None or isinstance(r.ref, tuple):
-        return entries
-    import sympy as sp
-
-    from .mutants import row_mutants
-
-    Phi = target.symbolic_row(r.ref)
-    if sp.count_ops(Phi) > 200:
-        return entries
-    mech = target.mech
-    groups = _groups(target, target.owner(r.ref))
-    f = 1.0 if r.factor is None or np.isnan(r.factor) else r.factor
-    s = ex.s
-    out = list(entries)
-    for i, code in enumerate(entries):
-        if code != "wrong_value":
-            continue
-        expr = f * sp.diff(Phi, mech.q[ex.data.cols[i]])
-        cands = [(c, e) for c, e, _ in term_variants(expr)] + [(c, e) for c, _, e in row_mutants(expr, groups=groups)]
-        if not cands:
-            continue
-        V = target.tape([e for _, e in cands])(s.Q, s.QD, s.T)["value"]
-        E = ex.data.R[:, r.ref, i] * f if ex.data.R.ndim == 3 else None
-        for k, (c, _) in enumerate(cands):
-            if E is not None and same(V[:, k], E, rtol):
-                continue
-            if same(S[:, i], V[:, k], rtol):
-                out[i] = c
-                break
-    return tuple(out)
 
 
 def _entries(S, E, rtol, row_code, cands):

@@ -20,9 +20,8 @@ A mutant equal to the reference *as a function* (on every configuration, for cod
 dropped: it is not a mistake. One equal to it on the data of a question but not elsewhere is kept — that is what a
 blind spot of the data looks like.
 
-:func:`classify` reads a checker's result against the mutant it was given: ``"blind"`` (it passed), ``"named"``
-(refused with the mutant's code or one of its synonyms, :data:`SYNONYMS`), ``"unnamed"`` (refused with the
-generic "wrong value" or another name). :class:`Tally` sums outcomes into the rows of a mutation table.
+What a checker's result says of a mutant (blind spot, named, unnamed) and the mutation table are
+:mod:`kinbook.grading.mutant_names`; so is the diagnose stage's use of these mutants to name a wrong row.
 """
 
 from __future__ import annotations
@@ -36,47 +35,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Mutant", "mutants", "expression_mutants", "row_mutants", "code_mutants", "value_mutants", "reference_rows",
-           "classify", "Tally", "compiled_mutants", "sample", "samples_for",
-           "reference_mutants", "SYNONYMS", "format_table", "distinct", "MAX_TERMS"]
+__all__ = ["Mutant", "mutants", "expression_mutants", "row_mutants", "reference_mutants", "reference_rows", "samples_for",
+           "code_mutants", "compiled_mutants", "slips", "value_mutants", "distinct", "sample", "MAX_TERMS"]
 
 MAX_TERMS = 12
 """Rows with more terms than this get no term-by-term mutants (each term's sign and its dropping)."""
 
 DEG = 180.0 / np.pi
-
-SYNONYMS = {
-    "sign_flip": {"sign_flip", "nu_sign", "gamma_sign", "A_transposed", "A_for_AT", "swapped_entries", "transposed",
-                  "left_handed", "not_orthogonal", "newton_step"},
-    "missing_term": {"missing_term", "nu_missing", "missing_qt_term", "missing_tt_term", "missing_chain_rule",
-                     "local_vector", "wrong_frame", "missing_square", "rate_exchanged", "relative_speed",
-                     "not_orthogonal", "newton_step"},
-    "sin_cos": {"sin_cos"},
-    "other_body": {"other_body", "swapped_bodies", "swapped_points", "wrong_data"},
-    "swapped_bodies": {"swapped_bodies", "other_body", "swapped_points"},
-    "degrees": {"degrees"},
-    "local_vector": {"local_vector", "missing_chain_rule", "wrong_frame", "missing_term", "book_misprint"},
-    "radians_twice": {"radians_twice"},
-    "A_transposed": {"A_transposed", "A_for_AT", "transposed"},
-    "A_for_AT": {"A_for_AT", "A_transposed", "transposed"},
-    "A_for_B": {"A_for_B"},
-    "factor_2_missing": {"factor_2_missing", "full_angle", "scaled", "not_orthogonal", "not_normalized"},
-    "factor_2_extra": {"factor_2_extra", "scaled", "not_orthogonal", "not_normalized"},
-    "missing_square": {"missing_square", "missing_term", "not_orthogonal"},
-    "arctan_quadrant": {"arctan_quadrant"},
-    "extrinsic_order": {"extrinsic_order", "transposed"},
-    "transposed": {"transposed", "A_transposed", "A_for_AT"},
-    "swapped_entries": {"swapped_entries", "extrinsic_order", "not_orthogonal"},
-    "missing_row": {"missing_row"},
-    "extra_row": {"extra_row", "dependent_row"},
-    "nu_sign": {"nu_sign", "sign_flip"},
-    "gamma_sign": {"gamma_sign", "sign_flip"},
-}
-"""Mutant code → the catalogue codes that name the wrong answer it makes: the same slip seen in the quantity asked (a
-dropped ∂/∂t term of γ is "missing_tt_term", A omitted on one body in γ a missing centripetal term), or by the
-property it breaks (one entry's sign in a rotation matrix: "not an orthogonal matrix"; −A: "det A = −1"; a sign in a
-Newton update: "not a Newton–Raphson step"). Codes not listed here are named by themselves only."""
-
 
 @dataclass
 class Mutant:
@@ -197,7 +162,28 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
     def entry_map(f):
         return M.applyfunc(f)
 
-    # each term's sign, each term dropped, a factor 2 lost — entry by entry
+    _term_slips(M, matrix, add, quantity, qd, t, terms)
+    _angle_slips(M, add, entry_map, t, angles)
+    _body_slips(M, add, blocks if blocks is not None else [(None, groups)], angles)
+    # rows: a driver's row left out or written twice; the whole ν or γ with the wrong sign
+    if not matrix and terms:
+        for i in drivers:
+            if i < M.shape[0]:
+                rows_ = [M[k, 0] for k in range(M.shape[0])]
+                add("missing_row", f"driver row {i + 1} left out", sp.Matrix(rows_[:i] + rows_[i + 1:]))
+                add("extra_row", f"driver row {i + 1} written twice", sp.Matrix(rows_[:i + 1] + rows_[i:]))
+        if quantity in ("nu", "gamma"):
+            add(f"{quantity}_sign", f"−{quantity}", -M)
+    for code, S, what in structural:
+        add(code, what, sp.Matrix(S) if not matrix else S)
+    return out if keep_all else distinct(out, M, q, qd, t, rng=rng, samples=samples)
+
+
+def _term_slips(M, matrix, add, quantity, qd, t, terms):
+    """Each term's sign, each term dropped (``terms``), a factor 2 lost or (γ's squared rates) doubled — entry by
+    entry."""
+    import sympy as sp
+
     for (i, j) in itertools.product(range(M.shape[0]), range(M.shape[1])):
         e = M[i, j]
         if e == 0:
@@ -226,8 +212,12 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
             N = M.copy()
             N[i, j] = -e
             add("sign_flip", f"sign of {where}", N)
-    # sin ↔ cos, Aᵀ for A, degrees, radians of radians — one angle at a time
-    in_A = angles
+
+
+def _angle_slips(M, add, entry_map, t, in_A):
+    """sin ↔ cos of one angle; with ``in_A`` also Aᵀ for A, the angle in degrees, in radians of radians."""
+    import sympy as sp
+
     angles = sorted({a.args[0] for a in M.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
     for a in angles:
         swap = {sp.sin(a): sp.Symbol("_c"), sp.cos(a): sp.Symbol("_s")}
@@ -242,9 +232,12 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
                 return x.replace(lambda y: isinstance(y, (sp.sin, sp.cos)) and y.has(s),
                                  lambda y: y.func(y.args[0].xreplace({s: f * s})))
             add(code, f"{s} {'in degrees' if code == 'degrees' else 'in radians of radians'}", entry_map(scaled))
-    # the bodies' coordinates exchanged: all of them, the angle alone, the rate alone — within each constraint's
-    # rows (a whole Φ's bodies are exchanged joint by joint)
-    for rows_of, body_groups in (blocks if blocks is not None else [(None, groups)]):
+
+
+def _body_slips(M, add, blocks, in_A):
+    """The bodies' coordinates exchanged — all of them, the angle alone, the rate alone — within each constraint's
+    rows (a whole Φ's bodies are exchanged joint by joint)."""
+    for rows_of, body_groups in blocks:
         def within(f, rows_of=rows_of):
             N = M.copy()
             for i in (range(M.shape[0]) if rows_of is None else rows_of):
@@ -265,18 +258,6 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
                     if M.free_symbols & set(m) and (in_A or what == "rate"):
                         add("other_body", f"the other body's {what} ({qa[k]}↔{qb[k]})",
                             within(lambda x, m=m: x.xreplace(m)))
-    # rows: a driver's row left out or written twice; the whole ν or γ with the wrong sign
-    if not matrix and terms:
-        for i in drivers:
-            if i < M.shape[0]:
-                rows_ = [M[k, 0] for k in range(M.shape[0])]
-                add("missing_row", f"driver row {i + 1} left out", sp.Matrix(rows_[:i] + rows_[i + 1:]))
-                add("extra_row", f"driver row {i + 1} written twice", sp.Matrix(rows_[:i + 1] + rows_[i:]))
-        if quantity in ("nu", "gamma"):
-            add(f"{quantity}_sign", f"−{quantity}", -M)
-    for code, S, what in structural:
-        add(code, what, sp.Matrix(S) if not matrix else S)
-    return out if keep_all else distinct(out, M, q, qd, t, rng=rng, samples=samples)
 
 
 def row_mutants(expr, *, quantity="Phi", groups=()):
@@ -593,6 +574,26 @@ def code_mutants(fn, *, runs=(), rng=0):
     return out
 
 
+_SLIPS: dict = {}
+_SLIPS_KEPT = 256
+
+
+def slips(fn, call, key):
+    """(code, operator, value) of ``fn``'s code mutants at one set of data, those whose value differs from ``fn``'s
+    there: ``call(f)`` runs a function with the data, ``key`` names the data (a text). Kept for the last
+    :data:`_SLIPS_KEPT` keys — a numeric try-it names these wrong answers at every check."""
+    k = (fn, key)
+    if k not in _SLIPS:
+        if len(_SLIPS) >= _SLIPS_KEPT:
+            _SLIPS.pop(next(iter(_SLIPS)))
+        try:
+            _SLIPS[k] = tuple((m.code, m.operator, np.asarray(call(m.value), float))
+                              for m in code_mutants(fn, runs=[call]))
+        except Exception:  # noqa: BLE001 — a worked answer that cannot be mutated names nothing more
+            _SLIPS[k] = ()
+    return _SLIPS[k]
+
+
 def _replace(tree, old, new):
     class R(ast.NodeTransformer):
         def generic_visit(self, node):
@@ -662,57 +663,3 @@ def sample(found, limit):
                 picked.append(q.pop(0 if len(q) % 2 else len(q) // 2))
     order = {id(m): k for k, m in enumerate(found)}
     return sorted(picked, key=lambda m: order[id(m)])
-
-
-# ============================================================================================== outcomes
-def classify(result, mutant):
-    """``"blind"`` when ``result`` (a CheckResult) passed the mutant, ``"named"`` when it names the mutant's mistake
-    (:data:`SYNONYMS`), else ``"unnamed"`` — with the names given."""
-    if result.passed:
-        return "blind", ()
-    given = tuple(c for c in (result.mistakes or ()) if c)
-    ok = set().union(*(SYNONYMS.get(c, {c}) for c in {mutant.code} | set(mutant.also)))
-    if any(c in ok for c in given):
-        return "named", given
-    return "unnamed", given
-
-
-@dataclass
-class Tally:
-    """The outcomes of one item's mutants (a try-it, an exercise part): counts and the cases worth reading."""
-
-    item: str
-    mutants: int = 0
-    named: int = 0
-    unnamed: int = 0
-    blind: int = 0
-    blind_cases: list = field(default_factory=list)
-    unnamed_cases: list = field(default_factory=list)
-
-    def add(self, mutant, outcome, given=(), where="", why=""):
-        self.mutants += 1
-        if outcome == "named":
-            self.named += 1
-        elif outcome == "blind":
-            self.blind += 1
-            self.blind_cases.append(f"{mutant.code} ({mutant.operator}) passes at {where}: {why}")
-        else:
-            self.unnamed += 1
-            self.unnamed_cases.append(f"{mutant.code} ({mutant.operator}) at {where} named "
-                                      f"{', '.join(given) or '—'}")
-
-
-def format_table(tallies, detail=True):
-    """The mutation table: one line per item (mutants, named, unnamed, blind spots), the totals, and — with
-    ``detail`` — each blind spot and unnamed mutant under its item."""
-    lines = [f"{'item':<28} {'mutants':>7} {'named':>6} {'unnamed':>7} {'blind':>5}"]
-    for t in tallies:
-        lines.append(f"{t.item:<28} {t.mutants:>7} {t.named:>6} {t.unnamed:>7} {t.blind:>5}")
-        if detail:
-            lines += [f"    BLIND   {c}" for c in t.blind_cases]
-            lines += [f"    unnamed {c}" for c in t.unnamed_cases]
-    n = sum(t.mutants for t in tallies)
-    named = sum(t.named for t in tallies)
-    lines.append(f"{'total':<28} {n:>7} {named:>6} {sum(t.unnamed for t in tallies):>7} "
-                 f"{sum(t.blind for t in tallies):>5}   named {100.0 * named / max(n, 1):.1f} %")
-    return "\n".join(lines)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from kinbook.book.tryits import TRY_ITS, get
 from kinbook.book.tryits.mutations import mutation_tallies
-from kinbook.grading.mutants import format_table
+from kinbook.grading.mutant_names import format_table
 
 LIMIT = 30
 """Mutants per part (or try-it) and data at most, every code kept (run time)."""

@@ -4,7 +4,7 @@ import pytest
 
 import kinbook
 from kinbook.classroom.parts import Part, part
-from kinbook.classroom.validate.mutations import question_tests
+from kinbook.classroom.validate import question_tests
 from kinbook.errors import GradingError
 
 SIN_COS = ["x3 + 3*sin(phi3) - x4 + 1.5*cos(phi4)", "y3 + 3*cos(phi3) - y4 + 1.5*sin(phi4)"]

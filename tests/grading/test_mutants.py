@@ -7,6 +7,7 @@ import sympy as sp
 
 import kinbook
 from kinbook.grading import check_gamma, check_jacobian, check_phi, check_value
+from kinbook.grading import mutant_names as MN
 from kinbook.grading import mutants as MU
 
 
@@ -80,9 +81,9 @@ def test_value_mutants():
 
 def test_classify():
     m = MU.Mutant("missing_term", "drop", [sp.Integer(0)])
-    assert MU.classify(check_value(1.0, 1.0), m)[0] == "blind"
-    assert MU.classify(check_value(-2.0, 2.0), MU.Mutant("sign_flip", "s", -2.0))[0] == "named"
-    assert MU.classify(check_value(1.37, 2.0), MU.Mutant("sign_flip", "s", 1.37)) == ("unnamed", ("wrong_value",))
+    assert MN.classify(check_value(1.0, 1.0), m)[0] == "blind"
+    assert MN.classify(check_value(-2.0, 2.0), MU.Mutant("sign_flip", "s", -2.0))[0] == "named"
+    assert MN.classify(check_value(1.37, 2.0), MU.Mutant("sign_flip", "s", 1.37)) == ("unnamed", ("wrong_value",))
 
 
 @pytest.mark.parametrize("quantity, checker", [("Phi", check_phi), ("Phi_q", check_jacobian),
@@ -96,7 +97,7 @@ def test_the_checkers_name_the_mutants_of_a_revolute_joint(four_bar, quantity, c
         M = sp.Matrix(m.value)
         answer = ([[str(M[i, j]) for j in range(M.shape[1])] for i in range(M.shape[0])] if M.shape[1] > 1
                   else [str(e) for e in M])
-        outcome, given = MU.classify(checker(answer, c), m)
+        outcome, given = MN.classify(checker(answer, c), m)
         assert outcome != "blind", (m.code, m.operator)
         named += outcome == "named"
     assert named >= 0.9 * len(found)
@@ -109,10 +110,10 @@ def test_sample_keeps_every_code():
 
 
 def test_format_table_totals():
-    t = MU.Tally("x")
+    t = MN.Tally("x")
     t.add(MU.Mutant("sin_cos", "s", 0), "named")
     t.add(MU.Mutant("sign_flip", "s", 0), "blind", where="the notebook's data", why="the data")
-    text = MU.format_table([t])
+    text = MN.format_table([t])
     assert "BLIND" in text and "named 50.0 %" in text
 
 

@@ -15,11 +15,12 @@ from functools import lru_cache
 
 import numpy as np
 
+from ...grading import mutant_names as MN
 from ...grading import mutants as MU
 from .registry import TRY_ITS, same_data
 
-__all__ = ["SYMBOLIC", "variant_data", "function_mutants", "blind_spots", "REFERENCE_DRAWS", "item_mutants", "mutation_tally", "mutation_tallies", "answer_of",
-           "mutant_values"]
+__all__ = ["SYMBOLIC", "variant_data", "function_mutants", "blind_spots", "REFERENCE_DRAWS", "item_mutants",
+           "mutation_tally", "mutation_tallies", "answer_of"]
 
 SYMBOLIC = {"check_phi": "Phi", "check_jacobian": "Phi_q", "check_nu": "nu", "check_gamma": "gamma"}
 """The symbolic checkers and the quantity each one grades."""
@@ -27,9 +28,8 @@ SYMBOLIC = {"check_phi": "Phi", "check_jacobian": "Phi_q", "check_nu": "nu", "ch
 
 def variant_data(item, k):
     """The data of variant ``k`` of a try-it as ``kb.another(id, k)`` draws them (0: the notebook's), or None."""
-    from ...classroom.variant import draw, seed_from
+    from ...classroom.variant import MAX_DRAWS, draw, seed_from
     from ...errors import KinbookError
-    from . import MAX_DRAWS
 
     if k == 0 or not item.ranges:
         return dict(item.data) if k == 0 else None
@@ -84,40 +84,6 @@ def item_mutants(item, data, datas=None, limit=None):
         return MU.reference_mutants(item.target(**data), quantity, limit)
     runs = [_run(item, d) for d in (datas or [data])]
     return MU.code_mutants(item.solution, runs=runs)
-
-
-@lru_cache(maxsize=256)
-def _cached_values(id, key):
-    item = TRY_ITS[id]
-    data = {k: _unhashable(v) for k, v in key}
-    return tuple((m.code, m.operator, np.asarray(answer_of(item, m, data), float))
-                 for m in MU.code_mutants(item.solution, runs=[_run(item, data)]))
-
-
-def mutant_values(item, data):
-    """(code, operator, value) of the worked answer's code mutants at ``data`` — the wrong answers a numeric
-    try-it names (cached per data)."""
-    try:
-        key = tuple((k, _hashable(v)) for k, v in sorted(data.items()))
-        return _cached_values(item.id, key)
-    except Exception:  # noqa: BLE001 — a worked answer that cannot be mutated names nothing more
-        return ()
-
-
-def _hashable(v):
-    if isinstance(v, np.ndarray):
-        return ("array", v.shape, tuple(v.ravel().tolist()))
-    if isinstance(v, (list, tuple)):
-        return tuple(_hashable(x) for x in v)
-    return v
-
-
-def _unhashable(v):
-    if isinstance(v, tuple) and v and v[0] == "array":
-        return np.array(v[2]).reshape(v[1])
-    if isinstance(v, tuple):
-        return [_unhashable(x) for x in v]
-    return v
 
 
 REFERENCE_DRAWS = 6
@@ -190,7 +156,7 @@ def mutation_tally(item, variants=2, limit=None):
     """A :class:`~kinbook.grading.mutants.Tally` of one try-it: its mutants checked on the notebook's data and on
     ``variants`` drawn variants."""
     datas = [d for d in (variant_data(item, k) for k in range(variants + 1)) if d is not None]
-    tally = MU.Tally(item.id)
+    tally = MN.Tally(item.id)
     quantity = SYMBOLIC.get(getattr(item.checker, "__name__", ""))
     shared = None if quantity is not None else item_mutants(item, datas[0], datas)
     for k, data in enumerate(datas):
@@ -208,7 +174,7 @@ def mutation_tally(item, variants=2, limit=None):
             except Exception:  # noqa: BLE001 — a code mutant that fails on these data: not an answer here
                 continue
             result = item.check(answer, data)
-            outcome, given = MU.classify(result, _readings(item, data, m, answer) if quantity is None else m)
+            outcome, given = MN.classify(result, _readings(item, data, m, answer) if quantity is None else m)
             why = ""
             if outcome == "blind":
                 why = "the checker lets it through"
@@ -243,9 +209,8 @@ def _readings(item, data, m, answer):
 
 def mutation_tallies(ids=None, variants=2, limit=None, progress=None):
     """Tallies of the try-its ``ids`` (default: all of them, in notebook order)."""
-    from . import _load
+    from . import ch13, ch14  # noqa: F401  (registering the try-its)
 
-    _load()
     out = []
     for id in ids or list(TRY_ITS):
         t = mutation_tally(TRY_ITS[id], variants, limit)

@@ -180,10 +180,18 @@ class TryIt:
                                                                                 what=text_message("notebook_data"))))
         for value, detail in seen:
             target.variants.insert(0, ("wrong_data", np.asarray(value, float), detail, None))
-        from .mutations import mutant_values  # the worked answer's slips, after the catalogue's own (issue 29)
-
-        target.variants += [(code, value, None, None) for code, _, value in mutant_values(self, data)]
+        target.variants += [(code, value, None, None) for code, _, value in self.slips(data)]
         return target
+
+    def slips(self, data=None):
+        """(code, operator, value) of the worked answer's slips at ``data`` (:func:`kinbook.grading.mutants.slips`):
+        the wrong answers a numeric try-it names after the catalogue's own (issue 29)."""
+        from ...grading.mutants import slips
+
+        data = self._data(data)
+        names, context = self._data_names(), self.context()
+        key = repr([(k, np.asarray(data[k], dtype=object).tolist()) for k in sorted(data)])
+        return slips(self.solution, lambda f: f(**context, **{n: data[n] for n in names}), key)
 
     def reference_answer(self, data=None):
         """The worked answer's value, computed from the library's context."""

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from ...errors import GradingError
 
-__all__ = ["validate", "Check", "SAMPLE_STUDENTS"]
+__all__ = ["validate", "Check", "SAMPLE_STUDENTS", "question_tests"]
 
 #: Ids whose variants are checked when no roster is given.
 SAMPLE_STUDENTS = ("validate-a", "validate-b", "validate-c")
@@ -58,10 +58,25 @@ def _blank(result):
     return problems
 
 
+def question_tests(p, where="the source's data"):
+    """The outcomes of a part's own question tests (``part(..., tests=[...])``): a list of (ok, text)."""
+    out = []
+    for k, (answer, expect) in enumerate(p.tests):
+        result = p.run(answer)
+        if expect is None:
+            ok = result.passed
+            text = f"test {k + 1} (a right answer) {'passes' if ok else 'is refused: ' + ', '.join(result.mistakes)}"
+        else:
+            ok = not result.passed and expect in (result.mistakes or ())
+            got = "passes" if result.passed else "is named " + (", ".join(result.mistakes) or "—")
+            text = f"test {k + 1} (must be named {expect}) {got}"
+        out.append((ok, f"part {p.name} at {where}: {text}"))
+    return out
+
+
 def _question_tests(src):
     """A Check of the parts' own question tests on the source's data (None when no part declares any)."""
     from ..variant import references
-    from .mutations import question_tests
 
     parts = [p for p in references(src) if p.tests]
     if not parts:

@@ -11,9 +11,10 @@ right answer in another form must pass.
 
 from __future__ import annotations
 
+from ...grading import mutant_names as MN
 from ...grading import mutants as MU
 
-__all__ = ["mutation_tallies", "part_mutants", "question_tests", "SYMBOLIC"]
+__all__ = ["mutation_tallies", "part_mutants", "SYMBOLIC"]
 
 SYMBOLIC = {"phi": "Phi", "jacobian": "Phi_q", "nu": "nu", "gamma": "gamma"}
 """The parts' symbolic checks and the quantity each grades."""
@@ -46,22 +47,6 @@ def _answer(mutant):
     return [str(M[i, 0]) for i in range(M.shape[0])]
 
 
-def question_tests(p, where="the source's data"):
-    """The outcomes of a part's own question tests (``part(..., tests=[...])``): a list of (ok, text)."""
-    out = []
-    for k, (answer, expect) in enumerate(p.tests):
-        result = p.run(answer)
-        if expect is None:
-            ok = result.passed
-            text = f"test {k + 1} (a right answer) {'passes' if ok else 'is refused: ' + ', '.join(result.mistakes)}"
-        else:
-            ok = not result.passed and expect in (result.mistakes or ())
-            got = "passes" if result.passed else "is named " + (", ".join(result.mistakes) or "—")
-            text = f"test {k + 1} (must be named {expect}) {got}"
-        out.append((ok, f"part {p.name} at {where}: {text}"))
-    return out
-
-
 def mutation_tallies(source, *, students=None, variants=2, limit=None, progress=None):
     """Per part, a :class:`~kinbook.grading.mutants.Tally` of its mutants on the source's data and on the variants
     of ``students`` (default: the first ``variants`` of :data:`~kinbook.classroom.validate.SAMPLE_STUDENTS` when
@@ -73,7 +58,7 @@ def mutation_tallies(source, *, students=None, variants=2, limit=None, progress=
     """
     from ..notebook import find_parameters, load_source
     from ..variant import references, student_parameters
-    from . import SAMPLE_STUDENTS
+    from . import SAMPLE_STUDENTS, question_tests
 
     src = load_source(source)
     datas = [("the source's data", None)]
@@ -83,13 +68,13 @@ def mutation_tallies(source, *, students=None, variants=2, limit=None, progress=
     tallies, failures = {}, []
     for where, values in datas:
         for p in references(src, values):
-            tally = tallies.setdefault(p.name, MU.Tally(f"{src.exercise}:{p.name}"))
+            tally = tallies.setdefault(p.name, MN.Tally(f"{src.exercise}:{p.name}"))
             found = part_mutants(p, limit)
             if limit is not None:
                 found = MU.sample(found, limit)
             for m in found:
                 result = p.run(_answer(m))
-                outcome, given = MU.classify(result, m)
+                outcome, given = MN.classify(result, m)
                 tally.add(m, outcome, given, where, "the checker lets it through")
             failures += [text for ok, text in question_tests(p, where) if not ok]
     out = list(tallies.values())
