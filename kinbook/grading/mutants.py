@@ -461,6 +461,10 @@ def _sites(tree):
     return out
 
 
+EVERYWHERE = ("sin_cos", "arctan_quadrant", "degrees", "radians_twice", "A_for_B")
+"""Code slips that are also made at every place they apply at once (a method, not a typo)."""
+
+
 def _const(n):
     return n.value if isinstance(n, ast.Constant) and isinstance(n.value, (int, float)) else None
 
@@ -521,13 +525,22 @@ def compiled_mutants(fn):
     """Every syntactic code mutant of ``fn``: (code, operator, function) — compiled once, in ``fn``'s module."""
     tree = _function_tree(fn)
     out = []
-    for site in _sites(tree):
+    sites = [[site] for site in _sites(tree)]
+    for code in EVERYWHERE:  # a method's slip made at every place it applies (arctan for both arctan2 …)
+        group = [site for site in _sites(tree) if site.code == code and site.index is not None]
+        if len(group) > 1:
+            sites.append(group)
+    for group in sites:
         fresh = _function_tree(fn)
-        if site.index is None:
-            new = site.apply(fresh)
+        if group[0].index is None:
+            new = group[0].apply(fresh)
         else:
-            node = list(ast.walk(fresh))[site.index]
-            new = _replace(fresh, node, site.apply(node))
+            nodes = list(ast.walk(fresh))
+            new = fresh
+            for site in group:
+                node = nodes[site.index]
+                new = _replace(new, node, site.apply(node))
+        site = group[0] if len(group) == 1 else _Site(group[0].code, f"{group[0].code}: everywhere", None, None)
         ast.fix_missing_locations(new)
         try:
             ns = {}

@@ -144,3 +144,17 @@ def test_the_new_codes_are_named_on_realistic_answers(four_bar):
     A = np.asarray(item.data["A_given"])
     quadrant = [np.arctan(A[0, 2] / -A[1, 2]), np.arccos(A[2, 2]), np.arctan2(A[2, 0], A[2, 1])]
     assert item.check(quadrant).mistakes == ["arctan_quadrant"]
+
+
+def test_the_theta_rate_slip_no_longer_passes():
+    """14-2 Try it 2 had θ̇ = 0, where both θ̇ terms with the wrong sign passed (review s4, FALSE-PASS 3)."""
+    from kinbook.book.tryits import TRY_ITS, get
+
+    get("13-1/try-1")
+    item = TRY_ITS["14-2/try-2"]
+    d = item.data
+    th, ph = np.radians([d["theta_deg"], d["phi_deg"]])
+    wrong = [np.sin(th) * np.sin(ph) * d["psi_rate"] - np.cos(ph) * d["theta_rate"],
+             np.sin(th) * np.cos(ph) * d["psi_rate"] + np.sin(ph) * d["theta_rate"],
+             np.cos(th) * d["psi_rate"] + d["phi_rate"]]
+    assert not item.check(wrong).passed
