@@ -91,15 +91,16 @@ class Tally:
 def format_table(tallies, detail=True):
     """The mutation table: one line per item (mutants, named, unnamed, blind spots), the totals, and — with
     ``detail`` — each blind spot and unnamed mutant under its item."""
-    lines = [f"{'item':<28} {'mutants':>7} {'named':>6} {'unnamed':>7} {'blind':>5}"]
+    w = max([len(t.item) for t in tallies] + [5]) + 2
+    lines = [f"{'item':<{w}} {'mutants':>7} {'named':>6} {'unnamed':>7} {'blind':>5}"]
     for t in tallies:
-        lines.append(f"{t.item:<28} {t.mutants:>7} {t.named:>6} {t.unnamed:>7} {t.blind:>5}")
+        lines.append(f"{t.item:<{w}} {t.mutants:>7} {t.named:>6} {t.unnamed:>7} {t.blind:>5}")
         if detail:
             lines += [f"    BLIND   {c}" for c in t.blind_cases]
             lines += [f"    unnamed {c}" for c in t.unnamed_cases]
     n = sum(t.mutants for t in tallies)
     named = sum(t.named for t in tallies)
-    lines.append(f"{'total':<28} {n:>7} {named:>6} {sum(t.unnamed for t in tallies):>7} "
+    lines.append(f"{'total':<{w}} {n:>7} {named:>6} {sum(t.unnamed for t in tallies):>7} "
                  f"{sum(t.blind for t in tallies):>5}   named {100.0 * named / max(n, 1):.1f} %")
     return "\n".join(lines)
 
