@@ -130,7 +130,8 @@ def blind_spots(item, data):
             continue
         near = np.abs(v - ref) <= 1e-2 * (1.0 + np.abs(ref))
         near |= np.abs(np.mod(v - ref + np.pi, 2 * np.pi) - np.pi) <= 1e-2  # angles compared modulo 2π
-        if np.all(near) and item.check(v, data).passed:
+        other = np.abs(v + ref) <= 1e-2 * (1.0 + np.abs(ref))  # −p, the other right answer of p
+        if (np.all(near) or np.all(other)) and item.check(v, data).passed:
             out.append(m)
     return out
 
