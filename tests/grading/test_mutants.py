@@ -59,7 +59,9 @@ def _worked(*, phi_deg, xi):
 
 def test_code_operators_and_the_data_that_hides_them():
     runs = [lambda f, d=d: f(**d) for d in ({"phi_deg": 45, "xi": 1.0}, {"phi_deg": 30, "xi": 0.7})]
-    found = MU.code_mutants(_worked, runs=runs)
+    from kinbook.book.tryits.code_mutants import code_mutants
+
+    found = code_mutants(_worked, runs=runs)
     codes = _codes(found)
     assert {"sin_cos", "degrees", "radians_twice", "sign_flip", "missing_term", "factor_2_missing"} <= codes
     swap = next(m for m in found if m.operator == "np.cos → np.sin")

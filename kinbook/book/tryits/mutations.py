@@ -17,6 +17,7 @@ import numpy as np
 
 from ...grading import mutant_names as MN
 from ...grading import mutants as MU
+from .code_mutants import code_mutants
 from .registry import TRY_ITS, same_data
 
 __all__ = ["SYMBOLIC", "variant_data", "function_mutants", "blind_spots", "REFERENCE_DRAWS", "item_mutants",
@@ -83,7 +84,7 @@ def item_mutants(item, data, datas=None, limit=None):
     if quantity is not None:
         return MU.reference_mutants(item.target(**data), quantity, limit)
     runs = [_run(item, d) for d in (datas or [data])]
-    return MU.code_mutants(item.solution, runs=runs)
+    return code_mutants(item.solution, runs=runs)
 
 
 REFERENCE_DRAWS = 6
@@ -103,7 +104,7 @@ def function_mutants(id):
     if item.ranges:
         datas += [draw(item.ranges, item.data, seed_from(f"try-it:{id}:reference:{k}")) for k in range(REFERENCE_DRAWS)]
     runs = [_run(item, d) for d in datas]
-    return tuple(MU.code_mutants(item.solution, runs=runs))
+    return tuple(code_mutants(item.solution, runs=runs))
 
 
 def blind_spots(item, data):

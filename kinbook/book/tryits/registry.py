@@ -186,7 +186,7 @@ class TryIt:
     def slips(self, data=None):
         """(code, operator, value) of the worked answer's slips at ``data`` (:func:`kinbook.grading.mutants.slips`):
         the wrong answers a numeric try-it names after the catalogue's own (issue 29)."""
-        from ...grading.mutants import slips
+        from .code_mutants import slips
 
         data = self._data(data)
         names, context = self._data_names(), self.context()
