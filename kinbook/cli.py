@@ -214,10 +214,40 @@ def _cmd_validate(args):
     from .classroom.roster import read_roster
     from .classroom.validate import validate
 
-    students = [s.student for s in read_roster(args.roster, args.roster_id)] if args.roster else None
+    if args.source is None and not args.try_its:
+        raise SystemExit("kinbook validate: give a SOURCE notebook, or --mutations --try-its")
+    students = [s.student for s in read_roster(args.roster, args.roster_id)] if args.roster and args.source else None
+    if args.mutations:
+        return _mutations(args, students)
     checks = validate(args.source, students=students, timeout=args.timeout, memory=args.memory,
                       isolation=not args.no_isolation, progress=print)
     print(f"valid: {len(checks)} notebook(s) graded as expected")
+
+
+def _mutations(args, students):
+    """``kinbook validate --mutations``: the mutation tables, exit status 1 on a blind spot or a failed test."""
+    from .grading.mutant_names import format_table
+
+    tallies, failures = [], []
+    if args.source is not None:
+        from .classroom.validate.mutations import mutation_tallies
+
+        found, failures = mutation_tallies(args.source, students=students, variants=args.variants, limit=args.limit)
+        tallies += found
+    if args.try_its:
+        from .book.tryits.mutations import mutation_tallies as tryit_tallies
+
+        tallies += tryit_tallies(None if args.try_its == ["all"] else args.try_its, variants=args.variants,
+                                 limit=args.limit)
+    print(format_table(tallies))
+    for f in failures:
+        print(f"FAIL {f}")
+    blind = sum(t.blind for t in tallies)
+    if blind or failures:
+        print(f"not valid: {blind} blind spot(s), {len(failures)} failed question test(s)")
+        return 1
+    print("valid: no mutant passes")
+    return 0
 
 
 def _cmd_override(args):
@@ -323,7 +353,16 @@ def _course_parsers(sub):
         p.add_argument("--roster-id", metavar="COLUMN", help="the roster's column holding the kinbook id")
 
     p = sub.add_parser("validate", help="grade a source's own solution (and variants) and its blank release")
-    p.add_argument("source", type=existing_file, help="instructor source notebook")
+    p.add_argument("source", type=existing_file, nargs="?", help="instructor source notebook")
+    p.add_argument("--mutations", action="store_true",
+                   help="grade every mutant of every part's reference (the mistakes students make) instead: a table "
+                   "per part, exit status 1 when one passes (a blind spot)")
+    p.add_argument("--try-its", nargs="+", metavar="ID",
+                   help="with --mutations: the notebooks' try-its (ids such as 13-1/try-2, or all)")
+    p.add_argument("--variants", type=int, default=2,
+                   help="with --mutations: variants tried besides the source's data (default: %(default)s)")
+    p.add_argument("--limit", type=int, default=60,
+                   help="with --mutations: mutants per part and data at most, every code kept (default: %(default)s)")
     roster(p)
     p.add_argument("--timeout", type=positive, default=_default(validate, "timeout"),
                    help="CPU seconds per notebook's kernel; one that waits instead of computing is "
@@ -558,7 +597,7 @@ def main(argv=None):
         from .core.atomic import protect
 
         with protect(*_inputs(args)):  # no file a command writes may be one it reads
-            args.func(args)
+            status = args.func(args)
     except _UsageError as exc:
         print(exc, file=sys.stderr)
         return 2
@@ -587,7 +626,7 @@ def main(argv=None):
         print(f"kinbook: internal error: {type(exc).__name__}: {_one_line(exc)} (run with --debug for the "
               "traceback, and please report it)", file=sys.stderr)
         return 1
-    return 0
+    return status if isinstance(status, int) else 0  # a command's own verdict (validate --mutations: 1)
 
 
 def _inputs(args):

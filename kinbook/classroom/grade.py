@@ -324,7 +324,7 @@ def _part_grade(p, decoded, problems, stopped, cells, errors, used, reveal_hidde
         return PartGrade(p.name, score, p.points, "ok", _hidden_verdict(result), "", used[p.answer],
                          mistakes=mistake_rows(result))
     return PartGrade(p.name, score, p.points, "ok", " | ".join(result.messages)[:1000],
-                     result._repr_html_(), used[p.answer], mistakes=mistake_rows(result))
+                     result.html(math=False), used[p.answer], mistakes=mistake_rows(result))
 
 
 _CALLS = {}

@@ -8,6 +8,8 @@ An instructor writes, in a code cell of the source notebook::
 * ``check`` names a kinbook checker: ``"phi"``, ``"jacobian"``, ``"nu"``, ``"gamma"`` (``target`` is a
   mechanism or one of its constraints) or ``"value"``, ``"rotation"``, ``"euler_parameters"`` (``expected``
   is the reference value, computed with kinbook in the notebook);
+* ``tests=[(answer, code), …]``: question tests — a wrong answer and the mistake code it must be named by, or a
+  right answer in another form with ``None`` (run by ``kinbook validate``, :mod:`kinbook.classroom.validate`);
 * other keyword arguments go to the checker (``order="book"``, ``rtol=...``, ``angles=True`` …); ``phi="Phi"``
   on a Jacobian, ν or γ part grades it against the student's own Φ (error carried forward).
 
@@ -63,6 +65,9 @@ class Part:
         Keyword arguments of the checker.
     hidden : bool
         Declared between ``### BEGIN HIDDEN CHECKS`` and ``### END HIDDEN CHECKS``.
+    tests : list of (answer, code or None)
+        The author's question tests: an answer a student may give and the mistake code it must be named by, or
+        None for a right answer in another form that must pass (``kinbook validate`` runs them).
     """
 
     name: str
@@ -73,6 +78,7 @@ class Part:
     expected: object = None
     options: dict = field(default_factory=dict)
     hidden: bool = False
+    tests: list = field(default_factory=list)
 
     @property
     def checker(self):
@@ -125,8 +131,32 @@ def _validate(name, points, answer, check, target, expected):
         raise GradingError(f"part {name!r}: check {check!r} needs expected= (computed with kinbook)")
 
 
-def part(name, points, *, answer, check, target=None, expected=None, **options):
+def _tests(name, tests):
+    """The question tests of part ``name`` as a list of (answer, code or None), each code a catalogued one."""
+    from ..grading import MISTAKES
+
+    if tests is None:
+        return []
+    if not isinstance(tests, (list, tuple)) or len(tests) > 100:
+        raise GradingError(f"part {name!r}: tests must be a list of (answer, mistake code or None), at most 100")
+    out = []
+    for k, test in enumerate(tests):
+        if not isinstance(test, (list, tuple)) or len(test) != 2:
+            raise GradingError(f"part {name!r}: test {k + 1} must be (answer, mistake code or None), got "
+                               f"{str(test)[:80]!r}")
+        answer, code = test
+        if code is not None and code not in MISTAKES:
+            raise GradingError(f"part {name!r}: test {k + 1} names {str(code)[:40]!r}, which is no mistake code "
+                               f"(docs/mistakes.md lists them)")
+        out.append((answer, code))
+    return out
+
+
+def part(name, points, *, answer, check, target=None, expected=None, tests=None, **options):
     """Declare a graded part (see the module docstring); in a notebook, check the answer now.
+
+    ``tests=[(answer, code), …]`` are the author's question tests: each wrong ``answer`` must be refused and named
+    ``code`` (a catalogue code), each one with ``None`` for its code must pass — ``kinbook validate`` runs them.
 
     Returns
     -------
@@ -135,7 +165,7 @@ def part(name, points, *, answer, check, target=None, expected=None, **options):
         returned; elsewhere the verdict is returned. None while grading or when ``answer`` is not assigned.
     """
     _validate(name, points, answer, check, target, expected)
-    p = Part(name, float(points), answer, check, target, expected, dict(options))
+    p = Part(name, float(points), answer, check, target, expected, dict(options), tests=_tests(name, tests))
     if _recorder is not None:
         _recorder.append(p)
         return None

@@ -30,11 +30,15 @@ A check runs one way through small stages, each one concept in one module. The m
 * diagnose — ``diagnose`` (naming the mistake), ``mistakes`` (wrong answers generated from the reference),
   ``slips`` (more of them), ``misprints`` (the book's misprinted formulas);
 * witness — ``witness`` (rows checked again where no one could have looked);
-* report — ``report`` (the verdict written), ``result`` (CheckResult, RowResult), ``catalogue`` (every mistake's
-  code, title and hint), ``_i18n`` (sentences written when shown);
+* diagnose, continued — ``mutant_names`` (names for the slips the mutants stand for);
+* report — ``echo`` (the answer as it was read, shown before the verdict), ``report`` (the verdict written),
+  ``result`` (CheckResult, RowResult), ``catalogue`` (every mistake's code, title and hint), ``_i18n`` (sentences
+  written when shown);
 * numbers — ``numbers`` (read, tolerances, compare entry by entry, name the slip), under ``values``
   (check_value), ``rotation_values`` (check_rotation, check_euler_parameters), ``newton`` (check_iterates) and
   ``expected`` (expected numbers that know their mistakes);
+* validation — ``mutants`` (the reference turned into the mistakes students make, each with its code: what
+  ``kinbook validate --mutations`` grades through the real checkers);
 * outside tools — ``lms`` (nbgrader and otter-grader tests).
 """
 
@@ -53,7 +57,14 @@ _FROM = {
 }
 
 
+_CHECKS = {"check_phi": "phi", "check_jacobian": "jacobian", "check_nu": "nu", "check_gamma": "gamma",
+           "check_value": "value", "check_rotation": "rotation", "check_euler_parameters": "euler_parameters"}
+"""The package's checkers are the table's: their results show the answer as it was read (:mod:`.echo`)."""
+
+
 def __getattr__(name):
+    if name in _CHECKS:
+        return CHECKERS[_CHECKS[name]].function
     if name in _FROM:
         return getattr(importlib.import_module(f".{_FROM[name]}", __name__), name)
     if name == "expected":

@@ -133,6 +133,7 @@ _TEXT = {
     "h.mistakes": N_("mistakes"),
     "h.passed": N_("passed"),
     "h.failed": N_("failed"),
+    "h.read_as": N_("your answer, as read"),
     "all_correct": Np_("{what} is correct: its only row matches kinbook's reference.",
                        "{what} is correct: all {n} rows match kinbook's reference."),
     "all_correct_equivalent": Np_("{what} is correct: your row is equivalent to the reference's {m}, constraint by "

@@ -286,6 +286,36 @@ _ENTRIES += [
           "sign, evaluate Φ_q and Φ at the current q_k (and at the question's t)")),
 ]
 
+# ------------------------------------------------------------- what mutation testing found unnamed (issue 29)
+_ENTRIES += [
+    _m("sin_cos",
+       N_("sin and cos exchanged"),
+       N_("in A(φ) = [[cos φ, −sin φ], [sin φ, cos φ]] the cosine sits on the diagonal: ξ goes with cos φ in x and "
+          "with sin φ in y (eq. 5); write each product from A's row, not from memory"),
+       rotation=N_("each elementary turn has its cosines on the diagonal and ±sin off it: write A_z and A_x from "
+                   "their definitions (§14.2), not from memory"),
+       angles=N_("θ = arccos a33, not arcsin: the third row of A is [sin θ sin φ, sin θ cos φ, cos θ] (§14.2)"),
+       omega=N_("write ω' = [ψ̇ sin θ sin φ + θ̇ cos φ, ψ̇ sin θ cos φ − θ̇ sin φ, ψ̇ cos θ + φ̇] term by term: each "
+                "sine and cosine belongs to one angle's projection (§14.2)"),
+       parameters=N_("e0 = cos(χ/2) and e = u sin(χ/2): the cosine goes with e0, the sine with the axis")),
+    _m("other_body",
+       N_("the other body's coordinate"),
+       N_("each point turns with its own body: A_i s'_i takes body i's angle φ_i (and its rate φ̇_i), A_j s'_j body "
+          "j's; check which body each point, angle and rate belongs to")),
+    _m("radians_twice",
+       N_("an angle converted to radians twice"),
+       N_("the angle is already in radians (the coordinates φ_i, the result of arctan2 or arccos): convert only a "
+          "value given in degrees, once")),
+    _m("arctan_quadrant",
+       N_("arctan where arctan2 belongs"),
+       N_("arctan(y/x) returns an angle in (−90°, 90°) and loses the quadrant when x < 0: read the angle with "
+          "arctan2(y, x), which keeps the signs of both")),
+    _m("factor_2_extra",
+       N_("a term counted twice"),
+       N_("a term is twice what it should be: the 2 of 2Φ_qt q̇ belongs to the cross terms only; the squared rates "
+          "φ̇² come once (eq. 13)")),
+]
+
 MISTAKES = {m.code: m for m in _ENTRIES}
 """Catalogue entries by code."""
 

@@ -13,7 +13,7 @@ import itertools
 import numpy as np
 
 from . import mistakes as M
-from . import slips
+from . import mutant_names, slips
 from ._i18n import Msg
 from .compare import same, scale_match, scale_of
 from .equivalence import in_span
@@ -44,6 +44,9 @@ def phi(target, answer, data, matching, rtol):
     wrong = [r for r in wrong if r.code is None]
     if wrong and free:
         _terms_phi(target, data, wrong, free, rtol)
+    wrong = [r for r in wrong if r.code is None]
+    if wrong and free:
+        mutant_names.name_phi_rows(target, data, wrong, free, rtol)
     wrong = [r for r in wrong if r.code is None]
     if wrong:
         for r, j in _pair(target, answer, wrong, free):
@@ -398,19 +401,25 @@ def derived(target, quantity, answer, data, matching, rtol, own=None):
         S = data.S[:, r.k]
         if not Q.per_coordinate:
             if r.code is None:
-                hit = _terms_derived(target, ex, r, own, S, expected, rtol)
+                hit = _terms_derived(target, ex, r, own, S, expected, rtol) or \
+                    mutant_names.name_derived_row(target, ex, r, own, S, expected, rtol)
                 r.code, r.detail, r.erratum = hit if hit is not None else ("wrong_value", None, None)
             r.score = 0.0
             continue
         r.entries, r.score = entries(S, expected, rtol, r.code, cand)
         if r.code is None:
             named = [e for e in r.entries if e not in ("ok", "wrong_value")]
-            hit = None if named else _terms_derived(target, ex, r, own, S, expected, rtol)
+            hit = None if named else (_terms_derived(target, ex, r, own, S, expected, rtol)
+                                      or mutant_names.name_derived_row(target, ex, r, own, S, expected, rtol))
             if hit is not None:  # the Jacobian of Φ with a term's sign flipped or a term dropped
                 r.code, r.detail, r.erratum = hit
                 r.entries, r.score = entries(S, expected, rtol, r.code, cand)
-            else:
+            elif not named:  # a slip inside the wrong entries themselves (a term's sign, sin ↔ cos …)
+                r.entries = mutant_names.name_entries(target, ex, r, S, r.entries, rtol)
+                named = [e for e in r.entries if e not in ("ok", "wrong_value")]
                 r.code = named[0] if named else "wrong_value"
+            else:
+                r.code = named[0]
 
 
 def eg_rows(target, data, matching, rtol):

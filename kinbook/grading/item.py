@@ -27,9 +27,14 @@ from typing import Any, Callable
 import numpy as np
 
 from ..errors import GradingError
+from .echo import echoed
 from .quantities import GAMMA, NU, PHI, PHI_Q, Quantity
 
 __all__ = ["Checker", "CHECKERS", "checker_for", "Item", "seed_from", "draw", "draw_with"]
+
+
+_FUNCTIONS = {}
+"""The built-in checkers' functions, loaded (and wrapped to echo the answer) when first used."""
 
 
 @dataclass(frozen=True)
@@ -50,6 +55,8 @@ class Checker:
         The quantity it grades (:mod:`kinbook.grading.quantities`), for a checker against a target.
     implementation : callable or None
         The function itself (a checker declared outside kinbook.grading, docs/extending.md).
+    echo : bool
+        Its results carry the answer as it was read (:func:`kinbook.grading.echo.echoed`), shown before the verdict.
     """
 
     name: str
@@ -57,13 +64,21 @@ class Checker:
     against: str
     quantity: Quantity | None = None
     implementation: Callable | None = None
+    echo: bool = True
 
     @property
     def function(self):
-        """The checker function: ``implementation``, or ``check_<name>`` of its module."""
+        """The checker function: ``implementation``, or ``check_<name>`` of its module, its results carrying the
+        answer as read (``echo``)."""
         if self.implementation is not None:
             return self.implementation
-        return getattr(importlib.import_module(f"{__package__}.{self.module}"), self.function_name)
+        fn = _FUNCTIONS.get(self.name)
+        if fn is None:
+            fn = getattr(importlib.import_module(f"{__package__}.{self.module}"), self.function_name)
+            if self.echo:
+                fn = echoed(fn, self.quantity.name if self.quantity is not None else None)
+            _FUNCTIONS[self.name] = fn
+        return fn
 
     @property
     def function_name(self):
@@ -86,7 +101,7 @@ CHECKERS = {c.name: c for c in (
     Checker("value", "values", "expected"),
     Checker("rotation", "rotation_values", "expected"),
     Checker("euler_parameters", "rotation_values", "expected"),
-    Checker("iterates", "newton", "expected"),
+    Checker("iterates", "newton", "expected", echo=False),
 )}
 """Every checker, by the name exercises use for it."""
 
@@ -98,7 +113,7 @@ def checker_for(checker):
     if isinstance(checker, str):
         return CHECKERS[checker]
     found = next((c for c in CHECKERS.values() if c.function_name == getattr(checker, "__name__", None)
-                  and c.function is checker), None)
+                  and checker in (c.function, getattr(c.function, "__wrapped__", None))), None)
     if found is None:
         raise GradingError(f"{getattr(checker, '__name__', checker)!r} is not a checker of kinbook.grading.CHECKERS")
     return found

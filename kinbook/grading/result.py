@@ -83,6 +83,9 @@ class CheckResult:
         "Φ", "Φ_q", "ν", "γ" or the name of a value (in the current language).
     columns : tuple of str
         Names of the columns of Φ_q (coordinates), when ``rows`` carry entries.
+    read : (str, str or None) or None
+        The answer as the checker read it, as plain text and as LaTeX (:mod:`kinbook.grading.echo`), shown before
+        the verdict; None when it was not read (a refused answer says why instead).
     """
 
     passed: bool
@@ -92,6 +95,7 @@ class CheckResult:
     rows: tuple
     _quantity: object
     columns: tuple
+    _echo = None
 
     def __init__(self, passed, score, messages=(), mistakes=(), rows=(), quantity="", columns=()):
         object.__setattr__(self, "passed", bool(passed))
@@ -113,21 +117,54 @@ class CheckResult:
     def __bool__(self):
         return bool(self.passed)
 
+    @property
+    def read(self):
+        """The answer as read, ``(text, latex)``, or None (made when first asked for: a result never shown costs
+        nothing)."""
+        echo = self._echo
+        if callable(echo):
+            try:
+                echo = echo()
+            except Exception:  # noqa: BLE001 — an answer that cannot be shown as read is not echoed
+                echo = None
+            object.__setattr__(self, "_echo", echo)
+        return echo
+
+    def echo(self, found):
+        """Attach the answer as read: ``(text, latex)``, or a function returning it (or None) when first shown, or
+        another CheckResult whose echo this one shares; returns self."""
+        if isinstance(found, CheckResult):
+            found = found._echo
+        object.__setattr__(self, "_echo", found)
+        return self
+
     def __repr__(self):
         word = render(Msg("h.passed" if self.passed else "h.failed"))
         head = f"CheckResult({self.quantity}: {word}, {render(Msg('h.score'))}={self.score:.2f}"
         if self.mistakes:
             head += f", {render(Msg('h.mistakes'))}={self.mistakes}"
         lines = [head + ")"]
+        if self.read is not None:
+            lines.append(f"  {render(Msg('h.read_as'))}: {self.read[0]}")
         lines += [f"  {m}" for m in self.messages]
         return "\n".join(lines)
 
     def _repr_html_(self):
+        return self.html(math=True)
+
+    def html(self, math=True):
+        """The result as HTML: the answer as read first (typeset as LaTeX for MathJax with ``math``, as plain text
+        otherwise — a feedback page has no MathJax), then the verdict, the messages and the rows."""
         colour = "#155724" if self.passed else "#721c24"
         verdict = "✓" if self.passed else "✗"
         esc = html.escape
-        out = [
-            f'<div><p style="color:{colour};font-weight:bold">{verdict} {esc(self.quantity)} — '
+        out = ["<div>"]
+        if self.read is not None:
+            text, latex = self.read
+            shown = f"\\[{esc(latex)}\\]" if math and latex else f"<code>{esc(text)}</code>"
+            out.append(f'<p class="kb-read">{esc(render(Msg("h.read_as")))}: {shown}</p>')
+        out += [
+            f'<p style="color:{colour};font-weight:bold">{verdict} {esc(self.quantity)} — '
             f"{esc(render(Msg('h.score')))} {self.score:.2f}</p>"
         ]
         if self.notes:

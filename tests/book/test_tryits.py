@@ -169,8 +169,8 @@ def test_a_scaled_value_names_the_step_not_the_factor(item):
     "multiplied by 0.159155" — that ratio gives the answer — but the step to check."""
     import numpy as np
 
-    from kinbook.grading.report import fmt
     from kinbook.grading.numbers import PLAUSIBLE_FACTORS
+    from kinbook.grading.report import fmt
 
     value = np.asarray(item.reference_answer(), float)
     for c in PLAUSIBLE_FACTORS:

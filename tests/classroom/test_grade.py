@@ -286,6 +286,9 @@ def test_feedback_folder_per_student(batch):
     page = (fb / "wrong" / "tiny.html").read_text(encoding="utf-8")
     assert "revolute" in page and "<table" in page
     assert "Phi_OA = sp.Matrix([x1 + x2 + sp.cos(phi2), y1 + y2])" in page  # the student's own cell, as written
+    # the answer as the grader read it, in plain text before the verdict (a feedback page has no MathJax; issue 29)
+    assert 'your answer, as read: <code>[x1 + x2 + cos(phi2), y1 + y2]</code>' in page
+    assert page.index("your answer, as read") < page.index("score 0.")
 
 
 def test_rerun_skips_graded_submissions_unless_forced(batch, tmp_path):

@@ -100,8 +100,11 @@ def _shown(result):
     import html
     import re
 
-    page = html.unescape(re.sub(r"<[^>]+>", " ", result._repr_html_()))
-    return "\n".join([page, str(result)] + result.messages + [row.message for row in result.rows])
+    # the student's own answer, echoed as read (issue 29), is theirs: it is left out, the rest must not leak
+    page = re.sub(r'<p class="kb-read">.*?</p>', " ", result._repr_html_())
+    page = html.unescape(re.sub(r"<[^>]+>", " ", page))
+    text = "\n".join(line for line in str(result).splitlines() if "as read:" not in line and "tal como" not in line)
+    return "\n".join([page, text] + result.messages + [row.message for row in result.rows])
 
 
 def test_a_wrong_number_never_shows_the_reference():

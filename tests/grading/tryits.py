@@ -91,9 +91,9 @@ def _ch13():
     phi = np.radians(120)
     T.append(Notebook("13-1/try-1", [[-0.5, -np.sqrt(3) / 2], [np.sqrt(3) / 2, -0.5]], [
         (_A(phi).T, "transposed"), ([[_c(120), -_s(120)], [_s(120), _c(120)]], "degrees"), (_B(phi), "A_for_B")]))
-    r, f, s = np.array([1.5, -0.5]), np.radians(45), np.array([0.8, 0.3])
-    T.append(Notebook("13-1/try-2", [1.5 + 0.8 * 0.70711 - 0.3 * 0.70711, -0.5 + 0.8 * 0.70711 + 0.3 * 0.70711], [
-        (r + _A(f).T @ s, "A_transposed"), (r + s, "local_vector"), (r + _A(45) @ s, "degrees"),
+    r, f, s = np.array([1.5, -0.5]), np.radians(30), np.array([0.8, 0.3])
+    T.append(Notebook("13-1/try-2", [1.5 + 0.8 * 0.8660254 - 0.3 * 0.5, -0.5 + 0.8 * 0.5 + 0.3 * 0.8660254], [
+        (r + _A(f).T @ s, "A_transposed"), (r + s, "local_vector"), (r + _A(30) @ s, "degrees"),
         ([1.5 + 0.8 * _c(f) + 0.3 * _s(f), -0.5 + 0.8 * _s(f) + 0.3 * _c(f)], "sign_flip"), (_A(f) @ s, "missing_term")]))
     rd, w, al = np.array([0.2, 0.0]), 2.0, -1.0
     v = [0.2 - (0.8 * _s(f) + 0.3 * _c(f)) * w, (0.8 * _c(f) - 0.3 * _s(f)) * w]
@@ -235,7 +235,7 @@ def _two(points_1, points_2, joint):
 # ================================================================================================ chapter 14
 AXES = ([0, 0.6, 0.8], [0, -0.8, 0.6], [1, 0, 0])
 ANG = np.radians([40.0, 25.0, -60.0])
-A_GIVEN = np.array([[2.0, -1.0, 2.0], [2.0, 2.0, -1.0], [-1.0, 2.0, 2.0]]) / 3
+A_GIVEN = np.array([[2.0, 2.0, -1.0], [-1.0, 2.0, 2.0], [2.0, -1.0, 2.0]]) / 3  # 14-1's body turned back (its Aᵀ)
 R = S.rotations
 
 
@@ -267,22 +267,24 @@ def _ch14():
     T.append(Notebook("14-2/try-1", Rotation.from_euler("ZXZ", ANG).as_matrix(), [
         (_rz(ANG[2]) @ _rx(ANG[1]) @ _rz(ANG[0]), "extrinsic_order"), (A2.T, "transposed"),
         (_rz(40.0) @ _rx(25.0) @ _rz(-60.0), "degrees")]))
-    th, ph, rates = ANG[1], ANG[2], [2.0, 0.0, -1.0]
-    wb = np.array([_s(th) * _s(ph) * 2.0, _s(th) * _c(ph) * 2.0, _c(th) * 2.0 - 1.0])
+    th, ph, rates = ANG[1], ANG[2], [2.0, 0.5, -1.0]
+    wb = np.array([_s(th) * _s(ph) * 2.0 + _c(ph) * 0.5, _s(th) * _c(ph) * 2.0 - _s(ph) * 0.5, _c(th) * 2.0 - 1.0])
     T.append(Notebook("14-2/try-2", A2.T @ (A2 @ wb), [
         (A2 @ wb, "wrong_frame"), (rates, "angle_rates"),
-        ([_s(25.0) * _s(-60.0) * 2.0, _s(25.0) * _c(-60.0) * 2.0, _c(25.0) * 2.0 - 1.0], "degrees")]))
+        ([_s(25.0) * _s(-60.0) * 2.0 + _c(-60.0) * 0.5, _s(25.0) * _c(-60.0) * 2.0 - _s(-60.0) * 0.5,
+          _c(25.0) * 2.0 - 1.0], "degrees")]))
     a = np.array([np.arctan2(A_GIVEN[0, 2], -A_GIVEN[1, 2]), np.arccos(A_GIVEN[2, 2]),
                   np.arctan2(A_GIVEN[2, 0], A_GIVEN[2, 1])])
     at = np.array([np.arctan2(A_GIVEN[2, 0], -A_GIVEN[2, 1]), np.arccos(A_GIVEN[2, 2]),
                    np.arctan2(A_GIVEN[0, 2], A_GIVEN[1, 2])])
     T.append(Notebook("14-2/try-3", [a[0] + np.pi, -a[1], a[2] - np.pi], [
-        (a * DEG, "degrees"), (a[::-1].copy(), "extrinsic_order"), (at, "transposed")]))
+        (a * DEG, "degrees"), (a[::-1].copy(), "extrinsic_order"), (at, "transposed"),
+        ([np.arctan(A_GIVEN[0, 2] / -A_GIVEN[1, 2]), a[1], np.arctan(A_GIVEN[2, 0] / A_GIVEN[2, 1])], "arctan_quadrant")]))
     T.append(Notebook("14-2/try-3", Rotation.from_matrix(A_GIVEN).as_euler("ZXZ"), []))
-    u, chi = np.array([0, 1, 1]) / np.sqrt(2), np.pi / 2
+    u, chi = np.array([0, 1, 1]) / np.sqrt(2), 2 * np.pi / 3
     p = np.r_[_c(chi / 2), u * _s(chi / 2)]
     T.append(Notebook("14-3/try-1", -p, [
-        (np.r_[_c(chi), u * _s(chi)], "full_angle"), (np.r_[_c(45.0), u * _s(45.0)], "degrees"),
+        (np.r_[_c(chi), u * _s(chi)], "full_angle"), (np.r_[_c(60.0), u * _s(60.0)], "degrees"),
         (np.r_[p[1:], p[0]], "scalar_last"), (np.r_[_c(chi / 2), np.array([0, 1, 1]) * _s(chi / 2)], "not_normalized")]))
     pp = np.array([0.5, 0.5, 0.5, 0.5])
     App = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])

@@ -237,6 +237,7 @@ def another(id, k=None):
     """
     from ...errors import InputError, KinbookError
     from ...i18n import N_, Message
+    from .mutations import blind_spots
 
     item = get(id)
     if k is None:
@@ -258,6 +259,8 @@ def another(id, k=None):
             item.target(**data)
         except KinbookError as exc:  # the mechanism does not assemble with these data: the next draw
             last = exc
+            continue
+        if blind_spots(item, data):  # a slip would pass with these data (sin = cos at 45° …): the next draw
             continue
         _CURRENT[id] = (k, data)
         return Variant(item, k, data, seed)

@@ -63,7 +63,7 @@ register("13-1/try-1", "my_A", check_value, lambda phi_deg: X.A(np.radians(phi_d
          explanation=N_("eq. 6 with the angle in radians: np.cos and np.sin take radians, so convert first "
                         "(np.radians). The columns of A are the body's ξ and η axes in global components."), library=("A",))
 
-_BODY = {"x_Oi": 1.5, "y_Oi": -0.5, "phi_i_deg": 45, "xi_Q": 0.8, "eta_Q": 0.3}
+_BODY = {"x_Oi": 1.5, "y_Oi": -0.5, "phi_i_deg": 30, "xi_Q": 0.8, "eta_Q": 0.3}
 _BODY_RANGES = {"x_Oi": (-2.0, 2.0), "y_Oi": (-2.0, 2.0), "phi_i_deg": DEGREES, "xi_Q": (0.3, 1.5),
                 "eta_Q": (-0.8, 0.8)}
 _BODY_TEXT = "q_i = [{x_Oi}, {y_Oi}, {phi_i_deg}°], (ξ_i^Q, η_i^Q) = ({xi_Q}, {eta_Q})"

@@ -111,7 +111,7 @@ def _s14_2_2(*, theta_deg, phi_deg, psi_rate, theta_rate, phi_rate):
     return my_omega_body
 
 
-_RATES = dict(_ANG, psi_rate=2.0, theta_rate=0.0, phi_rate=-1.0)
+_RATES = dict(_ANG, psi_rate=2.0, theta_rate=0.5, phi_rate=-1.0)  # θ̇ ≠ 0: its terms are tested too
 
 
 register("14-2/try-2", "my_omega_body", check_value,
@@ -121,10 +121,11 @@ register("14-2/try-2", "my_omega_body", check_value,
          ranges=dict(_ANG_RANGES, psi_rate=(-3.0, 3.0), theta_rate=(-2.0, 2.0), phi_rate=(-3.0, 3.0)),
          statement=_ANG_TEXT + ", ψ̇ = {psi_rate}, θ̇ = {theta_rate}, φ̇ = {phi_rate} rad/s", library=("omega_from_euler_rates",))
 
-_A_14_2_3 = np.array([[2.0, -1.0, 2.0], [2.0, 2.0, -1.0], [-1.0, 2.0, 2.0]]) / 3
+_A_14_2_3 = np.array([[2.0, 2.0, -1.0], [-1.0, 2.0, 2.0], [2.0, -1.0, 2.0]]) / 3  # 14-1's body turned back: Aᵀ
 _A_GIVEN = [_A_14_2_3] + [np.round(R.A_from_euler(*np.radians(a)), 6) for a in
-                          ([30, 50, 70], [-120, 35, 20], [150, 110, -45], [60, 140, 160], [-30, 80, -100],
-                           [100, 20, 10], [-80, 65, 135])]
+                          # ψ and φ both past ±90°, where arctan(y/x) and arctan2(y, x) part (issue 29)
+                          ([150, 110, -135], [-120, 35, 160], [120, 140, -100], [-150, 80, 110], [100, 20, -170],
+                           [-100, 65, 135], [135, 50, 120])]
 
 
 def _s14_2_3(*, A_given):
@@ -153,7 +154,7 @@ def _s14_3_1(*, axis_u, chi_deg):
 
 register("14-3/try-1", "my_p", check_euler_parameters,
          lambda axis_u, chi_deg: X.p_from_axis_angle(axis_u, np.radians(chi_deg)), _s14_3_1, {"name": "p"},
-         data={"axis_u": [0, 1, 1], "chi_deg": 90},
+         data={"axis_u": [0, 1, 1], "chi_deg": 120},
          ranges={"axis_u": [[0, 1, 1], [1, 0, 1], [1, 1, 0], [1, 2, 2], [2, -1, 2], [1, -1, 1], [0, 3, 4]],
                  "chi_deg": list(range(30, 331, 30))},
          statement=N_("χ = {chi_deg}° about u = {axis_u}"), library=("p_from_axis_angle",))
@@ -189,8 +190,10 @@ def _s14_3_3(*, p_dot):
 
 register("14-3/try-3", "my_omega", check_value, lambda p_dot: X.omega_from_p_dot([0.5, 0.5, 0.5, 0.5], p_dot),
          _s14_3_3, {"name": "ω (rad/s)"}, data={"p_dot": [-0.1, 0.3, -0.1, -0.1]},
-         ranges={"p_dot": [[-0.1, 0.3, -0.1, -0.1], [0.1, -0.1, 0.2, -0.2], [0.2, 0.0, -0.1, -0.1],
-                           [0.0, 0.1, -0.2, 0.1], [0.3, -0.1, -0.1, -0.1], [-0.2, 0.1, 0.1, 0.0]]},
+         # no zero entry and no two alike: a dropped term or a lost sign always shows (issue 29)
+         ranges={"p_dot": [[-0.1, 0.3, -0.1, -0.1], [0.1, -0.1, 0.2, -0.2], [0.3, -0.2, 0.1, -0.2],
+                           [-0.2, 0.3, 0.1, -0.2], [0.1, 0.2, -0.4, 0.1], [-0.3, 0.1, 0.4, -0.2],
+                           [0.2, -0.3, -0.1, 0.2], [-0.1, -0.2, 0.4, -0.1]]},
          statement="ṗ = {p_dot}", library=("omega_from_p_dot",))
 
 

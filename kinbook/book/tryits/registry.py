@@ -101,13 +101,13 @@ class TryIt(Item):
         if self.wrong_forms is not None:
             named = self._wrong_form(answer, target, data, result)
             if named is not None:
-                return named
+                return named.echo(result)
         if result.passed:
             return result
         if self.numbers_at is not None and result.mistakes == ["malformed"] and _numbers(answer):
             return described(self._numbers(answer, target, options, result._quantity))
         copied = self._copied(answer, data, options, result._quantity)
-        return described(result if copied is None else copied)
+        return described(result if copied is None else copied.echo(result))
 
     def _numbers(self, answer, target, options, quantity):
         """Numbers typed for a formula of t: compared with the reference at ``numbers_at``."""
@@ -119,9 +119,9 @@ class TryIt(Item):
         there = self.checker(answer, target, at=at, **options)
         if there.passed:
             return CheckResult(False, 0.0, [_msg("x.numbers_right_at", t=_literal(t))], ["only_at_samples"], (),
-                               quantity)
+                               quantity).echo(there)
         return CheckResult(False, there.score, [_msg("x.numbers_read_at", t=_literal(t))] + list(there.notes),
-                           there.mistakes, there.rows, quantity, there.columns)
+                           there.mistakes, there.rows, quantity, there.columns).echo(there)
 
     def library_answer(self, source):
         """The ``library`` name a cell's source calls (``mech.gamma(...)``), or None."""
@@ -240,7 +240,18 @@ class TryIt(Item):
                                                                                 what=text_message("notebook_data"))))
         for value, detail in seen:
             target.variants.insert(0, ("wrong_data", np.asarray(value, float), detail, None))
+        target.variants += [(code, value, None, None) for code, _, value in self.slips(data)]
         return target
+
+    def slips(self, data=None):
+        """(code, operator, value) of the worked answer's slips at ``data`` (:func:`kinbook.grading.mutants.slips`):
+        the wrong answers a numeric try-it names after the catalogue's own (issue 29)."""
+        from .code_mutants import slips
+
+        data = self._data(data)
+        names, context = self._data_names(), self.context()
+        key = repr([(k, np.asarray(data[k], dtype=object).tolist()) for k in sorted(data)])
+        return slips(self.solution, lambda f: f(**context, **{n: data[n] for n in names}), key)
 
     def reference_answer(self, data=None):
         """The worked answer's value, computed from the library's context."""
@@ -318,7 +329,8 @@ def described(result):
 
     notes = [swap(m) for m in result.notes]
     rows = [RowResult(r._label, r.status, swap(r._message), r.mistake, r.entries, r.score) for r in result.rows]
-    return CheckResult(result.passed, result.score, notes, result.mistakes, rows, result._quantity, result.columns)
+    return CheckResult(result.passed, result.score, notes, result.mistakes, rows, result._quantity,
+                       result.columns).echo(result)
 
 
 def same_data(a, b):

@@ -6,6 +6,11 @@ student would hand it in and graded by :func:`kinbook.classroom.grade_submission
 full marks. Then the released notebook, blank as a student gets it, is graded too: it must fail cleanly — no points,
 every part ``missing-answer`` (not a crash of the grader, a timeout, a tampered cell or a corrupt notebook), which also
 shows that no locked cell gives an answer away.
+
+Then the author's question tests (``part(..., tests=[(answer, code), …])``) are run on the source's data: each wrong
+answer must be refused and named by its code, each right one (code ``None``) must pass — and a part whose tests
+hold a right answer must be declared in the hidden checks, where no student reads it. ``kinbook validate
+--mutations`` adds the generated tests (:mod:`kinbook.classroom.validate.mutations`).
 """
 
 from __future__ import annotations
@@ -16,7 +21,7 @@ from pathlib import Path
 
 from ...errors import GradingError
 
-__all__ = ["validate", "Check", "SAMPLE_STUDENTS"]
+__all__ = ["validate", "Check", "SAMPLE_STUDENTS", "question_tests"]
 
 #: Ids whose variants are checked when no roster is given.
 SAMPLE_STUDENTS = ("validate-a", "validate-b", "validate-c")
@@ -51,6 +56,40 @@ def _blank(result):
     problems += [f"part {p.part}: {p.status} — {p.message[:300]} (a blank notebook must fail cleanly: missing-answer)"
                  for p in result.parts if p.status not in ("missing-answer", "ok")]
     return problems
+
+
+def question_tests(p, where="the source's data"):
+    """The outcomes of a part's own question tests (``part(..., tests=[...])``): a list of (ok, text)."""
+    out = []
+    for k, (answer, expect) in enumerate(p.tests):
+        result = p.run(answer)
+        if expect is None:
+            ok = result.passed
+            text = f"test {k + 1} (a right answer) {'passes' if ok else 'is refused: ' + ', '.join(result.mistakes)}"
+        else:
+            ok = not result.passed and expect in (result.mistakes or ())
+            got = "passes" if result.passed else "is named " + (", ".join(result.mistakes) or "—")
+            text = f"test {k + 1} (must be named {expect}) {got}"
+        out.append((ok, f"part {p.name} at {where}: {text}"))
+    return out
+
+
+def _question_tests(src):
+    """A Check of the parts' own question tests on the source's data (None when no part declares any)."""
+    from ..variant import references
+
+    parts = [p for p in references(src) if p.tests]
+    if not parts:
+        return None
+    problems, n = [], 0
+    for p in parts:
+        results = question_tests(p)
+        n += len(results)
+        problems += [text for ok, text in results if not ok]
+        if not p.hidden and any(code is None for _, code in p.tests):
+            problems.append(f"part {p.name}: a right answer among its tests is shown to students — declare the "
+                            f"part with its tests between ### BEGIN HIDDEN CHECKS and ### END HIDDEN CHECKS")
+    return Check(f"the question tests ({n})", n - len([x for x in problems if " test " in x]), n, problems)
 
 
 def validate(source, *, students=None, timeout=60.0, memory=1000, isolation=True, progress=None):
@@ -102,6 +141,11 @@ def validate(source, *, students=None, timeout=60.0, memory=1000, isolation=True
         if has_params and who:
             run(student_notebook(src, student_parameters(src, who[0]), who[0]), who[0],
                 f"{who[0]}'s variant, blank", _blank)
+    c = _question_tests(src)
+    if c is not None:
+        checks.append(c)
+        if progress:
+            progress(c)
     bad = [c for c in checks if not c.ok]
     if bad:
         raise GradingError(f"{src.exercise} is not valid: " + "; ".join(f"{c.what}: {c.problems[0]}" for c in bad))
