@@ -13,6 +13,7 @@ import numpy as np
 
 from .compare import same, scale_match, scale_of
 from .mutants import expression_mutants, row_mutants
+from .quantities import quantity_of
 
 __all__ = ["SYNONYMS", "classify", "Tally", "format_table", "name_phi_rows", "name_derived_row", "name_entries",
            "phi_equal"]
@@ -162,19 +163,20 @@ def name_derived_row(target, ex, r, own, S, expected, rtol):
     groups = _groups(target, target.owner(r.ref))
     f = 1.0 if r.factor is None or np.isnan(r.factor) else r.factor
     s = ex.s
-    q_name = ex.quantity
+    qty = quantity_of(ex.quantity)
+    q_name = qty.name
     cands = row_mutants(f * Phi, groups=groups)
     vals = []
     if cands:
         d = target.tape([e for _, _, e in cands]).derived(s.Q, s.QD, s.T)
-        vals += [(code, d["Phi_q"][:, i][:, ex.data.cols] if q_name == "Phi_q" else d[q_name][:, i][:, None])
+        vals += [(code, d["Phi_q"][:, i][:, ex.data.cols] if qty.per_coordinate else d[q_name][:, i][:, None])
                  for i, (code, _, _) in enumerate(cands)]
-    if q_name != "Phi_q":
+    if qty.right_hand_side:
         mech = target.mech
         q, qd, t = list(mech.q), list(mech.qd), mech.t
         syms = [x for x in q if x in Phi.free_symbols]
         D = lambda e: sum(sp.diff(e, x) * qd[q.index(x)] for x in syms) + sp.diff(e, t)  # noqa: E731
-        expr = f * (-sp.diff(Phi, t) if q_name == "nu" else -D(D(Phi)))
+        expr = f * qty.expression(Phi, D, t)
         own_cands = row_mutants(expr, quantity=q_name, groups=groups)
         if own_cands:
             V = target.tape([e for _, _, e in own_cands])(s.Q, s.QD, s.T)["value"]

@@ -30,6 +30,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .quantities import quantity_of
+
 __all__ = ["Mutant", "mutants", "expression_mutants", "row_mutants", "reference_mutants", "reference_rows", "samples_for",
            "value_mutants", "distinct", "sample", "same_values", "MAX_TERMS"]
 
@@ -88,7 +90,7 @@ def reference_rows(target, quantity):
         d = mech.derivation(t.constraint)
     else:
         d = mech.symbolic()
-    rows = {"Phi": d.Phi, "Phi_q": d.Phi_q, "nu": d.nu, "gamma": d.gamma}[quantity]
+    rows = getattr(d, quantity_of(quantity).name)  # the derivation's own Φ, Φ_q, ν or γ
     q = list(mech.q)
 
     def groups(c):
@@ -110,7 +112,7 @@ def samples_for(target, quantity):
     velocities that satisfy the velocity equations) for Φ_q, ν and γ (:meth:`kinbook.grading.target.Target.samples`)."""
     from .target import target_for
 
-    s = target_for(target).samples("generic" if quantity == "Phi" else "assembled")
+    s = target_for(target).samples("assembled" if quantity_of(quantity).derived else "generic")
     return s.Q, s.QD, s.T
 
 
@@ -156,7 +158,7 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
     def entry_map(f):
         return M.applyfunc(f)
 
-    _term_slips(M, matrix, add, quantity, qd, t, terms)
+    _term_slips(M, matrix, add, quantity_of(quantity), qd, t, terms)
     _angle_slips(M, add, entry_map, t, angles)
     _body_slips(M, add, blocks if blocks is not None else [(None, groups)], angles)
     # rows: a driver's row left out or written twice; the whole ν or γ with the wrong sign
@@ -166,8 +168,9 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
                 rows_ = [M[k, 0] for k in range(M.shape[0])]
                 add("missing_row", f"driver row {i + 1} left out", sp.Matrix(rows_[:i] + rows_[i + 1:]))
                 add("extra_row", f"driver row {i + 1} written twice", sp.Matrix(rows_[:i + 1] + rows_[i:]))
-        if quantity in ("nu", "gamma"):
-            add(f"{quantity}_sign", f"−{quantity}", -M)
+        Q = quantity_of(quantity)
+        if Q.right_hand_side:  # the whole ν or γ with the wrong sign
+            add(Q.sign_code, f"−{Q.label}", -M)
     for code, S, what in structural:
         add(code, what, sp.Matrix(S) if not matrix else S)
     return out if keep_all else distinct(out, M, q, qd, t, rng=rng, samples=samples)
@@ -198,11 +201,11 @@ def _term_slips(M, matrix, add, quantity, qd, t, terms):
                     N = M.copy()
                     N[i, j] = e - term / 2
                     add("factor_2_missing", f"factor 2 of term {k + 1} of {where} lost", N)
-                elif quantity == "gamma" and _velocity_degree(term, qd) == 2 and len(parts) > 1:
+                elif quantity.velocities and _velocity_degree(term, qd) == 2 and len(parts) > 1:
                     N = M.copy()
                     N[i, j] = e + term
                     add("factor_2_extra", f"term {k + 1} of {where} doubled", N)
-        if terms and quantity in ("nu", "gamma") and not matrix and M.shape[0] > 1:
+        if terms and quantity.right_hand_side and not matrix and M.shape[0] > 1:
             N = M.copy()
             N[i, j] = -e
             add("sign_flip", f"sign of {where}", N)
@@ -278,7 +281,7 @@ def reference_mutants(target, quantity, limit=None):
     rows, q, qd, t, blocks, drivers = reference_rows(target, quantity)
     T = target_for(target)
     found = expression_mutants(rows, quantity=quantity, blocks=blocks, drivers=drivers, q=q, qd=qd, t=t,
-                               keep_all=True, angles=quantity == "Phi")
+                               keep_all=True, angles=not quantity_of(quantity).derived)
     phi_level = []
     if len(T.constraints) == 1:
         phi_level += [Mutant(v.code, "catalogue: " + v.code + (f" ({v.detail})" if v.detail is not None else ""),
@@ -294,7 +297,7 @@ def reference_mutants(target, quantity, limit=None):
         return V.shape == R.shape and bool(np.all(np.abs(V) <= 1e-8 * (1.0 + np.abs(V).max())))
 
     Phi_rows = reference_rows(target, "Phi")[0]
-    if quantity == "Phi":
+    if not quantity_of(quantity).derived:
         found = [m for m in found if not equivalent(m)] + [m for m in phi_level if not equivalent(m)]
     else:
         Phi, _, _, _, _, _ = reference_rows(target, "Phi")
@@ -312,7 +315,7 @@ def reference_mutants(target, quantity, limit=None):
             except Exception:  # noqa: BLE001 — a variant that cannot be derived is no test
                 continue
             found.append(Mutant(m.code, m.operator + ", carried through the derivation",
-                                {"Phi_q": D.Phi_q, "nu": D.nu, "gamma": D.gamma}[quantity]))
+                                getattr(D, quantity_of(quantity).name)))
     if limit is not None:
         found = sample(found, 3 * limit)
     return distinct(found, rows, q, qd, t, samples=samples_for(target, quantity))
@@ -320,10 +323,8 @@ def reference_mutants(target, quantity, limit=None):
 
 def _dropped_code(term, quantity, qd, t):
     """The code a dropped term stands for: a ∂/∂t term of γ, the centripetal or Coriolis term, any term."""
-    if quantity == "gamma" and t is not None and term.has(t) and _velocity_degree(term, qd) == 0:
+    if quantity.velocities and t is not None and term.has(t) and _velocity_degree(term, qd) == 0:
         return "missing_tt_term"
-    if quantity == "nu" and t is not None and term.has(t):
-        return "missing_term"
     return "missing_term"
 
 

@@ -21,7 +21,6 @@ import inspect
 
 import numpy as np
 
-from ...grading.item import seed_from
 from ...i18n import translate
 from .registry import TRY_ITS, TryIt, register, same_data, table_text, text_message
 
@@ -214,9 +213,6 @@ class Variant:
         return f'<div style="border-left:4px solid #1f6feb; background:#eef5ff; padding:4px 10px">{body}</div>'
 
 
-MAX_DRAWS = 25
-
-
 def another(id, k=None):
     """Draw a fresh variant of a try-it: the same question with other data, drawn by the seeded generator
     the exercises' per-student parameters use (:func:`kinbook.grading.item.draw`). :func:`try_it` and
@@ -235,9 +231,8 @@ def another(id, k=None):
     Variant
         Shows the data (and the seed it was drawn with).
     """
-    from ...errors import InputError, KinbookError
+    from ...errors import InputError
     from ...i18n import N_, Message
-    from .mutations import blind_spots
 
     item = get(id)
     if k is None:
@@ -249,19 +244,10 @@ def another(id, k=None):
     if k == 0 or not item.ranges:
         _CURRENT.pop(id, None)
         return Variant(item, 0, item.data, None)
-    last = None
-    for attempt in range(MAX_DRAWS):
-        seed = seed_from(f"try-it:{id}:{k}:{attempt}")
-        data = item.variant(seed)
-        if same_data(data, item.data):  # the notebook's own data: not a new variant
-            continue
-        try:
-            item.target(**data)
-        except KinbookError as exc:  # the mechanism does not assemble with these data: the next draw
-            last = exc
-            continue
-        if blind_spots(item, data):  # a slip would pass with these data (sin = cos at 45° …): the next draw
-            continue
+    from .mutations import draw_variant
+
+    data, seed, last = draw_variant(item, k)
+    if data is not None:
         _CURRENT[id] = (k, data)
         return Variant(item, k, data, seed)
     raise InputError(Message(N_("{id}: no data drawn for variant {k} works ({last})"), id=id, k=k,

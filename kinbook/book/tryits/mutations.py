@@ -20,32 +20,43 @@ from ...grading import mutants as MU
 from .code_mutants import code_mutants
 from .registry import TRY_ITS, same_data
 
-__all__ = ["SYMBOLIC", "variant_data", "function_mutants", "blind_spots", "REFERENCE_DRAWS", "item_mutants",
-           "mutation_tally", "mutation_tallies", "answer_of"]
+__all__ = ["MAX_DRAWS", "draw_variant", "variant_data", "function_mutants", "blind_spots", "REFERENCE_DRAWS",
+           "item_mutants", "mutation_tally", "mutation_tallies", "answer_of"]
 
-SYMBOLIC = {"check_phi": "Phi", "check_jacobian": "Phi_q", "check_nu": "nu", "check_gamma": "gamma"}
-"""The symbolic checkers and the quantity each one grades."""
+MAX_DRAWS = 25
+"""Seeded draws tried for one variant of a try-it before it says none works."""
+
+
+def draw_variant(item, k):
+    """``(data, seed, why not)`` of variant ``k`` (≥ 1) of a try-it, as :func:`another` draws it: the first of
+    :data:`MAX_DRAWS` seeded draws that is not the notebook's data, with which the mechanism assembles, and under
+    which no slip of the worked answer passes (:func:`blind_spots`: no 45° for a
+    sin/cos question, no zero rate under a rate term); ``(None, None, last error)`` when none does."""
+    from ...errors import KinbookError
+    from ...grading.item import seed_from
+
+    last = None
+    for attempt in range(MAX_DRAWS):
+        seed = seed_from(f"try-it:{item.id}:{k}:{attempt}")
+        data = item.variant(seed)
+        if same_data(data, item.data):  # the notebook's own data: not a new variant
+            continue
+        try:
+            item.target(**data)
+        except KinbookError as exc:  # the mechanism does not assemble with these data: the next draw
+            last = exc
+            continue
+        if blind_spots(item, data):  # a slip would pass with these data: the next draw
+            continue
+        return data, seed, None
+    return None, None, last
 
 
 def variant_data(item, k):
     """The data of variant ``k`` of a try-it as ``kb.another(id, k)`` draws them (0: the notebook's), or None."""
-    from ...classroom.variant import MAX_DRAWS, draw, seed_from
-    from ...errors import KinbookError
-
     if k == 0 or not item.ranges:
         return dict(item.data) if k == 0 else None
-    for attempt in range(MAX_DRAWS):
-        data = draw(item.ranges, item.data, seed_from(f"try-it:{item.id}:{k}:{attempt}"))
-        if same_data(data, item.data):
-            continue
-        try:
-            item.target(**data)
-        except KinbookError:
-            continue
-        if blind_spots(item, data):  # data under which a slip passes: not drawn (issue 29)
-            continue
-        return data
-    return None
+    return draw_variant(item, k)[0]
 
 
 def _names(item):
@@ -80,7 +91,7 @@ def answer_of(item, mutant, data):
 def item_mutants(item, data, datas=None, limit=None):
     """The mutants of a try-it for ``data`` (symbolic: made from the reference at these data; code: from the
     worked answer, told apart from it on ``datas``)."""
-    quantity = SYMBOLIC.get(getattr(item.checker, "__name__", ""))
+    quantity = item.checker.quantity  # Φ, Φ_q, ν or γ for a symbolic checker (kinbook.grading.quantities)
     if quantity is not None:
         return MU.reference_mutants(item.target(**data), quantity, limit)
     runs = [_run(item, d) for d in (datas or [data])]
@@ -95,10 +106,10 @@ REFERENCE_DRAWS = 6
 def function_mutants(id):
     """The code mutants of a numeric try-it that differ from its worked answer as functions — on the notebook's data
     or on one of :data:`REFERENCE_DRAWS` raw draws (a symbolic try-it's mutants are made per data: none here)."""
-    from ...classroom.variant import draw, seed_from
+    from ...grading.item import draw, seed_from
 
     item = TRY_ITS[id]
-    if SYMBOLIC.get(getattr(item.checker, "__name__", "")) is not None:
+    if item.checker.quantity is not None:
         return ()
     datas = [dict(item.data)]
     if item.ranges:
@@ -159,14 +170,14 @@ def mutation_tally(item, variants=2, limit=None):
     ``variants`` drawn variants."""
     datas = [d for d in (variant_data(item, k) for k in range(variants + 1)) if d is not None]
     tally = MN.Tally(item.id)
-    quantity = SYMBOLIC.get(getattr(item.checker, "__name__", ""))
+    quantity = item.checker.quantity  # Φ, Φ_q, ν or γ for a symbolic checker (kinbook.grading.quantities)
     shared = None if quantity is not None else item_mutants(item, datas[0], datas)
     for k, data in enumerate(datas):
         where = "the notebook's data" if k == 0 else f"variant {k} ({item.stated(data)})"
         found = list(shared) if shared is not None else item_mutants(item, data, limit=limit)
         if shared is not None and len(shared) < 3:  # a worked answer with few operators (a column_stack): the
             found += [v for v in MU.value_mutants(_expected(item, data), angles=_angles(item))  # its value's slips
-                      if not (item.checker.__name__ == "check_euler_parameters"  # −p: p's other right answer
+                      if not (item.checker.name == "euler_parameters"  # −p: p's other right answer
                               and v.operator == "sign of the whole answer")]
         if limit is not None:
             found = MU.sample(found, limit)

@@ -248,7 +248,7 @@ class TryIt(Item):
         the wrong answers a numeric try-it names after the catalogue's own (issue 29)."""
         from .code_mutants import slips
 
-        data = self._data(data)
+        data = self.data_for(data)
         names, context = self._data_names(), self.context()
         key = repr([(k, np.asarray(data[k], dtype=object).tolist()) for k in sorted(data)])
         return slips(self.solution, lambda f: f(**context, **{n: data[n] for n in names}), key)

@@ -13,18 +13,16 @@ from __future__ import annotations
 
 from ...grading import mutant_names as MN
 from ...grading import mutants as MU
+from ...grading.item import CHECKERS
 
-__all__ = ["mutation_tallies", "part_mutants", "SYMBOLIC"]
-
-SYMBOLIC = {"phi": "Phi", "jacobian": "Phi_q", "nu": "nu", "gamma": "gamma"}
-"""The parts' symbolic checks and the quantity each grades."""
+__all__ = ["mutation_tallies", "part_mutants"]
 
 ANGLES = ("rotation", "euler_parameters")
 
 
 def part_mutants(p, limit=None):
     """The mutants of one part's reference (its target's symbolic quantity, or its expected value)."""
-    quantity = SYMBOLIC.get(p.check)
+    quantity = CHECKERS[p.check].quantity  # Φ, Φ_q, ν or γ for a symbolic check (kinbook.grading.quantities)
     if quantity is None:
         angles = bool(p.options.get("angles")) or getattr(p.expected, "kind", "") == "angles"
         found = MU.value_mutants(p.expected, angles=angles)
