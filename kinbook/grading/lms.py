@@ -22,6 +22,7 @@ messages (or a score on another scale) cannot be passed on by mistake. docs/lms.
 Traceback (most recent call last):
 ...
 AssertionError: CheckResult(Φ: failed, score=0.50, mistakes=['sign_flip'])
+  your answer, as read: [x1 - x2 - cos(phi2), y1 - y2 + sin(phi2)]
   Φ: 1 of 2 rows correct (score 0.50).
 ...
 """
