@@ -15,6 +15,7 @@ import os
 import pathlib
 import re
 
+import numpy as np
 import pytest
 
 CHAPTERS = pathlib.Path(__file__).resolve().parents[2] / "chapters"
@@ -51,6 +52,7 @@ def test_every_worked_answer_pasted_into_its_cell_passes(path, monkeypatch):
 
     namespace = {"__name__": "__main__", "display": display}  # IPython's kernel puts display() in every namespace
     checked, failures = [], []
+    printing = np.get_printoptions()  # the notebook's kinbook.notebook_setup() sets numpy's: the other tests' are kept
     try:
         for k, source in enumerate(_code_cells(path)):
             calls = CALL.findall(source)
@@ -80,6 +82,7 @@ def test_every_worked_answer_pasted_into_its_cell_passes(path, monkeypatch):
     finally:
         plt.close("all")
         kb.set_language("en")
+        np.set_printoptions(**printing)
     assert checked, f"{path.name}: no try-it checked"
     assert not failures, f"{len(failures)} of {len(checked)} worked answers fail where they are shown:\n" + \
         "\n".join(failures)
