@@ -22,16 +22,16 @@ __all__ = ["Erratum", "Evidence", "ERRATA", "BOOK_ORDER", "KINDS", "SHOWN_IN", "
            "lines"]
 
 BOOK_ORDER = """
-13.5-q-elements 13.5-eq4-text 13.5-revolute-words 13.5-eq21 13.5-eq24 13.5-eq25 13.5-rt-collinearity
+13.5-q-elements 13.5-eq4-text 13.5-revolute-words 13.5-eq21 13.5-three-points 13.5-eq24 13.5-eq25 13.5-rt-collinearity
 13.5-ex1-eq-ref 13.5-ex1-solution 13.5-ex2-translational 13.5-ex2-l3 13.5-ex2-driver 13.5-motrices
 13.5-joint-labels 13.5-ex3-system 13.5-ex3-x2 13.5-ex4-phi8-substituted 13.5-ex4-phi8 13.5-ex4-phi8-system
 13.6-q-example1 13.6-previous-chapter 13.6-table-13.1-text 13.6-table-13.2 13.6-table-13.3 13.6-table-13.4 13.7-velocity-rhs
 13.7-ex5-reference 13.7-ex5-ground-points 13.7-ex5-phi8-row 13.7-ex5-joint3-working 13.7-ex5-velocities 13.8-revolute-Phiq-qd
 13.8-gamma-sign 13.8-table-13.5-rr 13.8-table-13.5-t 13.8-driver-second-derivative 13.8-ex6-point-A
-13.8-ex6-joint-label 13.8-ex6-point-acceleration 13.8-ex6-accelerations 14.2-termas 14.2-elementary-rotations
-14.2-A21-row2-first 14.2-A21-row3 14.2-A-theta-second 14.2-omega-matrix 14.2-rates-inverse-first
+13.8-ex6-joint-label 13.8-ex6-solution-dots 13.8-ex6-point-acceleration 13.8-ex6-accelerations 14.2-termas 14.2-elementary-rotations
+14.2-A21-row2-first 14.2-A21-row3 14.2-turns-frames 14.2-A-theta-second 14.2-omega-matrix 14.2-omega-prime 14.2-rates-inverse-first
 14.3-euler-theorem 14.3-A-of-p 14.3-p-from-A 14.3-G-row2 14.3-Ep-Gp 14.3-p-dot 14.3-a-bar 14.3-A-ddot-a
-14.4-n2-primes 14.4-p1-local-form 14.4-p1-two-rows 14.4-universal-primes 14.4-revolute-tilde
+14.4-n2-vectors 14.4-n2-primes 14.4-p1-local-form 14.4-p1-two-rows 14.4-universal-primes 14.4-revolute-tilde
 14.5-cross-references 14.5-n1-rj 14.5-A-ddot-a 14.5-gamma-n1 14.5-gamma-n1-table
 """.split()
 """Every erratum id in the order of the passages in the book (the section, then where in it: an example's slips
@@ -45,6 +45,7 @@ SHOWN_IN = {
     "13.5-eq4-text": "13-1-transformation-matrix",
     "13.5-revolute-words": "13-2-joints",
     "13.5-eq21": "13-2-joints",
+    "13.5-three-points": "13-2-joints",
     "13.5-eq24": "13-2-joints",
     "13.5-eq25": "13-2-joints",
     "13.5-rt-collinearity": "13-2-joints",
@@ -79,14 +80,17 @@ SHOWN_IN = {
     "13.8-driver-second-derivative": "13-7-acceleration-analysis",
     "13.8-ex6-point-A": "13-7-acceleration-analysis",
     "13.8-ex6-joint-label": "13-7-acceleration-analysis",
+    "13.8-ex6-solution-dots": "13-7-acceleration-analysis",
     "13.8-ex6-point-acceleration": "13-7-acceleration-analysis",
     "13.8-ex6-accelerations": "13-7-acceleration-analysis",
     "14.2-termas": "14-2-euler-angles",
     "14.2-elementary-rotations": "14-2-euler-angles",
     "14.2-A21-row2-first": "14-2-euler-angles",
     "14.2-A21-row3": "14-2-euler-angles",
+    "14.2-turns-frames": "14-2-euler-angles",
     "14.2-A-theta-second": "14-2-euler-angles",
     "14.2-omega-matrix": "14-2-euler-angles",
+    "14.2-omega-prime": "14-2-euler-angles",
     "14.2-rates-inverse-first": "14-2-euler-angles",
     "14.3-euler-theorem": "14-3-euler-parameters",
     "14.3-A-of-p": "14-3-euler-parameters",
@@ -96,6 +100,7 @@ SHOWN_IN = {
     "14.3-p-dot": "14-3-euler-parameters",
     "14.3-a-bar": "14-3-euler-parameters",
     "14.3-A-ddot-a": "14-3-euler-parameters",
+    "14.4-n2-vectors": "14-4-spatial-constraints",
     "14.4-n2-primes": "14-4-spatial-constraints",
     "14.4-p1-local-form": "14-4-spatial-constraints",
     "14.4-p1-two-rows": "14-4-spatial-constraints",

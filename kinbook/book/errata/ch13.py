@@ -243,6 +243,22 @@ def _ev_ex6_point_acceleration():
                     rf"are right.", e_p, e_c)
 
 
+def _ev_ex6_solution_dots():
+    m = example("ch13_example3")
+    q = m.solve_position(0.0)
+    qd = m.solve_velocity(q, 0.0)
+    qdd = m.solve_acceleration(q, qd, 0.0)
+    printed = EX6["qdd"][:6]                          # bodies 1 and 2, printed with one dot and whole numbers
+    as_velocities = float(np.abs(printed - qd[:6]).max())
+    as_accelerations = float(np.abs(printed - np.round(qdd[:6])).max())   # kinbook's rounded alike
+    return Evidence(
+        rf"Read as velocities, the printed $\dot x_2 = 7071$, $\dot y_2 = -7071$, $\dot\varphi_2 = 0$ are off from "
+        rf"kinbook's $\dot{{\mathbf q}}_2 = ({qd[3]:.2f}, {qd[4]:.2f}, {qd[5]:.0f})$ by up to {as_velocities:.2f}; "
+        rf"read as accelerations they are kinbook's $\ddot{{\mathbf q}}_2 = ({qdd[3]:.2f}, {qdd[4]:.2f}, "
+        rf"{abs(qdd[5]):.0f})$ to their printed digits, as are body 1's zeros (difference {below(as_accelerations)}).",
+        as_velocities, as_accelerations)
+
+
 def _printed_vs_kinbook(kind, quantity, printed_matrix, corrected_matrix, entry, equal=(), up_to_sign=True):
     """(printed error, corrected error) of the entry (r, c) — or the largest over a list of entries — of a printed
     table (kinbook.book.printed), against kinbook's derivation for the two-body joint ``kind`` at 20 random states
@@ -469,6 +485,11 @@ ERRATA = [
             r"$O_i$ happens to lie on the guide line."),
     Erratum("13.5-eq21", "§13.5, translational joint, text after eq. 21", r"\text{eq. (19) is one of the two equations}",
             r"\text{eq. (21)}", "wording"),
+    Erratum("13.5-three-points", "§13.5, translational joint, before eq. 22",
+            r"\text{“Entre estos dos puntos se impone la condición de que permanezcan continuamente alineados”}",
+            r"\text{“Entre estos tres puntos se impone la condición …”}", "wording",
+            note=r"The sentence before names three points: $P_i$ and $Q_i$ on body $i$, $P_j$ on body $j$; the "
+                 r"condition is that the three stay on one line ($\mathbf s_i \times \mathbf d = \mathbf 0$, eq. 22)."),
     Erratum("13.5-eq24", "§13.5, translational joint, before eq. 24", r"\text{multiplying the vectors scalarly}",
             r"\text{the vector (cross) product}", "wording"),
     Erratum("13.5-rt-collinearity", "§13.5, Par de Revolución-Traslación, last paragraph",
@@ -572,6 +593,14 @@ ERRATA = [
     Erratum("13.8-ex6-joint-label", r"§13.8, example 6: the heading of the joint at $O_B$ (rows 6–7)",
             r"\text{“Junta n.º 3”}", r"\text{joint 2 (the r-r joint between bodies 2 and 3, headed next, is joint 3)}",
             "wording"),
+    Erratum("13.8-ex6-solution-dots", "§13.8, example 6: the solution of the acceleration equations",
+            r"\dot x_1 = 0,\ \dot y_1 = 0,\ \dot\varphi_1 = 0,\ \dot x_2 = 7071,\ \dot y_2 = -7071,\ "
+            r"\dot\varphi_2 = 0,\ \dot x_3 = 2042.03,\ \ldots",
+            r"\ddot x_1 = 0,\ \ddot y_1 = 0,\ \ddot\varphi_1 = 0,\ \ddot x_2 = 7071,\ \ddot y_2 = -7071,\ "
+            r"\ddot\varphi_2 = 0,\ \ddot x_3 = 2042.03,\ \ldots", "typo", _ev_ex6_solution_dots,
+            r"The system just solved is in $\ddot{\mathbf q}$; the velocities, listed at the start of the example, "
+            r"are $\dot x_2 = \dot y_2 = -70.71$, $\dot\varphi_2 = 100$. Body 3's values differ from kinbook's for "
+            r"another reason (13.8-ex6-accelerations)."),
     Erratum("13.8-driver-second-derivative", "§13.8, the second derivative of the driving constraints",
             r"\frac{d^2\Phi_q^{(d)}}{dt^2} = \frac{d}{dt}(\Phi_q^{(d)}\dot q + \Phi_t^{(d)})",
             r"\frac{d^2\Phi^{(d)}}{dt^2} = \frac{d}{dt}(\Phi_q^{(d)}\dot q + \Phi_t^{(d)})", "wording", None,

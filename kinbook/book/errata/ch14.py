@@ -169,6 +169,44 @@ def _ev_A21_row2_first():
                     rf"version prints it) it {agrees(e_c)}.", e_p, e_c)
 
 
+def _ev_turns_frames():
+    def triads(psi, th, ph):
+        # the book's e^{new} = A e^{old}, a triad written as the matrix of its unit vectors (rows, XYZ components);
+        # kinbook's elementary turns, passive like the book's second A^ψ, A^φ: the transposes of A_from_euler
+        A_psi, A_theta, A_phi = (A_from_euler(*a).T for a in ((psi, 0.0, 0.0), (0.0, th, 0.0), (0.0, 0.0, ph)))
+        e_Z1 = A_psi @ np.eye(3)                        # e^{Z'}: the triad after the precession
+        e_Z2 = A_theta @ e_Z1                           # the triad OX'Y''Z'' after the nutation
+        return A_phi @ e_Z1, A_phi @ e_Z2, A_from_euler(psi, th, ph).T   # the body's ξ, η, ζ as rows
+
+    samples = np.random.default_rng(24).uniform(-3, 3, (20, 3))
+    e_p, e_c = _matrices_vs(triads, samples)
+    zeta_on_Z = max(float(np.abs(triads(*a)[0][2] - [0.0, 0.0, 1.0]).max()) for a in samples)
+    return Evidence(rf"The three turns applied to the unit vectors (a triad as the rows of its unit vectors, "
+                    rf"$e^{{\rm new}} = \mathbf A\, e^{{\rm old}}$, with kinbook's elementary turns), at 20 random "
+                    rf"angles: $\mathbf A^\varphi$ applied to $e^{{Z'}}$, the triad after the precession, gives a "
+                    rf"triad off from the body's (the columns of kinbook's A_from_euler) by up to {e_p:.3f}, whose "
+                    rf"third axis stays on $Z$ (difference {below(zeta_on_Z)}) although the nutation tilts $Z''$ by "
+                    rf"$\theta$; applied to the triad after the nutation it gives the body's triad "
+                    rf"(difference {below(e_c)}).", e_p, e_c)
+
+
+def _ev_omega_prime():
+    rng = np.random.default_rng(25)
+    rows = []
+    for (psi, th, ph), rates in zip(rng.uniform(-3, 3, (20, 3)), rng.uniform(-2, 2, (20, 3))):
+        st, ct, sph, cph = np.sin(th), np.cos(th), np.sin(ph), np.cos(ph)
+        M = np.array([[st * sph, cph, 0], [st * cph, -sph, 0], [ct, 0, 1]])   # the printed matrix, 3 columns
+        omega = omega_from_euler_rates((psi, th, ph), rates, frame="global")
+        omega_body = omega_from_euler_rates((psi, th, ph), rates, frame="body")
+        rows.append((M @ rates - omega, M @ rates - omega_body, np.zeros(3)))   # read as ω, read as ω'
+    e_p, e_c = compare(rows)
+    return Evidence(rf"At 20 random angles and rates, the matrix (with its three columns, 14.2-omega-matrix) times "
+                    rf"$[\dot\psi, \dot\theta, \dot\phi]^T$ is off from the global components "
+                    rf"$\boldsymbol\omega$ by up to {e_p:.3f}; it equals the body components "
+                    rf"$\boldsymbol\omega' = \mathbf A^T\boldsymbol\omega$ (kinbook's "
+                    rf"omega_from_euler_rates(frame='body'), difference {below(e_c)}).", e_p, e_c)
+
+
 def _ev_p_from_A_recipe():
     rows = []
     for p in _unit_ps(seed=31):
@@ -231,6 +269,12 @@ ERRATA = [
     Erratum("14.2-A21-row3", r"§14.2, the composed matrix $\mathbf A^{21}$ (both versions), row 3",
             r"[\sin\psi\sin\phi,\ -\cos\psi\sin\phi,\ \cos\theta]",
             r"[\sin\psi\sin\theta,\ -\cos\psi\sin\theta,\ \cos\theta]", "formula", _ev_a21_row3),
+    Erratum("14.2-turns-frames", "§14.2, the three turns (second version): the line of the spin",
+            r"e^{Z''} = A^\varphi e^{Z'}", r"e^{Z'''} = A^\varphi e^{Z''}", "typo", _ev_turns_frames,
+            r"The spin turns the triad $OX'Y''Z''$ that the nutation left, about $Z''$ (the text: $\varphi$ “define el "
+            r"triedro $OX_1Y_1Z_1$ respecto al $OX'Y''Z''$”); the first version prints $e^{z'''} = \mathbf A^\phi "
+            r"e^{z''}$. As printed, the chain skips $\mathbf A^\theta$ and does not compose to $\mathbf A^{21} = "
+            r"\mathbf A^\phi\mathbf A^\theta\mathbf A^\psi$."),
     Erratum("14.2-A-theta-second", r"§14.2, the second (corrected) set of elementary matrices: $\mathbf A^\theta$",
             r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\psi&-\operatorname{sen}\theta\\ 0&\operatorname{sen}\theta&\cos\theta\end{bmatrix}",
             r"A^\theta = \begin{bmatrix}1&0&0\\ 0&\cos\theta&\operatorname{sen}\theta\\ 0&-\operatorname{sen}\theta&\cos\theta"
@@ -253,6 +297,15 @@ ERRATA = [
             "formula", _ev_omega_matrix, r"$\sin\theta$ is split from $\sin\phi$ and $\cos\phi$ into a column of "
             r"its own; the first version also prints $+\sin\phi$ where $-\sin\phi$ belongs in row 2, and 0, 0 for "
             r"0, 1 in row 3. kinbook.spatial.omega_from_euler_rates(frame='body') is the corrected relation."),
+    Erratum("14.2-omega-prime", r"§14.2, the angular velocity from the angle rates (both versions): "
+            r"$\omega_1, \omega_2, \omega_3$",
+            r"\begin{bmatrix}\omega_1\\ \omega_2\\ \omega_3\end{bmatrix} = \ldots\begin{bmatrix}\dot\psi\\ "
+            r"\dot\theta\\ \dot\phi\end{bmatrix}",
+            r"\begin{bmatrix}\omega'_1\\ \omega'_2\\ \omega'_3\end{bmatrix} = \ldots\begin{bmatrix}\dot\psi\\ "
+            r"\dot\theta\\ \dot\phi\end{bmatrix}", "typo", _ev_omega_prime,
+            r"The components are the body's, primed as $\mathbf s'$ is in §14.1; the inverse relations take the "
+            r"same $\boldsymbol\omega'$. The global components $\boldsymbol\omega$ need another matrix "
+            r"(notebook 14-2)."),
     Erratum("14.2-rates-inverse-first", r"§14.2, the first inverse relation (angle rates from $\boldsymbol\omega'$), row 2",
             r"\dot\theta = \cos\phi\,\omega_1 + \operatorname{sen}\phi\,\omega_2",
             r"\dot\theta = \cos\phi\,\omega_1 - \operatorname{sen}\phi\,\omega_2", "sign", _ev_rates_inverse_first,
@@ -427,6 +480,12 @@ def _ev_14_4_revolute_tilde():
 
 # §14.4, constraints between two bodies (chapters/14-4-spatial-constraints.ipynb)
 ERRATA += [
+    Erratum("14.4-n2-vectors", r"§14.4, Vectores perpendiculares: the sentence before $\Phi^{(n2,1)}$",
+            r"\text{“Si dos vectores como el } s_i^T \text{ y el } d \text{ en la figura 14.9 …”}",
+            r"\text{“Si dos vectores como el } \vec s_i \text{ y el } \vec d \text{ en la figura 14.9 …”}", "wording",
+            note=r"The vectors of the figure are $\vec s_i$ and $\vec d$ (the paragraph before names the pair "
+                 r"$\vec s_i$, $\vec s_j$); $\mathbf s_i^T$ is the row that enters their scalar product "
+                 r"$\mathbf s_i^T\mathbf d$, not a vector."),
     Erratum("14.4-n2-primes", r"§14.4, Vectores perpendiculares: $\Phi^{(n2,1)}$ in local components",
             r"\Phi^{(n2,1)} = s_i^T A_i^T (r_j + A_j s_j^B - r_i - A_i s_i^B)",
             r"\Phi^{(n2,1)} = s_i'^T A_i^T (r_j + A_j s_j'^B - r_i - A_i s_i'^B)",
