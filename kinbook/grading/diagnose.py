@@ -117,7 +117,10 @@ def _vanishing_detail(target, answer, r):
         names = [str(x) for x in mech.q if x in factor.free_symbols]
         factor = factor.xreplace({f: sp.Float(f, 6) for f in factor.atoms(sp.Float)})  # 0.509, not 0.509000229762094
         text = sp.sstr(factor).replace("**", "^")
-        return Msg("d.vanishing", factor=_book_name(text), where=where(target, Q, names), ref=target.label(j),
+        at = where(target, Q, names)
+        if mech.t in factor.free_symbols:
+            at = f"{at}, t = {T:.6g}" if at else f"t = {T:.6g}"
+        return Msg("d.vanishing", factor=_book_name(text), where=at, ref=target.label(j),
                    value=f"{value:.3g}")
     owner = target.owner(j)
     ncoord = len(mech.COORDS)
