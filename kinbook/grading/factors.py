@@ -40,9 +40,10 @@ BASES = 3
 _SIDE = np.geomspace(1e-3, 1e4, 160)
 GRID = np.concatenate([-_SIDE[::-1], [0.0], _SIDE])
 """Offsets along a line (translations and angles): both sides, 10⁻³ … 10⁴."""
-_T_GRID = np.concatenate([[0.0], _SIDE])
-_E_GRID = np.linspace(-1.0, 1.0, 201)
-_BISECTIONS = 80
+_T_GRID = np.concatenate([[0.0], np.geomspace(1e-3, 1e4, len(GRID) - 1)])
+_E_GRID = np.linspace(-1.0, 1.0, len(GRID))
+_BISECTIONS = 56
+_GOLDEN = 48
 _PER_LINE = 2
 
 
@@ -93,65 +94,79 @@ def _line(target, base_q, base_t, v):
 
 
 def _put(Q, T, v, x):
-    if v < 0:
-        T[...] = x
-    else:
-        Q[..., v] = x
+    """Set variable v (an array of indices, -1 for t) to x in the configurations (Q, T), row by row."""
+    v, x = np.broadcast_to(v, np.shape(x)), np.asarray(x, float)
+    Q, T = np.atleast_2d(Q), np.atleast_1d(T)
+    rows = np.arange(len(x))
+    on_t = v < 0
+    T[rows[on_t]] = x[on_t]
+    Q[rows[~on_t], v[~on_t]] = x[~on_t]
 
 
-def _roots_on_line(F, Q, T, v, values):
-    """Zeros of F along one line: sign changes bisected, near-touches refined (at most :data:`_PER_LINE`)."""
-    with np.errstate(all="ignore"):
-        f = F(Q, T)
-    ok = np.isfinite(f)
-    scale = float(np.max(np.abs(f[ok]), initial=0.0))
-    if scale == 0.0:
+def _roots_on_lines(F, lines):
+    """Zeros of F along lines [(Q (G, n), T (G,), v, values (G,), start)], all lines in one batch: sign changes
+    bisected, near-touches (a local minimum of |f| below 1 % of the line's largest value) refined by golden
+    sections and kept at rounding level. Returns, per line, at most :data:`_PER_LINE` zeros (nearest the line's
+    start first)."""
+    if not lines:
         return []
+    G = len(lines[0][3])
+    Q = np.concatenate([ln[0] for ln in lines])
+    T = np.concatenate([ln[1] for ln in lines])
+    V = np.array([ln[2] for ln in lines])
+    X = np.stack([ln[3] for ln in lines])
+    with np.errstate(all="ignore"):
+        f = F(Q, T).reshape(len(lines), G)
+    ok = np.isfinite(f)
+    scale = np.max(np.where(ok, np.abs(f), 0.0), axis=1)
+    found = [[] for _ in lines]
     # an exact zero counts where its neighbours are not zero too (exp(x2) underflows to 0 far out: no root)
     z = ok & (f == 0.0)
-    isolated = z & ~np.concatenate([[True], z[:-1]]) & ~np.concatenate([z[1:], [True]])
-    found = [float(values[i]) for i in np.flatnonzero(isolated)]
-    a = np.flatnonzero(ok[:-1] & ok[1:] & (np.sign(f[:-1]) * np.sign(f[1:]) < 0))
-    # the sign changes nearest the line's start first (the base sample), then the rest
-    if a.size:
-        lo, hi = values[a].copy(), values[a + 1].copy()
-        flo = f[a].copy()
-        q, t = Q[a].copy(), T[a].copy()
+    pad = np.ones((len(lines), 1), bool)
+    isolated = z & ~np.concatenate([pad, z[:, :-1]], axis=1) & ~np.concatenate([z[:, 1:], pad], axis=1)
+    for li, i in zip(*np.nonzero(isolated)):
+        found[li].append(float(X[li, i]))
+    li, i = np.nonzero(ok[:, :-1] & ok[:, 1:] & (np.sign(f[:, :-1]) * np.sign(f[:, 1:]) < 0))
+    if li.size:
+        lo, hi, flo = X[li, i].copy(), X[li, i + 1].copy(), f[li, i].copy()
+        q, t = Q[li * G + i].copy(), T[li * G + i].copy()
         with np.errstate(all="ignore"):
             for _ in range(_BISECTIONS):
                 mid = 0.5 * (lo + hi)
-                _put(q, t, v, mid)
+                _put(q, t, V[li], mid)
                 fm = F(q, t)
                 left = np.sign(fm) == np.sign(flo)
-                lo, flo = np.where(left, mid, lo), np.where(left, fm, flo)
-                hi = np.where(left, hi, mid)
-        found += [float(x) for x in 0.5 * (lo + hi)]
-    # near-touches: local minima of |f| far below the values around them
+                lo, flo, hi = np.where(left, mid, lo), np.where(left, fm, flo), np.where(left, hi, mid)
+        for a, x in zip(li, 0.5 * (lo + hi)):
+            found[a].append(float(x))
     af = np.where(ok, np.abs(f), np.inf)
-    mins = [i for i in range(1, len(f) - 1) if af[i] <= af[i - 1] and af[i] <= af[i + 1] and af[i] > 0
-            and af[i] < 1e-2 * scale]
-    for i in mins[:_PER_LINE]:
-        lo, hi = float(values[i - 1]), float(values[i + 1])
+    mins = (af[:, 1:-1] <= af[:, :-2]) & (af[:, 1:-1] <= af[:, 2:]) & (af[:, 1:-1] > 0) & \
+        (af[:, 1:-1] < 1e-2 * scale[:, None])
+    li, i = np.nonzero(mins)
+    i = i + 1
+    if li.size:
+        lo, hi = X[li, i - 1].copy(), X[li, i + 1].copy()
         g = 0.5 * (np.sqrt(5.0) - 1.0)
-        q, t = Q[i:i + 1].copy(), T[i:i + 1].copy()
+        q, t = Q[np.repeat(li * G + i, 2)].copy(), T[np.repeat(li * G + i, 2)].copy()
+        vv = np.repeat(V[li], 2)
         with np.errstate(all="ignore"):
-            for _ in range(_BISECTIONS):
+            for _ in range(_GOLDEN):
                 x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-                _put(q, t, v, x1)
-                f1 = abs(float(F(q, t)[0]))
-                _put(q, t, v, x2)
-                f2 = abs(float(F(q, t)[0]))
-                if f1 <= f2:
-                    hi = x2
-                else:
-                    lo = x1
+                _put(q, t, vv, np.stack([x1, x2], axis=1).reshape(-1))
+                ff = np.abs(F(q, t)).reshape(-1, 2)
+                left = ff[:, 0] <= ff[:, 1]
+                hi, lo = np.where(left, x2, hi), np.where(left, lo, x1)
             x = 0.5 * (lo + hi)
-            _put(q, t, v, x)
-            if abs(float(F(q, t)[0])) <= 1e-10 * scale:
-                found.append(x)
-    base = values[len(values) // 2] if len(values) == len(GRID) else 0.0
-    found.sort(key=lambda x: abs(x - base))
-    return found[:_PER_LINE]
+            _put(q[::2], t[::2], V[li], x)
+            fx = np.abs(F(q[::2], t[::2]))
+        for a, xx, fxx in zip(li, x, fx):
+            if fxx <= 1e-10 * scale[a]:
+                found[a].append(float(xx))
+    out = []
+    for line, xs in zip(lines, found):
+        base = line[4] if len(line) > 4 else 0.0
+        out.append(sorted(xs, key=lambda x: abs(x - base))[:_PER_LINE])
+    return out
 
 
 def _polynomial_roots(f, symbol):
@@ -193,14 +208,7 @@ def starts(target, answer, k, cols=None, bases=BASES):
             return answer.jet(target, Q, T)[0][:, k]
 
         variables = list(range(target.n) if cols is None else cols) + ([-1] if target.time_dependent else [])
-        for b in range(B):
-            for v in variables:
-                Q, T, values = _line(target, s.Q[b], s.T[b], v)
-                for x in _roots_on_line(F, Q, T, v, values):
-                    q, t = s.Q[b].copy(), np.array(s.T[b])
-                    _put(q, t, v, x)
-                    out_Q.append(q)
-                    out_T.append(float(t))
+        _search(target, F, s, B, variables, out_Q, out_T)
         return _stack(target, out_Q, out_T)
     mech = target.mech
     for f in parts:
@@ -214,26 +222,36 @@ def starts(target, answer, k, cols=None, bases=BASES):
                 roots = [x for x in roots if _in_domain(target, v, x)]
                 for b in range(B):
                     for x in roots[:_PER_LINE]:
-                        q, t = s.Q[b].copy(), np.array(s.T[b])
-                        _put(q, t, v, x)
+                        q, t = s.Q[b].copy(), np.array([s.T[b]], float)
+                        _put(q, t, v, np.array([x]))
                         out_Q.append(q)
-                        out_T.append(float(t))
+                        out_T.append(float(t[0]))
                 continue
         tape = target.tape([f])
 
         def F(Q, T, tape=tape):
             return tape(Q, None, T)["value"][:, 0]
 
-        for b in range(B):
-            for v in variables:
-                Q, T, values = _line(target, s.Q[b], s.T[b], v)
-                for x in _roots_on_line(F, Q, T, v, values):
-                    if _in_domain(target, v, x):
-                        q, t = s.Q[b].copy(), np.array(s.T[b])
-                        _put(q, t, v, x)
-                        out_Q.append(q)
-                        out_T.append(float(t))
+        _search(target, F, s, B, variables, out_Q, out_T)
     return _stack(target, out_Q, out_T)
+
+
+def _search(target, F, s, B, variables, out_Q, out_T):
+    """The lines through the first B samples of ``s`` along each variable, searched in one batch; the zeros inside
+    the domain appended to (out_Q, out_T)."""
+    keys, lines = [], []
+    for b in range(B):
+        for v in variables:
+            keys.append((b, v))
+            Q, T, values = _line(target, s.Q[b], s.T[b], v)
+            lines.append((Q, T, v, values, s.T[b] if v < 0 else s.Q[b][v]))
+    for (b, v), xs in zip(keys, _roots_on_lines(F, lines)):
+        for x in xs:
+            if _in_domain(target, v, x):
+                q, t = s.Q[b].copy(), np.array([s.T[b]], float)
+                _put(q, t, v, np.array([x]))
+                out_Q.append(q)
+                out_T.append(float(t[0]))
 
 
 def _stack(target, Q, T):

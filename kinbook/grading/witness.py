@@ -101,12 +101,17 @@ def _generic(target, seed):
 
 
 def _assembled(target, seed):
-    """A few configurations where the target's rows hold, near its assembled samples (None when too few)."""
+    """A few configurations where the target's rows hold, near its assembled samples (None when too few): near
+    those at t < 1, and — the rows depending on time — near those over the whole domain (t from 1 to 30,
+    :func:`~kinbook.grading.sample.wide_assembled`), moved in t too."""
     base = target.samples("assembled")
     if not base.on_manifold:
         return None
     rng = np.random.default_rng(seed)
-    idx = rng.integers(0, base.N, 2 * N_WITNESS)
+    near = np.flatnonzero(base.T < 1.0)
+    far = np.flatnonzero(base.T >= 1.0)
+    near = near if len(near) else np.arange(base.N)
+    idx = near[rng.integers(0, len(near), 2 * N_WITNESS)]
     starts = sample.perturbed(target, rng, base.Q[idx], 0.05)
     T = rng.uniform(0.0, 2.0, len(idx))  # the projection moves t too where the rows depend on it (a driver)
     Q, T, ok = sample.project(target, starts, T, steps=10)
@@ -114,9 +119,13 @@ def _assembled(target, seed):
     if len(Q) < 2:
         return None
     Q, T = Q[:N_WITNESS], T[:N_WITNESS]
-    if target.time_dependent:  # and some at instants far from the samples' (1 … 30)
-        WQ, WT = sample.wide_assembled(target, Q, rng, N_WITNESS // 2)
-        Q, T = np.vstack([Q, WQ]), np.concatenate([T, WT])
+    if target.time_dependent and len(far):
+        idx = far[rng.integers(0, len(far), N_WITNESS)]
+        starts = sample.perturbed(target, rng, base.Q[idx], 0.05)
+        WT = np.maximum(base.T[idx] + rng.uniform(-0.5, 0.5, len(idx)), 1.0)
+        WQ, WT, ok = sample.project(target, starts, WT, steps=10)
+        WQ, WT = sample.regular(target, WQ[ok], WT[ok])
+        Q, T = np.vstack([Q, WQ[: N_WITNESS // 2]]), np.concatenate([T, WT[: N_WITNESS // 2]])
     return sample.Samples(Q, sample.velocities(target, Q, T, rng), T, on_manifold=True)
 
 

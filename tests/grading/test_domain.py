@@ -50,3 +50,58 @@ def test_a_polynomial_factor_is_solved_not_searched():
     g = tg.samples("generic")
     moved = [q for q in Q if q[3] == 100.0]
     assert any(set((q != g.Q[i]).nonzero()[0]) == {3} for q in moved for i in range(factors.BASES))
+
+
+# ------------------------------------------------------------------------- docs/mistakes.md, rule by rule
+def _docs():
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "docs" / "mistakes.md").read_text(encoding="utf-8")
+    return " ".join(text.split())
+
+
+def _whole(k, row):
+    return grading.check_phi(C._with(k, row), C.mechanism("ch13_example1"))
+
+
+# each sentence of docs/mistakes.md that states a rule of this module, and an example the rule decides
+RULES = [
+    ("every factor of the row is solved or searched over the whole domain",
+     lambda: _whole(3, f"(x2 - 100)*({C.BASE[3]})").mistakes, ["vanishing_factor"]),
+    ("its real roots, those with t ≥ 0",
+     lambda: (_whole(11, f"(t - 20)*({C.BASE[11]})").mistakes, _whole(11, f"(t + 5)*({C.BASE[11]})").mistakes),
+     (["vanishing_factor"], [])),
+    ("a minimum of |f| that touches zero without a sign change is refined",
+     lambda: _whole(3, f"(cos(phi2) - 1)*({C.BASE[3]})").mistakes, ["vanishing_factor"]),
+    ("a row is a multiple of a reference row only if it is the same multiple there",
+     lambda: _whole(11, "atan2(sin(phi2), cos(phi2)) - 3*pi/4 - 100*t").mistakes, ["only_at_samples"]),
+    ("`atan2(sin(phi3 - phi4), cos(phi3 - phi4))` for a slot's relative angle is right",
+     lambda: grading.check_phi(["(-x3 + x4)*sin(phi3) - (-y3 + y4)*cos(phi3)",
+                                "atan2(sin(phi3 - phi4), cos(phi3 - phi4))"],
+                               C.mechanism("quick_return").constraint("4")).passed, True),
+    ("a function f(q, t) is compared again too, at configurations drawn from a digest of its own code",
+     lambda: [grading.check_phi(c.answer, C.target(c)).mistakes for c in C.function_cases()],
+     [["only_at_samples"], []]),
+]
+
+
+@pytest.mark.parametrize("sentence, example, expected", RULES, ids=[r[0][:40] for r in RULES])
+def test_docs_state_the_rule_the_code_applies(sentence, example, expected):
+    assert sentence in _docs(), sentence
+    assert example() == expected
+
+
+def test_a_function_is_witnessed_from_its_code_deterministically():
+    from kinbook.grading.witness import code_text
+
+    def f(q, t, k=3):
+        return [q[0] * k]
+
+    def g(q, t, k=3):
+        return [q[0] * k]
+
+    def h(q, t, k=4):
+        return [q[0] * k]
+
+    assert code_text(f) == code_text(g) != code_text(h)
+    assert "0x" not in code_text(f)
