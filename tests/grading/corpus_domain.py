@@ -195,9 +195,38 @@ def function_cases():
 
 
 def cases():
-    return far_zero_cases() + wide_cases() + function_cases()
+    return far_zero_cases() + wide_cases() + function_cases() + name_cases()
 
 
 def target(case):
     m = mechanism(case.mech)
     return m if case.constraint is None else m.constraint(case.constraint)
+
+
+# ------------------------------------------------------------------------------------------------ names
+def name_cases():
+    """Names that are true: a zero row (sympy: the row is 0) is ``zero_row``; the 1 of a body's normalization
+    typed as a decimal near 1 (sympy: answer − reference is a nonzero constant under 0.5 % of 1) is
+    ``not_rounded``, not a sign error."""
+    out = []
+    m = mechanism("spatial_fourbar")
+    norm = next(c for c in m.constraints if c.kind == "normalization")
+    e0, e1, e2, e3 = sp.symbols(f"e0{norm.bodies[0].number} e1{norm.bodies[0].number} e2{norm.bodies[0].number} "
+                                f"e3{norm.bodies[0].number}")
+    reference = e0**2 + e1**2 + e2**2 + e3**2 - 1  # pᵀp − 1, written here
+    for typed in ("1.0001", "0.9995", "1.004"):
+        answer = e0**2 + e1**2 + e2**2 + e3**2 - sp.Float(typed)
+        offset = float(answer - reference)
+        near = 0 < abs(offset) <= 5e-3
+        out.append(Case(f"names-normalization-{typed}", "phi", [str(answer).replace(str(sp.Float(typed)), typed)],
+                        False, ["not_rounded"] if near else ["wrong_value"], constraint=norm.name,
+                        mech="spatial_fourbar"))
+    for mech, joint, rows in (("ch13_example1", "1", [BASE[3], BASE[4]]),
+                              ("quick_return", "4", ["(-x3 + x4)*sin(phi3) - (-y3 + y4)*cos(phi3)", "phi3 - phi4"])):
+        for k in range(len(rows)):
+            answer = list(rows)
+            answer[k] = "0"
+            zero = sp.sympify(answer[k]) == 0
+            out.append(Case(f"names-zero-row-{mech}-{joint}-{k + 1}", "phi", answer, False,
+                            ["zero_row"] if zero else ["wrong_value"], constraint=joint, mech=mech))
+    return out

@@ -79,6 +79,11 @@ RULES = [
      lambda: grading.check_phi(["(-x3 + x4)*sin(phi3) - (-y3 + y4)*cos(phi3)",
                                 "atan2(sin(phi3 - phi4), cos(phi3 - phi4))"],
                                C.mechanism("quick_return").constraint("4")).passed, True),
+    ("a row that is 0 everywhere",
+     lambda: grading.check_phi(["0", C.BASE[4]], C.mechanism("ch13_example1").constraint("1")).mistakes, ["zero_row"]),
+    ("A decimal near an integer of the exercise (within 0.5 %) is this mistake too",
+     lambda: grading.check_phi([C.BASE[3], "y1 - y2 + 1.0005*sin(phi2)"],
+                               C.mechanism("ch13_example1").constraint("1")).mistakes, ["not_rounded"]),
     ("a function f(q, t) is compared again too, at configurations drawn from a digest of its own code",
      lambda: [grading.check_phi(c.answer, C.target(c)).mistakes for c in C.function_cases()],
      [["only_at_samples"], []]),
@@ -105,3 +110,22 @@ def test_a_function_is_witnessed_from_its_code_deterministically():
 
     assert code_text(f) == code_text(g) != code_text(h)
     assert "0x" not in code_text(f)
+
+
+def test_a_zero_row_is_named_as_what_it_is():
+    """A 0 for a spatial revolute row was named 'local instead of global vector'; for the translational joint's
+    first row, the book's misprint. Each now gets zero_row and no credit for the row."""
+    cases = [("spatial_fourbar", "O_A"), ("ch13_example2", "2")]
+    for mech_name, joint in cases:
+        m = C.mechanism(mech_name)
+        c = m.constraint(joint)
+        rows = [str(e) for e in m.constraint_phi(c)]
+        rows[0] = "0"
+        r = grading.check_phi(rows, c)
+        assert r.mistakes == ["zero_row"], (mech_name, r)
+        assert r.score == pytest.approx((len(rows) - 1) / len(rows)), r
+        grading.set_language("es")
+        try:
+            assert "una fila que es cero" in r.rows[0].message
+        finally:
+            grading.set_language("en")
