@@ -327,8 +327,31 @@ def _rows_of_own(S, R, rtol, free, factors, own, atol):
             rows.append(Row(k, None, "extra"))
         else:
             rows.append(Row(k, ref, "wrong", c))
+    _moved_own(rows, S, R, rtol, free, factors, own, atol)
     count = own.shape[1] if own is not None else m
     return Matching(rows, [("own", k) for k in range(ms, count)])
+
+
+def _moved_own(rows, S, R, rtol, free, factors, own, atol):
+    """With the student's Φ: a wrong row that is right for *another* row of their Φ (γ rows in the book's order
+    under a Φ in another order) is "moved" (the rows' order), not a wrong value."""
+    for r in rows:
+        if r.status != "wrong":
+            continue
+        for k2 in range(len(rows)):
+            if k2 == r.k:
+                continue
+            ref, c = (factors or {}).get(k2, (None, None))
+            hit = own is not None and k2 < own.shape[1] and \
+                scale_match(S[:, r.k], own[:, k2], rtol, False, atol=atol, zeros=True) is not None
+            if not hit and ref is not None:
+                c2 = scale_match(S[:, r.k], R[:, ref], rtol, free, atol=atol, zeros=True) if free else (
+                    1.0 if c is not None and scale_match(S[:, r.k], c * R[:, ref], rtol, False, atol=atol,
+                                                         zeros=True) is not None else None)
+                hit = c2 is not None
+            if hit and scale_of(S[:, r.k]) > atol:
+                r.status, r.ref = "moved", ref
+                break
 
 
 def _rows_by_value(C, ms, m):

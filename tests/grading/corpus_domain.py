@@ -195,7 +195,7 @@ def function_cases():
 
 
 def cases():
-    return far_zero_cases() + wide_cases() + function_cases() + name_cases()
+    return far_zero_cases() + wide_cases() + function_cases() + name_cases() + phi_cases()
 
 
 def target(case):
@@ -229,4 +229,37 @@ def name_cases():
             zero = sp.sympify(answer[k]) == 0
             out.append(Case(f"names-zero-row-{mech}-{joint}-{k + 1}", "phi", answer, False,
                             ["zero_row"] if zero else ["wrong_value"], constraint=joint, mech=mech))
+    return out
+
+
+# ------------------------------------------------------------------------------------------------ phi=
+def gamma_of(rows, names):
+    """γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt of rows in the coordinates ``names``, by sympy (dx1 … for q̇)."""
+    q = [sp.Symbol(n) for n in names]
+    qd = [sp.Symbol(f"d{n}") for n in names]
+    t = sp.Symbol("t")
+    out = []
+    for row in rows:
+        f = sp.sympify(row)
+        v = sum(sp.diff(f, a) * b for a, b in zip(q, qd))
+        g = -sum(sp.diff(v, a) * b for a, b in zip(q, qd)) - 2 * sum(sp.diff(sp.diff(f, t), a) * b
+                                                                       for a, b in zip(q, qd)) - sp.diff(f, t, 2)
+        out.append(sp.simplify(g))
+    return out
+
+
+def phi_cases():
+    """γ with the student's own Φ (``phi=``): in their order, right; in the reverse order, each row is the γ of
+    another of their rows (sympy) — ``row_order``, not a wrong value nor a missing Φ_qt term (revolute joint 1
+    has no t)."""
+    names = ["x1", "y1", "phi1", "x2", "y2", "phi2"]
+    out = []
+    for scale in (1, -2):
+        phi = [f"{scale}*({BASE[3]})", f"{scale}*({BASE[4]})"]
+        g = gamma_of(phi, names)
+        out.append(Case(f"phi-gamma-own-order-{scale}", "gamma", [str(e) for e in g], True, [], constraint="1",
+                        options={"phi": phi}))
+        moved = all(sp.simplify(g[1 - k] - g[k]) != 0 for k in range(2))  # each reversed row is another's γ
+        out.append(Case(f"phi-gamma-reversed-{scale}", "gamma", [str(e) for e in g[::-1]], False,
+                        ["row_order"] if moved else [], constraint="1", options={"phi": phi}))
     return out

@@ -75,7 +75,7 @@ def new_corpora(lines):
             c.answer(), corpus_rounding.target(c)))
     from . import corpus_domain
 
-    for case in corpus_domain.cases():
+    for case in corpus_domain.cases():  # far zeros, the whole domain, functions, names, phi=
         _run(lines, f"domain {case.id}", lambda c=case: getattr(grading, checks[c.check])(
             c.answer, corpus_domain.target(c), **c.options))
 

@@ -11,7 +11,7 @@ from kinbook.grading.target import target_for
 
 from . import corpus_domain as C
 
-CHECKS = {"phi": grading.check_phi}
+CHECKS = {"phi": grading.check_phi, "gamma": grading.check_gamma}
 CASES = C.cases()
 
 
