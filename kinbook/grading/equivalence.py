@@ -188,13 +188,16 @@ def vanishing(matching, data, rtol):
             if not eq:
                 continue
         ks = [r.k for r in mine]
-        found = [f for f in [data.search(b, ks)] + [data.search(b, ks, k=r.k) for r in eq] if f is not None]
+        tol = 1e-6 * max(scale_of(data.R_G[:, refs]), 1.0)
+        found = [f for f in [data.search(b, ks)] if f is not None]
+        if not found or not np.any(np.max(np.abs(found[0][2]), axis=1) > tol):
+            # nothing wrong near the samples: every factor's zeros over the whole domain (the costlier search)
+            found += [f for f in [data.search(b, ks, k=r.k) for r in eq] if f is not None]
         if not found:
             searched[b] = 0
             continue
         Q, T, R = (np.concatenate(x) for x in zip(*found))
         searched[b] = len(Q)
-        tol = 1e-6 * max(scale_of(data.R_G[:, refs]), 1.0)
         bad = np.flatnonzero(np.max(np.abs(R), axis=1) > tol)
         if not bad.size:
             continue

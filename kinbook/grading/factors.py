@@ -210,6 +210,8 @@ def starts(target, answer, k, cols=None, bases=BASES):
         variables = list(range(target.n) if cols is None else cols) + ([-1] if target.time_dependent else [])
         _search(target, F, s, B, variables, out_Q, out_T)
         return _stack(target, out_Q, out_T)
+    import sympy as sp
+
     mech = target.mech
     for f in parts:
         variables = _variables(target, f.free_symbols)
@@ -227,7 +229,7 @@ def starts(target, answer, k, cols=None, bases=BASES):
                         out_Q.append(q)
                         out_T.append(float(t[0]))
                 continue
-        tape = target.tape([f])
+        tape = target.tape([f], key=("factor", sp.srepr(f)))
 
         def F(Q, T, tape=tape):
             return tape(Q, None, T)["value"][:, 0]
