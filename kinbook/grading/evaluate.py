@@ -182,8 +182,11 @@ def phi_data(target, answer):
         return book_form(target, target.constraints[i])
 
     W = target.samples("wide")
-    with np.errstate(all="ignore"):
-        S_W = column(answer.values(target, W), target, "Phi")
+    try:
+        with np.errstate(all="ignore"):
+            S_W = column(answer.values(target, W), target, "Phi")
+    except Refused:  # a function that cannot be read there: the multiples stand as at the generic samples
+        S_W = np.full((W.N, S_G.shape[1]), np.nan)
     return PhiData(S_G, S_M, RG["Phi"], RM["Phi"], RM["Phi_q"], RM["free_q"], grads, M.on_manifold, blocks, block,
                    cols, together, search, book, RG["Phi_q"], np.where(np.isfinite(S_W), S_W, np.nan),
                    target.reference("wide")["Phi"])

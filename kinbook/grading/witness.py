@@ -159,7 +159,10 @@ def phi(target, answer, matching, rtol):
     if answer.kind == "numbers" or not rows:
         return
     s = _generic(target, _seed(answer, target))
-    S = answer.values(target, s)[:, :, 0]
+    S = _values(answer, target, s)
+    if S is None:
+        return
+    S = S[:, :, 0]
     R = target.evaluate(s)["Phi"]
     R_G = target.reference("generic")["Phi"]
     for r in rows:
@@ -187,6 +190,17 @@ def _wide_only(target, matching, rtol):
         _reject(target, r, s, i, "Phi")
 
 
+def _values(answer, target, s):
+    """The answer at the witness's configurations, or None where it cannot be read there (a function that raises
+    or changes its shape at an angle beyond ±π): its match stands, as a row not defined there."""
+    from .read import Refused
+
+    try:
+        return answer.values(target, s)
+    except Refused:
+        return None
+
+
 def samples(target, answer):
     """Where a Φ_q, ν or γ answer is compared again: assembled configurations drawn from its digest (velocities
     consistent, as at the samples), or None (a function, numbers, a target with no assembled samples)."""
@@ -202,7 +216,9 @@ def derived(target, quantity, answer, data, matching, rtol, s):
             and not isinstance(r.ref, tuple)]
     if s is None or not rows:
         return
-    V = answer.values(target, s)
+    V = _values(answer, target, s)
+    if V is None:
+        return
     ref = target.evaluate(s)
     per_coordinate = quantity_of(quantity).per_coordinate
     if per_coordinate:

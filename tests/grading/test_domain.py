@@ -129,3 +129,17 @@ def test_a_zero_row_is_named_as_what_it_is():
             assert "una fila que es cero" in r.rows[0].message
         finally:
             grading.set_language("en")
+
+
+def test_a_function_that_cannot_be_read_far_away_keeps_its_match():
+    """A function that raises beyond some t (t > 1.5) is not a crash in the witness nor at the wide generic samples:
+    its rows' matches stand there, as a row not defined there (a joint without t: its assembled samples are near)."""
+    import math
+
+    def f(q, t):
+        if t > 1.5:
+            raise ValueError("t too large")
+        return [q[0] - q[3] + math.cos(q[5]), q[1] - q[4] + math.sin(q[5])]
+
+    r = grading.check_phi(f, C.mechanism("ch13_example1").constraint("1"))
+    assert r.passed, r
