@@ -131,6 +131,16 @@ def _ex1_vanishing():
     return m, t, rows, "check_phi", {"_passed": False}
 
 
+def _ex1_far_zero():
+    """A factor whose zero is far from every sample, (x2 − 100): found only by the factors' whole-domain search."""
+    from tests.grading.corpus import EX1_PHI_SIMPLE
+
+    m, t = _ex("ch13_example1")
+    rows = list(EX1_PHI_SIMPLE)
+    rows[3] = f"(x2 - 100)*({rows[3]})"
+    return m, t, rows, "check_phi", {"_passed": False}
+
+
 CASES = [
     {"name": "planar Φ, example 1 (12 rows)", "build": _ex1_phi},
     {"name": "planar Φ_q, example 1", "build": _ex1_jac},
@@ -148,6 +158,7 @@ CASES = [
                                                                             lambda e: -2 * e + 1)},
     {"name": "wrong: planar Φ, six-bar, a masked row", "build": _six_bar_masked},
     {"name": "wrong: planar Φ, example 1, a vanishing factor", "build": _ex1_vanishing},
+    {"name": "wrong: planar Φ, example 1, a factor zero far away", "build": _ex1_far_zero},
 ]
 
 

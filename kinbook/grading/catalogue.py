@@ -112,6 +112,10 @@ _ENTRIES = [
        N_("entries exchanged"),
        N_("the right numbers in the wrong places: check which coordinate, row or column each entry belongs to (q = "
            "[x1, y1, φ1, x2 …]; a point's [x, y]; row k of a matrix is its k-th equation)")),
+    _m("zero_row",
+       N_("a row that is zero"),
+       N_("a row of Φ that is 0 states no equation: each row of a constraint is an expression that vanishes where "
+          "the joint holds (and only there)")),
     _m("wrong_value",
        N_("wrong value"),
        N_("the value differs from the reference and matches none of the catalogued mistakes; recheck the derivation "
@@ -406,6 +410,7 @@ add_texts({
     "d.multiplied_by": N_("multiplied by {c}, {what}"),
     "d.row_of": N_("this is the row that belongs to {other}; the row of {row} goes here (each row is derived from its "
                    "own row of Φ)"),
+    "d.zero_like": N_("your row is 0 — it is also what the mistake '{code}' gives for {ref}"),
     "d.or_sign_of_term": N_("the same expression as the sign of the term {term} slipped: check both"),
     "d.jacobian_of": N_("the Jacobian of {c}·{ref}: the derivative of {ref} keeps all its factors (the 2 of ∂(dᵀd)/∂q = "
                         "2dᵀ∂d/∂q, of A(p) = 2[…]); pass your own Φ as phi= if you scaled it"),

@@ -34,6 +34,7 @@ def phi(target, answer, data, matching, rtol):
     for r in rows:
         if r.code == "vanishing_factor" and r.where is not None:
             r.detail = _vanishing_detail(target, answer, r)
+    zero = {r.k for r in rows if r.status == "wrong" and r.code is None and _zero_row(answer, data, r.k)}
     wrong = [r for r in rows if r.status == "wrong"]
     free = list(matching.missing)
     if wrong and free:
@@ -48,18 +49,30 @@ def phi(target, answer, data, matching, rtol):
     if wrong and free:
         mutant_names.name_phi_rows(target, data, wrong, free, rtol)
     wrong = [r for r in wrong if r.code is None]
+    for r in rows:  # a zero row is named as what it is; a mistake that gives 0 too is said beside it
+        if r.k in zero and r.code is not None:
+            r.detail, r.code, r.erratum = Msg("d.zero_like", code=r.code, ref=target.label(r.ref)), "zero_row", None
     if wrong:
         for r, j in _pair(target, answer, wrong, free):
             r.ref = j
             if j is not None:
                 free.remove(j)
-                r.code = "masked_row" if r.masked else "wrong_value"
+                r.code = "zero_row" if r.k in zero else ("masked_row" if r.masked else "wrong_value")
             else:
                 r.status, r.code = "extra", "extra_row"
     matching.missing = free
     for r in rows:
         if r.status == "wrong" and r.ref is not None:
             r.context = M.contexts_of(target.owner(r.ref))
+
+
+def _zero_row(answer, data, k):
+    """Answer row k is zero everywhere: a sympy zero, or (a function, numbers) zero with its gradient at every
+    sample. No mistake of the catalogue is a zero row: it is named as what it is."""
+    if answer.kind == "symbolic":
+        return answer.matrix[k, 0] == 0
+    return bool(np.all(data.S_G[:, k] == 0.0) and np.all(data.S_M[:, k] == 0.0)
+                and np.all(data.grads("generic")[:, k, :] == 0.0))
 
 
 def symbols_of(expr):
@@ -120,7 +133,10 @@ def _vanishing_detail(target, answer, r):
         names = [str(x) for x in mech.q if x in factor.free_symbols]
         factor = factor.xreplace({f: sp.Float(f, 6) for f in factor.atoms(sp.Float)})  # 0.509, not 0.509000229762094
         text = sp.sstr(factor).replace("**", "^")
-        return Msg("d.vanishing", factor=_book_name(text), where=where(target, Q, names), ref=target.label(j),
+        at = where(target, Q, names)
+        if mech.t in factor.free_symbols:
+            at = f"{at}, t = {T:.6g}" if at else f"t = {T:.6g}"
+        return Msg("d.vanishing", factor=_book_name(text), where=at, ref=target.label(j),
                    value=f"{value:.3g}")
     owner = target.owner(j)
     ncoord = len(mech.COORDS)
@@ -287,6 +303,8 @@ def _terms_phi(target, data, wrong, free, rtol):
         vals = target.tape([e for _, e, _ in cands])(G.Q, G.QD, G.T)["value"]
         hits = []
         for i, (code, _, term) in enumerate(cands):
+            if np.ptp(vals[:, i]) <= 1e-12 * max(1.0, float(np.abs(vals[:, i]).max())):
+                continue  # a variant constant at the samples (pᵀp + 1 on unit p) is a multiple of any constant row
             for r in left:
                 c = scale_match(data.S_G[:, r.k], vals[:, i], rtol)
                 if c is not None:

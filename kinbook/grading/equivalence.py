@@ -156,10 +156,15 @@ def still_missing(B, refs, lack, multiples, eq, rtol):
 
 def vanishing(matching, data, rtol):
     """Rows accepted as an equivalent formulation of a constraint whose zero set is larger than the constraint's:
-    a factor f(q) that vanishes somewhere (cos φ2 · Φ_4, e0 · Φ_k). The zeros of the constraint's answer rows are
-    searched (seeded Newton, the bodies free: :func:`kinbook.grading.sample.zeros`); where they vanish and a row
-    they stand for does not, the row is wrong ("vanishing_factor", ``where`` = that configuration). The book's own
-    rows of the constraint (two of the three cross-product rows of a parallel constraint) are its accepted form.
+    a factor f(q, t) that vanishes somewhere in the configuration space (cos φ2 · Φ_4, e0 · Φ_k, (x2 − 100) · Φ_4,
+    (t − 20) · Φ_12). The zeros of the constraint's answer rows are found from two kinds of starts: seeded ones
+    spread over the configuration space and around the assembly (:func:`kinbook.grading.sample.zeros`), and the
+    zeros of each factor of each such row, solved or searched over the whole domain — every coordinate on the
+    real line, t ≥ 0 (:mod:`kinbook.grading.factors`); from each, Newton steps solve the constraint's other answer
+    rows. Where they all vanish and a row they stand for does not — at no placement the same up to turns of 2π
+    (:func:`kinbook.grading.sample.placements`: an angle written with atan2 vanishes at φ3 − φ4 = 2π, the same
+    placement) — the row is wrong ("vanishing_factor", ``where`` = that configuration). The book's own rows of
+    the constraint (two of the three cross-product rows of a parallel constraint) are its accepted form.
 
     Returns
     -------
@@ -182,13 +187,17 @@ def vanishing(matching, data, rtol):
             eq = [r for r in eq if not r.book]
             if not eq:
                 continue
-        found = data.search(b, [r.k for r in mine])
-        if found is None:
+        ks = [r.k for r in mine]
+        tol = 1e-6 * max(scale_of(data.R_G[:, refs]), 1.0)
+        found = [f for f in [data.search(b, ks)] if f is not None]
+        if not found or not np.any(np.max(np.abs(found[0][2]), axis=1) > tol):
+            # nothing wrong near the samples: every factor's zeros over the whole domain (the costlier search)
+            found += [f for f in [data.search(b, ks, k=r.k) for r in eq] if f is not None]
+        if not found:
             searched[b] = 0
             continue
-        Q, T, R = found
+        Q, T, R = (np.concatenate(x) for x in zip(*found))
         searched[b] = len(Q)
-        tol = 1e-6 * max(scale_of(data.R_G[:, refs]), 1.0)
         bad = np.flatnonzero(np.max(np.abs(R), axis=1) > tol)
         if not bad.size:
             continue

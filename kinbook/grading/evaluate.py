@@ -67,6 +67,8 @@ class PhiData:
     search: object = None  # callable: (constraint index, answer rows) -> (Q, T, its reference rows) at their zeros
     book: object = None  # callable: constraint index -> the book's own rows of it at the generic samples, or None
     gR_G: np.ndarray = None  # gradients of the reference rows at the generic samples
+    S_W: np.ndarray = None  # the answer at the generic samples over the whole domain (NaN where not defined)
+    R_W: np.ndarray = None  # the reference there
 
 
 @dataclass
@@ -141,8 +143,13 @@ def phi_data(target, answer):
         s = g.samples("assembled")
         return column(answer.values(target, s), target, "Phi") if s.on_manifold else None
 
-    def search(i, ks):
-        from .sample import Samples, zeros
+    def search(i, ks, k=None):
+        """Where the answer rows ``ks`` (those of constraint i) vanish together — from the seeded starts of
+        :func:`~kinbook.grading.sample.zeros`, or (``k`` given) from the zeros of row k's factors over the whole
+        domain (:mod:`~kinbook.grading.factors`) — with the reference rows of constraint i there, at the
+        placement (a turn of 2π, −p) where they are least."""
+        from .factors import starts
+        from .sample import Samples, placements, zeros
 
         own = target.own_target(target.constraints[i])
 
@@ -150,19 +157,39 @@ def phi_data(target, answer):
             v, g, d = answer.jet(target, Q, T)
             return v[:, ks], np.where(np.isfinite(g[:, ks]), g[:, ks], 0.0), d[:, ks]
 
-        Q, T = zeros(own, F)
+        first = None
+        if k is not None:
+            first = starts(target, answer, k, cols=np.flatnonzero(cols[i]))
+            if not len(first[0]):
+                return None
+        Q, T = zeros(own, F, starts=first)
         if not len(Q):
             return None
-        ref = own.evaluate(Samples(Q, np.zeros_like(Q), T))["Phi"]
-        return Q, T, ref
+        PQ, PT = placements(own, Q, T, np.flatnonzero(cols[i]))
+        ref = own.evaluate(Samples(PQ, np.zeros_like(PQ), PT))["Phi"]
+        periods = np.array([own.wrap.get(j, 0.0) for j in range(ref.shape[1])])
+        wrapped = np.where(periods > 0, (ref + periods / 2) % np.where(periods > 0, periods, 1.0) - periods / 2, ref)
+        P = len(PQ) // len(Q)
+        size = np.abs(wrapped).max(axis=1).reshape(len(Q), P)
+        best = np.argmin(size, axis=1)
+        # another placement only where it makes the reference smaller, not by rounding (cos 40 vs cos(40 − 4π))
+        best = np.where(size[np.arange(len(Q)), best] < 0.5 * size[:, 0], best, 0) + P * np.arange(len(Q))
+        return PQ[best], PT[best], wrapped[best]
 
     def book(i):
         from .mistakes import book_form
 
         return book_form(target, target.constraints[i])
 
+    W = target.samples("wide")
+    try:
+        with np.errstate(all="ignore"):
+            S_W = column(answer.values(target, W), target, "Phi")
+    except Refused:  # a function that cannot be read there: the multiples stand as at the generic samples
+        S_W = np.full((W.N, S_G.shape[1]), np.nan)
     return PhiData(S_G, S_M, RG["Phi"], RM["Phi"], RM["Phi_q"], RM["free_q"], grads, M.on_manifold, blocks, block,
-                   cols, together, search, book, RG["Phi_q"])
+                   cols, together, search, book, RG["Phi_q"], np.where(np.isfinite(S_W), S_W, np.nan),
+                   target.reference("wide")["Phi"])
 
 
 def _block(target, answer, i, refs, S_M, grads, RM):

@@ -85,6 +85,7 @@ class Matching:
     rows: list
     missing: list  # reference rows (0-based) nobody stands for
     searched: dict = field(default_factory=dict)  # constraint index -> zeros found by the search (vanishing)
+    wide: dict = field(default_factory=dict)  # answer row -> (reference row, c, sample): a multiple only in (−π, π], t ≤ 1
 
 
 
@@ -112,6 +113,7 @@ def match_phi(data, rtol, order="any", wrap=None):
     blocks = data.blocks or [list(range(m))]
     owner_of = {j: b for b, refs in enumerate(blocks) for j in refs}
     C = scale_matrix(S_G, R_G, rtol, True, wrap)
+    wide = _wide(C, data, rtol, wrap)
     _zero_rows(C, data, rtol)
     rows, taken = _multiples(C, ms, m, order, owner_of)
     # 2. the other rows: an equivalent formulation of one constraint, judged where that constraint alone holds
@@ -124,7 +126,7 @@ def match_phi(data, rtol, order="any", wrap=None):
     # 6. book order
     if order == "book":
         _mark_moved(rows, m)
-    return Matching(rows, sorted(missing))
+    return Matching(rows, sorted(missing), wide=wide)
 
 
 def _multiples(C, ms, m, order, owner_of):
@@ -200,6 +202,27 @@ def _coverage(data, rows, blocks, rtol):
                                                               r.owner == b], eq, rtol)
         missing += lack
     return missing
+
+
+def _wide(C, data, rtol, wrap):
+    """A multiple at the generic samples is one only if it is the same multiple at the samples over the whole
+    domain (angles beyond ±π, t up to 30), compared there on their own scale: ``atan2(sin φ2, cos φ2)`` is φ2
+    only in (−π, π]. A row not defined there (a square root of a negative) keeps its match.
+
+    Returns {answer row: (reference row, constant, the sample where it differs most)} of the multiples dropped (named by the witness)."""
+    S_W, R_W = getattr(data, "S_W", None), getattr(data, "R_W", None)
+    dropped = {}
+    if S_W is None or R_W is None or not np.isfinite(C).any():
+        return dropped
+    CW = scale_matrix(np.nan_to_num(S_W), R_W, rtol, True, wrap)
+    for k, j in zip(*np.nonzero(np.isfinite(C))):
+        if not np.all(np.isfinite(S_W[:, k])) or scale_of(R_W[:, j]) == 0.0:
+            continue
+        if not (np.isfinite(CW[k, j]) and abs(CW[k, j] - C[k, j]) <= 1e-6 * abs(C[k, j])):
+            i = int(np.argmax(np.abs(S_W[:, k] - C[k, j] * R_W[:, j])))
+            dropped.setdefault(int(k), (int(j), float(C[k, j]), i))
+            C[k, j] = np.nan
+    return dropped
 
 
 def _zero_rows(C, data, rtol):
@@ -304,8 +327,31 @@ def _rows_of_own(S, R, rtol, free, factors, own, atol):
             rows.append(Row(k, None, "extra"))
         else:
             rows.append(Row(k, ref, "wrong", c))
+    _moved_own(rows, S, R, rtol, free, factors, own, atol)
     count = own.shape[1] if own is not None else m
     return Matching(rows, [("own", k) for k in range(ms, count)])
+
+
+def _moved_own(rows, S, R, rtol, free, factors, own, atol):
+    """With the student's Φ: a wrong row that is right for *another* row of their Φ (γ rows in the book's order
+    under a Φ in another order) is "moved" (the rows' order), not a wrong value."""
+    for r in rows:
+        if r.status != "wrong":
+            continue
+        for k2 in range(len(rows)):
+            if k2 == r.k:
+                continue
+            ref, c = (factors or {}).get(k2, (None, None))
+            hit = own is not None and k2 < own.shape[1] and \
+                scale_match(S[:, r.k], own[:, k2], rtol, False, atol=atol, zeros=True) is not None
+            if not hit and ref is not None:
+                c2 = scale_match(S[:, r.k], R[:, ref], rtol, free, atol=atol, zeros=True) if free else (
+                    1.0 if c is not None and scale_match(S[:, r.k], c * R[:, ref], rtol, False, atol=atol,
+                                                         zeros=True) is not None else None)
+                hit = c2 is not None
+            if hit and scale_of(S[:, r.k]) > atol:
+                r.status, r.ref = "moved", ref
+                break
 
 
 def _rows_by_value(C, ms, m):

@@ -173,7 +173,13 @@ def exact(answer, target, quantity="Phi", raw=None):
         digits = typed.get(abs(x), significant_digits(x))
         best = None
         for value, c in constants.items():
-            if isinstance(value, tuple) or value == x:
+            if isinstance(value, tuple):  # an integer of the exercise (pᵀp − 1): a decimal near it is no rounding
+                n = value[1]
+                if n and not f.is_Integer and abs(abs(x) - n) <= NEAR * n and abs(x) != n:
+                    if best is None or abs(abs(x) - n) < abs(abs(best[0]) - abs(x)):
+                        best = (math.copysign(n, x), sp.Integer(n if x > 0 else -n))
+                continue
+            if value == x:
                 continue
             rounded = is_rounding(x, value, digits)
             if rounded and digits >= MIN_DIGITS:

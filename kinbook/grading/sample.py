@@ -2,7 +2,8 @@
 
 Two sets per target, both the same on every run and every machine (seeded):
 
-* *generic* samples — random q, q̇ and t. Φ is compared there: at assembled configurations every correct Φ
+* *generic* samples — random q, q̇ and t; and a few over the whole domain (angles beyond ±π, t up to 30:
+  :func:`generic_wide`), compared apart on their own scale. Φ is compared there: at assembled configurations every correct Φ
   is zero, and zero says nothing about the form of a row. In space the Euler parameters of every body are
   on the unit sphere (where every real configuration has them), so rows that differ only off it agree.
 * *assembled* samples — configurations on the constraint manifold: the graded rows vanish and, in space,
@@ -24,9 +25,11 @@ import numpy as np
 
 from ..spatial.random import random_p
 
-__all__ = ["Samples", "generic", "assembled", "at", "zeros", "spread", "perturbed", "project", "regular", "velocities", "N_GENERIC", "N_ASSEMBLED", "N_SEARCH", "SEED"]
+__all__ = ["Samples", "generic", "assembled", "at", "zeros", "placements", "wide", "wide_assembled", "spread", "perturbed", "project", "regular", "velocities", "N_GENERIC", "N_WIDE", "generic_wide", "N_ASSEMBLED", "N_SEARCH", "SEED"]
 
 N_GENERIC = 16
+N_WIDE = 4
+"""Generic samples over the whole domain (:func:`wide`), after the N_GENERIC ones."""
 N_ASSEMBLED = 16
 SEED = 20241121
 N_SEARCH = 48
@@ -68,6 +71,24 @@ def generic(target):
     return Samples(Q, QD, T)
 
 
+def generic_wide(target):
+    """The generic samples over the whole domain (:func:`wide`, seeded): a Φ row is a multiple of a reference row
+    only if it is that multiple here too, compared on its own scale here (a row's size at t = 30 must not
+    loosen the comparison at the other samples)."""
+    return wide(target, np.random.default_rng(SEED + 3), N_WIDE)
+
+
+def wide(target, rng, count):
+    """Configurations over the whole domain: angles beyond ±π (π … 4π either way) and t from a wide range
+    (1 … 30) — where ``atan2(sin φ2, cos φ2)`` is not φ2 and a product of (t − tₖ) over instants in [0, 1] is
+    large. Translations as :func:`spread`; Euler parameters of unit norm."""
+    Q = spread(target, rng, count)
+    if target.kind == "planar":
+        nb = target.n // 3
+        Q[:, 2::3] = rng.choice([-1.0, 1.0], (count, nb)) * rng.uniform(np.pi, 4 * np.pi, (count, nb))
+    return Samples(Q, rng.normal(0.0, 2.0, Q.shape), rng.uniform(1.0, 30.0, count))
+
+
 def assembled(target):
     """Configurations on the target's constraint manifold with consistent velocities (see the module)."""
     rng = np.random.default_rng(SEED + 1)
@@ -91,11 +112,25 @@ def assembled(target):
         return generic(target)
     pick = np.linspace(0, len(Q) - 1, min(N_ASSEMBLED, len(Q))).round().astype(int)
     Q, T = Q[pick], T[pick]
+    if target.time_dependent:
+        WQ, WT = wide_assembled(target, Q, np.random.default_rng(SEED + 4))
+        Q, T = np.vstack([Q, WQ]), np.concatenate([T, WT])
     QD = velocities(target, Q, T, rng)
     return Samples(Q, QD, T, on_manifold=True)
 
 
-def zeros(target, F, count=N_SEARCH):
+def wide_assembled(target, base, rng, count=None):
+    """Up to ``count`` (:data:`N_WIDE`) assembled configurations at instants t from 1 to 30 (the rows depend on
+    time): from the assembled ones, projected in q at that t (a driver's angle then far beyond ±π)."""
+    count = N_WIDE if count is None else count
+    starts = base[rng.integers(0, len(base), 2 * count)]
+    T = rng.uniform(1.0, 30.0, len(starts))
+    Q, T, ok = project(target, starts, T, hold_t=True)
+    Q, T = regular(target, Q[ok], T[ok])
+    return Q[:count], T[:count]
+
+
+def zeros(target, F, count=N_SEARCH, starts=None):
     """Configurations where the rows ``F`` vanish (with the bodies' normalization rows, in space): seeded
     minimum-norm Newton searches from starts spread over the whole configuration space and around the target's
     assembled samples — in (q, t) when the target's rows depend on time.
@@ -104,17 +139,22 @@ def zeros(target, F, count=N_SEARCH):
     ----------
     F : callable
         ``F(Q, T) -> (values (B, r), gradients (B, r, n), time derivatives (B, r))``.
+    starts : (Q (K, n), T (K,)), optional
+        Where to start instead (the zeros of one factor of a row: :func:`kinbook.grading.factors.starts`).
 
     Returns
     -------
-    Q (K, n), T (K,) : the starts that converged.
+    Q (K, n), T (K,) : the starts that converged (t ≥ 0: time starts at 0).
     """
-    rng = np.random.default_rng(SEED + 2)
-    starts = [spread(target, rng, count // 2)]
-    base = target.samples("assembled").Q
-    starts.append(perturbed(target, rng, base[rng.integers(0, len(base), count - count // 2)], 0.8))
-    Q = np.vstack(starts)
-    T = rng.uniform(0.0, 1.0, len(Q))
+    if starts is None:
+        rng = np.random.default_rng(SEED + 2)
+        Q = [spread(target, rng, count // 2)]
+        base = target.samples("assembled").Q
+        Q.append(perturbed(target, rng, base[rng.integers(0, len(base), count - count // 2)], 0.8))
+        Q = np.vstack(Q)
+        T = rng.uniform(0.0, 1.0, len(Q))
+    else:
+        Q, T = np.array(starts[0], float), np.array(starts[1], float)
     norm = np.array([r for c in target.mech.constraints if c.kind == "normalization"
                      for r in range(c.rows.start, c.rows.stop)], dtype=int)
     with_t = target.time_dependent
@@ -143,7 +183,40 @@ def zeros(target, F, count=N_SEARCH):
             Q[active] -= step[:, : target.n]
             if with_t:
                 T[active] -= step[:, -1]
+    ok &= T >= 0.0
     return Q[ok], T[ok]
+
+
+def placements(target, Q, T, cols=None):
+    """The configurations that place every body as (Q, T) does: each planar angle of the coordinates ``cols``
+    (default all) turned by a whole number of turns (−2 … 2), each spatial body's Euler parameters negated.
+
+    Returns
+    -------
+    Q (K·P, n), T (K·P,) : for each configuration its P placements, the configuration itself first.
+    """
+    import itertools
+
+    Q = np.atleast_2d(np.asarray(Q, float))
+    T = np.asarray(T, float).reshape(-1)
+    cols = range(target.n) if cols is None else cols
+    ncoord = 3 if target.kind == "planar" else 7
+    if target.kind == "planar":
+        axes = sorted({c for c in cols if c % ncoord == 2})
+        steps = [m * 2 * np.pi for m in (0, 1, -1, 2, -2)]
+    else:
+        axes = sorted({c // ncoord for c in cols})
+        steps = [1.0, -1.0]
+    axes = axes[:4]  # at most 5**4 (or 2**4) placements per configuration
+    shifts = list(itertools.product(steps, repeat=len(axes)))
+    out = np.repeat(Q, len(shifts), axis=0).reshape(len(Q), len(shifts), -1)
+    for p, shift in enumerate(shifts):
+        for a, d in zip(axes, shift):
+            if target.kind == "planar":
+                out[:, p, a] += d
+            else:
+                out[:, p, ncoord * a + 3: ncoord * a + 7] *= d
+    return out.reshape(-1, Q.shape[1]), np.repeat(T, len(shifts))
 
 
 def at(target, configuration):
@@ -180,10 +253,11 @@ def perturbed(target, rng, base, size):
     return Q
 
 
-def project(target, Q, T, steps=_NEWTON_STEPS):
-    """Minimum-norm Newton steps onto the manifold rows, in (q, t) when they depend on time."""
+def project(target, Q, T, steps=_NEWTON_STEPS, hold_t=False):
+    """Minimum-norm Newton steps onto the manifold rows, in (q, t) when they depend on time (in q alone with
+    ``hold_t``)."""
     Q, T = Q.copy(), T.copy()
-    with_t = target.time_dependent
+    with_t = target.time_dependent and not hold_t
     ok = np.zeros(len(Q), bool)
     active = np.arange(len(Q))
     for _ in range(steps):

@@ -167,10 +167,11 @@ class Target:
 
     # ------------------------------------------------------------------------------------------- numbers
     def samples(self, which):
-        """The "generic" or the "assembled" :class:`~kinbook.grading.sample.Samples` (seeded: the same every
+        """The "generic", "wide" (generic over the whole domain) or "assembled" :class:`~kinbook.grading.sample.Samples` (seeded: the same every
         time, on every machine)."""
         if which not in self._samples:
-            self._samples[which] = sample.generic(self) if which == "generic" else sample.assembled(self)
+            make = {"generic": sample.generic, "wide": sample.generic_wide, "assembled": sample.assembled}[which]
+            self._samples[which] = make(self)
         return self._samples[which]
 
     def reference(self, which):

@@ -9,8 +9,11 @@ configurations whose seed is a digest of the answer itself: the same answer meet
 every run and every machine, and no answer can be written to agree at configurations chosen from its own text.
 A row that fails there is right only at the samples (``only_at_samples``): wrong, and its row and joint named.
 
-Answers given as a function ``f(q, t)`` are not witnessed: a function can compute the reference itself (it runs
-in the sandbox, as any student code), and has no text to take a digest of.
+Answers given as a function ``f(q, t)`` are witnessed the same way, from a digest of the function's own code
+(its bytecode, names, constants and closure: :func:`code_text`) — deterministic, and a function cannot be written
+to agree at configurations drawn from its own code. Half of the witness's configurations are over the whole
+domain (angles beyond ±π, t from 1 to 30): a driver padded with 10⁻⁴·∏(t − tₖ) over the sampled instants, or
+``atan2(sin φ2, cos φ2)`` for φ2, is caught there.
 """
 
 from __future__ import annotations
@@ -26,32 +29,89 @@ from .compare import scale_match
 from .diagnose import where
 from .quantities import quantity_of
 
-__all__ = ["phi", "derived", "samples", "N_WITNESS"]
+__all__ = ["phi", "derived", "samples", "code_text", "N_WITNESS"]
 
 N_WITNESS = 4
 """Configurations drawn from the answer's digest."""
 
 
 def _seed(answer, target):
-    """A 64-bit seed from the answer's evaluation tape (its distinct operations, in order): the answer's text."""
-    tape = answer.tape(target)
-    text = repr((answer.shape, tape.ops)).encode()
+    """A 64-bit seed from the answer's evaluation tape (its distinct operations, in order): the answer's text; for
+    a function, its own code (:func:`code_text`)."""
+    if answer.kind == "function":
+        text = code_text(answer.function).encode()
+    else:
+        tape = answer.tape(target)
+        text = repr((answer.shape, tape.ops)).encode()
     return int.from_bytes(hashlib.sha256(text).digest()[:8], "little")
 
 
+def code_text(f, depth=0):
+    """A function's own code as text, the same on every run: its bytecode, names and constants (nested functions
+    and the values its closure holds included, to a bounded depth) — what the student wrote, not where it was
+    loaded. A callable without code (a builtin, an object) gives its type's name."""
+    f = getattr(f, "__func__", f)
+    code = getattr(f, "__code__", None)
+    if code is None:
+        call = type(f).__dict__.get("__call__")
+        code = getattr(call, "__code__", None)
+        if code is None:
+            return type(f).__qualname__
+    parts = [_code_part(code, depth)]
+    for cell in getattr(f, "__closure__", None) or ():
+        try:
+            value = cell.cell_contents
+        except ValueError:
+            continue
+        parts.append(code_text(value, depth + 1) if callable(value) and depth < 3 else _plain(value))
+    defaults = getattr(f, "__defaults__", None)
+    if defaults:
+        parts.append(repr(tuple(_plain(d) for d in defaults)))
+    return "|".join(parts)
+
+
+def _code_part(code, depth):
+    import types
+
+    consts = tuple(_code_part(c, depth + 1) if isinstance(c, types.CodeType) and depth < 8 else _plain(c)
+                   for c in code.co_consts)
+    return repr((code.co_code.hex(), code.co_names, code.co_varnames, consts))
+
+
+def _plain(value):
+    """A value as text without addresses (repr of an object can hold its id)."""
+    if isinstance(value, (int, float, complex, str, bytes, bool, type(None))):
+        return repr(value)
+    if isinstance(value, (tuple, list)):
+        return repr(tuple(_plain(v) for v in value[:64]))
+    if isinstance(value, np.ndarray) and value.size <= 4096:
+        return repr((value.dtype.str, value.shape, value.tobytes().hex()))
+    return type(value).__qualname__
+
+
 def _generic(target, seed):
+    """Configurations drawn from the seed: half where :func:`~kinbook.grading.sample.spread` draws, half over the
+    whole domain (angles beyond ±π, t up to 30: :func:`~kinbook.grading.sample.wide`)."""
     rng = np.random.default_rng(seed)
-    Q = sample.spread(target, rng, N_WITNESS)
-    return sample.Samples(Q, rng.normal(0.0, 2.0, Q.shape), rng.uniform(0.0, 1.0, N_WITNESS))
+    half = N_WITNESS // 2
+    Q = sample.spread(target, rng, N_WITNESS - half)
+    near = sample.Samples(Q, rng.normal(0.0, 2.0, Q.shape), rng.uniform(0.0, 1.0, len(Q)))
+    far = sample.wide(target, rng, half)
+    return sample.Samples(np.vstack([near.Q, far.Q]), np.vstack([near.QD, far.QD]), np.concatenate([near.T, far.T]))
 
 
 def _assembled(target, seed):
-    """A few configurations where the target's rows hold, near its assembled samples (None when too few)."""
+    """A few configurations where the target's rows hold, near its assembled samples (None when too few): near
+    those at t < 1, and — the rows depending on time — near those over the whole domain (t from 1 to 30,
+    :func:`~kinbook.grading.sample.wide_assembled`), moved in t too."""
     base = target.samples("assembled")
     if not base.on_manifold:
         return None
     rng = np.random.default_rng(seed)
-    idx = rng.integers(0, base.N, 2 * N_WITNESS)
+    near = np.flatnonzero(base.T < 1.0)
+    far = np.flatnonzero(base.T >= 1.0)
+    near = near if len(near) else np.arange(base.N)
+    idx = near[rng.integers(0, len(near), 2 * N_WITNESS)]
     starts = sample.perturbed(target, rng, base.Q[idx], 0.05)
     T = rng.uniform(0.0, 2.0, len(idx))  # the projection moves t too where the rows depend on it (a driver)
     Q, T, ok = sample.project(target, starts, T, steps=10)
@@ -59,6 +119,13 @@ def _assembled(target, seed):
     if len(Q) < 2:
         return None
     Q, T = Q[:N_WITNESS], T[:N_WITNESS]
+    if target.time_dependent and len(far):
+        idx = far[rng.integers(0, len(far), N_WITNESS)]
+        starts = sample.perturbed(target, rng, base.Q[idx], 0.05)
+        WT = np.maximum(base.T[idx] + rng.uniform(-0.5, 0.5, len(idx)), 1.0)
+        WQ, WT, ok = sample.project(target, starts, WT, steps=10)
+        WQ, WT = sample.regular(target, WQ[ok], WT[ok])
+        Q, T = np.vstack([Q, WQ[: N_WITNESS // 2]]), np.concatenate([T, WT[: N_WITNESS // 2]])
     return sample.Samples(Q, sample.velocities(target, Q, T, rng), T, on_manifold=True)
 
 
@@ -83,13 +150,19 @@ def _reject(target, r, s, i, quantity):
 
 def phi(target, answer, matching, rtol):
     """Φ rows accepted as a multiple of a reference row, compared again at configurations drawn from the answer's
-    digest (generic ones, as the match compared them)."""
+    digest (generic ones, as the match compared them, half of them over the whole domain). A row that was a
+    multiple at the generic samples but not at the seeded ones over the whole domain (``matching.wide``) and is
+    named nothing more precise is ``only_at_samples`` too, at the configuration where it differs most."""
+    _wide_only(target, matching, rtol)
     rows = [r for r in matching.rows if r.status == "ok" and r.how == "multiple" and r.ref is not None
             and r.factor is not None]
-    if answer.kind != "symbolic" or not rows:
+    if answer.kind == "numbers" or not rows:
         return
     s = _generic(target, _seed(answer, target))
-    S = answer.values(target, s)[:, :, 0]
+    S = _values(answer, target, s)
+    if S is None:
+        return
+    S = S[:, :, 0]
     R = target.evaluate(s)["Phi"]
     R_G = target.reference("generic")["Phi"]
     for r in rows:
@@ -103,10 +176,35 @@ def phi(target, answer, matching, rtol):
             _reject(target, r, s, i, "Phi")
 
 
+def _wide_only(target, matching, rtol):
+    if not matching.wide:
+        return
+    s = target.samples("wide")
+    for r in matching.rows:
+        if r.k not in matching.wide or r.status != "wrong" or r.code not in (None, "wrong_value"):
+            continue
+        j, c, i = matching.wide[r.k]
+        if r.ref is not None and r.ref != j:
+            continue
+        r.ref, r.factor = j, c
+        _reject(target, r, s, i, "Phi")
+
+
+def _values(answer, target, s):
+    """The answer at the witness's configurations, or None where it cannot be read there (a function that raises
+    or changes its shape at an angle beyond ±π): its match stands, as a row not defined there."""
+    from .read import Refused
+
+    try:
+        return answer.values(target, s)
+    except Refused:
+        return None
+
+
 def samples(target, answer):
     """Where a Φ_q, ν or γ answer is compared again: assembled configurations drawn from its digest (velocities
     consistent, as at the samples), or None (a function, numbers, a target with no assembled samples)."""
-    if answer.kind != "symbolic":
+    if answer.kind == "numbers":
         return None
     return _assembled(target, _seed(answer, target))
 
@@ -118,7 +216,9 @@ def derived(target, quantity, answer, data, matching, rtol, s):
             and not isinstance(r.ref, tuple)]
     if s is None or not rows:
         return
-    V = answer.values(target, s)
+    V = _values(answer, target, s)
+    if V is None:
+        return
     ref = target.evaluate(s)
     per_coordinate = quantity_of(quantity).per_coordinate
     if per_coordinate:

@@ -478,7 +478,10 @@ def spatial_cases():
         add(f"s-{kind}-phi-negated", "phi", m, [-e for e in ok], True, 1.0)
         add(f"s-{kind}-phi-A-transposed", "phi", m, _spatial_phi(kind, transposed=True), False, None,
             ["A_transposed"])
-        add(f"s-{kind}-phi-local", "phi", m, _spatial_phi(kind, local=True), False, None, ["local_vector"])
+        local = _spatial_phi(kind, local=True)
+        # a row that local vectors make 0 (sympy: hᵢ'ᵀhⱼ' of two local axes) is named zero_row, the others local_vector
+        named = list(dict.fromkeys("zero_row" if sp.sympify(e) == 0 else "local_vector" for e in local))
+        add(f"s-{kind}-phi-local", "phi", m, local, False, None, named)
         if kind in ("sph", "uni", "rev"):
             add(f"s-{kind}-phi-swapped-points", "phi", m, _spatial_phi(kind, pi=PJ, pj=PI), False, None,
                 ["swapped_points"])

@@ -73,6 +73,11 @@ def new_corpora(lines):
     for case in corpus_rounding.cases():
         _run(lines, f"rounding {case.id}", lambda c=case: getattr(grading, checks[c.check])(
             c.answer(), corpus_rounding.target(c)))
+    from . import corpus_domain
+
+    for case in corpus_domain.cases():  # far zeros, the whole domain, functions, names, phi=
+        _run(lines, f"domain {case.id}", lambda c=case: getattr(grading, checks[c.check])(
+            c.answer, corpus_domain.target(c), **c.options))
 
 
 def tryit_cases(lines):
