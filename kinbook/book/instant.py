@@ -1,5 +1,5 @@
 """Instant checks for the static book: everything a try-it's check needs except the student's answer, as data
-a page can use without Python (issue 35).
+a page can use without Python.
 
 For every try-it, at build time: the reference evaluated at the checker's own sampling points (and at a few
 witness points), the factor and tolerance rule, the other right answers, and the catalogued mistakes — each as
@@ -9,9 +9,16 @@ values at the same points, with its code, title and hint in English and Spanish.
 cannot decide (an equivalent formulation of a row, a Newton iteration) it says so and links to the live
 notebook. The exercise notebooks stay graded by Python only: the page's check is formative.
 
-The grading stages used (issue 33 is reshaping them) are listed in NOTES-35.md; each is called in one place
-below, so they can be re-pointed at once. :data:`MUTANTS` is the hook for the mutation module (issue 29): a
-function there returning more mistakes (code, values at the same points) is added to each spec.
+Each name of :mod:`kinbook.grading` used here is called in one place below (the checker table and its
+quantities, the targets' samples and references, the witness draw, the tolerances, the catalogue's texts), so a
+change of grading is met at once. The page's script mirrors these rules of the Python checker, which
+tests/web/test_instant.py holds together over the checker corpora (the page never passes what Python refuses):
+the constant-multiple match of Φ rows (``compare.scale_match``), Φ_q rows up to ±1 and ν, γ rows with factor 1 in
+the book's order, the transposed Φ_q, the witness tolerances, the numeric checkers' tolerance and named variants,
+and the Newton iteration. What needs the symbolic analysis (an equivalent formulation, a vanishing factor, the
+rounding rule, ``phi=``/``at=``) the page leaves to Python. :data:`MUTANTS` is the hook for more mistakes (a
+function returning codes and values at the same points, e.g. from :mod:`kinbook.grading.mutants`), added to each
+spec.
 """
 
 from __future__ import annotations
