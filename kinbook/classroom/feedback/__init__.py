@@ -174,23 +174,33 @@ def _index(student, name, finals):
 _PUBLIC = {"mode": PUBLIC_FILE, "dir_mode": PUBLIC_DIR}
 
 
+def _pages(book, students=None):
+    """``[(student, final, html)]`` of every student's page (of ``students`` only, when given), in the gradebook's
+    order of exercises; ``final`` is the :class:`~kinbook.classroom.scores.Final` the page shows."""
+    roster = book.roster()
+    names = {s.student: s.display for s in roster} if roster is not None else {}
+    wanted = None if students is None else set(students)
+    out = []
+    for exercise in book.exercises():
+        results = {r.student: r for r in book.results(exercise=exercise)}
+        graded = dict(book.db.execute("SELECT student, graded FROM submissions WHERE exercise = ?", (exercise,)))
+        handed = book.files_of(exercise)
+        for f in book.finals(exercise, roster):
+            if wanted is None or f.student in wanted:
+                out.append((f.student, f, page(f, results.get(f.student), name=names.get(f.student, ""),
+                                               graded=graded.get(f.student, ""), files=handed.get(f.student, []))))
+    return out
+
+
 def write_pages(book, out, students=None):
     """Write ``out/<student>/<exercise>.html`` and ``out/<student>/index.html`` for ``students`` (default: every
     student of the gradebook and of its roster). Returns the pages written."""
     out = Path(out)
     roster = book.roster()
     names = {s.student: s.display for s in roster} if roster is not None else {}
-    wanted = None if students is None else set(students)
     mine = {}
-    for exercise in book.exercises():
-        results = {r.student: r for r in book.results(exercise=exercise)}
-        graded = dict(book.db.execute("SELECT student, graded FROM submissions WHERE exercise = ?", (exercise,)))
-        handed = book.files_of(exercise)
-        for f in book.finals(exercise, roster):
-            if wanted is not None and f.student not in wanted:
-                continue
-            mine.setdefault(f.student, []).append((f, results.get(f.student), graded.get(f.student, ""),
-                                                   handed.get(f.student, [])))
+    for student, f, text in _pages(book, students):
+        mine.setdefault(student, []).append((f, text))
     for old in book.reattached():  # an id a newer roster gave to one of its students: its pages are theirs now
         folder = out / old
         if folder.is_dir() and all(p.suffix == ".html" and p.is_file() for p in folder.iterdir()):
@@ -199,11 +209,8 @@ def write_pages(book, out, students=None):
             folder.rmdir()
     files = []
     for student, items in sorted(mine.items()):
-        for f, r, when, fs in items:
-            files.append((out / student / f"{f.exercise}.html",
-                          page(f, r, name=names.get(student, ""), graded=when, files=fs)))
-        files.append((out / student / "index.html",
-                       _index(student, names.get(student, ""), [f for f, _, _, _ in items])))
+        files += [(out / student / f"{f.exercise}.html", text) for f, text in items]
+        files.append((out / student / "index.html", _index(student, names.get(student, ""), [f for f, _ in items])))
     refuse_overwrite([p for p, _ in files], book.inputs(), "feedback")
     with protect(*book.inputs()):  # all pages or none: a full disk leaves the earlier pages as they were
         return write_all(files, **_PUBLIC)
@@ -223,19 +230,4 @@ def feedback(gradebook, out, lms=None):
 
             raise GradingError(f"feedback for an LMS: one of {', '.join(LAYOUTS)}, got {lms!r}")
         with protect(*book.inputs()):
-            return upload_zip(book, out, lms, _pages(book))
-
-
-def _pages(book):
-    """``{(exercise, student): html}`` of every student's page."""
-    roster = book.roster()
-    names = {s.student: s.display for s in roster} if roster is not None else {}
-    out = {}
-    for exercise in book.exercises():
-        results = {r.student: r for r in book.results(exercise=exercise)}
-        graded = dict(book.db.execute("SELECT student, graded FROM submissions WHERE exercise = ?", (exercise,)))
-        files = book.files_of(exercise)
-        for f in book.finals(exercise, roster):
-            out[exercise, f.student] = page(f, results.get(f.student), name=names.get(f.student, ""),
-                                            graded=graded.get(f.student, ""), files=files.get(f.student, []))
-    return out
+            return upload_zip(book, out, lms, {(f.exercise, student): text for student, f, text in _pages(book)})
