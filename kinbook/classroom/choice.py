@@ -100,7 +100,7 @@ def choose(same, policy, exercise, read):
         # the LMS's attempt time, then the name's attempt suffix (a browser's "(1)", Canvas's "-1" for a file uploaded
         # again under its name); not Canvas's attachment id (a download holds the current submission only: its
         # files are one submission, named by attachment — lib/content_zipper.rb), nor the file time or path
-        order = {id(e): e._order[1:-2] for e in good}
+        order = {id(e): e.order[1:-2] for e in good}
         last = max(order.values())
         later = [e for e in good if order[id(e)] == last]
         for e in good:

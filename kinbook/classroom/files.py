@@ -104,6 +104,10 @@ class Entry:
     result : bool
         Whether the entry stands for its student in the gradebook (a file refused beside a gradable one of the same
         student does not: it is listed, not graded).
+    order : tuple
+        Where the file stands among its student's own files: the LMS's submission number and attempt time, the
+        attempt suffix and date of its name (:attr:`kinbook.classroom.naming.Name.order`), then its file time and
+        path.
     """
 
     path: str
@@ -124,9 +128,9 @@ class Entry:
     replace: int | None = None
     base: str = ""
     signals: list = field(default_factory=list)
+    order: tuple = ()
     _raw: str = ""
     _named: bool | None = None
-    _order: tuple = ()
 
 
 def _kind(mode):
@@ -213,7 +217,7 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
         e.submitted, e.submitted_from = name.time.isoformat(), "lms"
     elif st is not None and file_times:
         e.submitted, e.submitted_from = file_time(st.st_mtime), "file"
-    e._order = name.order + (e.mtime, e.path)
+    e.order = name.order + (e.mtime, e.path)
     if name.names is not None and id_key(name.names) != id_key(name.raw):
         e.signals.append(("names-another", f"the file's name {shown(parts[-1])!r} names {shown(name.names)!r}, "
                                            f"not the student of its folder"))
@@ -299,7 +303,7 @@ def _attempts(entries, policy, exercise, max_bytes):
             same = [e for e in same if e.student == real]
         if len(same) < 2:
             continue
-        good = sorted((e for e in same if e.status is None), key=lambda e: e._order)
+        good = sorted((e for e in same if e.status is None), key=lambda e: e.order)
         if good:
             for e in same:
                 if e.status is not None:
