@@ -18,6 +18,7 @@ from ._i18n import Msg
 from .compare import same, scale_match, scale_of
 from .equivalence import in_span
 from .quantities import applies, quantity_of
+from .rounding import distinct_leaves
 
 __all__ = ["phi", "derived", "eg_rows", "entries", "term_variants", "where", "MAX_TERMS"]
 
@@ -76,18 +77,9 @@ def _zero_row(answer, data, k):
 
 
 def symbols_of(expr):
-    """The symbols of a student's expression, walking each distinct sub-expression once (``free_symbols``
-    walks the tree: exponential for an expression that shares its parts)."""
-    seen, out, stack = set(), set(), [expr]
-    while stack:
-        e = stack.pop()
-        if e in seen:
-            continue
-        seen.add(e)
-        if e.is_Symbol:
-            out.add(e)
-        stack.extend(e.args)
-    return out
+    """The symbols of a student's expression (:func:`kinbook.grading.rounding.distinct_leaves`: each distinct
+    sub-expression once — ``free_symbols`` walks the tree, exponential for an expression that shares its parts)."""
+    return distinct_leaves([expr], lambda e: e.is_Symbol)
 
 
 def _book_name(name):

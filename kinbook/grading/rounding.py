@@ -24,7 +24,7 @@ from ._i18n import Msg
 from .quantities import quantity_of
 from .read import Answer
 
-__all__ = ["MIN_DIGITS", "NEAR", "exact_constants", "significant_digits", "typed_digits", "is_rounding", "exact",
+__all__ = ["distinct_leaves", "MIN_DIGITS", "NEAR", "exact_constants", "significant_digits", "typed_digits", "is_rounding", "exact",
            "graded", "named"]
 
 MIN_DIGITS = 3
@@ -121,19 +121,18 @@ def _texts(raw, depth=0):
             yield from _texts(x, depth + 1)
 
 
-def _numbers_in(matrix):
-    """The distinct numbers of a matrix's entries, walking each distinct sub-expression once (a derived γ is a
-    graph of a few hundred nodes written out as 10⁵)."""
-    seen, found, stack = set(), set(), list(matrix)
+def distinct_leaves(exprs, keep):
+    """The distinct sub-expressions of ``exprs`` (sympy) for which ``keep(e)`` holds, walking each distinct
+    sub-expression once: a derived γ is a graph of a few hundred nodes that written out as a tree has 10⁵."""
+    seen, found, stack = set(), set(), list(exprs)
     while stack:
         e = stack.pop()
         if e in seen:
             continue
         seen.add(e)
-        if e.is_Number:
+        if keep(e):
             found.add(e)
-        else:
-            stack.extend(e.args)
+        stack.extend(e.args)
     return found
 
 
@@ -156,7 +155,7 @@ def exact(answer, target, quantity="Phi", raw=None):
     import sympy as sp
 
     typed = typed_digits(raw) if raw is not None else {}
-    numbers = [x for x in _numbers_in(answer.matrix) if x.is_Float or (x.is_Integer and abs(x) >= 100)]
+    numbers = [x for x in distinct_leaves(answer.matrix, lambda e: e.is_Number) if x.is_Float or (x.is_Integer and abs(x) >= 100)]
     if numbers:  # decimals that are the exercise's own data, as written: nothing to judge (kinbook's own rows)
         data = _data_numbers(target)
         numbers = [x for x in numbers if x not in data]
