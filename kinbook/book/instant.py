@@ -16,9 +16,9 @@ tests/web/test_instant.py holds together over the checker corpora (the page neve
 the constant-multiple match of Φ rows (``compare.scale_match``), Φ_q rows up to ±1 and ν, γ rows with factor 1 in
 the book's order, the transposed Φ_q, the witness tolerances, the numeric checkers' tolerance and named variants,
 and the Newton iteration. What needs the symbolic analysis (an equivalent formulation, a vanishing factor, the
-rounding rule, ``phi=``/``at=``) the page leaves to Python. :data:`MUTANTS` is the hook for more mistakes (a
-function returning codes and values at the same points, e.g. from :mod:`kinbook.grading.mutants`), added to each
-spec.
+rounding rule, ``phi=``/``at=``) the page leaves to Python, where its own rules cannot decide it. Every try-it
+also carries its mutation run (:func:`tryit_mutants`: the mistakes :mod:`kinbook.book.tryits.mutations` makes of
+it on the notebook's data), each as values at the page's points with the code Python names it by.
 """
 
 from __future__ import annotations
@@ -29,12 +29,7 @@ import numpy as np
 
 from ..i18n import LANGUAGES, N_, Message, translate
 
-__all__ = ["grammar", "spec", "tryit_spec", "page", "write", "ui_texts", "MUTANTS", "UI"]
-
-MUTANTS = []
-"""Hook for the mutation module (issue 29): callables ``f(checker_name, target, points) -> [mistake dict]``
-(``code``, ``values`` at the spec's points, as :func:`_mistake` makes them) whose mistakes are added to every
-spec of that checker."""
+__all__ = ["grammar", "spec", "tryit_spec", "page", "write", "ui_texts", "tryit_mutants", "UI"]
 
 N_WITNESS = 4
 WITNESS_SEED = 35_2026
@@ -264,8 +259,6 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
     for other, detail in lookalikes:
         ref = _ref(target_for(other).evaluate(s), quantity)
         spec["mistakes"].append(_mistake("wrong_data", ref, detail) | {"rows": True})
-    for f in MUTANTS:
-        spec["mistakes"] += f(name, t, s)
     return spec
 
 
@@ -354,13 +347,115 @@ def spec(checker, target, options=None, *, lookalikes=(), wrong_forms=()):
     return _value_spec(name, target, options, named)
 
 
+_MUTATION_RUNS = {}
+
+
+def tryit_mutants(item):
+    """The mutation run of a try-it on the notebook's data, as ``kinbook validate --mutations --try-its`` makes it
+    (:func:`kinbook.book.tryits.mutations.mutation_tally`, its first data set): ``[(mutant, answer, result)]`` —
+    the mutant, the answer a student making its mistake hands in, and the try-it's own check of it. Cached."""
+    if item.id in _MUTATION_RUNS:
+        return _MUTATION_RUNS[item.id]
+    from ..grading import mutants as MU
+    from ..grading.expected import Expected
+    from .tryits import mutations as MT
+
+    data = dict(item.data)
+    quantity = item.checker.quantity
+    found = list(MT.item_mutants(item, data))
+    if quantity is None and len(found) < 3:  # a worked answer with few operators: its value's slips as well
+        X = item.target(**data)
+        X = X if isinstance(X, Expected) else np.asarray(item.reference_answer(data), float)
+        found += [v for v in MU.value_mutants(X, angles=bool(item.options.get("angles")))
+                  if not (item.checker.name == "euler_parameters" and v.operator == "sign of the whole answer")]
+    out = []
+    for m in found:
+        try:
+            answer = MT.answer_of(item, m, data)
+        except Exception:  # noqa: BLE001 — a code mutant that fails on these data is no answer here
+            continue
+        out.append((m, answer, item.check(answer, data)))
+    _MUTATION_RUNS[item.id] = out
+    return out
+
+
+def _mutant_mistakes(item, spec):
+    """The try-it's mutants Python refuses, as catalogued mistakes of the page: their values at the spec's points
+    (rows) or as numbers (values), named by the code Python's check names them by (the mutant's own when Python
+    names none)."""
+    out = []
+    for m, answer, result in tryit_mutants(item):
+        if result.passed:  # a blind spot: the page must not name what Python passes
+            continue
+        code = next((c for c in result.mistakes or () if c), None) or m.code
+        try:
+            values = _mutant_values(item, spec, m, answer)
+        except Exception:  # noqa: BLE001 — a mutant that cannot be evaluated at the page's points names nothing
+            continue
+        if values is None or not np.all(np.isfinite(np.asarray(values, float))):
+            continue
+        if spec["kind"] == "rows":
+            values = _prefix(values, spec)
+            out.append(_mistake(code, _short(values), m.operator) | {"rows": True, "points": len(values)})
+        else:
+            out.append(_mistake(code, _short(values), m.operator))
+    return out
+
+
+MUTANT_POINTS = 6
+"""A mutant's rows are stored at the first few of the checker's points only (the page names a mistake by them;
+a Φ_q of 14 columns at 16 points for each of 160 mutants was 1.3 MB) — unless one of its rows is, there, a
+multiple of a reference row for every row: then the rest of the points are kept, so that no right answer
+matches a mutant."""
+
+
+def _prefix(V, spec):
+    from ..grading.compare import scale_match
+
+    V = np.asarray(V, float)
+    K = MUTANT_POINTS
+    R = np.asarray(spec["reference"]["samples"], float)
+    if V.ndim == 3 and R.shape[2] != V.shape[2]:
+        R = R[:, :, spec["cols"]] if V.shape[2] == len(spec["cols"]) else None
+    if R is None or len(V) <= K:
+        return V
+    same = all(any(scale_match(V[:K, i], R[:K, j], 1e-4) is not None for j in range(R.shape[1]))
+               for i in range(V.shape[1]))
+    return V if same else V[:K]
+
+
+def _short(a):
+    """Values to 9 significant digits (a mutant is named to 10⁻⁶): the page's JSON stays small."""
+    return np.vectorize(lambda x: float(f"{x:.9g}"), otypes=[float])(np.asarray(a, float)).tolist()
+
+
+def _mutant_values(item, spec, m, answer):
+    if spec["kind"] == "value":
+        v = np.asarray(answer, float)
+        return v if v.size == np.size(spec["value"]) else None
+    if spec["kind"] != "rows":
+        return None
+    import sympy as sp
+
+    from ..grading.target import target_for
+
+    t = target_for(item.target(**dict(item.data)))
+    M = sp.Matrix(m.value)
+    P = spec["points"]["samples"]
+    V = np.asarray(t.tape(list(M))(np.asarray(P["q"]), np.asarray(P["qd"]), np.asarray(P["t"]))["value"], float)
+    return V.reshape(len(P["t"]), *M.shape) if M.shape[1] > 1 else V.reshape(len(P["t"]), M.shape[0])
+
+
 def tryit_spec(item):
-    """The instant check of a :class:`~kinbook.book.tryits.TryIt` for the notebook's data."""
+    """The instant check of a :class:`~kinbook.book.tryits.TryIt` for the notebook's data, with its mutation
+    run's mistakes (:func:`tryit_mutants`)."""
     data = dict(item.data)
     target = item.target(**data)
     looks = list(item.lookalikes(**data)) if item.lookalikes is not None else []
     forms = list(item.wrong_forms(**data)) if item.wrong_forms is not None else []
     out = spec(item.checker, target, item.options, lookalikes=looks, wrong_forms=forms)
+    if out["kind"] != "iterates":
+        out["mistakes"] += _mutant_mistakes(item, out)
     out["id"] = item.id
     out["answer"] = item.answer
     out["name"] = _both(item.options.get("name")) if isinstance(item.options.get("name"), (str, Message)) else None

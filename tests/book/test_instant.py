@@ -77,3 +77,32 @@ def test_rows_the_worked_answer_is_the_reference_at_the_pages_points(pages, id):
         values = np.array(values)
         ratio = values @ R[:, k] / (R[:, k] @ R[:, k]) if spec["quantity"] == "Phi" else 1.0
         assert np.allclose(values, ratio * R[:, k], rtol=1e-9, atol=1e-9), (id, k)
+
+
+@pytest.mark.parametrize("id", ["13-3/try-1", "13-6/try-1", "13-7/try-1", "13-5/try-1"])
+def test_the_mutation_run_is_in_the_page_named_as_python_names_it(pages, id):
+    """Every mutant of the try-it that its check refuses is a mistake of the page, with the code Python names it by
+    and its values: the mutant's answer as a student types it, read by kinbook's reader and evaluated by sympy at
+    the page's points (at its first ``points`` of them) — the stored values; a mutant Python passes is not there."""
+    import sympy as sp
+
+    spec = pages[id.split("/")[0]]["tryits"][id]
+    mine = [m for m in spec["mistakes"] if m.get("points")]
+    run = instant.tryit_mutants(get(id))
+    refused = [(m, a, r) for m, a, r in run if not r.passed]
+    assert run and len(mine) == len(refused)
+    symbols = {name: sp.Symbol(name) for name in spec["names"]}
+    order = list(symbols)
+    P = spec["points"]["samples"]
+    for stored, (m, answer, result) in zip(mine, refused):
+        assert stored["code"] == (result.mistakes[0] if result.mistakes else m.code)
+        K = stored["points"]
+        args = [[t if spec["names"][n][0] == "t" else P[spec["names"][n][0]][i][spec["names"][n][1]] for n in order]
+                for i, t in enumerate(P["t"][:K])]
+        entries = np.array(answer, dtype=object)
+        values = np.empty((K,) + entries.shape)
+        for index, text in np.ndenumerate(entries):
+            expr = reader.read_expression(text, symbols=symbols, where="mutant")
+            f = sp.lambdify([symbols[n] for n in order], expr, "math", dummify=True)
+            values[(slice(None),) + index] = [f(*a) for a in args]
+        assert np.allclose(values, np.asarray(stored["values"], float), rtol=1e-7, atol=1e-9), (id, m.operator)

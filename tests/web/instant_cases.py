@@ -1,5 +1,5 @@
 """Every answer of kinbook's checker corpora, checked by Python, with what the page needs to check it too
-(issue 35: one rule, two engines). Run by tests/web/test_instant.py with the lab environment's Python (kinbook
+(issue 35: one rule, two engines), and every answer of the try-its' mutation run. Run by tests/web/test_instant.py with the lab environment's Python (kinbook
 and its test corpora are there, not in .venv-web):
 
     .venv/bin/python tests/web/instant_cases.py OUT.jsonl
@@ -114,10 +114,24 @@ def tryit_cases(specs):
                    "python": {"passed": bool(result.passed), "mistakes": list(result.mistakes)}}
 
 
+def mutation_cases(specs):
+    """The mutation run's answers (kinbook.book.instant.tryit_mutants: each try-it's mutants on the notebook's data,
+    checked by the try-it's own check), against the try-it's page spec."""
+    from kinbook.book.tryits import TRY_ITS, get
+
+    get("13-1/try-1")
+    for id, item in TRY_ITS.items():
+        key = specs.key(("tryit", id), instant.tryit_spec, item)
+        for k, (m, answer, result) in enumerate(instant.tryit_mutants(item)):
+            yield {"id": f"{id}/mutant-{k}", "source": "mutants", "spec": key, "text": as_text(answer),
+                   "mutant": m.code, "python": {"passed": bool(result.passed), "mistakes": list(result.mistakes)}}
+
+
 def main(out):
     specs = Specs()
     with open(out, "w", encoding="utf-8") as f:
-        for k, case in enumerate(itertools.chain(corpus_cases(specs), tryit_cases(specs))):
+        for k, case in enumerate(itertools.chain(corpus_cases(specs), tryit_cases(specs),
+                                                       mutation_cases(specs))):
             f.write(json.dumps(case, ensure_ascii=False, allow_nan=False) + "\n")
             f.flush()
             if k % 50 == 0:
