@@ -241,6 +241,10 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
                      "wrap": {str(k): p for k, p in t.wrap.items()},
                      "decides": not ({"phi", "at"} & set(options)), "refuse": refuse},
             "mistakes": []}
+    spec["spatial"] = t.kind == "spatial"
+    spec["euler"] = [k for k in range(t.n) if t.kind == "spatial" and k % 7 >= 3]  # each in [−1, 1]
+    spec["diagnoses"] = {code: _mistake(code, None) for code in DIAGNOSES}
+    spec["rounding"] = _rounding(t, quantity)
     if w is not None:
         spec["points"]["witness"] = _points(w)
         spec["reference"]["witness"] = _ref(t.evaluate(w), quantity)
@@ -260,6 +264,29 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
         ref = _ref(target_for(other).evaluate(s), quantity)
         spec["mistakes"].append(_mistake("wrong_data", ref, detail) | {"rows": True})
     return spec
+
+
+DIAGNOSES = ("vanishing_factor", "eg_jacobian", "dependent_row", "not_rounded")
+"""Mistakes the page's own rules name (a factor with a real zero, the book's 2ĖĠᵀa rows of Φ_q, rows that combine
+into fewer, a constant rounded wrong): their texts, without values."""
+
+
+def _rounding(t, quantity):
+    """The rounding rule's numbers (:mod:`kinbook.grading.rounding`): the exercise's exact constants (value, as a
+    student types it), the integers among them, and the numbers written in the rows themselves (data, exactly)."""
+    import sympy as sp
+
+    from ..grading import rounding
+
+    constants, integers = [], []
+    for value, c in rounding.exact_constants(t, quantity).items():
+        if isinstance(value, tuple):
+            integers.append(int(value[1]))
+        elif value > 0:
+            constants.append([float(value), repr(float(c)) if c.is_Float else str(c)])
+    data = sorted({abs(float(x)) for row in t.symbolic_phi() for x in row.atoms(sp.Number)})
+    return {"constants": constants, "integers": sorted(set(integers)), "data": data,
+            "min_digits": rounding.MIN_DIGITS, "near": rounding.NEAR}
 
 
 def _options(options, default_rtol, n=None):

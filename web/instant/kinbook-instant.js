@@ -46,6 +46,7 @@
             out += m[0][0] + tokenize(m[0].slice(1, -1), names) + m[0][0];
           } else {
             out += m[0];
+            if (names.numbers) names.numbers.push(m[0]);
           }
           i = end;
           break;
@@ -72,7 +73,7 @@
         case "ConstantNode": {
           if (typeof n.value !== "number") throw new Refusal("not_allowed", { what: String(n.value) });
           if (!isFinite(n.value) || Math.abs(n.value) > lim.magnitude) throw new Refusal("not_finite");
-          const v = n.value;
+          const v = ctx.swap && ctx.swap.has(n.value) ? ctx.swap.get(n.value) : n.value;  // the rounding rule
           return { f: () => v, num: v };
         }
         case "SymbolNode": {
@@ -112,7 +113,7 @@
       }
     }
     const built = walk(node, 1);
-    return { f: built.f, num: built.num, tex: tex(node, ctx) };
+    return { f: built.f, num: built.num, tex: tex(node, ctx), node, ctx };
   }
 
   function operator(fn, args, lim) {
@@ -193,10 +194,10 @@
 
   /* The answer as a matrix of entries (rows × columns): a list ["…", "…"] or [[…], […]] as in the notebook,
    * or one row per line (a line may be a list [a, b, c]). */
-  function readAnswer(text, spec, grammar) {
+  function readAnswer(text, spec, grammar, swap) {
     if (typeof text !== "string" || !text.trim()) throw new Refusal("syntax");
     if (text.length > 20 * grammar.limits.length) throw new Refusal("too_large");
-    const ctx = { grammar, symbols: spec.names || {}, names: { byName: new Map(), list: [] } };
+    const ctx = { grammar, symbols: spec.names || {}, names: { byName: new Map(), list: [], numbers: [] }, swap };
     const source = tokenize(text.trim(), ctx.names);
     let top;
     try {
@@ -223,6 +224,7 @@
     }));
     const width = matrix[0].length;
     if (matrix.some((r) => r.length !== width)) throw new Refusal("syntax");
+    matrix.literals = ctx.names.numbers;
     return matrix;
   }
 
@@ -299,8 +301,8 @@
     throw new Refusal("shape", { got: matrix.length + "×" + matrix[0].length, want: m });
   }
 
-  function checkRows(spec, grammar, text) {
-    const matrix = readAnswer(text, spec, grammar);
+  function checkRows(spec, grammar, text, swap) {
+    const matrix = readAnswer(text, spec, grammar, swap);
     const rule = spec.rule, q = spec.quantity;
     if (rule.refuse) throw new Refusal("not_allowed", { what: "options" });  // an option the checker refuses
     if (!rule.decides) return { verdict: "undecided", reasons: [] };
@@ -346,6 +348,16 @@
     const rule = spec.rule, ms = S.length, m = R.length;
     const wrap = rule.wrap || {};
     const C = S.map((s) => R.map((r, j) => scaleMatch(s, r, rule.rtol, true, wrap[j])));
+    const vanishing = [];
+    for (let k = 0; k < ms; k++) {  // no multiple of a reference row: a form the page can reduce to one?
+      if (C[k].some((c) => c !== null) || !spec.blocks) continue;
+      const how = reform(spec, rows[k][0], R);
+      if (how === null) continue;
+      if (how.kind === "vanishing") { vanishing.push(k); continue; }
+      rows[k] = [how.entry];
+      S[k] = evaluate([rows[k]], points(spec.points.samples))[0];
+      C[k] = R.map((r, j) => scaleMatch(S[k], r, rule.rtol, true, wrap[j]));
+    }
     const status = new Array(ms).fill("wrong"), ref = new Array(ms).fill(null), taken = new Map();
     const book = rule.order === "book";
     if (book) for (let k = 0; k < Math.min(ms, m); k++) if (C[k][k] !== null) { status[k] = "ok"; ref[k] = k; taken.set(k, k); }
@@ -358,26 +370,189 @@
     }
     const mk = named(spec, S, true);
     if (mk) return { verdict: "fail", mistake: mk, reasons: [] };
+    if (vanishing.length) {
+      return { verdict: "fail", mistake: spec.diagnoses.vanishing_factor,
+        reasons: vanishing.map((k) => ({ key: "row_wrong", fields: { k: k + 1 } })) };
+    }
     // more rows than the constraints have: one at least is dependent (or wrong), whatever its form; fewer: their
     // gradients cannot span the reference's (independent, with the bodies' pᵀp − 1, where the checker samples)
     if (ms !== m) return { verdict: "fail", mistake: lookalike(spec, S, true), reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
     const reasons = [];
-    let undecided = false;
+    let undecided = false, nearOnly = true;
     for (let k = 0; k < ms; k++) {
       if (status[k] !== "wrong") continue;
       const how = formulation(spec, rows[k], maxAbs(S[k]));
-      if (how === "maybe") { undecided = true; reasons.push({ key: "equivalent", fields: { k: k + 1 } }); }
+      if (how !== "wrong") { undecided = true; reasons.push({ key: "equivalent", fields: { k: k + 1 } }); }
       else reasons.push({ key: "row_wrong", fields: { k: k + 1 } });
+      if (how === "maybe") nearOnly = false;
     }
     if (reasons.some((r) => r.key === "row_wrong") || status.includes("dependent")) {
       return { verdict: "fail", mistake: lookalike(spec, S, true), reasons };
     }
-    if (undecided) return { verdict: "undecided", reasons };
+    if (undecided) return { verdict: "undecided", reasons, nearOnly };
     if (ms !== m) return { verdict: "fail", reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
     if (book && ref.some((j, k) => j !== k)) return { verdict: "fail", reasons: [] };
     const bad = witness(spec, rows, ref, S, R, true);
     if (bad !== null) return { verdict: "fail", reasons: [{ key: "row_only", fields: { k: bad + 1 } }] };
     return { verdict: "pass", reasons: [] };
+  }
+
+  /* A Φ row written in a form the page can reduce to a multiple of a reference row (kinbook.grading.equivalence
+   * and factors.py, as far as values at points and the row's own tree decide):
+   *   √E − c (c > 0), c − √E: the same zero set and a regular gradient as E − c², compared as that;
+   *   g·h₁·…·h_r with g a multiple of a reference row: each hᵢ proved nonzero over the whole domain (interval
+   *   arithmetic: translations and angles on the real line, Euler parameters in [−1, 1], t ≥ 0) leaves g's zero set
+   *   — the row is compared as g; an hᵢ that changes sign along a line through a sample (one coordinate moving over
+   *   factors.py's grid, hᵢ continuous there), where g does not vanish, is a vanishing factor (Python names it).
+   * Anything else (a factor neither proved nonzero nor seen to vanish: a touch of zero, a quotient) → null: the
+   * checker's zero-set search decides. */
+  function reform(spec, e, R) {
+    if (!e || !e.node) return null;
+    const ctx = e.ctx, pts = points(spec.points.samples), rtol = spec.rule.rtol, wrap = spec.rule.wrap || {};
+    const matches = (f) => R.some((r, j) => scaleMatch(evaluate([[f]], pts)[0], r, rtol, true, wrap[j]) !== null);
+    const factors = [];
+    (function flatten(n) {
+      n = unwrap(n);
+      if (n.type === "OperatorNode" && n.fn === "multiply" && !n.implicit) n.args.forEach(flatten);
+      else if (n.type === "OperatorNode" && (n.fn === "unaryMinus" || n.fn === "unaryPlus")) flatten(n.args[0]);
+      else if (n.type === "OperatorNode" && n.fn === "divide" && entry(n.args[1], ctx).num !== undefined) flatten(n.args[0]);
+      else factors.push(n);
+    })(e.node);
+    const live = factors.map((n) => ({ n, e: entry(n, ctx) })).filter((x) => x.e.num === undefined);
+    if (live.length === 1) {
+      const root = sqrtForm(live[0].n, ctx);
+      return root && matches(root) ? { kind: "ok", entry: root } : null;
+    }
+    if (live.length < 2) return null;
+    let vanishing = false;
+    for (const g of live) {
+      if (!matches(g.e)) continue;
+      const others = live.filter((x) => x !== g);
+      if (others.every((h) => nonzero(interval(h.n, ctx, spec)))) return { kind: "ok", entry: g.e };
+      if (others.some((h) => continuous(h.n, ctx) && signChange(spec, h.e, g.e))) vanishing = true;
+    }
+    return vanishing ? { kind: "vanishing" } : null;
+  }
+
+  function sqrtForm(n, ctx) {
+    if (n.type !== "OperatorNode" || !["add", "subtract"].includes(n.fn) || n.args.length !== 2) return null;
+    const [a, b] = n.args.map(unwrap);
+    const isSqrt = (x) => x.type === "FunctionNode" && x.fn.type === "SymbolNode"
+      && (ctx.grammar.aliases[ctx.names.list[Number(x.fn.name.slice(2))]] || ctx.names.list[Number(x.fn.name.slice(2))]) === "sqrt";
+    let root, c;
+    if (isSqrt(a)) { root = a; c = entry(b, ctx).num; if (c !== undefined && n.fn === "add") c = -c; }
+    else if (isSqrt(b) && n.fn === "subtract") { root = b; c = entry(a, ctx).num; }
+    if (!root || c === undefined || !(c > 0)) return null;
+    const E = entry(root.args[0], ctx);
+    return { f: (p) => E.f(p) - c * c, node: null, ctx };
+  }
+
+  const FULL = [-Infinity, Infinity];
+  function interval(n, ctx, spec) {
+    n = unwrap(n);
+    const I = (x) => interval(x, ctx, spec);
+    const clean = (xs) => xs.map((x) => (Number.isNaN(x) ? 0 : x));
+    switch (n.type) {
+      case "ConstantNode": return [n.value, n.value];
+      case "SymbolNode": {
+        const name = ctx.names.list[Number(n.name.slice(2))];
+        if (name in ctx.grammar.constants) return [ctx.grammar.constants[name], ctx.grammar.constants[name]];
+        const where = ctx.symbols[name];
+        if (!where) return FULL;
+        if (where[0] === "t") return [0, Infinity];
+        return where[0] === "q" && (spec.euler || []).includes(where[1]) ? [-1, 1] : FULL;
+      }
+      case "OperatorNode": {
+        const [a, b] = n.args.map(I);
+        switch (n.fn) {
+          case "add": return [a[0] + b[0], a[1] + b[1]].map((x) => (Number.isNaN(x) ? NaN : x));
+          case "subtract": return [a[0] - b[1], a[1] - b[0]];
+          case "unaryMinus": return [-a[1], -a[0]];
+          case "unaryPlus": return a;
+          case "multiply": {
+            const xs = clean([a[0] * b[0], a[0] * b[1], a[1] * b[0], a[1] * b[1]]);
+            return [Math.min(...xs), Math.max(...xs)];
+          }
+          case "divide": {
+            if (b[0] <= 0 && b[1] >= 0) return FULL;
+            const xs = clean([a[0] / b[0], a[0] / b[1], a[1] / b[0], a[1] / b[1]]);
+            return [Math.min(...xs), Math.max(...xs)];
+          }
+          case "pow": {
+            const k = b[0] === b[1] ? b[0] : NaN;
+            if (!(Number.isInteger(k) && k >= 0)) return FULL;
+            if (k === 0) return [1, 1];
+            const lo = Math.pow(a[0], k), hi = Math.pow(a[1], k);
+            if (k % 2) return [lo, hi];
+            if (a[0] >= 0) return [lo, hi];
+            if (a[1] <= 0) return [hi, lo];
+            return [0, Math.max(lo, hi)];
+          }
+          default: return FULL;
+        }
+      }
+      case "FunctionNode": {
+        const written = ctx.names.list[Number(n.fn.name.slice(2))];
+        const name = ctx.grammar.aliases[written] || written;
+        const a = n.args.length === 1 ? I(n.args[0]) : null;
+        if (name === "sin" || name === "cos") return [-1, 1];
+        if (name === "exp" && a) return [Math.exp(a[0]), Math.exp(a[1])];
+        if (name === "sqrt" && a) return [Math.sqrt(Math.max(a[0], 0)), Math.sqrt(Math.max(a[1], 0))];
+        if (name === "atan" && a) return [Math.atan(a[0]), Math.atan(a[1])];
+        return FULL;
+      }
+      default: return FULL;
+    }
+  }
+  const nonzero = (iv) => iv[0] > 1e-9 * Math.max(1, Math.abs(iv[1]) === Infinity ? 1 : Math.abs(iv[1])) || iv[1] < -1e-9 * Math.max(1, Math.abs(iv[0]) === Infinity ? 1 : Math.abs(iv[0]));
+
+  /* Built of continuous operations only (no quotient by a variable, no tan, sign, log, atan2): a sign change
+   * between two points of a line is a zero between them. */
+  function continuous(n, ctx) {
+    n = unwrap(n);
+    if (n.type === "ConstantNode" || n.type === "SymbolNode") return true;
+    if (n.type === "OperatorNode") {
+      if (n.fn === "divide") return entry(n.args[1], ctx).num !== undefined && continuous(n.args[0], ctx);
+      if (n.fn === "pow") { const k = entry(n.args[1], ctx).num; return Number.isInteger(k) && k >= 0 && continuous(n.args[0], ctx); }
+      return ["add", "subtract", "multiply", "unaryMinus", "unaryPlus"].includes(n.fn) && n.args.every((x) => continuous(x, ctx));
+    }
+    if (n.type === "FunctionNode") {
+      const written = ctx.names.list[Number(n.fn.name.slice(2))];
+      const name = ctx.grammar.aliases[written] || written;
+      return ["sin", "cos", "exp", "atan", "Abs"].includes(name) && n.args.every((x) => continuous(x, ctx));
+    }
+    return false;
+  }
+
+  // factors.py's grid: offsets 10⁻³ … 10⁴ on both sides (translations, angles), t in [0, 10⁴], e in [−1, 1]
+  const SIDE = Array.from({ length: 160 }, (_, i) => Math.pow(10, -3 + (7 * i) / 159));
+  const GRID = SIDE.slice().reverse().map((x) => -x).concat([0], SIDE);
+  const T_GRID = [0].concat(Array.from({ length: GRID.length - 1 }, (_, i) => Math.pow(10, -3 + (7 * i) / (GRID.length - 2))));
+  const E_GRID = GRID.map((_, i) => -1 + (2 * i) / (GRID.length - 1));
+
+  function signChange(spec, h, g) {
+    const P = spec.points.samples, base = points(P).slice(0, 3);
+    const gScale = Math.max(...base.map((p) => Math.abs(g.f(p))), 1e-300);
+    const firm = (p) => { const v = g.f(p); return Number.isFinite(v) && Math.abs(v) > 1e-6 * gScale ? Math.sign(v) : 0; };
+    const euler = new Set(spec.euler || []);
+    for (const b of base) {
+      const lines = b.q.map((_, i) => ({ i, grid: euler.has(i) ? E_GRID : GRID.map((d) => b.q[i] + d) }));
+      lines.push({ i: -1, grid: T_GRID });
+      for (const { i, grid } of lines) {
+        let prev = null;
+        for (const x of grid) {
+          const q = b.q.slice();
+          if (i >= 0) q[i] = x;
+          const p = { q, qd: b.qd, t: i >= 0 ? b.t : x };
+          const v = h.f(p);
+          if (!Number.isFinite(v)) { prev = null; continue; }
+          const cur = { v, s: firm(p) };
+          if (prev && cur.s !== 0 && cur.s === prev.s && ((v === 0) || prev.v * v < 0)) return true;
+          prev = cur;
+        }
+      }
+    }
+    return false;
   }
 
   /* A Φ row that is no constant multiple of a reference row, where each constraint alone holds (its own assembled
@@ -392,7 +567,7 @@
       const values = evaluate([row], pts)[0];
       const size = maxAbs(values);
       if (size > 1e-4 * scale) continue;          // not zero where this constraint holds
-      if (size > 1e-6 * scale) return "maybe";    // nearly: the page cannot say
+      if (size > 1e-6 * scale) return "near";     // nearly: the page cannot say (a constant rounded?)
       for (const p of pts) {
         if (gradientSize(row, p) <= 1e-6 * scale) return "wrong";
       }
@@ -471,6 +646,9 @@
     }
     if (wrong) {
       const unmatched = reasons.filter((x) => x.key === "row_wrong");
+      if (spec.spatial && spec.quantity === "Phi_q" && egRow(spec, S, R, cols, unmatched)) {
+        return { verdict: "fail", mistake: mk || spec.diagnoses.eg_jacobian, reasons };
+      }
       if (sign && unmatched.length === reasons.length && spanned(spec, S, unmatched, cols)) return { verdict: "undecided", reasons };
       return { verdict: "fail", mistake: mk || lookalike(spec, S, sign), reasons };
     }
@@ -478,6 +656,72 @@
     const bad = witness(Object.assign({}, spec, { _cols: cols, _factors: factors }), rows, ref, S, R, false);
     if (bad !== null) return { verdict: "fail", reasons: [{ key: "row_only", fields: { k: bad + 1 } }] };
     return { verdict: "pass", reasons: [] };
+  }
+
+  // ------------------------------------------------------------------------------------------ rounding
+  /* kinbook.grading.rounding: a decimal of the answer that is a correct rounding (to its own significant digits,
+   * at least min_digits) of an exact constant of the exercise stands for it; one near a constant (or a rounding
+   * with too few digits) is named not_rounded when the answer is right with the constant in its place. Only a
+   * failed answer is looked at again (the checker's graded()). */
+  function typedDigits(literal) {
+    const mantissa = literal.toLowerCase().split("e")[0];
+    return mantissa.includes(".") ? mantissa.replace(".", "").replace(/^0+/, "").length : mantissa.replace(/^0+|0+$/g, "").length;
+  }
+
+  function roundings(spec, literals) {
+    const r = spec.rounding, swap = new Map(), near = [];
+    const digits = new Map();
+    for (const lit of literals) {
+      const x = Number(lit), isInt = !/[.eE]/.test(lit);
+      if (x === 0 || (isInt && x < 100)) continue;  // the checker's decimals: floats, and integers from 100
+      digits.set(x, Math.max(digits.get(x) || 0, typedDigits(lit)));
+    }
+    const data = new Set(r.data);
+    for (const x of [...digits.keys()].sort((a, b) => a - b)) {
+      const isInt = Number.isInteger(x) && literals.some((l) => !/[.eE]/.test(l) && Number(l) === x);
+      if (data.has(x)) continue;                                  // the exercise's own datum, as written
+      if (isInt && r.integers.includes(x)) continue;
+      const d = digits.get(x);
+      let best = null;
+      for (const n of r.integers) {                               // a decimal near an integer of the exercise
+        if (n && !isInt && Math.abs(x - n) <= r.near * n && x !== n && (best === null || Math.abs(x - n) < Math.abs(best[0] - x))) best = [n, String(n)];
+      }
+      let rounded = false;
+      for (const [value, text] of r.constants) {
+        if (value === x) continue;
+        const isR = Number(value.toPrecision(Math.min(Math.max(d, 1), 100))) === x;
+        if (isR && d >= r.min_digits) { swap.set(x, value); rounded = true; break; }
+        if (!isR && Math.abs(value - x) > r.near * Math.abs(value)) continue;
+        if (best === null || Math.abs(value - x) < Math.abs(best[0] - x)) best = [value, text];
+      }
+      if (!rounded && best !== null) near.push([x, best[0], best[1], d]);
+    }
+    return { swap, near };
+  }
+
+  function withRounding(spec, grammar, text, first) {
+    if (first.verdict === "pass" || first.verdict === "refused" || !spec.rounding) return first;
+    let literals;
+    try { literals = readAnswer(text, spec, grammar).literals; } catch (e) { return first; }
+    const { swap, near } = roundings(spec, literals);
+    let result = first;
+    const recheck = (sw) => {
+      try { return checkRows(spec, grammar, text, sw); } catch (e) { if (e instanceof Refusal) return { verdict: "fail", reasons: [] }; throw e; }
+    };
+    if (swap.size) {
+      const again = recheck(swap);
+      if (again.verdict !== "fail") return again;                 // right (or undecided) with the constants
+      result = first.verdict === "undecided" ? first : again;
+    }
+    if (!near.length || (result.verdict === "undecided" && !result.nearOnly)) return result;
+    const repaired = new Map(swap);
+    for (const [x, value] of near) repaired.set(x, value);
+    const fixed = recheck(repaired);
+    if (fixed.verdict !== "pass") return result;
+    const [x, value, exact, d] = near[0];
+    const detail = {};
+    for (const lang of Object.keys(spec.diagnoses.not_rounded.title)) detail[lang] = String(x) + " ≠ " + exact + " (" + d + ")";
+    return { verdict: "fail", mistake: Object.assign({}, spec.diagnoses.not_rounded, { detail }), reasons: [] };
   }
 
   // ------------------------------------------------------------------------------------------ Φ_q
@@ -518,6 +762,31 @@
       if (match(T) && !match(S)) return { verdict: "fail", reasons: [{ key: "shape", fields: { got: "(" + r + "×" + c + ")ᵀ", want: spec.m + "×" + c } }] };
     }
     return checkDerived(Object.assign({}, spec, { _free: spec.reference.free }), matrix, S, R, cols);
+  }
+
+  /* kinbook.grading.aftermatch.eg_rows: a spatial Φ_q row that differs from its reference row only by multiples of
+   * the bodies' normalization gradients 2pᵀ in their p-columns (∂(EGᵀa)/∂p = 2Eā where 2(Eā + apᵀ) belongs). */
+  function egRow(spec, S, R, cols, unmatched) {
+    const w = cols.length, Q = spec.points.samples.q, rtol = spec.rule.rtol;
+    const bodies = [...new Set(cols.map((c) => Math.floor(c / 7)))];
+    for (const reason of unmatched) {
+      const k = reason.fields.k - 1;
+      if (k >= R.length) continue;
+      const scale = Math.max(maxAbs(R[k]), 1e-300);
+      const rest = S[k].map((x, i) => x - R[k][i]);
+      if (maxAbs(rest) <= rtol * scale) continue;
+      for (let pt = 0; pt < Q.length; pt++) {
+        for (const b of bodies) {
+          const pc = cols.map((c, i) => [c, i]).filter(([c]) => c >= 7 * b + 3 && c < 7 * b + 7).map(([, i]) => i);
+          if (pc.length !== 4) continue;
+          const p = Q[pt].slice(7 * b + 3, 7 * b + 7);
+          const coef = pc.reduce((a, i, j) => a + rest[pt * w + i] * p[j], 0) / p.reduce((a, x) => a + x * x, 0);
+          pc.forEach((i, j) => { rest[pt * w + i] -= coef * p[j]; });
+        }
+      }
+      if (maxAbs(rest) <= 1e2 * rtol * scale) return true;
+    }
+    return false;
   }
 
   /* A Φ_q row that is, at every point, a combination of the reference rows (and the rows that hold anyway):
@@ -659,7 +928,7 @@
     let out;
     try {
       if (spec.kind === "value") out = checkValue(spec, grammar, text);
-      else if (spec.kind === "rows") out = checkRows(spec, grammar, text);
+      else if (spec.kind === "rows") out = withRounding(spec, grammar, text, checkRows(spec, grammar, text));
       else if (spec.kind === "iterates") out = checkIterates(spec, grammar, text);
       else out = { verdict: "undecided", reasons: [{ key: "not_typed", fields: {} }] };
     } catch (e) {
