@@ -196,6 +196,23 @@ def site():
     shutil.rmtree(copy, ignore_errors=True)
 
 
+FIGURES = {}
+"""Speed figures of this run (issue 35 item 4): each test that measures one records it here — the book page's instant
+check (verdict after Check, the page's load and every try-it ready) and the live site's time to interactive (first
+and second visit) — and they are printed side by side at the end of the run (the same machine, the same load)."""
+
+
+def pytest_terminal_summary(terminalreporter):
+    if not FIGURES:
+        return
+    w = terminalreporter.write_line
+    w("")
+    w(f"Speed, side by side (this run; load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores):")
+    for what, value in FIGURES.items():
+        if not what.startswith("_"):
+            w(f"  {what:66} {value}")
+
+
 @pytest.fixture(scope="session")
 def screenshots():
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)

@@ -127,11 +127,45 @@ def mutation_cases(specs):
                    "mutant": m.code, "python": {"passed": bool(result.passed), "mistakes": list(result.mistakes)}}
 
 
+def rounding_cases(specs):
+    """The rounding rule (kinbook.grading.rounding), generated: each symbolic try-it's reference rows (Φ, ν, γ) with
+    one exact constant of the exercise at a time written as a decimal — rounded to 2, 3, 4 and 6 significant digits,
+    and off by 0.1 % and by 1 % — checked by the try-it's own check and by the page."""
+    import sympy as sp
+
+    from kinbook.book.tryits import TRY_ITS, get
+    from kinbook.grading import rounding
+    from kinbook.grading.mutants import reference_rows
+    from kinbook.grading.target import target_for
+
+    get("13-1/try-1")
+    for id, item in TRY_ITS.items():
+        quantity = item.checker.quantity
+        if quantity is None or quantity.name == "Phi_q":
+            continue
+        key = specs.key(("tryit", id), instant.tryit_spec, item)
+        target = item.target(**dict(item.data))
+        rows = list(sp.Matrix(reference_rows(target, quantity.name)[0]))
+        constants = [c for v, c in rounding.exact_constants(target_for(target), quantity.name).items()
+                     if not isinstance(v, tuple) and v > 0 and not c.is_Integer]
+        for n, c in enumerate(sorted(constants, key=float)[:4]):
+            x = float(c)
+            for label, value in [(f"{d} digits", float(f"{x:.{d}g}")) for d in (2, 3, 4, 6)] + [
+                    ("off 0.1 %", float(f"{x * 1.001:.6g}")), ("off 1 %", float(f"{x * 1.01:.6g}"))]:
+                new = [r.xreplace({c: sp.Float(value), -c: -sp.Float(value)}) for r in rows]
+                if new == rows:
+                    continue
+                answer = [str(r) for r in new]
+                result = item.check(answer)
+                yield {"id": f"{id}/rounding-{n}-{label}", "source": "rounding", "spec": key, "text": as_text(answer),
+                       "python": {"passed": bool(result.passed), "mistakes": list(result.mistakes)}}
+
+
 def main(out):
     specs = Specs()
     with open(out, "w", encoding="utf-8") as f:
         for k, case in enumerate(itertools.chain(corpus_cases(specs), tryit_cases(specs),
-                                                       mutation_cases(specs))):
+                                                       mutation_cases(specs), rounding_cases(specs))):
             f.write(json.dumps(case, ensure_ascii=False, allow_nan=False) + "\n")
             f.flush()
             if k % 50 == 0:

@@ -7,7 +7,7 @@ import re
 
 import pytest
 
-from .conftest import ANIMATED, SCREENSHOTS, Clock, StaticServer, plays, site_copy, watch
+from .conftest import ANIMATED, FIGURES, SCREENSHOTS, Clock, StaticServer, plays, site_copy, watch
 
 NOTEBOOK = "13-3-position-analysis.ipynb"
 
@@ -127,6 +127,8 @@ def test_a_student_runs_the_live_notebook(profile, site, offline, screenshots):
     print(f"\nfirst visit: notebook shown {t_open:.1f} s and kinbook installed and imported {t_interactive:.1f} s "
           f"after the page load ({cpu:.1f} s of browser CPU); served {own / 1e6:.1f} MB "
           f"of the site + {pyodide / 1e6:.1f} MB of Pyodide")
+    FIGURES["live site (JupyterLite), first visit: notebook shown / interactive"] = \
+        f"{t_open:.1f} s / {t_interactive:.1f} s ({(own + pyodide) / 1e6:.0f} MB served)"
 
     assert page.locator("#kinbook-no-python").count() == 0  # Python was downloaded: no banner says otherwise
 
@@ -183,6 +185,7 @@ def test_a_second_visit_uses_the_browser_cache(profile, site, offline):
     again = site.bytes_sent() - served_before
     print(f"\nsecond visit: kinbook installed and imported {t:.1f} s after the page load ({cpu:.1f} s of browser "
           f"CPU); {again / 1e6:.2f} MB served")
+    FIGURES["live site (JupyterLite), second visit: interactive"] = f"{t:.1f} s ({again / 1e6:.2f} MB served)"
     again_files = sorted(((n, path) for path, kind, n in site.log[log_before:] if kind == "body"), reverse=True)
     assert again < 1e6, f"{again / 1e6:.1f} MB served again: the browser cache was not used: {again_files[:8]}"
     page.close()

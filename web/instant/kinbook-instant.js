@@ -368,8 +368,13 @@
       if (free.length) { status[k] = "ok"; ref[k] = free[0]; taken.set(free[0], k); }
       else if (cands.length) status[k] = "dependent";
     }
+    const combos = combinations(spec, S, R, status, ref, taken);
     const mk = named(spec, S, true);
     if (mk) return { verdict: "fail", mistake: mk, reasons: [] };
+    if (combos.dependent.length) {
+      return { verdict: "fail", mistake: spec.diagnoses.dependent_row,
+        reasons: combos.dependent.map((k) => ({ key: "row_wrong", fields: { k: k + 1 } })) };
+    }
     if (vanishing.length) {
       return { verdict: "fail", mistake: spec.diagnoses.vanishing_factor,
         reasons: vanishing.map((k) => ({ key: "row_wrong", fields: { k: k + 1 } })) };
@@ -392,9 +397,63 @@
     if (undecided) return { verdict: "undecided", reasons, nearOnly };
     if (ms !== m) return { verdict: "fail", reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
     if (book && ref.some((j, k) => j !== k)) return { verdict: "fail", reasons: [] };
-    const bad = witness(spec, rows, ref, S, R, true);
+    const bad = witness(Object.assign({}, spec, { _combos: combos.coef }), rows, ref, S, R, true);
     if (bad !== null) return { verdict: "fail", reasons: [{ key: "row_only", fields: { k: bad + 1 } }] };
     return { verdict: "pass", reasons: [] };
+  }
+
+  /* Φ rows that are constant combinations of one constraint's reference rows (R₁ + 2R₂ for R₁): with that
+   * constraint's other rows they are right when the combination is regular (the same zero set, the same rank), a
+   * dependent row when it is not. Marks them in status/ref; returns {coef: Map(k → [[j, c]…]), dependent: [k…]}. */
+  function combinations(spec, S, R, status, ref, taken) {
+    const out = { coef: new Map(), dependent: [] };
+    const rtol = spec.rule.rtol, blocks = spec.row_blocks || [];
+    const found = new Map();  // block index → [k…]
+    for (let k = 0; k < S.length; k++) {
+      if (status[k] !== "wrong") continue;
+      for (let b = 0; b < blocks.length; b++) {
+        const rowsB = blocks[b].map((j) => R[j]);
+        if (rowsB.length < 2) continue;
+        const c = solve(rowsB.map((x) => rowsB.map((y) => dot(x, y))), rowsB.map((x) => dot(x, S[k])));
+        if (c === null) continue;
+        const fit = S[k].map((_, i) => rowsB.reduce((a, r, jj) => a + c[jj] * r[i], 0));
+        const size = Math.max(maxAbs(S[k]), ...rowsB.map((r, jj) => Math.abs(c[jj]) * maxAbs(r)));
+        if (maxAbs(S[k].map((x, i) => x - fit[i])) > rtol * size) continue;
+        out.coef.set(k, blocks[b].map((j, jj) => [j, Math.abs(c[jj]) > 1e-9 * Math.max(...c.map(Math.abs)) ? c[jj] : 0]));
+        if (!found.has(b)) found.set(b, []);
+        found.get(b).push(k);
+        break;
+      }
+    }
+    for (const [b, ks] of found) {
+      const block = blocks[b];
+      const mine = S.map((_, k) => k).filter((k) => (status[k] === "ok" && block.includes(ref[k])) || ks.includes(k));
+      if (mine.length !== block.length) { ks.forEach((k) => out.coef.delete(k)); continue; }
+      const M = mine.map((k) => (ks.includes(k) ? out.coef.get(k).map(([, c]) => c) : block.map((j) => (j === ref[k] ? 1 : 0))));
+      const scale = M.reduce((a, row) => a * Math.max(Math.sqrt(dot(row, row)), 1e-300), 1);
+      if (Math.abs(det(M)) <= 1e-6 * scale) { out.dependent.push(...ks); ks.forEach((k) => out.coef.delete(k)); continue; }
+      const free = block.filter((j) => !taken.has(j));
+      for (const k of ks) {
+        const j = free.includes(k) ? k : free[0];
+        free.splice(free.indexOf(j), 1);
+        status[k] = "ok"; ref[k] = j; taken.set(j, k);
+      }
+    }
+    return out;
+  }
+
+  function det(M) {
+    const n = M.length, A = M.map((r) => r.slice());
+    let d = 1;
+    for (let c = 0; c < n; c++) {
+      let p = c;
+      for (let i = c + 1; i < n; i++) if (Math.abs(A[i][c]) > Math.abs(A[p][c])) p = i;
+      if (A[p][c] === 0) return 0;
+      if (p !== c) { [A[c], A[p]] = [A[p], A[c]]; d = -d; }
+      d *= A[c][c];
+      for (let i = c + 1; i < n; i++) { const f = A[i][c] / A[c][c]; for (let k = c; k < n; k++) A[i][k] -= f * A[c][k]; }
+    }
+    return d;
   }
 
   /* A Φ row written in a form the page can reduce to a multiple of a reference row (kinbook.grading.equivalence
@@ -605,8 +664,9 @@
     for (let k = 0; k < rows.length; k++) {
       const j = ref[k];
       if (j === null || j === undefined) continue;
-      const c = spec._factors ? spec._factors[k] : scaleMatch(S[k], R[j], spec.rule.rtol, true, (spec.rule.wrap || {})[j]);
-      const a = W[k], b = RW[j].map((x) => c * x);
+      const combo = spec._combos && spec._combos.get(k);
+      const c = combo ? 1 : spec._factors ? spec._factors[k] : scaleMatch(S[k], R[j], spec.rule.rtol, true, (spec.rule.wrap || {})[j]);
+      const a = W[k], b = combo ? W[k].map((_, i) => combo.reduce((x, [jj, cc]) => x + cc * RW[jj][i], 0)) : RW[j].map((x) => c * x);
       const rtol = spec.rule.rtol;
       let ok;
       if (phi) ok = scaleMatch(a, b, rtol, false, (spec.rule.wrap || {})[j], rtol * Math.max(Math.abs(c) * maxAbs(R[j]), 1e-9), true) !== null;
