@@ -15,8 +15,13 @@ change of grading is met at once. The page's script mirrors these rules of the P
 tests/web/test_instant.py holds together over the checker corpora (the page never passes what Python refuses):
 the constant-multiple match of Φ rows (``compare.scale_match``), Φ_q rows up to ±1 and ν, γ rows with factor 1 in
 the book's order, the transposed Φ_q, the witness tolerances, the numeric checkers' tolerance and named variants,
-and the Newton iteration. What needs the symbolic analysis (an equivalent formulation, a vanishing factor, the
-rounding rule, ``phi=``/``at=``) the page leaves to Python, where its own rules cannot decide it. Every try-it
+and the Newton iteration; the rounding rule of constants (:mod:`kinbook.grading.rounding`: the spec's
+``rounding``), the book's 2ĖĠᵀa Φ_q rows, and the equivalent Φ rows it can reduce to a reference row (√E − c, a
+regular constant combination of a joint's rows, a factor proved nonzero over the whole domain by interval
+arithmetic — or one seen to change sign there: a vanishing factor, as :mod:`kinbook.grading.factors` finds it).
+What needs the checker's symbolic analysis (another formulation: a cross product's other rows, a factor that
+touches zero without changing sign; combinations of Φ_q rows that change with q; ``phi=``/``at=``) the page
+leaves to Python and says so. Every try-it
 also carries its mutation run (:func:`tryit_mutants`: the mistakes :mod:`kinbook.book.tryits.mutations` makes of
 it on the notebook's data), each as values at the page's points with the code Python names it by.
 """
