@@ -63,6 +63,7 @@ INSTANT_STYLE = ("<style>.kinbook-instant{border-left:4px solid #1f6feb;backgrou
                  ".kinbook-instant-bar{margin:4px 0}.kinbook-instant-lang{float:right}"
                  "[data-verdict=pass]{color:#1a7f37}[data-verdict=fail],[data-verdict=refused]{color:#cf222e}"
                  "[data-verdict=undecided]{color:#9a6700}.kinbook-instant-mistake,.kinbook-instant-hint{color:#24292f}"
+                 ".kinbook-instant [data-echo]{overflow-x:auto}"  # a long row's echo scrolls instead of being cut
                  "</style>")
 LAB_PYTHON = Path(os.environ.get("KINBOOK_PYTHON", ROOT / ".venv" / "bin" / "python"))
 

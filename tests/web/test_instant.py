@@ -194,7 +194,7 @@ def test_a_named_mistake_in_time_in_english_and_spanish(browser, site, offline, 
     page.close()
 
 
-def test_symbolic_tryit_and_a_form_the_page_leaves_to_python(browser, site, offline):
+def test_symbolic_tryit_and_a_form_the_page_leaves_to_python(browser, site, offline, screenshots):
     page, _, _ = _open(browser, offline, f"{site.url}/chapters/13-2-joints.html")
     right = "x1 + cos(phi1) - x2 + 1.5*cos(phi2) + 0.2*sin(phi2)\ny1 + sin(phi1) - y2 + 1.5*sin(phi2) - 0.2*cos(phi2)"
     times = []
@@ -209,8 +209,17 @@ def test_symbolic_tryit_and_a_form_the_page_leaves_to_python(browser, site, offl
     assert verdict == "pass" and median <= 100
     _, verdict, _ = _check(page, "13-2/try-1", right.replace("- 0.2*cos", "+ 0.2*cos"))
     assert verdict == "fail"
-    root = "sqrt((x1 + 2*cos(phi1) - x2 + 0.5*sin(phi2))^2 + (y1 + 2*sin(phi1) - y2 - 0.5*cos(phi2))^2) - 3"
-    box, verdict, _ = _check(page, "13-2/try-3", root)
+    d2 = "((x1 + 2*cos(phi1) - x2 + 0.5*sin(phi2))^2 + (y1 + 2*sin(phi1) - y2 - 0.5*cos(phi2))^2)"
+    _, verdict, _ = _check(page, "13-2/try-3", f"sqrt{d2} - 3")  # √(d²) − 3: the same zero set as d² − 9
+    assert verdict == "pass"
+    _, verdict, _ = _check(page, "13-2/try-3", f"({d2} - 9)*(1 + {d2})")  # times a factor that is never zero
+    assert verdict == "pass"
+    box, verdict, _ = _check(page, "13-2/try-3", f"({d2} - 9)*cos(phi1)")  # a factor that changes sign
+    assert verdict == "fail" and box.locator("[data-mistake]").get_attribute("data-mistake") == "vanishing_factor"
+    box.scroll_into_view_if_needed()
+    box.screenshot(path=str(screenshots / "instant-vanishing-factor.png"))
+    # times d², which touches zero without changing sign (where the points meet): the checker's zero-set search
+    box, verdict, _ = _check(page, "13-2/try-3", f"({d2} - 9)*{d2}")
     assert verdict == "undecided"
     href = box.locator("a.kinbook-instant-python").get_attribute("href")
     assert href.startswith("../live/notebooks/index.html?path=13-2-joints.ipynb")

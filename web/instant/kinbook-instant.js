@@ -113,7 +113,7 @@
       }
     }
     const built = walk(node, 1);
-    return { f: built.f, num: built.num, tex: tex(node, ctx), node, ctx };
+    return { f: built.f, num: built.num, get tex() { return tex(node, ctx); }, node, ctx };  // TeX only for the echo
   }
 
   function operator(fn, args, lim) {
@@ -376,8 +376,7 @@
         reasons: combos.dependent.map((k) => ({ key: "row_wrong", fields: { k: k + 1 } })) };
     }
     if (vanishing.length) {
-      return { verdict: "fail", mistake: spec.diagnoses.vanishing_factor,
-        reasons: vanishing.map((k) => ({ key: "row_wrong", fields: { k: k + 1 } })) };
+      return { verdict: "fail", mistake: spec.diagnoses.vanishing_factor, reasons: [] };  // its title says it
     }
     // more rows than the constraints have: one at least is dependent (or wrong), whatever its form; fewer: their
     // gradients cannot span the reference's (independent, with the bodies' pᵀp − 1, where the checker samples)
@@ -594,9 +593,15 @@
     const gScale = Math.max(...base.map((p) => Math.abs(g.f(p))), 1e-300);
     const firm = (p) => { const v = g.f(p); return Number.isFinite(v) && Math.abs(v) > 1e-6 * gScale ? Math.sign(v) : 0; };
     const euler = new Set(spec.euler || []);
+    const used = new Set();  // the coordinates (and t) h is written in: the only lines along which it changes
+    h.node.traverse((n) => {
+      const where = n.type === "SymbolNode" && h.ctx.symbols[h.ctx.names.list[Number(n.name.slice(2))]];
+      if (where) used.add(where[0] === "q" ? where[1] : where[0] === "t" ? -1 : null);
+    });
     for (const b of base) {
-      const lines = b.q.map((_, i) => ({ i, grid: euler.has(i) ? E_GRID : GRID.map((d) => b.q[i] + d) }));
-      lines.push({ i: -1, grid: T_GRID });
+      const lines = b.q.map((_, i) => ({ i, grid: euler.has(i) ? E_GRID : GRID.map((d) => b.q[i] + d) }))
+        .filter(({ i }) => used.has(i));
+      if (used.has(-1)) lines.push({ i: -1, grid: T_GRID });
       for (const { i, grid } of lines) {
         let prev = null;
         for (const x of grid) {
