@@ -103,10 +103,12 @@ def test_the_page_agrees_with_python_on_the_corpora(verdicts):
           f"{100 * corpora['decided'] / corpora['typed']:.1f} % of the checker corpora's, "
           f"{100 * rows['mutants']['decided'] / max(rows['mutants']['typed'], 1):.1f} % of the mutation run's "
           f"({rows['mutants']['same mistake named']} of {rows['mutants']['typed']} named as Python names them)")
-    # The issue's target: 95 % of the typed answers — the checker corpora's, the try-its' and the mutation run's.
-    # What the page leaves to Python is the checker's equivalence rule for Φ (a formulation other than the
-    # reference's that the page's own rules cannot settle: a factor it cannot prove nonzero, a non-constant
-    # combination of rows) and combinations of Φ_q rows (the Jacobian of M(q)·Φ), and phi=/at= (no try-it has them).
+    # The issue's target: 95 % of the typed answers — the checker corpora's, the try-its', the mutation run's and the
+    # generated rounding answers. Measured 2026-11-29: 98.1 % of all (1638 of 1669), 93.1 % of the corpora's alone
+    # (96.3 % without phi=/at=, which no try-it has; 91.6 % before the page mirrored rounding, factors, √ forms,
+    # constant combinations and 2ĖĠᵀa rows). What the page leaves to Python is the checker's equivalence rule for Φ
+    # where its own rules cannot settle it (a cross product's other rows, a factor that touches zero without
+    # changing sign), Φ_q rows combined with coefficients that change with q (the Jacobian of M(q)·Φ), and phi=/at=.
     assert total["decided"] / total["typed"] >= 0.95
     assert rows["mutants"]["decided"] == rows["mutants"]["typed"] > 0
     assert rows["tryits"]["decided"] / rows["tryits"]["typed"] >= 0.95
