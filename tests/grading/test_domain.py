@@ -79,6 +79,17 @@ RULES = [
      lambda: grading.check_phi(["(-x3 + x4)*sin(phi3) - (-y3 + y4)*cos(phi3)",
                                 "atan2(sin(phi3 - phi4), cos(phi3 - phi4))"],
                                C.mechanism("quick_return").constraint("4")).passed, True),
+    ("is right turned by whole turns, the same number at every sample and times any constant",
+     lambda: [grading.check_phi(["(-x3 + x4)*sin(phi3) - (-y3 + y4)*cos(phi3)", row],
+                                C.mechanism("quick_return").constraint("4")).passed
+              for row in ("phi3 - phi4 + 2*pi", "phi4 - phi3 - 2*pi", "2*(phi3 - phi4 + 2*pi)",
+                          "atan2(sin(phi3 - phi4), cos(phi3 - phi4)) + 2*pi")], [True, True, True, False]),
+    ("a row that measures no angle turned by 2πk is `whole_turn`",
+     lambda: _whole(3, f"{C.BASE[3]} + 2*pi").mistakes, ["whole_turn"]),
+    ("a decimal that is c·180/π correctly rounded to 3 or more significant digits, or within 0.5 % of it",
+     lambda: [grading.check_phi([row], C.mechanism("steering").constraint("driver 1")).mistakes
+              for row in ("phi2 - 28.65*sin(2*t)", "phi2 - 28.7*sin(2*t)", "phi2 - 29.5*sin(2*t)")],
+     [["degrees"], ["degrees"], ["wrong_value"]]),
     ("a row that is 0 everywhere",
      lambda: grading.check_phi(["0", C.BASE[4]], C.mechanism("ch13_example1").constraint("1")).mistakes, ["zero_row"]),
     ("A decimal near an integer of the exercise (within 0.5 %) is this mistake too",
