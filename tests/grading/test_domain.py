@@ -90,6 +90,10 @@ RULES = [
      lambda: [grading.check_phi([row], C.mechanism("steering").constraint("driver 1")).mistakes
               for row in ("phi2 - 28.65*sin(2*t)", "phi2 - 28.7*sin(2*t)", "phi2 - 29.5*sin(2*t)")],
      [["degrees"], ["degrees"], ["wrong_value"]]),
+    ("`phi2 - 100*t + 3.927` and `phi3 - phi4 - 6.283` are right",
+     lambda: (_whole(11, "phi2 - 100*t + 3.927").passed,
+              grading.check_phi(["(-x3 + x4)*sin(phi3) - (-y3 + y4)*cos(phi3)", "phi3 - phi4 - 6.283"],
+                                C.mechanism("quick_return").constraint("4")).passed), (True, True)),
     ("a row that is 0 everywhere",
      lambda: grading.check_phi(["0", C.BASE[4]], C.mechanism("ch13_example1").constraint("1")).mistakes, ["zero_row"]),
     ("A decimal near an integer of the exercise (within 0.5 %) is this mistake too",
