@@ -1,7 +1,9 @@
 """How fast the checkers answer (issue #14 item 6): `import kinbook`, the first check on a target in a fresh
 process, and the median of later checks.
 
-Run:  .venv/bin/python benchmarks/checkers.py
+Run:  .venv/bin/python benchmarks/checkers.py            # every target, then later checks
+      .venv/bin/python benchmarks/checkers.py --pairs 5  # the planar and the slowest spatial first checks, side by side
+      add --source to compile kinbook from source in each process (what PYTHONDONTWRITEBYTECODE=1 costs)
 
 Each figure of the first part is measured in a new Python process (so nothing is cached or imported yet):
 the time of `import kinbook`, then — with the mechanism loaded and evaluated once — the first check of a
@@ -14,9 +16,11 @@ run (on a busy machine the ratio is the figure to read); later checks ≤ 50 ms 
 from __future__ import annotations
 
 import json
+import os
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -36,12 +40,12 @@ from benchmarks.checkers import CASES
 case = CASES[{k}]
 mech, target, answer, check, options = case["build"]()
 mech.evaluate(mech.q0)  # a student has the mechanism (and kinbook's compiled model) before checking
-t0 = time.perf_counter()
 passed = options.pop("_passed", True)
+t0, c0 = time.perf_counter(), time.process_time()
 r = getattr(grading, check)(answer, target, **options)
-t_first = time.perf_counter() - t0
+t_first, c_first = time.perf_counter() - t0, time.process_time() - c0
 assert r.passed is passed, r
-print(json.dumps({{"import": t_import, "first": t_first}}))
+print(json.dumps({{"import": t_import, "first": t_first, "cpu": c_first}}))
 """
 
 
@@ -162,13 +166,52 @@ CASES = [
 ]
 
 
-def first_checks():
+_PYC = {}
+
+
+def _environment(source=False):
+    """The fresh processes' environment. By default kinbook's bytecode is compiled once beforehand into a cache of
+    this run (``PYTHONPYCACHEPREFIX``), as an installed package has it (pip compiles it): the first check then
+    measures what it does, not the compiling of some 25 modules from source, which a shell with
+    ``PYTHONDONTWRITEBYTECODE=1`` pays in every process (about half the first check at load 4). ``source``: that
+    environment as it is."""
+    env = dict(os.environ)
+    if source:
+        return env
+    if "prefix" not in _PYC:
+        _PYC["prefix"] = tempfile.mkdtemp(prefix="kinbook-pyc-")
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    env["PYTHONPYCACHEPREFIX"] = _PYC["prefix"]
+    if "done" not in _PYC:
+        subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "kinbook"), str(ROOT / "benchmarks"),
+                        str(ROOT / "tests")], env=env, cwd=ROOT, check=True, capture_output=True)
+        _PYC["done"] = True
+    return env
+
+
+def first_check(k, source=False):
+    """One first check (case ``k``) in a fresh process: {"import": s, "first": s}."""
+    code = FIRST.format(root=str(ROOT), k=k)
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True,
+                         env=_environment(source))
+    return json.loads(res.stdout.strip().splitlines()[-1])
+
+
+def first_checks(source=False):
+    return [(case["name"], first_check(k, source)) for k, case in enumerate(CASES)]
+
+
+def side_by_side(rounds=5, source=False):
+    """The planar first check and the slowest spatial ones, each in a fresh process, one after the other, ``rounds``
+    times: the ratio of each round is measured under the same load."""
+    names = [c["name"] for c in CASES]
+    spatial = [names.index("spatial γ, whole four-bar, with phi="), names.index("wrong: spatial Φ, whole four-bar, one sign"),
+               names.index("wrong: spatial γ, whole four-bar, one sign")]
     out = []
-    for k, case in enumerate(CASES):
-        code = FIRST.format(root=str(ROOT), k=k)
-        res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
-        out.append((case["name"], json.loads(res.stdout.strip().splitlines()[-1])))
-    return out
+    for _ in range(rounds):
+        planar = first_check(0, source)
+        out.append((planar, [first_check(k, source) for k in spatial]))
+    return [names[k] for k in spatial], out
 
 
 def later_checks(repeat=20):
@@ -190,12 +233,28 @@ def later_checks(repeat=20):
 
 
 def main():
-    print("first check on a target, fresh process each (ms)        import   first   (targets 400 / 300)")
+    source = "--source" in sys.argv
+    if "--pairs" in sys.argv:
+        rounds = int(sys.argv[sys.argv.index("--pairs") + 1])
+        names, rows = side_by_side(rounds, source)
+        print(f"side by side, fresh processes{' (compiling from source)' if source else ''}: planar Φ first check, then "
+              + "; ".join(names) + " (ms, ratio to the planar)")
+        for key, what in (("first", "wall clock"), ("cpu", "CPU time of the process (other processes' turns left out)")):
+            print(f" {what}:")
+            for planar, others in rows:
+                p = planar[key]
+                print(f"  planar {1e3 * p:5.0f}   " + "   ".join(f"{1e3 * o[key]:5.0f} ({o[key] / p:.2f}×)" for o in others))
+            worst = [max(o[key] for o in others) / planar[key] for planar, others in rows]
+            print(f"  worst ratio per round: {', '.join(f'{w:.2f}' for w in worst)}; median "
+                  f"{statistics.median(worst):.2f}×")
+        return
+    print("first check on a target, fresh process each (ms)        import   first   (targets 400 / 300)"
+          + ("   [compiling from source]" if source else ""))
     imports, firsts = [], []
-    for name, r in first_checks():
+    for name, r in first_checks(source):
         imports.append(r["import"])
         firsts.append(r["first"])
-        print(f"  {name:52s} {1e3 * r['import']:6.0f}  {1e3 * r['first']:6.0f}")
+        print(f"  {name:52s} {1e3 * r['import']:6.0f}  {1e3 * r['first']:6.0f}   (CPU {1e3 * r['cpu']:4.0f})")
     print(f"  worst: import {1e3 * max(imports):.0f} ms ({max(imports) / 0.4:.2f} × target), first check "
           f"{1e3 * max(firsts):.0f} ms ({max(firsts) / 0.3:.2f} × target)")
     worst = max(range(len(firsts)), key=firsts.__getitem__)

@@ -29,7 +29,8 @@ A check runs one way through small stages, each one concept in one module. The m
   factors over the whole domain, solved or searched);
 * after-match — ``aftermatch`` (the steps a quantity declares);
 * diagnose — ``diagnose`` (naming the mistake), ``mistakes`` (wrong answers generated from the reference),
-  ``slips`` (more of them), ``misprints`` (the book's misprinted formulas);
+  ``slips`` (more of them), ``misprints`` (the book's misprinted formulas), ``turns`` (a row that measures no
+  angle turned by whole turns);
 * witness — ``witness`` (rows checked again where no one could have looked);
 * diagnose, continued — ``mutant_names`` (names for the slips the mutants stand for);
 * report — ``echo`` (the answer as it was read, shown before the verdict), ``report`` (the verdict written),

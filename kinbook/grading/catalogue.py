@@ -105,6 +105,11 @@ _ENTRIES = [
        N_("the row equals the constraint's at the configurations the checker samples, not at others: each row must be "
           "the constraint's equation at every configuration (the checker compares again at configurations drawn from "
           "the answer itself)")),
+    _m("whole_turn",
+       N_("a whole turn added to a row that is no angle"),
+       N_("2πk (whole turns) may be added to a row that measures an angle — a driver's φ_i − f(t), a slot's φ_i − φ_j "
+          "− φ⁰: a body turned by 2π is placed as before. A row that measures a length (a point's x or y, a "
+          "distance) changes with it: the joint no longer holds there")),
     _m("row_order",
        N_("rows not in the book's order"),
        N_("the exercise asks for the book's order: constraints in the order of the joint table, drivers last")),
@@ -426,6 +431,8 @@ add_texts({
     "d.vanishing_jacobian": N_("your row is f(q) × {ref}'s row, and f goes from {lo} to {hi} over the "
                                "configurations compared: it vanishes in between"),
     "d.only_at_samples": N_("equal to {ref} at the sampled configurations, but not at {where}"),
+    "d.whole_turn": N_("your row is {row}, and {ref} does not measure an angle: a whole turn leaves only an angle as it "
+                       "was"),
     "d.vanishing_at": N_("your row vanishes at {where}, where {ref} = {value} does not"),
     # the same details, the term described and not written (a try-it: the term written out is the answer)
     "d.sign_of_kind": N_("the term with the wrong sign is {kind}"),

@@ -23,7 +23,7 @@ import numbers
 
 import numpy as np
 
-from . import aftermatch, diagnose, evaluate, match, report, rounding, sample, witness
+from . import aftermatch, diagnose, evaluate, match, report, rounding, sample, turns, witness
 from ._i18n import Msg
 from .quantities import quantity_of
 from .read import Refused, as_numbers, read
@@ -132,9 +132,10 @@ def check_phi(answer, mechanism, *, order="any", rtol=None, at=None, symbolic=Fa
         data = evaluate.phi_data(target, A)
     except Refused as exc:
         return _refused("Phi", exc)
-    m = match.match_phi(data, rtol, order, target.wrap)
+    m = match.match_phi(data, rtol, order, target.wrap, target.turns)
     m.searched = match.vanishing(m, data, rtol)
     diagnose.phi(target, A, data, m, rtol)
+    turns.name_whole_turns(target, data, m, rtol)
     witness.phi(target, A, m, rtol)
     result = report.phi_result(target, m, order)
     if symbolic and A.kind == "symbolic":
@@ -268,7 +269,7 @@ def _own(target, phi, quantity, data, rtol, notes):
     except Refused as exc:
         notes.append(Msg("phi_unusable", reason=Msg(exc.key, **exc.fields)))
         return None
-    pm = match.match_phi(pdata, rtol, "any", target.wrap)
+    pm = match.match_phi(pdata, rtol, "any", target.wrap, target.turns)
     factors = {r.k: (r.ref, r.factor) for r in pm.rows if r.status == "ok" and r.how == "multiple"}
     for r in pm.rows:
         if r.status == "ok" and r.how == "equivalent":

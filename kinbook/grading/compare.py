@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["RTOL", "RTOL_NUMBERS", "zero_tol", "nice", "scale_of", "same", "scale_match", "scale_matrix", "atol_of"]
+__all__ = ["RTOL", "RTOL_NUMBERS", "zero_tol", "nice", "wrapped", "scale_of", "same", "scale_match", "scale_matrix", "turned_multiple",
+           "atol_of"]
 
 RTOL = 1e-6
 """Relative tolerance of every comparison of symbolic answers and functions."""
@@ -38,7 +39,8 @@ def scale_of(a):
     return float(np.max(np.abs(a))) if a.size else 0.0
 
 
-def _wrap(x, period):
+def wrapped(x, period):
+    """``x`` wrapped into [−period/2, period/2)."""
     return (x + period / 2) % period - period / 2
 
 
@@ -46,7 +48,7 @@ def same(a, b, rtol, period=None):
     """a ≈ b entry-wise over all samples, relative to the larger magnitude of the two."""
     d = a - b
     if period:
-        d = _wrap(d, period)
+        d = wrapped(d, period)
     scale = max(scale_of(a), scale_of(b))
     return bool(np.all(np.abs(d) <= rtol * scale + 1e-12 * max(scale, 1.0) * rtol))
 
@@ -78,10 +80,13 @@ def scale_match(a, b, rtol, free=True, period=None, atol=0.0, zeros=False):
     return None
 
 
-def scale_matrix(S, R, rtol, free=True, wrap=None, atol=0.0, zeros=False):
+def scale_matrix(S, R, rtol, free=True, wrap=None, atol=0.0, zeros=False, turns=None):
     """Constants C[k, j] with S[:, k] ≈ C·R[:, j] (NaN where there is none). S (N, ms, …), R (N, m, …).
 
-    Vectorized over all pairs (the rule of :func:`scale_match`); wrapped rows are compared one by one."""
+    Vectorized over all pairs (the rule of :func:`scale_match`); wrapped rows are compared one by one. ``turns``
+    ({reference row: period}, the rows that measure an angle): an answer row that is no multiple of such a row
+    is still a multiple of it (c = 1 only, unless ``free``) turned by the same whole number of periods at every
+    sample (:func:`turned_multiple`)."""
     wrap = wrap or {}
     ms, m = S.shape[1], R.shape[1]
     A = np.moveaxis(S, 1, 0).reshape(ms, -1)
@@ -106,10 +111,40 @@ def scale_matrix(S, R, rtol, free=True, wrap=None, atol=0.0, zeros=False):
         for k in range(ms):
             cc = scale_match(S[:, k], R[:, j], rtol, free, period, atol, zeros)
             C[k, j] = np.nan if cc is None else cc
+    for j, period in (turns or {}).items():
+        c, n = turned_multiple(A, B[j], rtol, period, free)
+        fill = (n != 0) & np.isnan(C[:, j])
+        C[fill, j] = c[fill]
     if free:
         for k, j in zip(*np.nonzero(np.isfinite(C))):
             C[k, j] = nice(C[k, j])
     return C
+
+
+def turned_multiple(A, b, rtol, period, free=True):
+    """Per row of ``A`` (k, N): the constant c and the whole number n ≠ 0 of periods with A ≈ c·(b + n·period) at
+    every sample — c and n the same at all of them — or n = 0 where there are none. c is 1 unless ``free``.
+
+    An angle row turned by whole turns places the bodies as the row does: φ3 − φ4 + 2π, φ4 − φ3 + 2π and
+    2(φ2 − 3π/4 − 100t + 2π) vanish where a turn of a body makes φ3 − φ4 (the driver's row) vanish. A number
+    of turns that changes from sample to sample is another row: atan2(sin φ2, cos φ2) − 3π/4 − 100t equals
+    φ2 − 3π/4 − 100t up to turns that follow φ2, and has no zero once 100t > π/4."""
+    A = np.atleast_2d(A)
+    b = np.asarray(b, float).reshape(-1)
+    with np.errstate(all="ignore"):
+        if free:
+            bc = b - b.mean()
+            c = ((A - A.mean(axis=1, keepdims=True)) @ bc) / float(bc @ bc)
+        else:
+            c = np.ones(len(A))
+        d = A - c[:, None] * b[None, :]  # c·n·period, the same at every sample
+        off = d.mean(axis=1)
+        n = np.round(off / (c * period))
+        scale = np.maximum(np.abs(A).max(axis=1), np.abs(c) * np.abs(b).max())
+        tol = rtol * scale + 1e-12 * np.maximum(scale, 1.0) * rtol
+        ok = (np.all(np.abs(d - off[:, None]) <= tol[:, None], axis=1) & (np.abs(off - c * n * period) <= tol)
+              & np.isfinite(c) & (c != 0) & np.isfinite(n))
+    return np.where(ok, c, np.nan), np.where(ok, n, 0.0)
 
 
 def atol_of(R, rtol):

@@ -167,7 +167,7 @@ def phi_data(target, answer):
             return None
         PQ, PT = placements(own, Q, T, np.flatnonzero(cols[i]))
         ref = own.evaluate(Samples(PQ, np.zeros_like(PQ), PT))["Phi"]
-        periods = np.array([own.wrap.get(j, 0.0) for j in range(ref.shape[1])])
+        periods = np.array([own.wrap.get(j, own.turns.get(j, 0.0)) for j in range(ref.shape[1])])
         wrapped = np.where(periods > 0, (ref + periods / 2) % np.where(periods > 0, periods, 1.0) - periods / 2, ref)
         P = len(PQ) // len(Q)
         size = np.abs(wrapped).max(axis=1).reshape(len(Q), P)

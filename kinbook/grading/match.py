@@ -89,7 +89,7 @@ class Matching:
 
 
 
-def match_phi(data, rtol, order="any", wrap=None):
+def match_phi(data, rtol, order="any", wrap=None, turns=None):
     """Match the rows of an answer Φ to the reference's, constraint by constraint.
 
     Parameters
@@ -100,6 +100,9 @@ def match_phi(data, rtol, order="any", wrap=None):
     order : {"any", "book"}
     wrap : dict
         {reference row: period} of wrapped angle rows.
+    turns : dict
+        {reference row: 2π} of the other rows that measure an angle: ±1 times the row up to whole turns is
+        right too (:func:`~kinbook.grading.compare.scale_matrix`).
 
     Returns
     -------
@@ -112,8 +115,8 @@ def match_phi(data, rtol, order="any", wrap=None):
     ms, m = S_G.shape[1], R_G.shape[1]
     blocks = data.blocks or [list(range(m))]
     owner_of = {j: b for b, refs in enumerate(blocks) for j in refs}
-    C = scale_matrix(S_G, R_G, rtol, True, wrap)
-    wide = _wide(C, data, rtol, wrap)
+    C = scale_matrix(S_G, R_G, rtol, True, wrap, turns=turns)
+    wide = _wide(C, data, rtol, wrap, turns)
     _zero_rows(C, data, rtol)
     rows, taken = _multiples(C, ms, m, order, owner_of)
     # 2. the other rows: an equivalent formulation of one constraint, judged where that constraint alone holds
@@ -204,7 +207,7 @@ def _coverage(data, rows, blocks, rtol):
     return missing
 
 
-def _wide(C, data, rtol, wrap):
+def _wide(C, data, rtol, wrap, turns=None):
     """A multiple at the generic samples is one only if it is the same multiple at the samples over the whole
     domain (angles beyond ±π, t up to 30), compared there on their own scale: ``atan2(sin φ2, cos φ2)`` is φ2
     only in (−π, π]. A row not defined there (a square root of a negative) keeps its match.
@@ -214,7 +217,7 @@ def _wide(C, data, rtol, wrap):
     dropped = {}
     if S_W is None or R_W is None or not np.isfinite(C).any():
         return dropped
-    CW = scale_matrix(np.nan_to_num(S_W), R_W, rtol, True, wrap)
+    CW = scale_matrix(np.nan_to_num(S_W), R_W, rtol, True, wrap, turns=turns)
     for k, j in zip(*np.nonzero(np.isfinite(C))):
         if not np.all(np.isfinite(S_W[:, k])) or scale_of(R_W[:, j]) == 0.0:
             continue

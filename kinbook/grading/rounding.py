@@ -25,7 +25,7 @@ from .quantities import quantity_of
 from .read import Answer
 
 __all__ = ["distinct_leaves", "MIN_DIGITS", "NEAR", "exact_constants", "significant_digits", "typed_digits", "is_rounding", "exact",
-           "graded", "named"]
+           "graded", "named", "in_degrees"]
 
 MIN_DIGITS = 3
 """The fewest significant digits a rounded constant may have."""
@@ -85,8 +85,26 @@ def exact_constants(target, quantity="Phi"):
             if math.isfinite(value):
                 found.setdefault(value, c)
                 found.setdefault(-value, -c)
+    if not quantity_of(quantity).right_hand_side:
+        _turned_constants(target, rows, symbols, found)
     target.store[key] = found
     return found
+
+
+def _turned_constants(target, rows, symbols, found):
+    """The constant of a row that measures an angle turned by whole turns (−3π/4 + 2π = 5π/4 for φ2 − 3π/4 − 100t,
+    2π for φ3 − φ4): the row turned is the same placement (``Target.turns``), so its constant is the exercise's too."""
+    import sympy as sp
+
+    for k in getattr(target, "turns", {}):
+        c0 = rows[k].subs({s: 0 for s in symbols})
+        if not c0.is_number:
+            continue
+        for n in (1, -1, 2, -2):
+            c = sp.nsimplify(c0 + 2 * n * sp.pi) if c0 == 0 else c0 + 2 * n * sp.pi
+            value = float(c)
+            found.setdefault(value, c)
+            found.setdefault(-value, -c)
 
 
 _LITERAL = re.compile(r"(?<![\w.])(\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?(?![\w.])")
@@ -207,7 +225,68 @@ def graded(result, answer, target, quantity, raw, recheck):
         result = recheck(exact_answer.matrix)
         if result.passed:
             return result
-    return named(result, near, lambda swap: recheck(exact_answer.matrix.xreplace(swap)))
+    result = named(result, near, lambda swap: recheck(exact_answer.matrix.xreplace(swap)))
+    if "degrees" in result.mistakes or "not_rounded" in result.mistakes:
+        return result
+    return in_degrees(result, exact_answer, target, quantity, raw, recheck)
+
+
+def in_degrees(result, answer, target, quantity, raw, recheck):
+    """A failed ``result`` named ``degrees`` when decimals of the answer are exact constants of the exercise
+    converted to degrees and rounded (to at least :data:`MIN_DIGITS` significant digits, as typed), or within
+    :data:`NEAR` of them: 28.65 for 0.5 rad, 5730 (or 5731) for a rate of 100 rad/s, 30.00 for π/6. The answer is checked again with each such decimal replaced
+    by the exact value in degrees (c·180/π); the name is the one the catalogue then gives (a constant, a rate, the
+    whole function in degrees), with the decimals named beside it. Otherwise ``result`` as it is."""
+    if result.passed or answer.kind != "symbolic":
+        return result
+    import sympy as sp
+
+    typed = typed_digits(raw) if raw is not None else {}
+    numbers = [x for x in distinct_leaves(answer.matrix, lambda e: e.is_Number) if x.is_Float or (x.is_Integer and abs(x) >= 100)]
+    if not numbers:
+        return result
+    constants = [(float(c), c) for c in _angles_and_rates(target, quantity)]
+    swap, notes = {}, []
+    for f in numbers:
+        x = float(f)
+        digits = typed.get(abs(x), significant_digits(x))
+        if x == 0 or digits < MIN_DIGITS:
+            continue
+        for value, c in constants:
+            deg = math.degrees(value)
+            if is_rounding(x, deg, digits) or abs(x - deg) <= NEAR * abs(deg):
+                swap[f] = c * 180 / sp.pi
+                notes.append(Msg("d.degrees_value", got=repr(abs(x)) if f.is_Float else str(abs(int(f))),
+                                 expected=_text(abs(c))))
+                break
+    if not swap:
+        return result
+    try:
+        again = recheck(answer.matrix.xreplace(swap))
+    except Exception:  # noqa: BLE001 — a repaired answer the checker cannot read: nothing to name
+        return result
+    if again.passed or "degrees" not in again.mistakes:
+        return result
+    from .result import CheckResult
+
+    shown = list(again.notes)
+    return CheckResult(False, again.score, shown[:1] + notes + shown[1:], again.mistakes, again.rows, again._quantity,
+                       again.columns)
+
+
+def _angles_and_rates(target, quantity):
+    """The exercise's constants a student may convert to degrees: its exact constants and integers, positive and
+    negative (3π/4, 0.5, 100)."""
+    import sympy as sp
+
+    out = []
+    for value, c in exact_constants(target, quantity).items():
+        if isinstance(value, tuple):
+            if value[1]:
+                out += [sp.Integer(value[1]), -sp.Integer(value[1])]
+        else:
+            out.append(c)
+    return out
 
 
 def named(result, near, recheck):

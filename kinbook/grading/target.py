@@ -112,6 +112,10 @@ class Target:
         self.free_rows = np.array(sorted(set(norm) - set(self.rows)), dtype=int)
         self.names = mech.coordinate_names()
         self.wrap = _wrapped_rows(self)
+        self.turns = _angle_rows(self)
+        """{position among the graded rows: 2π} for the other rows that measure an angle (a driver's φ_i − f(t), a
+        slot's φ_i − φ_j − φ⁰, a fixed body's φ_i − c): the same placement up to whole turns, so such a row may
+        differ from the reference by 2πk (:func:`~kinbook.grading.compare.scale_matrix`)."""
         self.time_dependent = any(c.f is not None for c in mech.constraints
                                   if set(range(c.rows.start, c.rows.stop)) & set(self.manifold_rows))
         self._samples = {}
@@ -270,6 +274,18 @@ def _spellings(name, velocity=False):
         dotted = unicodedata.normalize("NFKC", f"{s}\u0307")
         out |= {f"{dotted}{num}", f"{dotted}_{num}"}
     return sorted(out)
+
+
+def _angle_rows(target):
+    """{position among the graded rows: 2π} for the rows the constraints declare to measure an angle
+    (``Constraint.measures``) that the mechanism does not wrap already."""
+    out = {}
+    for c in target.constraints:
+        for r, measure in enumerate(c.measures or ()):
+            k = int(np.searchsorted(target.rows, c.rows.start + r))
+            if measure == "angle" and k not in target.wrap:
+                out[k] = 2 * np.pi
+    return out
 
 
 def _wrapped_rows(target):

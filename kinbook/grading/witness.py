@@ -22,10 +22,10 @@ import hashlib
 
 import numpy as np
 
+from . import compare, sample
 from . import mistakes as M
-from . import sample
 from ._i18n import Msg
-from .compare import scale_match
+from .compare import scale_match, turned_multiple, zero_tol
 from .diagnose import where
 from .quantities import quantity_of
 
@@ -171,9 +171,39 @@ def phi(target, answer, matching, rtol):
             continue  # the row is not defined there (a square root of a negative): its match stands
         # rounding is zero: a row zero at every sample (pᵀp − 1 on unit p) is ~1e-16 here, its answer too
         atol = rtol * max(abs(r.factor) * float(np.abs(R_G[:, r.ref]).max()), 1e-9)
-        if scale_match(a, b, rtol, free=False, period=target.wrap.get(r.ref), atol=atol, zeros=True) is None:
+        if scale_match(a, b, rtol, free=False, period=target.wrap.get(r.ref), atol=atol, zeros=True) is None and not (
+                r.ref in target.turns and _same_placement(target, answer, s, r, a, b, rtol)):
             i = int(np.argmax(np.abs(a - b)))
             _reject(target, r, s, i, "Phi")
+
+
+def _same_placement(target, answer, s, r, a, b, rtol):
+    """A row that measures an angle, accepted as c·Φ_k, that is not c·Φ_k at the witness's configurations ``s``:
+    still the same placement when it is c·(Φ_k + one whole number of turns) there, or — its turns changing from
+    configuration to configuration (atan2(sin φ1, cos φ1) for φ1) — when it vanishes, at every configuration, at
+    a turn (−2 … 2) of the configuration moved along one of the row's angles to where Φ_k is zero.
+    atan2(sin φ2, cos φ2) − 3π/4 − 100t does not once 100t > π/4."""
+    period = target.turns[r.ref] * abs(r.factor)
+    if turned_multiple(a, b, rtol, period, free=False)[1][0]:
+        return True
+    scale = max(float(np.abs(a).max()), float(np.abs(b).max()), 1.0)
+    if not np.all(np.abs(compare.wrapped(a - b, period)) <= rtol * scale):
+        return False
+    ref = target.evaluate(s)
+    J = ref["Phi_q"][:, r.ref, :]
+    col = int(np.argmax(np.abs(J[0])))  # an angle of the row (its coefficient ±1)
+    if not np.allclose(np.abs(J[:, col]), 1.0):
+        return False
+    Q = s.Q.copy()
+    Q[:, col] -= ref["Phi"][:, r.ref] / J[:, col]
+    turns = (0, 1, -1, 2, -2)
+    QT = np.repeat(Q, len(turns), axis=0)
+    QT[:, col] += np.tile(np.array(turns, float) * target.turns[r.ref], len(Q))
+    V = _values(answer, target, sample.Samples(QT, np.zeros_like(QT), np.repeat(s.T, len(turns))))
+    if V is None:
+        return True  # not defined there: its match stands
+    least = np.abs(V[:, r.k, 0]).reshape(len(Q), len(turns)).min(axis=1)
+    return bool(np.all(least <= zero_tol(rtol) * scale))
 
 
 def _wide_only(target, matching, rtol):

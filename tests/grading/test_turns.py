@@ -1,0 +1,38 @@
+"""Whole turns: every row that measures an angle in the shipped mechanisms and exercises is right turned by whole
+turns (the same number at every configuration) and through atan2 of the whole row, wrong by a half turn or where
+atan2 leaves no zero; a length row turned is ``whole_turn``. Each expectation is made apart from kinbook's checker
+(sympy and numpy over the whole domain: tests/grading/corpus_turns.py)."""
+
+import pytest
+
+from kinbook import grading
+
+from . import corpus_turns as C
+
+CASES = C.cases()
+
+
+@pytest.mark.parametrize("case", CASES, ids=[c.id for c in CASES])
+def test_turns_corpus(case):
+    r = grading.check_phi(case.answer, C.target(case))
+    assert r.passed is case.passed, r
+    assert r.mistakes in case.names, r
+
+
+def test_the_corpus_covers_every_kind_of_angle_row_both_ways():
+    assert len(CASES) >= 200
+    for kind in ("ground", "driver", "-2-angle-"):  # a fixed body's φ, drivers, a slot's relative angle (row 2)
+        mine = [c for c in CASES if kind in c.id]
+        assert any(c.passed for c in mine) and any(not c.passed for c in mine), kind
+    assert any(c.names == [["whole_turn"]] for c in CASES)
+
+
+def test_the_issue_examples():
+    """The slot's relative-angle row of the quick-return written with a 2π wrap (it was wrong_value)."""
+    slot = C.mechanism("quick_return").constraint("4")
+    first = "(-x3 + x4)*sin(phi3) - (-y3 + y4)*cos(phi3)"
+    for row in ("phi3 - phi4 + 2*pi", "phi3 - phi4 - 2*pi", "phi4 - phi3 + 2*pi", "-(phi3 - phi4) - 2*pi",
+                "atan2(sin(phi3 - phi4), cos(phi3 - phi4))"):
+        assert grading.check_phi([first, row], slot).passed, row
+    r = grading.check_phi([f"{first} + 2*pi", "phi3 - phi4"], slot)
+    assert r.mistakes == ["whole_turn"] and "Φ_10 + 2π" in " ".join(r.messages), r
