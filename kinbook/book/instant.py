@@ -202,8 +202,9 @@ def _names(t):
 
 
 def _witness_points(t, which):
-    """A few points of the page's own (seeded apart from the checker's): generic configurations for Φ, assembled
-    ones (consistent velocities) for Φ_q, ν, γ — where a row accepted at the samples must agree as well."""
+    """A few points of the page's own (seeded apart from the checker's): generic configurations for Φ — and the
+    checker's few over the whole domain (angles beyond ±π, t up to 30: where ``atan2(sin φ, cos φ)`` is not φ) —,
+    assembled ones (consistent velocities) for Φ_q, ν, γ — where a row accepted at the samples must agree as well."""
     from ..grading import sample, witness
     from ..grading.read import read
 
@@ -216,7 +217,9 @@ def _witness_points(t, which):
         else:
             p = rng.normal(size=(N_WITNESS, n // 7, 4))
             Q.reshape(N_WITNESS, n // 7, 7)[:, :, 3:] = p / np.linalg.norm(p, axis=2, keepdims=True)
-        return sample.Samples(Q, rng.normal(0.0, 2.0, Q.shape), rng.uniform(0.0, 1.0, N_WITNESS))
+        wide = sample.generic_wide(t)
+        return sample.Samples(np.vstack([Q, wide.Q]), np.vstack([rng.normal(0.0, 2.0, Q.shape), wide.QD]),
+                              np.concatenate([rng.uniform(0.0, 1.0, N_WITNESS), wide.T]))
     # the checker's witness draw, seeded by a fixed text of the page's (not by an answer)
     return witness.samples(t, read([f"t*{WITNESS_SEED}"], t, "nu"))
 
@@ -244,6 +247,7 @@ def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
                      "factor": _factor_rule(q),
                      "order": options.get("order") or ("book" if q.derived else "any"),
                      "wrap": {str(k): p for k, p in t.wrap.items()},
+                     "turns": {str(k): p for k, p in t.turns.items()},
                      "decides": not ({"phi", "at"} & set(options)), "refuse": refuse},
             "mistakes": []}
     spec["spatial"] = t.kind == "spatial"

@@ -98,6 +98,27 @@ def corpus_cases(specs):
                    "python": {"passed": bool(result.passed), "mistakes": list(result.mistakes)}}
 
 
+def edge_cases(specs):
+    """Issue 30's classes: whole turns of an angle row (corpus_turns), rounded constants (corpus_rounding) and
+    degrees or rounded turned constants (corpus_edges) — each answer checked by Python and by the page."""
+    from tests.grading import corpus_edges, corpus_rounding, corpus_turns
+
+    groups = [("turns", corpus_turns.cases(), corpus_turns.target, lambda c: "phi", lambda c: c.answer, {}),
+              ("rounding", corpus_rounding.cases(), corpus_rounding.target, lambda c: c.check, lambda c: c.answer(), {}),
+              ("edges", corpus_edges.cases(), corpus_edges.target, lambda c: c.check, lambda c: c.answer, None)]
+    for source, cases, target_of, check_of, answer_of, fixed in groups:
+        for case in cases:
+            target, check, answer = target_of(case), check_of(case), answer_of(case)
+            options = case.options if fixed is None else fixed
+            result = CHECKS[check](answer, target, **options)
+            shown = {k: v for k, v in options.items() if k != "phi"} | ({"phi": True} if "phi" in options else {})
+            ident = (source, getattr(case, "mech", getattr(case, "constant", None)), getattr(case, "constraint", None),
+                     check, json.dumps(shown, sort_keys=True, default=str))
+            key = specs.key(ident, instant.spec, CHECKS[check], target, shown)
+            yield {"id": case.id, "source": source, "spec": key, "text": as_text(answer),
+                   "python": {"passed": bool(result.passed), "mistakes": list(result.mistakes)}}
+
+
 def tryit_cases(specs):
     from tests.grading import tryits
 
@@ -164,7 +185,7 @@ def rounding_cases(specs):
 def main(out):
     specs = Specs()
     with open(out, "w", encoding="utf-8") as f:
-        for k, case in enumerate(itertools.chain(corpus_cases(specs), tryit_cases(specs),
+        for k, case in enumerate(itertools.chain(corpus_cases(specs), edge_cases(specs), tryit_cases(specs),
                                                        mutation_cases(specs), rounding_cases(specs))):
             f.write(json.dumps(case, ensure_ascii=False, allow_nan=False) + "\n")
             f.flush()

@@ -266,6 +266,38 @@
     return d <= rtol * Math.max(maxAbs(a), Math.abs(c) * sb) + atol ? nice(c) : null;
   }
 
+  /* kinbook.grading.compare.turned_multiple, one row: the constant c and the whole number n ≠ 0 of periods with
+     a ≈ c·(b + n·period) at every point (c and n the same at all of them), or null. An angle row turned by whole
+     turns places the bodies as the row does. */
+  function turnedMultiple(a, b, rtol, period) {
+    const N = a.length, mean = (v) => v.reduce((x, y) => x + y, 0) / N;
+    const ma = mean(a), mb = mean(b);
+    let ab = 0, bb = 0;
+    for (let i = 0; i < N; i++) { ab += (a[i] - ma) * (b[i] - mb); bb += (b[i] - mb) * (b[i] - mb); }
+    const c = ab / bb;
+    if (!isFinite(c) || c === 0) return null;
+    const d = a.map((x, i) => x - c * b[i]), off = mean(d), n = Math.round(off / (c * period));
+    const scale = Math.max(maxAbs(a), Math.abs(c) * maxAbs(b));
+    const tol = rtol * scale + 1e-12 * Math.max(scale, 1) * rtol;
+    if (!isFinite(n) || n === 0 || d.some((x) => Math.abs(x - off) > tol) || Math.abs(off - c * n * period) > tol) return null;
+    return { c: nice(c), n };
+  }
+
+  /* scale_matrix's turns: where no multiple of an angle row was found, a multiple of it turned by whole turns. */
+  function turnRows(C, S, R, rule) {
+    const turned = new Map();
+    for (const [key, period] of Object.entries(rule.turns || {})) {
+      const j = Number(key);
+      if (j >= R.length) continue;
+      for (let k = 0; k < S.length; k++) {
+        if (C[k][j] !== null) continue;
+        const t = turnedMultiple(S[k], R[j], rule.rtol, period);
+        if (t) { C[k][j] = t.c; turned.set(`${k},${j}`, { period, c: t.c }); }
+      }
+    }
+    return turned;
+  }
+
   function points(P) {
     return P.t.map((t, i) => ({ q: P.q[i], qd: P.qd[i], t }));
   }
@@ -358,6 +390,7 @@
       S[k] = evaluate([rows[k]], points(spec.points.samples))[0];
       C[k] = R.map((r, j) => scaleMatch(S[k], r, rule.rtol, true, wrap[j]));
     }
+    const turned = turnRows(C, S, R, rule);
     const status = new Array(ms).fill("wrong"), ref = new Array(ms).fill(null), taken = new Map();
     const book = rule.order === "book";
     if (book) for (let k = 0; k < Math.min(ms, m); k++) if (C[k][k] !== null) { status[k] = "ok"; ref[k] = k; taken.set(k, k); }
@@ -396,7 +429,12 @@
     if (undecided) return { verdict: "undecided", reasons, nearOnly };
     if (ms !== m) return { verdict: "fail", reasons: [{ key: "rows_count", fields: { got: ms, want: m } }] };
     if (book && ref.some((j, k) => j !== k)) return { verdict: "fail", reasons: [] };
-    const bad = witness(Object.assign({}, spec, { _combos: combos.coef }), rows, ref, S, R, true);
+    const bad = witness(Object.assign({}, spec, { _combos: combos.coef, _turned: turned }), rows, ref, S, R, true);
+    if (bad !== null && (rule.turns || {})[ref[bad]] !== undefined) {
+      // an angle row whose turns change over the whole domain (atan2 of the row): whether some turn of the bodies
+      // places them as the row does is the checker's witness's question, not the page's
+      return { verdict: "undecided", reasons: [{ key: "equivalent", fields: { k: bad + 1 } }], nearOnly: false };
+    }
     if (bad !== null) return { verdict: "fail", reasons: [{ key: "row_only", fields: { k: bad + 1 } }] };
     return { verdict: "pass", reasons: [] };
   }
@@ -670,6 +708,12 @@
       const j = ref[k];
       if (j === null || j === undefined) continue;
       const combo = spec._combos && spec._combos.get(k);
+      const turn = spec._turned && spec._turned.get(`${k},${j}`);
+      if (turn) {  // turned by whole turns: the same constant there, by a whole number of turns of its own (_wide)
+        const t = turnedMultiple(W[k], RW[j], spec.rule.rtol, turn.period);
+        if (!t || Math.abs(t.c - turn.c) > 1e-6 * Math.abs(turn.c)) return k;
+        continue;
+      }
       const c = combo ? 1 : spec._factors ? spec._factors[k] : scaleMatch(S[k], R[j], spec.rule.rtol, true, (spec.rule.wrap || {})[j]);
       const a = W[k], b = combo ? W[k].map((_, i) => combo.reduce((x, [jj, cc]) => x + cc * RW[jj][i], 0)) : RW[j].map((x) => c * x);
       const rtol = spec.rule.rtol;
