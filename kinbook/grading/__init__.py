@@ -32,8 +32,8 @@ A check runs one way through small stages, each one concept in one module. The m
   ``slips`` (more of them), ``misprints`` (the book's misprinted formulas);
 * witness — ``witness`` (rows checked again where no one could have looked);
 * diagnose, continued — ``mutant_names`` (names for the slips the mutants stand for);
-* report — ``echo`` (the answer as it was read, shown before the verdict), ``report`` (the verdict written),
-  ``result`` (CheckResult, RowResult), ``catalogue`` (every mistake's code, title and hint), ``_i18n`` (sentences
+* report — ``echo`` (the answer as it was read, shown before the verdict), ``report`` (the verdict: CheckResult,
+  RowResult, and how they are written), ``catalogue`` (every mistake's code, title and hint), ``_i18n`` (sentences
   written when shown);
 * numbers — ``numbers`` (read, tolerances, compare entry by entry, name the slip), under ``values``
   (check_value), ``rotation_values`` (check_rotation, check_euler_parameters), ``newton`` (check_iterates) and
@@ -53,7 +53,7 @@ from .item import CHECKERS
 _FROM = {
     "check_phi": "checks", "check_jacobian": "checks", "check_nu": "checks", "check_gamma": "checks",
     "check_value": "values", "check_rotation": "rotation_values", "check_euler_parameters": "rotation_values",
-    "nbgrader_score": "lms", "assert_passed": "lms", "CheckResult": "result", "RowResult": "result",
+    "nbgrader_score": "lms", "assert_passed": "lms", "CheckResult": "report", "RowResult": "report",
     "MISTAKES": "catalogue", "explain": "catalogue", "set_language": "_i18n", "get_language": "_i18n",
 }
 

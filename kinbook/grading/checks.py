@@ -348,7 +348,7 @@ def _confirm(result, target, A, m, quantity="Phi"):
     numerically, which decides the verdict anyway)."""
     import sympy as sp
 
-    from .result import CheckResult
+    from .report import CheckResult
 
     Q = quantity_of(quantity)
     pairs, skipped = [], 0

@@ -4,7 +4,7 @@ shown before the verdict, so that ``sin(phi2)*x1 - …`` typed with a slip is se
 
 :func:`echoed` wraps a checker: after it has run, the answer is read again by the checkers' own reader
 (:func:`kinbook.grading.read.read` for Φ, Φ_q, ν, γ; numbers as an array for the value checkers) and attached to the
-result (:attr:`kinbook.grading.result.CheckResult.read`) — lazily: the answer is read again and typeset only when the
+result (:attr:`kinbook.grading.report.CheckResult.read`) — lazily: the answer is read again and typeset only when the
 result is shown. An answer the reader refuses is not echoed: the result's message says what could not be read.
 """
 

@@ -32,7 +32,7 @@ from __future__ import annotations
 import math
 import numbers
 
-from .result import CheckResult
+from .report import CheckResult
 
 __all__ = ["nbgrader_score", "assert_passed", "nbgrader_credit"]
 

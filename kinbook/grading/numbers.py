@@ -26,8 +26,7 @@ from ..i18n import N_, Message, Np_
 from ._i18n import Msg, add_texts
 from .expected import DEG, Expected
 from .read import Refused, numbers_of
-from .report import fmt, hints
-from .result import CheckResult, RowResult
+from .report import CheckResult, RowResult, fmt, hints
 
 __all__ = ["PLAUSIBLE_FACTORS", "real_option", "tolerances", "periodic_mask", "name_option", "angles_option", "reveal_option",
            "read_numbers", "expected_of", "close", "compare", "failed"]

@@ -215,8 +215,7 @@ def named(result, near, recheck):
     constants they are close to (``recheck(swap)`` runs the check again); else ``result`` as it is."""
     if result.passed or not near:
         return result
-    from .report import hints
-    from .result import CheckResult
+    from .report import CheckResult, hints
 
     swap = dict(near)
     try:

@@ -174,7 +174,7 @@ def _caller_source():
 
 def _library_answer(result, name):
     """A right answer computed by kinbook itself: said so, not a plain "correct" (the exercise is to build it)."""
-    from ...grading.result import CheckResult
+    from ...grading.report import CheckResult
 
     note = text_message("library", name=name)
     return CheckResult(True, result.score, [note], [], result.rows, result._quantity, result.columns)

@@ -111,7 +111,7 @@ class TryIt(Item):
 
     def _numbers(self, answer, target, options, quantity):
         """Numbers typed for a formula of t: compared with the reference at ``numbers_at``."""
-        from ...grading.result import CheckResult
+        from ...grading.report import CheckResult
 
         t = float(self.numbers_at)
         q = target.solve_position(t)
@@ -149,8 +149,7 @@ class TryIt(Item):
         from ...grading.match import scale_match
         from ...grading.quantities import PHI, quantity_of
         from ...grading.read import Refused, read
-        from ...grading.report import hints
-        from ...grading.result import CheckResult
+        from ...grading.report import CheckResult, hints
         from ...grading.target import target_for
 
         t = target_for(target)
@@ -194,7 +193,7 @@ class TryIt(Item):
                 # (the last note is its hint), but keep which entries are wrong where that name was "wrong value"
                 from ...grading._i18n import render
                 from ...grading.catalogue import explain
-                from ...grading.result import RowResult
+                from ...grading.report import RowResult
 
                 other = [explain(m, "en")[0] for m in result.mistakes if m not in (code, "wrong_value")]
                 kept = [n for n in result.notes[:-1] if not any(o in render(n, "en") for o in other)]
@@ -207,8 +206,7 @@ class TryIt(Item):
     def _copied(self, answer, data, options, quantity):
         """A symbolic answer that is right for other data — the joint printed above, the notebook's data when a
         variant is asked: named ``wrong_data`` (None otherwise)."""
-        from ...grading.report import hints
-        from ...grading.result import CheckResult
+        from ...grading.report import CheckResult, hints
 
         others = list(self.lookalikes(**data)) if self.lookalikes is not None else []
         if not same_data(data, self.data):
@@ -311,7 +309,7 @@ def described(result):
     """``result`` with every term that a detail writes out described instead ("a term is missing: a term of t alone
     …" for "the term 500.0*t is missing"): a try-it's hint points at a step, never at a term to copy."""
     from ...grading._i18n import Msg
-    from ...grading.result import CheckResult, RowResult
+    from ...grading.report import CheckResult, RowResult
 
     def swap(x):
         if isinstance(x, Msg):
