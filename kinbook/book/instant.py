@@ -223,7 +223,7 @@ def _witness_points(t, which):
 
 def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
     """check_phi / check_jacobian / check_nu / check_gamma: the points, the reference there, the rule."""
-    from ..grading.compare import RTOL, zero_tol
+    from ..grading.equivalence import RTOL, zero_tol
     from ..grading.target import target_for
 
     t = target_for(target)

@@ -24,9 +24,9 @@ A check runs one way through small stages, each one concept in one module. The m
 * sample — ``sample`` (seeded configurations on the manifold);
 * evaluate — ``evaluate`` (answer and reference at the samples), ``jets`` (values and derivatives of an
   expression without deriving it);
-* match — ``match`` (the one equivalence rule), ``compare`` (the tolerances and the constant-multiple rule),
-  ``equivalence`` (equivalent formulations and vanishing factors), ``factors`` (the real zeros of a row's
-  factors over the whole domain, solved or searched);
+* match — ``match`` (the one equivalence rule), ``equivalence`` (when an answer row is a reference row: the
+  tolerances and the constant-multiple rule, equivalent formulations and vanishing factors), ``factors`` (the
+  real zeros of a row's factors over the whole domain, solved or searched);
 * after-match — ``aftermatch`` (the steps a quantity declares);
 * diagnose — ``diagnose`` (naming the mistake), ``mistakes`` (wrong answers generated from the reference),
   ``slips`` (more of them), ``misprints`` (the book's misprinted formulas);

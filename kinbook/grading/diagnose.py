@@ -15,8 +15,7 @@ import numpy as np
 from . import mistakes as M
 from . import mutant_names, slips
 from ._i18n import Msg
-from .compare import same, scale_match, scale_of
-from .equivalence import in_span
+from .equivalence import in_span, same, scale_match, scale_of
 from .quantities import applies, quantity_of
 from .rounding import distinct_leaves
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .compare import same, scale_match, scale_of
+from .equivalence import same, scale_match, scale_of
 from .mutants import expression_mutants, row_mutants
 from .quantities import quantity_of
 

@@ -25,8 +25,8 @@ import numpy as np
 from . import mistakes as M
 from . import sample
 from ._i18n import Msg
-from .compare import scale_match
 from .diagnose import where
+from .equivalence import scale_match
 from .quantities import quantity_of
 
 __all__ = ["phi", "derived", "samples", "code_text", "N_WITNESS"]
