@@ -19,8 +19,8 @@ A check runs one way through small stages, each one concept in one module. The m
 * the face — ``checks`` (check_phi, check_jacobian, check_nu, check_gamma: the pipeline of Φ, Φ_q, ν, γ),
   ``item`` (one graded item and the table of checkers), ``quantities`` (Φ, Φ_q, ν, γ declared once);
 * target — ``target`` (what is graded against: a mechanism or one constraint, its cached reference);
-* read — ``read`` (the safe reader of answers: text, sympy, a function, numbers), ``rounding`` (decimals that
-  are the exercise's constants rounded);
+* read — ``read`` (the safe reader of answers: text, sympy, a function, numbers; and the answer as it was read,
+  shown before the verdict), ``rounding`` (decimals that are the exercise's constants rounded);
 * sample — ``sample`` (seeded configurations on the manifold);
 * evaluate — ``evaluate`` (answer and reference at the samples), ``jets`` (values and derivatives of an
   expression without deriving it);
@@ -32,9 +32,8 @@ A check runs one way through small stages, each one concept in one module. The m
   ``slips`` (more of them), ``misprints`` (the book's misprinted formulas);
 * witness — ``witness`` (rows checked again where no one could have looked);
 * diagnose, continued — ``mutant_names`` (names for the slips the mutants stand for);
-* report — ``echo`` (the answer as it was read, shown before the verdict), ``report`` (the verdict: CheckResult,
-  RowResult, and how they are written), ``catalogue`` (every mistake's code, title and hint), ``_i18n`` (sentences
-  written when shown);
+* report — ``report`` (the verdict: CheckResult, RowResult, and how they are written), ``catalogue`` (every
+  mistake's code, title and hint), ``_i18n`` (sentences written when shown);
 * numbers — ``numbers`` (read, tolerances, compare entry by entry, name the slip), under ``values``
   (check_value), ``rotation_values`` (check_rotation, check_euler_parameters), ``newton`` (check_iterates) and
   ``expected`` (expected numbers that know their mistakes);
@@ -60,7 +59,7 @@ _FROM = {
 
 _CHECKS = {"check_phi": "phi", "check_jacobian": "jacobian", "check_nu": "nu", "check_gamma": "gamma",
            "check_value": "value", "check_rotation": "rotation", "check_euler_parameters": "euler_parameters"}
-"""The package's checkers are the table's: their results show the answer as it was read (:mod:`.echo`)."""
+"""The package's checkers are the table's: their results show the answer as it was read (:func:`.read.echoed`)."""
 
 
 def __getattr__(name):

@@ -410,7 +410,7 @@ class CheckResult:
     columns : tuple of str
         Names of the columns of Φ_q (coordinates), when ``rows`` carry entries.
     read : (str, str or None) or None
-        The answer as the checker read it, as plain text and as LaTeX (:mod:`kinbook.grading.echo`), shown before
+        The answer as the checker read it, as plain text and as LaTeX (:func:`kinbook.grading.read.echoed`), shown before
         the verdict; None when it was not read (a refused answer says why instead).
     """
 
