@@ -28,6 +28,8 @@ import numpy as np
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
+from ..grading.read import tex_name
+
 __all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "html_math", "html_text", "equations", "matrix", "names",
            "book_form", "factored", "lines", "Math", "local_points", "table", "tidy", "spatial_form",
            "SPATIAL_DEFINITIONS"]
@@ -308,32 +310,17 @@ def book_form(expr, mech=None, kind=None):
 
 
 # ----------------------------------------------------------------------------------------- the printer
-_COORD = re.compile(r"^(d?)(x|y|z|phi|e0|e1|e2|e3)(\d+)$")
-_TEX = {"x": "x", "y": "y", "z": "z", "phi": r"\varphi"}
-
-
 def names(expr, mech=None):
     """``symbol_names`` for :func:`sympy.latex`: kinbook's coordinate symbols in the book's notation.
 
     ``x1 → x_1``, ``phi2 → \\varphi_2``, ``dx1 → \\dot{x}_1``, ``e02 → e_{0,2}``; with a mechanism whose
-    bodies are named by one letter (``i``, ``j``), that letter is the subscript (``x1 → x_i``).
+    bodies are named by one letter (``i``, ``j``), that letter is the subscript (``x1 → x_i``). The rule is the
+    checkers' (:func:`kinbook.grading.read.tex_name`): the answer as read and the book's pages write alike.
     """
     letters = {}
     if mech is not None:
         letters = {str(b.number): b.name for b in mech.bodies if len(b.name) == 1 and b.name.isalpha()}
-    out = {}
-    for s in as_sympy(expr).free_symbols:
-        m = _COORD.match(s.name)
-        if not m:
-            continue
-        dot, base, number = m.groups()
-        sub = letters.get(number, number)
-        if base.startswith("e"):  # Euler parameters e_{0i}: the book's index first, then the body
-            head, sub = "e", base[1] + ("," if len(sub) > 1 or sub.isdigit() else "") + sub
-        else:
-            head = _TEX[base]
-        out[s] = (rf"\dot{{{head}}}" if dot else head) + f"_{{{sub}}}"
-    return out
+    return {s: tex for s in as_sympy(expr).free_symbols if (tex := tex_name(s.name, letters)) is not None}
 
 
 def tidy(expr, digits=10):
