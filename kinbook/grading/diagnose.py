@@ -279,7 +279,7 @@ def _term_detail(code, term):
     import sympy as sp
 
     text = sp.sstr(term).replace("phi", "φ").replace("**", "^")
-    return Msg("d.sign_of_term" if code == "sign_flip" else "d.missing_term", term=text, kind=slips.term_kind(term))
+    return Msg("d.sign_of_term" if code == "sign_flip" else "d.missing_term", term=text, kind=term_kind(term))
 
 
 def _terms_phi(target, data, wrong, free, rtol):
@@ -700,3 +700,33 @@ def entries(S, E, rtol, row_code, cands):
     relevant = [i for i in range(w) if scale_of(E[:, i]) > 1e-12 or scale_of(S[:, i]) > 1e-12]
     good = sum(1 for i in relevant if out[i] == "ok")
     return tuple(out), (good / len(relevant) if relevant else 0.0)
+
+
+def term_kind(term):
+    """What sort of term a sympy term of a row is, as a Msg that does not write it: a constant, a term of time
+    alone (a driver's function), quadratic or linear in the velocities, of a body's rotation or of its origin —
+    with the bodies it involves ("a term quadratic in the velocities, of body 2")."""
+    import re
+
+    import sympy as sp
+
+    names = {s.name for s in term.free_symbols}
+    velocities = [n for n in names if n.startswith("d") and n != "t"]
+    coordinates = [n[1:] if n in velocities else n for n in names if n != "t"]
+    bodies = sorted({int(m.group(2)) for n in coordinates if (m := re.fullmatch(r"(e[0-3]|[a-z]+)(\d+)", n))})
+    if not names:
+        kind = "k.constant"
+    elif names == {"t"}:
+        kind = "k.time"
+    elif velocities:
+        vel = [v for v in term.free_symbols if v.name in velocities]
+        deg = max(sp.Poly(a, *vel).total_degree() for a in sp.Add.make_args(sp.expand(term)))
+        kind = "k.velocity_squared" if deg >= 2 else "k.velocity"
+    elif any(n.startswith(("phi", "e0", "e1", "e2", "e3", "psi", "theta")) for n in names):
+        kind = "k.rotation"
+    else:
+        kind = "k.origin"
+    what = Msg(kind)
+    if bodies:
+        return Msg("k.of_bodies", what=what, bodies=", ".join(str(b) for b in bodies), n=len(bodies))
+    return what
