@@ -284,6 +284,61 @@ def test_the_private_finder_can_fail(tmp_path):
                                                            "kinbook.grading.values._read"]
 
 
+def _private(attr):
+    return attr.startswith("_") and not attr.startswith("__")
+
+
+def own_private_attributes(tree):
+    """The private attribute names a module defines: set on self or cls (``self._x = …``,
+    ``object.__setattr__(self, "_x", …)``), or named in a class body (``_x: int``, ``_x = …``, ``def _x``)."""
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ClassDef):
+            for item in node.body:
+                if isinstance(item, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                    out.add(item.name)
+                elif isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name):
+                    out.add(item.target.id)
+                elif isinstance(item, ast.Assign):
+                    out |= {t.id for t in item.targets if isinstance(t, ast.Name)}
+        elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store) \
+                and isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"):
+            out.add(node.attr)
+        elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "__setattr__" \
+                and len(node.args) >= 2 and isinstance(node.args[1], ast.Constant) \
+                and isinstance(node.args[1].value, str):
+            out.add(node.args[1].value)
+    return {a for a in out if _private(a)}
+
+
+def private_attribute_uses(trees):
+    """{(module, "line: obj._x")} of every ``obj._x`` (obj not self or cls) in a module that does not define ``_x``
+    itself, where another kinbook module's class does: ``result._quantity`` in book/tryits reaches into
+    grading's CheckResult. Private attributes of other libraries (``sys._getframe``) are not kinbook's to judge."""
+    own = {m: own_private_attributes(t) for m, t in trees.items()}
+    anywhere = set().union(*own.values())
+    found = set()
+    for m, tree in trees.items():
+        for n in ast.walk(tree):
+            if isinstance(n, ast.Attribute) and _private(n.attr) and n.attr in anywhere and n.attr not in own[m] \
+                    and not (isinstance(n.value, ast.Name) and n.value.id in ("self", "cls")):
+                found.add((m, f"{n.lineno}: {ast.unparse(n)}"))
+    return found
+
+
+def test_no_module_reaches_into_another_modules_private_attributes():
+    trees = {m: ast.parse(p.read_text(encoding="utf-8")) for m, p in MODULES.items()}
+    assert sorted(private_attribute_uses(trees)) == []
+
+
+def test_the_private_attribute_finder_can_fail():
+    result = ast.parse("class CheckResult:\n    def __init__(self, q):\n        object.__setattr__(self, '_quantity', q)\n"
+                       "        self._echo = None\n    def echo(self, other):\n        return other._echo\n")
+    user = ast.parse("def f(result, sys):\n    self = result\n    return result._quantity, sys._getframe, self._echo\n")
+    found = private_attribute_uses({"kinbook.grading.report": result, "kinbook.book.tryits": user})
+    assert found == {("kinbook.book.tryits", "3: result._quantity")}
+
+
 def smell_report():
     """Lines of the files over MAX_FILE and of the functions over MAX_FUNCTION, largest first."""
     found = [item for p in MODULES.values() for item in sizes(p)]

@@ -42,7 +42,7 @@ def adopt(entry, roster, data):
     sid, problem = student_id(named)
     if problem or sid != named:
         return None
-    old, entry.student, entry._raw = entry.student, sid, sid
+    old, entry.student = entry.student, sid
     return old
 
 

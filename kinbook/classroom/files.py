@@ -129,7 +129,6 @@ class Entry:
     base: str = ""
     signals: list = field(default_factory=list)
     order: tuple = ()
-    _raw: str = ""
     _named: bool | None = None
 
 
@@ -230,10 +229,9 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
     if known is not None and _look_alike(name.raw, known.student):
         known = None  # 'ａｌｉｃｅ' is not alice: only the same letters, in any case or Unicode form, are
     if known is not None:
-        e.student, e._raw, e.on_roster = known.student, known.student, True
+        e.student, e.on_roster = known.student, True
     else:
         e.student, bad = student_id(name.raw)
-        e._raw = name.raw
         e.on_roster = False if roster is not None else None
         if bad and problem is None:
             problem = ("bad-id", bad)

@@ -380,4 +380,4 @@ def _confirm(result, target, A, m, quantity="Phi"):
     note = Msg("symbolic_confirmed") if ok and not unconfirmed else \
         Msg("symbolic_unconfirmed", n=unconfirmed, N=target.samples("assembled").N)
     return CheckResult(result.passed, result.score, list(result.notes) + [note], result.mistakes, result.rows,
-                       result._quantity, result.columns)
+                       result.quantity_msg, result.columns)

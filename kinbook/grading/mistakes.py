@@ -487,8 +487,8 @@ def _book_translational_origin(c):
 
 def _book_translational_dot(target, c, Q):
     """§13.5 before eq. 24: "multiplicando escalarmente" read literally, s_i · d instead of s_i × d."""
-    s = c._global_point(Q[0], c.s_Pi) - c._global_point(Q[0], c.s_Qi)
-    d = c._global_point(Q[1], c.s_Pj) - c._global_point(Q[0], c.s_Pi)
+    s = c.global_point(Q[0], c.s_Pi) - c.global_point(Q[0], c.s_Qi)
+    d = c.global_point(Q[1], c.s_Pj) - c.global_point(Q[0], c.s_Pi)
     rows = list(c.phi(Q, target.mech.t))
     yield ("book_misprint", [s[0] * d[0] + s[1] * d[1], rows[1]], None, "13.5-eq24")
 
@@ -617,13 +617,13 @@ def _book_gamma_n1(target, c, s, ref, quantity):
 # ============================================================================================ the book's formulation
 def _cross_p1(c, Q):
     """The book's Φ^(p1,2) = s̃_i s_j (all three rows)."""
-    return list(c._global_vector(Q[0], c.a_i).cross(c._global_vector(Q[1], c.a_j)))
+    return list(c.global_vector(Q[0], c.a_i).cross(c.global_vector(Q[1], c.a_j)))
 
 
 def _cross_p2(c, Q):
     """The book's Φ^(p2,2) = s̃_i d (all three rows)."""
-    d = c._global_point(Q[1], c.P_j) - c._global_point(Q[0], c.P_i)
-    return list(c._global_vector(Q[0], c.a_i).cross(d))
+    d = c.global_point(Q[1], c.P_j) - c.global_point(Q[0], c.P_i)
+    return list(c.global_vector(Q[0], c.a_i).cross(d))
 
 
 def book_rows(c, Q, t):

@@ -387,6 +387,17 @@ class RowResult:
     def message(self):
         return render(self._message) if self._message else ""
 
+    @property
+    def label_msg(self):
+        """The label as kept: a :class:`~kinbook.grading._i18n.Msg` (or str), written when shown — for a new
+        RowResult that says the same of the same row."""
+        return self._label
+
+    @property
+    def message_msg(self):
+        """The message as kept (a Msg, a str, or a list of them), written when shown."""
+        return self._message
+
 
 @dataclass(frozen=True, init=False)
 class CheckResult:
@@ -435,6 +446,12 @@ class CheckResult:
     @property
     def quantity(self):
         return render(self._quantity)
+
+    @property
+    def quantity_msg(self):
+        """The quantity's name as kept (a Msg or str), written when shown — for a new CheckResult of the same
+        quantity."""
+        return self._quantity
 
     @property
     def messages(self):

@@ -227,7 +227,7 @@ def named(result, near, recheck):
     notes = [Msg("d.not_rounded", value=repr(abs(float(f))), exact=_text(c if float(c) > 0 else -c),
                  digits=significant_digits(f)) for f, c in near]
     return CheckResult(False, result.score, notes + hints(["not_rounded"], {}), ["not_rounded"], result.rows,
-                       result._quantity, result.columns)
+                       result.quantity_msg, result.columns)
 
 
 def _text(c):

@@ -177,7 +177,7 @@ def _library_answer(result, name):
     from ...grading.report import CheckResult
 
     note = text_message("library", name=name)
-    return CheckResult(True, result.score, [note], [], result.rows, result._quantity, result.columns)
+    return CheckResult(True, result.score, [note], [], result.rows, result.quantity_msg, result.columns)
 
 
 def reveal(id):

@@ -105,8 +105,8 @@ class TryIt(Item):
         if result.passed:
             return result
         if self.numbers_at is not None and result.mistakes == ["malformed"] and _numbers(answer):
-            return described(self._numbers(answer, target, options, result._quantity))
-        copied = self._copied(answer, data, options, result._quantity)
+            return described(self._numbers(answer, target, options, result.quantity_msg))
+        copied = self._copied(answer, data, options, result.quantity_msg)
         return described(result if copied is None else copied.echo(result))
 
     def _numbers(self, answer, target, options, quantity):
@@ -145,7 +145,7 @@ class TryIt(Item):
         """The answer's rows are one of ``wrong_forms`` (up to their order and a factor each): a failed result
         naming it, or None — a result that failed keeps its rows and score (which rows are wrong is the lesson),
         its generic name replaced. The answer is read by the checkers' own reader, evaluated on their samples."""
-        quantity = result._quantity
+        quantity = result.quantity_msg
         from ...grading.match import scale_match
         from ...grading.quantities import PHI, quantity_of
         from ...grading.read import Refused, read
@@ -197,7 +197,7 @@ class TryIt(Item):
 
                 other = [explain(m, "en")[0] for m in result.mistakes if m not in (code, "wrong_value")]
                 kept = [n for n in result.notes[:-1] if not any(o in render(n, "en") for o in other)]
-                rows = tuple(RowResult(r._label, r.status, detail, code, r.entries, r.score)
+                rows = tuple(RowResult(r.label_msg, r.status, detail, code, r.entries, r.score)
                              if r.mistake not in (None, "wrong_value", code) else r for r in result.rows)
                 return CheckResult(False, result.score, kept[:1] + notes + kept[1:] + hints([code], {}), [code],
                                    rows, quantity, result.columns)
@@ -326,8 +326,8 @@ def described(result):
         return x
 
     notes = [swap(m) for m in result.notes]
-    rows = [RowResult(r._label, r.status, swap(r._message), r.mistake, r.entries, r.score) for r in result.rows]
-    return CheckResult(result.passed, result.score, notes, result.mistakes, rows, result._quantity,
+    rows = [RowResult(r.label_msg, r.status, swap(r.message_msg), r.mistake, r.entries, r.score) for r in result.rows]
+    return CheckResult(result.passed, result.score, notes, result.mistakes, rows, result.quantity_msg,
                        result.columns).echo(result)
 
 
