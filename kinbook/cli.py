@@ -12,15 +12,34 @@ bug, exits with status 1 and says so).
 from __future__ import annotations
 
 import argparse
+import inspect
+import json
 import os
 import re
 import sys
+import time
 
 import numpy as np
 
-from . import examples
+from . import __version__, examples, exercises
+from .classroom import grade, release, write_variant
+from .classroom.export import FORMATS as EXPORTS
+from .classroom.export import export
+from .classroom.feedback import feedback
+from .classroom.ids import check_id
+from .classroom.naming import PATTERNS, compile_pattern
+from .classroom.override import due, extend, override
+from .classroom.release import write_variants
+from .classroom.report import FORMATS as REPORTS
+from .classroom.report import report
+from .classroom.results import UNGRADED
+from .classroom.roster import read_roster
+from .classroom.scores import parse_due
+from .classroom.validate import validate
+from .core.reader import ExpressionError, read_number
 from .errors import KinbookError
 from .files import load
+from .grading.mutant_names import format_table
 
 __all__ = ["main", "build_parser", "student_id"]
 
@@ -44,8 +63,6 @@ class _Parser(argparse.ArgumentParser):
 # ----------------------------------------------------------------------------------------- argument types
 def _number(text, expected):
     """A number from the command line, read by the one reader of untrusted text (so ``-t pi/4`` works)."""
-    from .core.reader import ExpressionError, read_number
-
     try:
         return read_number(text, where="the argument")
     except ExpressionError:
@@ -78,8 +95,6 @@ def count(text):
 
 def student_id(text):
     """A student id by the one rule (:func:`kinbook.classroom.ids.check_id`): Unicode letters and digits, NFC."""
-    from .classroom.ids import check_id
-
     try:
         return check_id(text)
     except KinbookError as exc:
@@ -89,8 +104,6 @@ def student_id(text):
 def exercise_name(text):
     """An exercise's name: the source notebook's file name without ``.ipynb`` (the student-id rule: one safe file
     name)."""
-    from .classroom.ids import check_id
-
     try:
         return check_id(text, what="exercise name")
     except KinbookError as exc:
@@ -108,8 +121,6 @@ def _checked(text, check):
 
 def id_pattern(text):
     """A ready pattern's name or a regular expression with a student or lms group (argparse type)."""
-    from .classroom.naming import compile_pattern
-
     return _checked(text, compile_pattern)
 
 
@@ -180,28 +191,18 @@ def _cmd_examples(args):
 
 def _default(fn, name):
     """A library function's default for ``name``: the CLI defines no behaviour of its own."""
-    import inspect
-
     return inspect.signature(fn).parameters[name].default
 
 
 def _cmd_release(args):
-    from .classroom import release
-
     for path in release(args.source, args.output):
         print(path)
 
 
 def _cmd_variant(args):
-    from .classroom import write_variant
-
     if args.student:
         print(write_variant(args.source, args.student, args.output))
         return
-    import time
-
-    from .classroom.release import write_variants
-    from .classroom.roster import read_roster
 
     roster = read_roster(args.roster, args.roster_id)
     t0 = time.perf_counter()
@@ -211,9 +212,6 @@ def _cmd_variant(args):
 
 # ---------------------------------------------------------------------------------------------- the course
 def _cmd_validate(args):
-    from .classroom.roster import read_roster
-    from .classroom.validate import validate
-
     if args.source is None and not args.try_its:
         raise SystemExit("kinbook validate: give a SOURCE notebook, or --mutations --try-its")
     students = [s.student for s in read_roster(args.roster, args.roster_id)] if args.roster and args.source else None
@@ -226,8 +224,6 @@ def _cmd_validate(args):
 
 def _mutations(args, students):
     """``kinbook validate --mutations``: the mutation tables, exit status 1 on a blind spot or a failed test."""
-    from .grading.mutant_names import format_table
-
     tallies, failures = [], []
     if args.source is not None:
         from .classroom.validate.mutations import mutation_tallies
@@ -235,6 +231,7 @@ def _mutations(args, students):
         found, failures = mutation_tallies(args.source, students=students, variants=args.variants, limit=args.limit)
         tallies += found
     if args.try_its:
+        # import time: book.tryits.mutations loads sympy
         from .book.tryits.mutations import mutation_tallies as tryit_tallies
 
         tallies += tryit_tallies(None if args.try_its == ["all"] else args.try_its, variants=args.variants,
@@ -251,27 +248,18 @@ def _mutations(args, students):
 
 
 def _cmd_override(args):
-    from .classroom.override import override
-
     print(override(args.gradebook, args.student, args.exercise, args.part, args.score, args.why, remove=args.remove))
 
 
 def _cmd_due(args):
-    from .classroom.override import due
-
     print(due(args.gradebook, args.exercise, args.when, penalty=args.penalty, cap=args.cap, policy=args.policy))
 
 
 def _cmd_extend(args):
-    from .classroom.override import extend
-
     print(extend(args.gradebook, args.student, args.exercise, args.when, args.why, remove=args.remove))
 
 
 def _cmd_export(args):
-    from .classroom.export import export
-    from .classroom.roster import read_roster
-
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     headers = dict(h.split("=", 1) for h in args.header)
     path, left = export(args.gradebook, args.output, args.format, exercises=args.exercise or None,
@@ -284,17 +272,12 @@ def _cmd_export(args):
 
 
 def _cmd_report(args):
-    from .classroom.report import report
-    from .classroom.roster import read_roster
-
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     written = report(args.gradebook, args.output, args.format, roster=roster)
     print(f"wrote {len(written)} file(s) into {os.path.dirname(str(written[-1])) if written else args.output}/")
 
 
 def _cmd_feedback(args):
-    from .classroom.feedback import feedback
-
     if args.lms:
         written, left = feedback(args.gradebook, args.out, lms=args.lms)
         for path in written:
@@ -333,17 +316,11 @@ def percent(text):
 
 def when_arg(text):
     """A date and time with its zone (argparse type)."""
-    from .classroom.scores import parse_due
-
     return _checked(text, parse_due)
 
 
 def _course_parsers(sub):
     """The course's commands: validate, override, due, extend, export, report, feedback."""
-    from .classroom.export import FORMATS as EXPORTS
-    from .classroom.report import FORMATS as REPORTS
-    from .classroom.validate import validate
-
     def gradebook(p):
         p.add_argument("-g", "--gradebook", type=output_dir, default="graded",
                        help="the grading output directory, holding gradebook.sqlite (default: %(default)s)")
@@ -427,9 +404,6 @@ def _course_parsers(sub):
 
 
 def _cmd_grade(args):
-    from .classroom import grade
-    from .classroom.results import UNGRADED
-
     def progress(item):
         if isinstance(item, str):
             print(item)
@@ -458,16 +432,12 @@ def _cmd_grade(args):
 
 def _course_options(args):
     """grade's options for a course: the roster, how ids are read, the attempt policy, a changed source."""
-    from .classroom.roster import read_roster
-
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     return dict(regrade=args.regrade, policy=args.policy, id_pattern=args.id_pattern, roster=roster,
                 file_times=args.file_times, released_from=args.released_from)
 
 
 def _course_arguments(p):
-    from .classroom.naming import PATTERNS
-
     p.add_argument("--roster", type=existing_file, help="the course's roster: kinbook's roster.csv, or a Canvas or "
                    "Moodle export as downloaded (stored in the gradebook; see docs/instructors.md)")
     p.add_argument("--roster-id", metavar="COLUMN", help="the roster's column holding the kinbook id")
@@ -489,10 +459,6 @@ def _course_arguments(p):
 
 # ------------------------------------------------------------------------------------- kinbook exercises
 def _cmd_exercises_list(args):
-    import json
-
-    from . import exercises
-
     for name in exercises.names():
         with exercises.path(name).open("rb") as f:
             title = next((c["source"] for c in json.load(f)["cells"] if c["cell_type"] == "markdown"), "")
@@ -501,8 +467,6 @@ def _cmd_exercises_list(args):
 
 
 def _cmd_exercises_copy(args):
-    from . import exercises
-
     for name in args.names:  # every name and target checked before anything is copied
         target = os.path.join(args.directory, exercises.path(name).name)
         if os.path.lexists(target):
@@ -527,8 +491,6 @@ GRADING_EXTRA = {"nbformat", "nbclient", "jupyter_client", "ipykernel", "IPython
 
 
 def build_parser():
-    from . import __version__
-
     parser = _Parser(prog="kinbook", description="Kinematics of mechanisms in body coordinates.")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
     parser.add_argument("--version", action="version", version=f"kinbook {__version__}")

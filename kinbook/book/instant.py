@@ -24,10 +24,24 @@ spec.
 from __future__ import annotations
 
 import inspect
+import json
+from pathlib import Path
 
 import numpy as np
 
+from ..core.bounds import DEFAULT_LIMITS
+from ..core.reader import ALIASES, CONSTANTS, FUNCTIONS
+from ..errors import KinbookError
+from ..grading import CHECKERS, explain, sample, witness
+from ..grading.equivalence import RTOL, zero_tol
+from ..grading.expected import Expected
+from ..grading.misprints import book_A_of_p
+from ..grading.newton import check_iterates
+from ..grading.read import read
+from ..grading.target import target_for
 from ..i18n import LANGUAGES, N_, Message, translate
+from ..spatial.rotations import p_from_A
+from .tryits import TRY_ITS, get
 
 __all__ = ["grammar", "spec", "tryit_spec", "page", "write", "ui_texts", "MUTANTS", "UI"]
 
@@ -94,9 +108,6 @@ def _both(message):
 def grammar():
     """What a student may type, from kinbook's one reader: the functions (with their numbers of arguments), the
     other spellings, the constants and the bounds."""
-    from ..core.bounds import DEFAULT_LIMITS
-    from ..core.reader import ALIASES, CONSTANTS, FUNCTIONS
-
     limits = DEFAULT_LIMITS
     return {"functions": {name: list(counts) for name, (_, counts) in FUNCTIONS.items()},
             "aliases": dict(ALIASES),
@@ -107,8 +118,6 @@ def grammar():
 
 def _checker_name(checker):
     """The name of a try-it's checker (a :class:`kinbook.grading.item.Checker` of the one table, or its function)."""
-    from ..grading import CHECKERS
-
     name = getattr(checker, "name", None)
     if name in CHECKERS:
         return name
@@ -121,8 +130,6 @@ def _checker_name(checker):
 def _mistake(code, values, detail=None, context=(), erratum=None):
     """A catalogued mistake as the page shows it: its code, title and hint in every language, the detail of
     this occurrence, and its values at the spec's points."""
-    from ..grading import explain
-
     entry = {"code": code, "values": values, "detail": _both(detail), "erratum": erratum}
     entry["title"] = {lang: explain(code, lang, tuple(context))[0] for lang in LANGUAGES}
     entry["hint"] = {lang: explain(code, lang, tuple(context))[1] for lang in LANGUAGES}
@@ -137,9 +144,6 @@ def _arr(a):
 def _value_spec(name, expected, options, lookalikes=()):
     """check_value, check_rotation, check_euler_parameters: the expected value, the tolerance rule (the
     checker's own defaults, read from its signature), the other right answers, the named wrong ones."""
-    from ..grading import CHECKERS
-    from ..grading.expected import Expected
-
     defaults = {k: p.default for k, p in inspect.signature(CHECKERS[name].function).parameters.items()
                 if p.default is not inspect.Parameter.empty}
     exp = expected if isinstance(expected, Expected) else Expected(np.asarray(expected, float))
@@ -162,10 +166,6 @@ def _value_spec(name, expected, options, lookalikes=()):
 
 
 def _rotation_mistakes(e, context):
-    from ..errors import KinbookError
-    from ..grading.misprints import book_A_of_p
-    from ..spatial.rotations import p_from_A
-
     try:
         p = np.asarray(p_from_A(e), float)
     except (KinbookError, ValueError, np.linalg.LinAlgError):
@@ -177,8 +177,6 @@ def _rotation_mistakes(e, context):
 # ------------------------------------------------------------------------------------------------- rows
 def _quantity(name):
     """The quantity a checker grades (:mod:`kinbook.grading.quantities`), or None for a numeric checker."""
-    from ..grading import CHECKERS
-
     return CHECKERS[name].quantity if name in CHECKERS else None
 
 
@@ -204,9 +202,6 @@ def _names(t):
 def _witness_points(t, which):
     """A few points of the page's own (seeded apart from the checker's): generic configurations for Φ, assembled
     ones (consistent velocities) for Φ_q, ν, γ — where a row accepted at the samples must agree as well."""
-    from ..grading import sample, witness
-    from ..grading.read import read
-
     if which == "generic":
         rng = np.random.default_rng(WITNESS_SEED)
         n = t.n
@@ -223,9 +218,6 @@ def _witness_points(t, which):
 
 def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
     """check_phi / check_jacobian / check_nu / check_gamma: the points, the reference there, the rule."""
-    from ..grading.equivalence import RTOL, zero_tol
-    from ..grading.target import target_for
-
     t = target_for(target)
     q = _quantity(name)
     quantity = q.name
@@ -301,9 +293,6 @@ def _ref(values, quantity):
 def _iterates_spec(problem, options):
     """check_iterates: the mechanism's Φ and Φ_q as text (the page evaluates them with the reader's grammar at the
     student's own iterates, as the checker does), the time, the guess, the solution it leads to, the tolerances."""
-    from ..grading.newton import check_iterates
-    from ..grading.target import target_for
-
     defaults = {k: p.default for k, p in inspect.signature(check_iterates).parameters.items()
                 if p.default is not inspect.Parameter.empty}
     mech = problem.mechanism
@@ -369,8 +358,6 @@ def tryit_spec(item):
 
 def page(notebook):
     """The JSON of one book page: the grammar, the page's texts and the spec of each of its try-its."""
-    from .tryits import TRY_ITS, get
-
     get(f"{notebook}/try-1")  # registers the try-its
     items = [item for key, item in TRY_ITS.items() if key.split("/")[0] == notebook]
     return {"version": 1, "languages": list(LANGUAGES), "grammar": grammar(), "ui": ui_texts(),
@@ -380,11 +367,6 @@ def page(notebook):
 def write(folder):
     """Write ``<notebook>.json`` (:func:`page`) for every notebook with try-its into ``folder``; returns the
     notebooks."""
-    import json
-    from pathlib import Path
-
-    from .tryits import TRY_ITS, get
-
     get("13-1/try-1")
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)

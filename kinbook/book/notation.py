@@ -28,7 +28,10 @@ import numpy as np
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
+from ..errors import InputError
 from ..grading.read import tex_name
+from ..planar import Mechanism, Revolute, RevoluteRevolute, RevoluteTranslational, Translational
+from .display import fmt
 
 __all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "html_math", "html_text", "equations", "matrix", "names",
            "book_form", "factored", "lines", "Math", "local_points", "table", "tidy", "spatial_form",
@@ -43,7 +46,6 @@ def as_sympy(expr):
     (untrusted text goes through :mod:`kinbook.core.reader`)."""
     if isinstance(expr, (sp.Basic, sp.MatrixBase)):
         return expr
-    from ..errors import InputError
 
     if isinstance(expr, bool) or isinstance(expr, str):
         raise InputError(f"expected a sympy expression, got {type(expr).__name__} {str(expr)[:60]!r} (text is never "
@@ -123,8 +125,6 @@ def pair(kind):
 
 @lru_cache(maxsize=None)
 def _pair(kind):
-    from ..planar import Mechanism, Revolute, RevoluteRevolute, RevoluteTranslational, Translational
-
     points = {"i": "PQ" if kind == "t" else "P", "j": "PQ" if kind == "rt" else "P"}
     m = Mechanism(f"{PAIR_KINDS[kind][1]} pair")
     for b in "ij":
@@ -475,8 +475,6 @@ def equations(rows, mech=None, first=1, label=r"\Phi"):
 def matrix(values, digits=4, row_labels=None, column_labels=None):
     """A numeric matrix or vector as a LaTeX array, rounded to ``digits`` decimals without round-off
     (exact zeros as 0, no −0)."""
-    from .display import fmt
-
     try:
         a = np.atleast_2d(np.asarray(values, dtype=float))
     except (TypeError, ValueError):
@@ -506,7 +504,7 @@ def Math(tex):
         from ..errors import InputError
 
         raise InputError(f"Math: expected LaTeX text, got {type(tex).__name__}")
-    from IPython.display import Math as _Math
+    from IPython.display import Math as _Math  # optional dependency: IPython (the grading extra)
 
     return _Math(tex)
 

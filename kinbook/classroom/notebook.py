@@ -110,7 +110,7 @@ def load_source(path):
 
 def source_from_bytes(data, path):
     """:func:`load_source` of bytes read already (an earlier source the gradebook kept); ``path`` names it."""
-    import nbformat
+    import nbformat  # optional dependency: nbformat (the grading extra)
 
     path = Path(path)
     try:
@@ -367,7 +367,7 @@ def readable(data):
             raise Refused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
         import warnings
 
-        import nbformat
+        import nbformat  # optional dependency: nbformat (the grading extra)
 
         try:
             with warnings.catch_warnings():

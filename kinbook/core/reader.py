@@ -33,6 +33,7 @@ import operator
 import re
 from collections.abc import Mapping
 
+import mpmath
 import sympy as sp
 
 from ..errors import ExpressionError
@@ -434,8 +435,6 @@ class _Reader:
 
     def float_value(self, node):
         """A numeric call as a sympy Float of 20 digits, computed by mpmath on the tree at fixed precision."""
-        import mpmath
-
         with mpmath.workdps(30):
             try:
                 z = mpmath.mpc(self.mp(node, mpmath))
@@ -581,8 +580,6 @@ def _real_value(expr, value, where):
     """The value of a numeric sympy expression as a float, computed by mpmath at a fixed 30 digits (sympy's
     adaptive ``evalf`` can take minutes on nested logarithms of negative numbers); refuses complex and
     non-finite values."""
-    import mpmath
-
     with mpmath.workdps(30):
         try:
             z = mp_value(expr, mpmath)

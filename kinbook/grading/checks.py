@@ -22,11 +22,13 @@ from __future__ import annotations
 import numbers
 
 import numpy as np
+import sympy as sp
 
 from . import aftermatch, diagnose, evaluate, match, report, rounding, sample, witness
 from ._i18n import Msg
 from .quantities import quantity_of
 from .read import Refused, as_numbers, read
+from .report import CheckResult
 from .target import NotATarget, target_for
 
 __all__ = ["check_phi", "check_jacobian", "check_nu", "check_gamma"]
@@ -346,10 +348,6 @@ _CONFIRM_OPS = 200
 def _confirm(result, target, A, m, quantity="Phi"):
     """Confirm matched rows symbolically where they are small (a size budget: larger ones are only compared
     numerically, which decides the verdict anyway)."""
-    import sympy as sp
-
-    from .report import CheckResult
-
     Q = quantity_of(quantity)
     pairs, skipped = [], 0
     for r in m.rows:

@@ -27,7 +27,10 @@ import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
+import sympy as sp
 
+from .. import planar as P
+from .. import spatial as S
 from . import slips
 from ._i18n import Msg
 from .misprints import EX4_PHI8, book_n1_acceleration
@@ -310,8 +313,6 @@ def _frames(target, c, spec, Q, names):
 def _signs(target, c, spec, Q, names):
     """The sign of one local coordinate, of a whole A s', of a coordinate term, of a radius; a length for its
     square."""
-    import sympy as sp
-
     mech, add, safe, roles = target.mech, _add, _safe, "ijk"
     # the sign of one local coordinate, of a whole A s', of a coordinate term
     for attr, role in spec.points + spec.vectors:
@@ -353,8 +354,6 @@ def _signs(target, c, spec, Q, names):
 def _degrees_and_forms(target, c, spec, Q):
     """Degrees for radians (a constant angle, a driver's function), a driver's sign, the book's printed forms
     and the type's own extra variants."""
-    import sympy as sp
-
     mech, add, safe = target.mech, _add, _safe
     # degrees
     for attr in spec.angles:
@@ -391,8 +390,6 @@ def _frame_variant(rows, Q, roles, code, frame):
     """Rows with A(φ) / A(p) of the bodies ``roles`` transposed ("A_transposed": sin φ → −sin φ; e → −e) or
     left out ("local_vector": φ → 0 in A; p → [1, 0, 0, 0]); a planar row that reads an angle directly (a
     translational joint's φ_i − φ_j) keeps it — only A holds trigonometric functions of φ."""
-    import sympy as sp
-
     if frame == "planar":
         out = []
         for r in rows:
@@ -449,9 +446,6 @@ def length_factors(c, limit=12):
 
 # ============================================================================================ the registry
 def _defaults():
-    from .. import planar as P
-    from .. import spatial as S
-
     register(P.Revolute, Spec(swap_points=(("s_i", "s_j"),)))
     register(P.Translational, Spec(swap_bodies=True, book=(_book_translational_origin,),
                                    extra=(_book_translational_dot,), derived_book=(_book_table_13_2, _book_gamma_t)))
@@ -514,8 +508,6 @@ def _gear_carrier_start(c):
 
 def _gear_fixed_carrier(target, c, Q):
     """Eq. 36 (a fixed carrier) used with a moving one: the carrier's turn missing."""
-    import sympy as sp
-
     Qs = [sp.Matrix(x) for x in Q]
     Qs[2][2] = c.phi0[2]
     yield ("missing_term", list(c.phi(Qs, target.mech.t)), None, None)

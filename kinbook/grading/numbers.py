@@ -21,7 +21,8 @@ import numbers
 
 import numpy as np
 
-from ..errors import InputError
+from ..core.reader import read_number
+from ..errors import ExpressionError, InputError
 from ..i18n import N_, Message, Np_
 from ._i18n import Msg, add_texts
 from .expected import DEG, Expected
@@ -167,8 +168,6 @@ def close(a, b, rtol, atol, periodic=None):
 def _texts(answer):
     """A text or a (nested) list of texts read as numbers through kinbook's reader ("pi/4", "-0.5"); None
     when the answer holds no text."""
-    from ..core.reader import read_number
-
     def walk(x, where):
         if isinstance(x, str):
             return read_number(x, where=Msg("answer_at", index=where))
@@ -189,8 +188,6 @@ def _texts(answer):
 def read_numbers(answer, name):
     """The answer as a float array of its own shape (refuses bools, complex values, objects; texts of numbers
     are read by kinbook's reader)."""
-    from ..errors import ExpressionError
-
     try:
         parsed = _texts(answer)
     except ExpressionError as exc:

@@ -37,6 +37,7 @@ import functools
 import inspect
 import numbers
 import re
+import sys
 
 import numpy as np
 
@@ -129,7 +130,7 @@ class Answer:
     def tape(self, target):
         key = id(target)
         if key not in self._tapes:
-            from .jets import UnknownSymbol, UnsupportedExpression
+            from .jets import UnknownSymbol, UnsupportedExpression  # import time: grading.jets loads mpmath, sympy
 
             try:
                 self._tapes[key] = target.tape(list(self.matrix), aliases=True)
@@ -153,7 +154,7 @@ class Answer:
         not per instant): :meth:`values` then returns each set's part."""
         if self.kind != "symbolic" or len(sets) < 2:
             return
-        from .sample import Samples
+        from .sample import Samples  # import time: grading.sample loads mpmath, sympy
 
         joined = Samples(np.concatenate([s.Q for s in sets]), np.concatenate([s.QD for s in sets]),
                          np.concatenate([s.T for s in sets]))
@@ -189,7 +190,7 @@ class Answer:
 
     def jet(self, target, Q, T):
         """This answer read as rows Φ(q, t) at the instants (Q, T): values (B, k), Φ_q (B, k, n) and Φ_t (B, k)."""
-        from .sample import Samples
+        from .sample import Samples  # import time: grading.sample loads mpmath, sympy
 
         s = Samples(Q, np.zeros_like(Q), T)
         if self.kind == "symbolic":
@@ -288,8 +289,6 @@ def _nargs(f, quantity):
 
 
 def _is_sympy(x):
-    import sys
-
     sp = sys.modules.get("sympy")
     return sp is not None and isinstance(x, (sp.Basic, sp.MatrixBase))
 
@@ -327,7 +326,7 @@ def numbers_of(value, what, **fields):
     """Real finite-or-not numbers as a 2-D float array; refuses bools, complex values, ragged or huge data."""
     where = what if isinstance(what, Msg) else Msg(what)
     if _is_sympy(value):
-        import sympy as sp
+        import sympy as sp  # import time: sympy only when needed
 
         if isinstance(value, sp.MatrixBase):
             value = [[_sympy_number(e, where) for e in value.row(k)] for k in range(value.rows)]
@@ -412,7 +411,7 @@ def _sympy_number(e, where):
 
 def _matrix(answer, symbols, quantity):
     """A sympy Matrix from text, sympy objects or (nested) lists of those and numbers."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     if isinstance(answer, sp.MatrixBase):
         M = _sympy_matrix(answer)
@@ -438,7 +437,7 @@ def _matrix(answer, symbols, quantity):
 
 def _sympy_matrix(M):
     """A student's sympy Matrix: one walk of the reader's bounds over all its entries (bounded in total)."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     ex = _reader()
     entries = M.tolist()
@@ -493,7 +492,7 @@ def _flat_row(r):
 
 
 def _entry(e, symbols, where):
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     ex = _reader()
     if isinstance(e, str):
@@ -593,7 +592,7 @@ def _cut(text):
 
 def read_as(value):
     """``(text, latex)`` of an answer as read: a sympy Matrix (rows of expressions) or numbers; None otherwise."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     if isinstance(value, sp.MatrixBase):
         M = value.applyfunc(lambda e: e.xreplace({f: (sp.Integer(0) if abs(f) < 1e-12 else sp.Float(f, 6))

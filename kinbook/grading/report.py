@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._i18n import Msg, both, constraint_label, render
+from ._i18n import constraint_label as cl
 from .catalogue import explain
 from .quantities import label_of, quantity_of
 
@@ -205,8 +206,6 @@ def _dependence(target, r):
 
 
 def _free_what(target, lang):
-    from ._i18n import constraint_label as cl
-
     mech = target.mech
     names = [cl(c, lang) for c in mech.constraints if c.kind == "normalization"
              and set(range(c.rows.start, c.rows.stop)) & set(target.free_rows)]

@@ -23,6 +23,7 @@ import re
 from ._i18n import Msg
 from .quantities import quantity_of
 from .read import Answer
+from .report import CheckResult, hints
 
 __all__ = ["distinct_leaves", "MIN_DIGITS", "NEAR", "exact_constants", "significant_digits", "typed_digits", "is_rounding", "exact",
            "graded", "named"]
@@ -56,7 +57,7 @@ def exact_constants(target, quantity="Phi"):
     key = ("exact_constants", quantity_of(quantity).right_hand_side)
     if key in target.store:
         return target.store[key]
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     t = target.mech.t
     symbols = set(target.mech.q) | set(target.mech.qd) | {t}
@@ -139,7 +140,7 @@ def distinct_leaves(exprs, keep):
 def _data_numbers(target):
     """The numbers written in the graded rows themselves (their decimals and integers), built once per target."""
     if "data_numbers" not in target.store:
-        import sympy as sp
+        import sympy as sp  # import time: sympy only when needed
 
         target.store["data_numbers"] = set().union(*(row.atoms(sp.Number) for row in target.symbolic_phi()))
     return target.store["data_numbers"]
@@ -152,7 +153,7 @@ def exact(answer, target, quantity="Phi", raw=None):
     shortest form. Other answers are returned as they are."""
     if answer.kind != "symbolic":
         return answer, []
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     typed = typed_digits(raw) if raw is not None else {}
     numbers = [x for x in distinct_leaves(answer.matrix, lambda e: e.is_Number) if x.is_Float or (x.is_Integer and abs(x) >= 100)]
@@ -215,7 +216,6 @@ def named(result, near, recheck):
     constants they are close to (``recheck(swap)`` runs the check again); else ``result`` as it is."""
     if result.passed or not near:
         return result
-    from .report import CheckResult, hints
 
     swap = dict(near)
     try:

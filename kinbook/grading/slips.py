@@ -15,6 +15,7 @@ import copy
 
 import numpy as np
 
+from ..spatial.rotations import dAa_dp
 from ._i18n import Msg
 from .misprints import book_A_of_p
 from .quantities import for_quantities
@@ -52,8 +53,6 @@ def cross_term_flipped(tape, row, s, expected, factor=1.0, bodies=()):
 def n2_without_dC(target, c, s, ref, quantity):
     """Φ_q of Φ^(n2,1) = s_iᵀd with the derivative of s_i = A_i a'_i left out of its p_i columns: the row minus
     dᵀ ∂(A_i a'_i)/∂p_i (Table 14.1's dᵀC_i)."""
-    from ..spatial.rotations import dAa_dp
-
     mech = target.mech
     ci, cj = ([7 * (b.number - 1) + k for k in range(7)] for b in c.bodies)
     pi = s.Q[:, ci[3:]]

@@ -21,6 +21,7 @@ import numpy as np
 
 from . import sample
 from ._i18n import row_name
+from .jets import Tape
 
 __all__ = ["Target", "target_for", "group_target", "NotATarget"]
 
@@ -224,8 +225,6 @@ class Target:
     def tape(self, exprs, key=None, aliases=False):
         """A :class:`~kinbook.grading.jets.Tape` of ``exprs`` over this target's q, q̇ and t (cached by key);
         with ``aliases``, symbols are also matched by name (a student's own symbols)."""
-        from .jets import Tape
-
         if key is not None and ("tape", key) in self.store:
             return self.store[("tape", key)]
         mech = self.mech

@@ -4,16 +4,25 @@ their ranges) and :data:`TRY_ITS`, filled by the chapter modules through :func:`
 
 from __future__ import annotations
 
+import ast
 import inspect
 import textwrap
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
 import numpy as np
+import sympy as sp
 
-from ...grading._i18n import add_texts
+from ...grading._i18n import Msg, add_texts
+from ...grading.expected import Expected
 from ...grading.item import Item, checker_for
+from ...grading.match import scale_match
+from ...grading.quantities import PHI, quantity_of
+from ...grading.read import Refused, read
+from ...grading.report import CheckResult
+from ...grading.target import target_for
 from ...i18n import N_, Message, translate
+from .code_mutants import slips
 
 __all__ = ["TryIt", "TRY_ITS", "register", "same_data", "table_text", "text_message"]
 
@@ -111,8 +120,6 @@ class TryIt(Item):
 
     def _numbers(self, answer, target, options, quantity):
         """Numbers typed for a formula of t: compared with the reference at ``numbers_at``."""
-        from ...grading.report import CheckResult
-
         t = float(self.numbers_at)
         q = target.solve_position(t)
         at = {"q": q, "qd": target.solve_velocity(q, t), "t": t}
@@ -125,8 +132,6 @@ class TryIt(Item):
 
     def library_answer(self, source):
         """The ``library`` name a cell's source calls (``mech.gamma(...)``), or None."""
-        import ast
-
         if not self.library or not source:
             return None
         try:
@@ -146,11 +151,7 @@ class TryIt(Item):
         naming it, or None — a result that failed keeps its rows and score (which rows are wrong is the lesson),
         its generic name replaced. The answer is read by the checkers' own reader, evaluated on their samples."""
         quantity = result.quantity_msg
-        from ...grading.match import scale_match
-        from ...grading.quantities import PHI, quantity_of
-        from ...grading.read import Refused, read
         from ...grading.report import CheckResult, hints
-        from ...grading.target import target_for
 
         t = target_for(target)
         qty = quantity_of(quantity, PHI)
@@ -164,7 +165,6 @@ class TryIt(Item):
         s = t.samples("generic")
 
         def by_row(matrix, aliases):  # (samples × columns, one per row): a row of Φ_q is compared whole
-            import sympy as sp
 
             M = sp.Matrix(matrix)
             if M.shape[1] != 1 and not qty.per_coordinate:
@@ -221,8 +221,6 @@ class TryIt(Item):
         return None
 
     def _with_lookalikes(self, target, data):
-        from ...grading.expected import Expected
-
         if not isinstance(target, Expected):
             try:
                 target = Expected(np.asarray(target, float))
@@ -244,8 +242,6 @@ class TryIt(Item):
     def slips(self, data=None):
         """(code, operator, value) of the worked answer's slips at ``data`` (:func:`kinbook.grading.mutants.slips`):
         the wrong answers a numeric try-it names after the catalogue's own (issue 29)."""
-        from .code_mutants import slips
-
         data = self.data_for(data)
         names, context = self._data_names(), self.context()
         key = repr([(k, np.asarray(data[k], dtype=object).tolist()) for k in sorted(data)])
@@ -308,7 +304,6 @@ _DESCRIBED = {"d.missing_term": "d.missing_kind", "d.sign_of_term": "d.sign_of_k
 def described(result):
     """``result`` with every term that a detail writes out described instead ("a term is missing: a term of t alone
     …" for "the term 500.0*t is missing"): a try-it's hint points at a step, never at a term to copy."""
-    from ...grading._i18n import Msg
     from ...grading.report import CheckResult, RowResult
 
     def swap(x):
@@ -350,8 +345,6 @@ def _literal(v):
 
 
 def _msg(key, **fields):
-    from ...grading._i18n import Msg
-
     return Msg(key, **fields)
 
 

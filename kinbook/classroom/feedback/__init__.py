@@ -13,9 +13,11 @@ Copying signals and the other students are never on a student's page.
 from __future__ import annotations
 
 import html
+import os
 from pathlib import Path
 
 from ...core.atomic import protect, refuse_overwrite, write_all
+from ..choice import kind_of_file
 from ..files import PUBLIC_DIR, PUBLIC_FILE
 from ..gradebook import Gradebook
 from ..results import UNGRADED
@@ -81,10 +83,6 @@ def _e(text):
 def _handed_in(final, files):
     """What the page says of the student's files beyond the one graded: a PDF instead of a notebook, a scratch
     notebook or a blank download beside it — never "nothing was handed in" when something was."""
-    import os
-
-    from ..choice import kind_of_file
-
     out = []
     others = [(os.path.basename(p), reason) for p, outcome, reason, _ in files if outcome == "ignored"]
     if final.status == "missing" and others:

@@ -24,6 +24,8 @@ import html
 import io
 from pathlib import Path
 
+import numpy as np
+
 from ...core.atomic import protect, refuse_overwrite, write_all
 from ..gradebook import Gradebook, csv_text
 from . import tables
@@ -91,11 +93,10 @@ def _table(rows, columns, numeric=(), flag=None, nowrap=()):
 
 def _histogram(values, top, title, xlabel):
     """A histogram of ``values`` on [0, top], as an embedded PNG (<img> with a data: URI)."""
-    import matplotlib
+    import matplotlib  # import time: matplotlib only when needed
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
+    import matplotlib.pyplot as plt  # import time: matplotlib only when needed
 
     fig, ax = plt.subplots(figsize=(8, 3.2), dpi=100)
     try:

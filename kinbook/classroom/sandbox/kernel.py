@@ -33,6 +33,9 @@ import socket
 import stat
 import sys
 import sysconfig
+import warnings
+
+import kinbook
 
 __all__ = ["install_audit_hook", "main", "preload"]
 
@@ -87,7 +90,6 @@ def _read_roots():
         except KeyError:
             pass
     roots.update(p for p in sys.path if p and os.path.isdir(p) and "site-packages" in p)
-    import kinbook
 
     roots.add(os.path.dirname(os.path.abspath(kinbook.__file__)))  # an editable install: the package only
     roots = {os.path.realpath(r) for r in roots} | {os.path.abspath(r) for r in roots}
@@ -215,14 +217,12 @@ def preload():
     """Import what nearly every exercise uses, before the limits and the hook (in the zygote, once: the kernels
     forked from it share these pages). matplotlib's font list is built here too, so that a plotting cell does
     not rebuild it in every kernel."""
-    import warnings
-
     warnings.filterwarnings("ignore")
     os.environ.setdefault("MPLBACKEND", "Agg")
     import IPython.core.logger  # noqa: F401  (imported lazily by IPython at the first cell)
     import numpy  # noqa: F401
     import stack_data  # noqa: F401  (tracebacks)
-    import sympy
+    import sympy  # import time: sympy only when needed
 
     import kinbook  # noqa: F401
     import kinbook.classroom.parts  # noqa: F401
@@ -232,7 +232,7 @@ def preload():
     kinbook.classroom.sandbox.trace.load_reference_modules()  # (for the reference's calls to be observed)
 
     sympy.lambdify([sympy.Symbol("x")], sympy.sin(sympy.Symbol("x")) ** 2, "numpy")(0.5)
-    import matplotlib
+    import matplotlib  # import time: matplotlib only when needed
 
     matplotlib.use("Agg")
     import ipykernel.debugger  # noqa: F401  (what IPKernelApp.initialize imports)
@@ -292,7 +292,7 @@ def main(argv, layout, memory_mb, audit=True):
     # ipykernel read JPY_PARENT_PID when the zygote imported it: say which parent to watch (the zygote)
     options = ["--HistoryManager.enabled=False", "--IPKernelApp.quiet=False",
                f"--IPKernelApp.parent_handle={os.getppid()}"]
-    from ipykernel.kernelapp import IPKernelApp
+    from ipykernel.kernelapp import IPKernelApp  # optional dependency: ipykernel (the grading extra)
 
     app = IPKernelApp.instance()
     app.initialize(options + list(argv))

@@ -21,7 +21,7 @@ _GREEK = {"ξ": r"\xi", "η": r"\eta", "φ": r"\varphi", "Φ": r"\Phi"}
 SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 def pyplot():
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # import time: matplotlib only when needed
 
     return plt
 
