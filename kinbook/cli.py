@@ -26,6 +26,7 @@ from .classroom import grade, release, write_variant
 from .classroom.export import FORMATS as EXPORTS
 from .classroom.export import export
 from .classroom.feedback import feedback
+from .classroom.gradebook import Gradebook
 from .classroom.ids import check_id
 from .classroom.naming import PATTERNS, compile_pattern
 from .classroom.override import due, extend, override
@@ -36,6 +37,8 @@ from .classroom.results import UNGRADED
 from .classroom.roster import read_roster
 from .classroom.scores import parse_due
 from .classroom.validate import validate
+from .classroom.validate.mutations import mutation_tallies
+from .core.atomic import protect
 from .core.reader import ExpressionError, read_number
 from .errors import KinbookError
 from .files import load
@@ -226,8 +229,6 @@ def _mutations(args, students):
     """``kinbook validate --mutations``: the mutation tables, exit status 1 on a blind spot or a failed test."""
     tallies, failures = [], []
     if args.source is not None:
-        from .classroom.validate.mutations import mutation_tallies
-
         found, failures = mutation_tallies(args.source, students=students, variants=args.variants, limit=args.limit)
         tallies += found
     if args.try_its:
@@ -419,8 +420,6 @@ def _cmd_grade(args):
     print(f"graded {len(results)} submission(s); gradebook {out}/gradebook.sqlite (grades.csv, totals.csv; every "
           f"file and what became of it in collection.csv), feedback in {out}/feedback/")
     if results:  # the scores above are the grader's: say which instructor's decisions still stand on them
-        from .classroom.gradebook import Gradebook
-
         with Gradebook(args.output) as book:
             kept = book.overrides(results[0].exercise)
         kept = [f"{s} {p} = {score:g}" for r in results for (_, s), parts in kept.items() if s == r.student
@@ -505,8 +504,6 @@ def build_parser():
     p.add_argument("-t", type=finite, default=0.0, help="time, a number or an expression such as pi/4 (default 0)")
     p.set_defaults(func=_cmd_solve)
 
-    from .classroom import grade, release, write_variant
-
     p = sub.add_parser("release", help="write the students' versions of exercise notebooks")
     p.add_argument("source", nargs="+", type=existing_file, help="instructor source notebooks")
     p.add_argument("-o", "--output", type=output_dir, default=_default(release, "outdir"),
@@ -556,7 +553,6 @@ def main(argv=None):
     argv = [a for a in argv if a != "--debug"]  # accepted anywhere on the line
     try:
         args = build_parser().parse_args(argv)
-        from .core.atomic import protect
 
         with protect(*_inputs(args)):  # no file a command writes may be one it reads
             status = args.func(args)

@@ -9,6 +9,7 @@ Files are cut where a concept ends, never at a line count: sizes are a smell to 
 700 lines and functions over 80 are printed by ``python -m tests.test_layers`` (the smell report)."""
 
 import ast
+import re
 from pathlib import Path
 
 import kinbook
@@ -337,6 +338,47 @@ def test_the_private_attribute_finder_can_fail():
     user = ast.parse("def f(result, sys):\n    self = result\n    return result._quantity, sys._getframe, self._echo\n")
     found = private_attribute_uses({"kinbook.grading.report": result, "kinbook.book.tryits": user})
     assert found == {("kinbook.book.tryits", "3: result._quantity")}
+
+
+# ------------------------------------------------------------------------------------------ imports at the top
+def in_function_imports(source):
+    """(line, statement, reason) of every import inside a function. The reason is the comment on the statement's
+    lines or the line above it, a bare ``noqa`` not counted: an import stays in a function only where it breaks a
+    real cost (import time of a heavy or optional dependency, a module preloaded on purpose) and says which."""
+    lines = source.splitlines()
+    found = {}
+    for f in ast.walk(ast.parse(source)):
+        if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            for n in ast.walk(f):
+                if isinstance(n, (ast.Import, ast.ImportFrom)) and n.lineno not in found:
+                    comments = [line.split("#", 1)[1] for line in lines[n.lineno - 1:n.end_lineno] if "#" in line]
+                    above = lines[n.lineno - 2].strip() if n.lineno > 1 else ""
+                    comments += [above[1:]] if above.startswith("#") else []
+                    reason = " ".join(re.sub(r"noqa(: [A-Z0-9, ]+)?", "", c).strip(" ()") for c in comments).strip()
+                    found[n.lineno] = (n.lineno, ast.unparse(n), reason)
+    return sorted(found.values())
+
+
+def test_every_in_function_import_says_why():
+    missing = [f"{m}:{line}: {text}" for m, p in MODULES.items()
+               for line, text, reason in in_function_imports(p.read_text(encoding="utf-8")) if len(reason) < 8]
+    assert missing == []
+
+
+def test_no_in_function_import_repeats_one_at_the_top():
+    repeated = []
+    for m, p in MODULES.items():
+        source = p.read_text(encoding="utf-8")
+        top = {ast.unparse(n) for n in ast.parse(source).body if isinstance(n, (ast.Import, ast.ImportFrom))}
+        repeated += [f"{m}:{line}: {text}" for line, text, _ in in_function_imports(source) if text in top]
+    assert repeated == []
+
+
+def test_the_import_reason_finder_can_fail():
+    source = ("import os\n\ndef f():\n    import os\n    import sympy  # import time: sympy only when needed\n"
+              "    import numpy  # noqa: F401\n    # optional dependency: IPython\n    import IPython\n")
+    assert [(line, bool(reason)) for line, _, reason in in_function_imports(source)] == [
+        (4, False), (5, True), (6, False), (8, True)]
 
 
 def smell_report():

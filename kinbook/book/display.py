@@ -56,16 +56,12 @@ def _real(x, name, function):
 def _tolerance(tol, function):
     value = _real(tol, "tol", function)
     if not (math.isfinite(value) and value > 0):
-        from ..errors import InputError
-
         raise InputError(f"{function}: `tol` must be a positive finite number, got {tol!r}")
     return value
 
 
 def _digits(digits, function, low=0, high=17):
     if isinstance(digits, bool) or not isinstance(digits, numbers.Integral) or not low <= digits <= high:
-        from ..errors import InputError
-
         raise InputError(f"{function}: `digits` must be a whole number from {low} to {high}, got {digits!r}")
     return int(digits)
 

@@ -117,8 +117,6 @@ def pair(kind):
         Cached: do not add to it.
     """
     if not isinstance(kind, str) or kind not in PAIR_KINDS:
-        from ..errors import InputError
-
         raise InputError(f"`kind` must be one of {', '.join(PAIR_KINDS)}, got {str(kind)[:40]!r}")
     return _pair(kind)
 
@@ -139,8 +137,6 @@ def _pair(kind):
 def _maps(mech):
     """(read, back): kinbook symbols → book notation at φ = 0, and book notation → kinbook symbols."""
     if not all(hasattr(mech, a) for a in ("q", "qd", "bodies", "body_symbols")):
-        from ..errors import InputError
-
         raise InputError(f"expected a mechanism (or one of its constraints' two bodies), got {type(mech).__name__}")
     trig, read = {}, dict(zip(mech.q, S.q)) | dict(zip(mech.qd, S.qd))
     back = dict(zip(S.q, mech.q)) | dict(zip(S.qd, mech.qd))
@@ -456,8 +452,6 @@ def html_text(text):
     """
     parts = str(text).split("$")
     if len(parts) % 2 == 0:
-        from ..errors import InputError
-
         raise InputError(f"html_text: an unpaired $ in {str(text)[:80]!r}")
     return "".join(html_math(p) if k % 2 else html.escape(p) for k, p in enumerate(parts))
 
@@ -465,8 +459,6 @@ def html_text(text):
 def equations(rows, mech=None, first=1, label=r"\Phi"):
     """``rows`` (a sympy column) as the book writes a system: Φ_1 ≡ … = 0, one line each (a LaTeX string)."""
     if not isinstance(rows, (list, tuple, sp.MatrixBase)):
-        from ..errors import InputError
-
         raise InputError(f"equations: `rows` must be a sympy column or a list of expressions, got {type(rows).__name__}")
     lines = [rf"{label}_{{{k}}} &\equiv {latex(e, mech)} = 0" for k, e in enumerate(list(rows), start=first)]
     return r"\begin{aligned}" + r"\\ ".join(lines) + r"\end{aligned}"
@@ -480,8 +472,6 @@ def matrix(values, digits=4, row_labels=None, column_labels=None):
     except (TypeError, ValueError):
         a = None
     if a is None or a.ndim != 2:
-        from ..errors import InputError
-
         raise InputError(f"matrix: `values` must be a vector or a matrix of real numbers, got {str(values)[:60]!r}")
 
     def cell(v):
@@ -501,8 +491,6 @@ def matrix(values, digits=4, row_labels=None, column_labels=None):
 def Math(tex):
     """IPython's ``Math`` display object (imported lazily so the library does not need IPython)."""
     if not isinstance(tex, str):
-        from ..errors import InputError
-
         raise InputError(f"Math: expected LaTeX text, got {type(tex).__name__}")
     from IPython.display import Math as _Math  # optional dependency: IPython (the grading extra)
 
@@ -513,8 +501,6 @@ def local_points(mech):
     """Every point of every body with its local coordinates (ξ, η) — the book lists them for each joint of
     its examples — as a LaTeX array (body number, body, point, ξ_i^P, η_i^P)."""
     if not hasattr(mech, "bodies"):
-        from ..errors import InputError
-
         raise InputError(f"local_points: expected a mechanism, got {type(mech).__name__}")
     rows = []
     for b in mech.bodies:

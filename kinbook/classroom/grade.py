@@ -56,6 +56,7 @@ from .reference_use import as_run, exercise_calls, reference_use
 from .release_kind import check_release_kinds, release_kinds, released_for
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, stopped_notice, ungraded_notice, worst
 from .sandbox import Sandbox
+from .sandbox.bwrap import check
 from .sandbox.cgroup import machine_memory_mb
 from .sandbox.protocol import die_with_parent
 from .sanitize import clean, clean_result
@@ -89,7 +90,7 @@ def _too_large(p, decoded):
     each reference row and its catalogued variants: 100 rows against a four-bar's Φ took 46 s of the grader's
     time, 2,000 rows some 15 minutes), and an answer with more than twice the reference's entries is wrong
     whatever they are."""
-    from ..grading.target import NotATarget, target_for  # import time: grading.target loads mpmath, sympy
+    from ..grading.target import NotATarget, target_for  # import time: grading.target loads sympy
 
     try:
         if p.checker.against == "target":
@@ -215,8 +216,6 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     except Refused as exc:
         return _refused(source, entry, exc.status, exc.message)
     if sandbox is None:
-        from .sandbox import Sandbox
-
         with Sandbox(isolation) as sb:
             return clean_result(_grade_bytes(source, entry, data, timeout=timeout, memory=memory, generic=generic,
                                              reveal_hidden=reveal_hidden, sandbox=sb))
@@ -486,8 +485,6 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     src = load_source(source)
     references(src)  # an exercise that cannot be graded stops here, before any submission is run
     if isolation:
-        from .sandbox.bwrap import check
-
         check()
     else:
         warnings.warn(NO_ISOLATION_WARNING, RuntimeWarning, stacklevel=2)
@@ -566,8 +563,6 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
         previous_handler = signal.signal(signal.SIGTERM, _on_sigterm)
     try:
         if jobs <= 1 or len(todo) <= 1:
-            from .sandbox import Sandbox
-
             with Sandbox(isolation) as sb:
                 for entry in todo:
                     record(_one(src, entry, options, sb))

@@ -62,7 +62,7 @@ from .files import atomic_write
 from .gradebook_failures import gradebook_error, must_exist, wait_for_lock
 from .notebook import source_from_bytes
 from .results import UNGRADED, PartGrade, SubmissionResult
-from .roster import FIELDS
+from .roster import FIELDS, Roster, Student
 from .sanitize import csv_field
 from .scores import Final, Rule, final
 
@@ -480,8 +480,6 @@ class Gradebook:
 
     def roster(self):
         """The stored roster, or None."""
-        from .roster import FIELDS, Roster, Student
-
         rows = self.db.execute(f"SELECT {', '.join(FIELDS)} FROM roster ORDER BY position").fetchall()
         points = dict(self.db.execute("SELECT header, points FROM lms_points"))
         return Roster([Student(*r) for r in rows], points=points) if rows else None

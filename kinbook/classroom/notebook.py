@@ -28,6 +28,7 @@ import copy
 import hashlib
 import json
 import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -365,7 +366,6 @@ def readable(data):
     if nb.get("nbformat") == 3:
         if len(cells or ()) > MAX_CELLS:
             raise Refused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
-        import warnings
 
         import nbformat  # optional dependency: nbformat (the grading extra)
 

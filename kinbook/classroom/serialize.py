@@ -218,7 +218,7 @@ def _entry(t, budget, where):
     names = set()
     pieces = []
     _text(t, 0, budget, names, pieces)
-    from ..core import bounds, reader  # import time: core loads mpmath, sympy
+    from ..core import bounds, reader  # import time: core loads sympy
 
     reserved = set(reader.FUNCTIONS) | set(reader.ALIASES) | set(reader.CONSTANTS)
     clash = sorted(names & reserved)

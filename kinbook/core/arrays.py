@@ -102,7 +102,7 @@ def symbolic_leaves(*values):
             leaves.append(v)
     if not any(isinstance(v, sp.Basic) for v in leaves):
         return False
-    from .bounds import check_expression  # import time: core.bounds loads mpmath, sympy
+    from .bounds import check_expression  # import time: core.bounds loads sympy
 
     for v in leaves:
         if isinstance(v, (str, bytes)):

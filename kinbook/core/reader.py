@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import ast
 import math
+import numbers
 import operator
 import re
 from collections.abc import Mapping
@@ -555,8 +556,6 @@ def read_constant(value, *, where, symbolic=False, limits=None):
         check_expression(value, where=where, limits=limits)
         expr = value
     else:
-        import numbers
-
         if isinstance(value, numbers.Real) and not isinstance(value, numbers.Integral):  # numpy floats …
             return read_constant(float(value), where=where, limits=limits)
         if isinstance(value, numbers.Integral):

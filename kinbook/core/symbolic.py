@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
+from ..errors import DriverValueError
 from ..i18n import N_, Message
 from .arrays import symbolic_leaves
 from .bounds import check_expression, refuse
@@ -189,8 +190,6 @@ _VALID = {}  # (text or expression, time symbol) -> the validated expression
 def _check_numpy(expr, time, where, text):
     """Refuse a function that numpy cannot evaluate with its derivatives: they are compiled here (cached) and
     evaluated once, so that a printer gap shows when the driver is built."""
-    from .bounds import refuse
-
     error = None
     try:
         with np.errstate(all="ignore"):
@@ -207,8 +206,6 @@ def _check_numpy(expr, time, where, text):
 def _check_derivative_size(expr, time, where, text):
     """Refuse, before sympy differentiates, a function whose second derivative would exceed
     :data:`DERIVATIVE_PARTS` (a few hundred bytes of text can take sympy minutes)."""
-    from .bounds import refuse
-
     size = derivative_sizes(expr, time)[2]
     if size > DERIVATIVE_PARTS:
         refuse(where, Message(N_("the function of time {text} is too involved to differentiate: its second derivative "
@@ -317,8 +314,6 @@ def _checked(f, k, expr, where):
         with np.errstate(all="ignore"):
             v = f(tt)
         if not np.all(np.isfinite(v)):
-            from ..errors import DriverValueError
-
             v = np.asarray(v, dtype=float)
             first = int(np.flatnonzero(~np.isfinite(v))[0])
             t_bad = float(np.broadcast_to(np.asarray(tt, dtype=float), v.shape).flat[first])

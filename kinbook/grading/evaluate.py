@@ -137,7 +137,7 @@ def phi_data(target, answer):
             mask[ncoord * (b.number - 1): ncoord * b.number] = True
         cols.append(mask)
     def together(indices):
-        from .target import group_target  # import time: grading.target loads mpmath, sympy
+        from .target import group_target  # import time: grading.target loads sympy
 
         g = group_target(target.mech, [target.constraints[i] for i in indices])
         s = g.samples("assembled")
@@ -148,7 +148,7 @@ def phi_data(target, answer):
         :func:`~kinbook.grading.sample.zeros`, or (``k`` given) from the zeros of row k's factors over the whole
         domain (:mod:`~kinbook.grading.factors`) — with the reference rows of constraint i there, at the
         placement (a turn of 2π, −p) where they are least."""
-        from .sample import Samples, placements, zeros  # import time: grading.sample loads mpmath, sympy
+        from .sample import Samples, placements, zeros  # import time: grading.sample loads sympy
 
         own = target.own_target(target.constraints[i])
 
@@ -176,7 +176,7 @@ def phi_data(target, answer):
         return PQ[best], PT[best], wrapped[best]
 
     def book(i):
-        from .mistakes import book_form  # import time: grading.mistakes loads mpmath, sympy
+        from .mistakes import book_form  # import time: grading.mistakes loads sympy
 
         return book_form(target, target.constraints[i])
 

@@ -657,8 +657,6 @@ def alternative_variants(target, c):
         return target.store[key]
     out = []
     if _has_alternative(c):
-        import sympy as sp
-
         mech = target.mech
         t = mech.t
         Q = [mech.body_symbols(b.name) for b in c.bodies]

@@ -82,7 +82,7 @@ def reference_rows(target, quantity):
     lists, per constraint, its rows and its bodies' coordinate symbols (with their velocities) — the ``blocks`` of
     :func:`expression_mutants`; ``drivers`` the rows of Φ that drivers write.
     """
-    from .target import target_for  # import time: grading.target loads mpmath, sympy
+    from .target import target_for  # import time: grading.target loads sympy
 
     t = target_for(target)
     mech = t.mech
@@ -110,7 +110,7 @@ def reference_rows(target, quantity):
 def samples_for(target, quantity):
     """(Q, QD, T): the configurations a checker compares ``quantity`` at — generic ones for Φ, assembled ones (with
     velocities that satisfy the velocity equations) for Φ_q, ν and γ (:meth:`kinbook.grading.target.Target.samples`)."""
-    from .target import target_for  # import time: grading.target loads mpmath, sympy
+    from .target import target_for  # import time: grading.target loads sympy
 
     s = target_for(target).samples("assembled" if quantity_of(quantity).derived else "generic")
     return s.Q, s.QD, s.T
@@ -274,9 +274,9 @@ def reference_mutants(target, quantity, limit=None):
     code kept), for a caller that grades ``limit`` of them."""
     import sympy as sp  # import time: sympy only when needed
 
-    from ..core.symbolic import derive  # import time: core.symbolic loads mpmath, sympy
-    from .mistakes import structural  # import time: grading.mistakes loads mpmath, sympy
-    from .target import target_for  # import time: grading.target loads mpmath, sympy
+    from ..core.symbolic import derive  # import time: core.symbolic loads sympy
+    from .mistakes import structural  # import time: grading.mistakes loads sympy
+    from .target import target_for  # import time: grading.target loads sympy
 
     rows, q, qd, t, blocks, drivers = reference_rows(target, quantity)
     T = target_for(target)
@@ -346,7 +346,7 @@ def distinct(found, reference, q=None, qd=None, t=None, *, rng=0, points=6, samp
     an earlier one adds its code to the earlier one's :attr:`Mutant.also` (one wrong answer, two readings)."""
     import sympy as sp  # import time: sympy only when needed
 
-    from .jets import Tape  # import time: grading.jets loads mpmath, sympy
+    from .jets import Tape  # import time: grading.jets loads sympy
 
     ref = sp.Matrix(reference)
     syms = sorted(ref.free_symbols | set().union(*[sp.Matrix(m.value).free_symbols for m in found] or [set()]),

@@ -27,7 +27,7 @@ from ..i18n import N_, Message, Np_
 from ._i18n import Msg, add_texts
 from .expected import DEG, Expected
 from .read import Refused, numbers_of
-from .report import CheckResult, RowResult, fmt, hints
+from .report import PRINTED, CheckResult, RowResult, fmt, hints
 
 __all__ = ["PLAUSIBLE_FACTORS", "real_option", "tolerances", "periodic_mask", "name_option", "angles_option", "reveal_option",
            "read_numbers", "expected_of", "close", "compare", "failed"]
@@ -291,8 +291,6 @@ def compare(answer, exp, rtol, atol, name, degrees=True, per=None, extra=None, r
     if note is not None:
         notes.append(note)
     if erratum:
-        from .report import PRINTED
-
         notes.append(Msg("book_misprint", id=erratum) if code in PRINTED else Msg("d.book_row", id=erratum))
     if detail is not None:
         notes.append(detail)

@@ -130,7 +130,7 @@ class Answer:
     def tape(self, target):
         key = id(target)
         if key not in self._tapes:
-            from .jets import UnknownSymbol, UnsupportedExpression  # import time: grading.jets loads mpmath, sympy
+            from .jets import UnknownSymbol, UnsupportedExpression  # import time: grading.jets loads sympy
 
             try:
                 self._tapes[key] = target.tape(list(self.matrix), aliases=True)
@@ -154,7 +154,7 @@ class Answer:
         not per instant): :meth:`values` then returns each set's part."""
         if self.kind != "symbolic" or len(sets) < 2:
             return
-        from .sample import Samples  # import time: grading.sample loads mpmath, sympy
+        from .sample import Samples  # import time: grading.sample loads sympy
 
         joined = Samples(np.concatenate([s.Q for s in sets]), np.concatenate([s.QD for s in sets]),
                          np.concatenate([s.T for s in sets]))
@@ -190,7 +190,7 @@ class Answer:
 
     def jet(self, target, Q, T):
         """This answer read as rows Φ(q, t) at the instants (Q, T): values (B, k), Φ_q (B, k, n) and Φ_t (B, k)."""
-        from .sample import Samples  # import time: grading.sample loads mpmath, sympy
+        from .sample import Samples  # import time: grading.sample loads sympy
 
         s = Samples(Q, np.zeros_like(Q), T)
         if self.kind == "symbolic":

@@ -56,8 +56,6 @@ def hints(codes, contexts):
 
 
 def _hint_line(code, lang, ctx):
-    from ._i18n import render
-
     title, hint = explain(code, lang, ctx)
     return render(Msg("hint", title=title, hint=hint), lang)
 
@@ -102,8 +100,6 @@ def _join(a, b):
 
 
 def _render(x, lang):
-    from ._i18n import render
-
     return render(x, lang)
 
 
@@ -178,8 +174,6 @@ def phi_result(target, matching, order):
 
 def _constraints_text(target, blocks):
     """The constraints of ``blocks`` (indices into target.constraints; None: the others), named when shown."""
-    from ._i18n import render
-
     cs = target.constraints
 
     def text(lang):

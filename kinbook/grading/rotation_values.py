@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError, KinbookError
+from ..spatial.rotations import p_from_A
 from ._i18n import Msg
 from .expected import A_from_euler, Expected, p_from_axis_angle
 from .misprints import book_A_of_p
@@ -105,8 +106,6 @@ def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name=
 def _from_matrix(A_):
     """Variants of any rotation matrix: the book's A(p) misprint and ½A, at the p of A."""
     try:
-        from ..spatial.rotations import p_from_A
-
         p = np.asarray(p_from_A(np.asarray(A_, float)), float)
     except (KinbookError, ValueError, np.linalg.LinAlgError):  # not a rotation matrix: no p
         return []

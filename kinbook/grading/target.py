@@ -18,6 +18,7 @@ import unicodedata
 import weakref
 
 import numpy as np
+import sympy as sp
 
 from . import sample
 from ._i18n import row_name
@@ -216,8 +217,6 @@ class Target:
     def symbolic_phi(self):
         """The symbolic Φ of the graded rows (a sympy Matrix), built once; for the mistake catalogue."""
         if "phi" not in self.store:
-            import sympy as sp
-
             mech = self.mech
             self.store["phi"] = sp.Matrix.vstack(*[mech.constraint_phi(c) for c in self.constraints])
         return self.store["phi"]

@@ -11,15 +11,13 @@ except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
 
 import sympy as sp
 
-from kinbook.spatial import E, a_bar, skew
-
 from ... import examples
 from ...files import build
 from ...grading import check_euler_parameters, check_gamma, check_jacobian, check_phi, check_rotation, check_value
 from ...grading import expected as X
 from ...grading._i18n import Msg, add_texts
 from ...i18n import N_, Message
-from ...spatial import A_from_p, Mechanism, Normal1, Revolute, Spherical
+from ...spatial import A_from_p, E, Mechanism, Normal1, Revolute, Spherical, a_bar, skew
 from ...spatial import rotations as R
 from .registry import register, same_data
 
@@ -270,8 +268,6 @@ def _t14_4_3(P_hinge):
 
 def _w14_4_3(P_hinge):
     """The book's way (§14.4, erratum 14.4-p1-two-rows): rows 1-2 of s̃_i s_j in global components."""
-    from ...spatial import skew
-
     sym_i, sym_j = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True), sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)
     rot_1, rot_2 = A_from_p(list(sym_i[3:])), A_from_p(list(sym_j[3:]))
     s_i, s_j = rot_1 * sp.Matrix([0, 0, sp.Rational(4, 5)]), rot_2 * sp.Matrix([0, 0, sp.Rational(1, 2)])
@@ -369,8 +365,6 @@ def _w14_5_2(**data):
     right = _s14_5_2(_fourbar(), **data)
     mech = _fourbar()
     par_3, par_4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
-    from ...spatial import E, a_bar
-
     dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)  # noqa: E731
     arm_3 = A_from_p(par_3) * sp.Matrix(data["cross_coupler"])
     arm_4 = A_from_p(par_4) * sp.Matrix(data["cross_rocker"])
@@ -403,8 +397,6 @@ def _t14_5_3(**data):
 
 def _w14_5_3(sA_crank, sA_coupler):
     """The book's 2ĖĠᵀa for both bodies' b (the 2a ṗᵀṗ of B(ṗ)ṗ dropped)."""
-    from ...spatial import E, a_bar
-
     mech = _fourbar()
     k_2, k_3 = mech.index("e02"), mech.index("e03")
     pdot_2, pdot_3 = sp.Matrix(mech.qd[k_2:k_2 + 4, 0]), sp.Matrix(mech.qd[k_3:k_3 + 4, 0])

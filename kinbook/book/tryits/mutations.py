@@ -21,7 +21,7 @@ from ...errors import KinbookError
 from ...grading import mutant_names as MN
 from ...grading import mutants as MU
 from ...grading.expected import Expected
-from ...grading.item import seed_from
+from ...grading.item import draw, seed_from
 from .code_mutants import code_mutants
 from .registry import TRY_ITS, same_data
 
@@ -107,8 +107,6 @@ REFERENCE_DRAWS = 6
 def function_mutants(id):
     """The code mutants of a numeric try-it that differ from its worked answer as functions — on the notebook's data
     or on one of :data:`REFERENCE_DRAWS` raw draws (a symbolic try-it's mutants are made per data: none here)."""
-    from ...grading.item import draw, seed_from
-
     item = TRY_ITS[id]
     if item.checker.quantity is not None:
         return ()

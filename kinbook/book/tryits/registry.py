@@ -14,12 +14,13 @@ import numpy as np
 import sympy as sp
 
 from ...grading._i18n import Msg, add_texts
+from ...grading.catalogue import explain
 from ...grading.expected import Expected
 from ...grading.item import Item, checker_for
 from ...grading.match import scale_match
 from ...grading.quantities import PHI, quantity_of
 from ...grading.read import Refused, read
-from ...grading.report import CheckResult
+from ...grading.report import CheckResult, RowResult, hints
 from ...grading.target import target_for
 from ...i18n import N_, Message, translate
 from .code_mutants import slips
@@ -151,7 +152,6 @@ class TryIt(Item):
         naming it, or None — a result that failed keeps its rows and score (which rows are wrong is the lesson),
         its generic name replaced. The answer is read by the checkers' own reader, evaluated on their samples."""
         quantity = result.quantity_msg
-        from ...grading.report import CheckResult, hints
 
         t = target_for(target)
         qty = quantity_of(quantity, PHI)
@@ -192,8 +192,6 @@ class TryIt(Item):
                 # the failed result keeps its rows and score; its notes and rows lose the name it gave them
                 # (the last note is its hint), but keep which entries are wrong where that name was "wrong value"
                 from ...grading._i18n import render
-                from ...grading.catalogue import explain
-                from ...grading.report import RowResult
 
                 other = [explain(m, "en")[0] for m in result.mistakes if m not in (code, "wrong_value")]
                 kept = [n for n in result.notes[:-1] if not any(o in render(n, "en") for o in other)]
@@ -206,8 +204,6 @@ class TryIt(Item):
     def _copied(self, answer, data, options, quantity):
         """A symbolic answer that is right for other data — the joint printed above, the notebook's data when a
         variant is asked: named ``wrong_data`` (None otherwise)."""
-        from ...grading.report import CheckResult, hints
-
         others = list(self.lookalikes(**data)) if self.lookalikes is not None else []
         if not same_data(data, self.data):
             others.append((self.target(**self.data), _msg("x.other_data", what=text_message("notebook_data"))))
@@ -304,8 +300,6 @@ _DESCRIBED = {"d.missing_term": "d.missing_kind", "d.sign_of_term": "d.sign_of_k
 def described(result):
     """``result`` with every term that a detail writes out described instead ("a term is missing: a term of t alone
     …" for "the term 500.0*t is missing"): a try-it's hint points at a step, never at a term to copy."""
-    from ...grading.report import CheckResult, RowResult
-
     def swap(x):
         if isinstance(x, Msg):
             if x.key in _DESCRIBED and "kind" in x.fields:

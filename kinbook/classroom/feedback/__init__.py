@@ -17,10 +17,12 @@ import os
 from pathlib import Path
 
 from ...core.atomic import protect, refuse_overwrite, write_all
+from ...errors import GradingError
 from ..choice import kind_of_file
 from ..files import PUBLIC_DIR, PUBLIC_FILE
 from ..gradebook import Gradebook
 from ..results import UNGRADED
+from .upload import LAYOUTS, upload_zip
 
 __all__ = ["write_pages", "feedback", "page", "STATUS_WORDS", "part_words"]
 
@@ -221,11 +223,8 @@ def feedback(gradebook, out, lms=None):
     with Gradebook(gradebook, create=False) as book:
         if lms is None:
             return write_pages(book, out)
-        from .upload import LAYOUTS, upload_zip
 
         if lms not in LAYOUTS:
-            from ...errors import GradingError
-
             raise GradingError(f"feedback for an LMS: one of {', '.join(LAYOUTS)}, got {lms!r}")
         with protect(*book.inputs()):
             return upload_zip(book, out, lms, {(f.exercise, student): text for student, f, text in _pages(book)})

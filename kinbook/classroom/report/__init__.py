@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from ...core.atomic import protect, refuse_overwrite, write_all
+from ...errors import GradingError
 from ..gradebook import Gradebook, csv_text
 from . import tables
 
@@ -204,8 +205,6 @@ def report(gradebook, out=None, fmt="html", *, exercises=None, roster=None):
         The files written.
     """
     if fmt not in FORMATS:
-        from ...errors import GradingError
-
         raise GradingError(f"report format must be one of {', '.join(FORMATS)}, got {fmt!r}")
     out = Path(out) if out is not None else Path(gradebook) / "report"
     files = []

@@ -27,6 +27,7 @@ hook is installed come from the grading process, never from the environment.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import resource
 import socket
@@ -220,27 +221,26 @@ def preload():
     warnings.filterwarnings("ignore")
     os.environ.setdefault("MPLBACKEND", "Agg")
     import IPython.core.logger  # noqa: F401  (imported lazily by IPython at the first cell)
-    import numpy  # noqa: F401
+    import numpy  # noqa: F401  (preloaded in the zygote, as sympy)
     import stack_data  # noqa: F401  (tracebacks)
-    import sympy  # import time: sympy only when needed
+    import sympy  # preloaded in the zygote (this function's purpose), not when the module is imported
 
-    import kinbook  # noqa: F401
-    import kinbook.classroom.parts  # noqa: F401
-    import kinbook.classroom.sandbox.trace
-    import kinbook.classroom.serialize  # noqa: F401
+    import kinbook.classroom.parts  # noqa: F401  (preloaded in the zygote, as sympy)
+    import kinbook.classroom.sandbox.trace  # preloaded in the zygote, as sympy
+    import kinbook.classroom.serialize  # noqa: F401  (preloaded in the zygote, as sympy)
 
     kinbook.classroom.sandbox.trace.load_reference_modules()  # (for the reference's calls to be observed)
 
     sympy.lambdify([sympy.Symbol("x")], sympy.sin(sympy.Symbol("x")) ** 2, "numpy")(0.5)
-    import matplotlib  # import time: matplotlib only when needed
+    import matplotlib  # preloaded in the zygote, as sympy
 
     matplotlib.use("Agg")
     import ipykernel.debugger  # noqa: F401  (what IPKernelApp.initialize imports)
-    import ipykernel.ipkernel  # noqa: F401
-    import ipykernel.kernelapp  # noqa: F401
-    import ipykernel.zmqshell  # noqa: F401
+    import ipykernel.ipkernel  # noqa: F401  (preloaded in the zygote, as sympy)
+    import ipykernel.kernelapp  # noqa: F401  (preloaded in the zygote, as sympy)
+    import ipykernel.zmqshell  # noqa: F401  (preloaded in the zygote, as sympy)
     import matplotlib.font_manager  # noqa: F401  (builds the font list once)
-    import matplotlib.pyplot  # noqa: F401
+    import matplotlib.pyplot  # noqa: F401  (preloaded in the zygote, as sympy)
 
     warnings.resetwarnings()
 
@@ -301,8 +301,6 @@ def main(argv, layout, memory_mb, audit=True):
     except Exception:
         pass
     try:  # IPython 9 copies every write to stdout/stderr into the history's memory ("tee"): not here
-        import contextlib
-
         app.shell._tee = lambda channel: contextlib.nullcontext()
     except Exception:
         pass

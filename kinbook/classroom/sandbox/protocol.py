@@ -27,6 +27,7 @@ sandbox writes is read by the grading process.
 
 from __future__ import annotations
 
+import ctypes
 import json
 import math
 import os
@@ -279,8 +280,6 @@ _PR_SET_CHILD_SUBREAPER = 36
 
 def _prctl(option, value):
     try:
-        import ctypes
-
         libc = ctypes.CDLL(None, use_errno=True)
         return libc.prctl(option, value, 0, 0, 0) == 0
     except (OSError, AttributeError):  # not Linux

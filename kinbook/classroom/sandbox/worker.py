@@ -53,10 +53,10 @@ KERNEL_NAME = "kinbook-sandbox"
 
 def preload():
     """The worker's imports (done once, in the zygote)."""
-    import jupyter_client  # noqa: F401
-    import jupyter_client.kernelspec  # noqa: F401
-    import nbclient  # noqa: F401
-    import nbformat  # noqa: F401
+    import jupyter_client  # noqa: F401  (preloaded in the zygote: this function's purpose)
+    import jupyter_client.kernelspec  # noqa: F401  (preloaded in the zygote: this function's purpose)
+    import nbclient  # noqa: F401  (preloaded in the zygote: this function's purpose)
+    import nbformat  # noqa: F401  (preloaded in the zygote: this function's purpose)
 
 
 def _kernel_spec_dir(layout, channel_fd):

@@ -50,6 +50,7 @@ import select
 import signal
 import socket
 import sys
+import tempfile
 import threading
 import time
 import traceback
@@ -227,8 +228,6 @@ class _Server:
                         pass
             _oom_score(role)
             if role == "worker":
-                from . import worker
-
                 worker.main(self.layout, self.job_fd, self.result_fd, channel.detach(), self.limits)
                 code = 0
             else:
@@ -240,10 +239,8 @@ class _Server:
                 _set_limits(limits, self.layout.isolated)
                 if not limits["fork"] and self.no_fork.available:  # no control group: per-process limits
                     self.no_fork.load()                                # must not be multiplied by forking
-                import tempfile
 
                 tempfile.tempdir = None
-                from . import kernel
 
                 argv = ["-f", self.layout.connection_file]
                 sys.argv = [kernel.__file__] + argv
@@ -426,8 +423,6 @@ def _open_fds():
     try:
         return sorted(int(fd) for fd in os.listdir("/proc/self/fd"))
     except OSError:
-        import resource
-
         return range(3, min(resource.getrlimit(resource.RLIMIT_NOFILE)[0], 4096))
 
 

@@ -24,7 +24,7 @@ from ..grade import grade_submission
 from ..notebook import find_parameters, load_source, student_notebook
 from ..release import write_notebook
 from ..sandbox import Sandbox
-from ..variant import references
+from ..variant import references, student_parameters
 
 __all__ = ["validate", "Check", "SAMPLE_STUDENTS", "question_tests"]
 
@@ -114,8 +114,6 @@ def validate(source, *, students=None, timeout=60.0, memory=1000, isolation=True
     GradingError
         When any check fails (after all were run), listing them.
     """
-    from ..variant import references, student_parameters
-
     src = load_source(source)
     references(src)  # an exercise whose own code fails stops here, with the cell named
     has_params = find_parameters(src.nb) is not None

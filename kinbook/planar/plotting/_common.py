@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import re
+import textwrap
 
 import numpy as np
 
@@ -163,6 +164,4 @@ def style_axes(ax, title=None):
     ax.set_ylabel("y")
     ax.grid(True, lw=0.4, alpha=0.4)
     if title:
-        import textwrap
-
         ax.set_title("\n".join(textwrap.wrap(str(title), 58)), fontsize=10)

@@ -162,7 +162,7 @@ def explorer(mech, driver=None, values=None, *, degrees=False, static=None, fram
         static = not _live_kernel()
         if not static:
             try:
-                import ipywidgets  # noqa: F401
+                import ipywidgets  # noqa: F401  (optional dependency: the lab extra)
             except ImportError:
                 static = True
     if static:
