@@ -13,7 +13,7 @@ from typing import Any, Callable
 import numpy as np
 import sympy as sp
 
-from ...grading._i18n import Msg, add_texts
+from ...grading._i18n import Msg, add_texts, render
 from ...grading.catalogue import explain
 from ...grading.expected import Expected
 from ...grading.item import Item, checker_for
@@ -191,7 +191,6 @@ class TryIt(Item):
                     return CheckResult(False, 0.0, notes + hints([code], {}), [code], (), quantity)
                 # the failed result keeps its rows and score; its notes and rows lose the name it gave them
                 # (the last note is its hint), but keep which entries are wrong where that name was "wrong value"
-                from ...grading._i18n import render
 
                 other = [explain(m, "en")[0] for m in result.mistakes if m not in (code, "wrong_value")]
                 kept = [n for n in result.notes[:-1] if not any(o in render(n, "en") for o in other)]
