@@ -515,6 +515,8 @@ register("13-7/try-2", "my_gamma_8", check_value, _t13_7_2, _s13_7_2, {"name": "
 
 
 def _s13_7_3(q0, qd0, qdd0, *, xi_C3, eta_C3):
+    from kinbook.planar import A, B
+
     x3dd, y3dd, a3, w3, phi3 = qdd0[6], qdd0[7], qdd0[8], qd0[8], q0[8]
     s_C = np.array([xi_C3, eta_C3])
     my_aC = np.array([x3dd, y3dd]) + B(phi3) @ s_C * a3 - A(phi3) @ s_C * w3**2      # eq. 13

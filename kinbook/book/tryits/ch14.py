@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import numpy as np
+import sympy as sp
 
 try:
     import tomllib
 except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
     import tomli as tomllib
-
-import sympy as sp
 
 from ... import examples
 from ...files import build
@@ -210,6 +209,8 @@ def _two_spatial_bodies(points_i, points_j, constraint):
 
 
 def _s14_4_1(*, s_i_P, s_j_P):
+    import sympy as sp
+
     x1, y1, z1, e01, e11, e21, e31 = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True)   # body i
     x2, y2, z2, e02, e12, e22, e32 = sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)   # body j
     my_Phi_s = (sp.Matrix([x1, y1, z1]) + A_from_p([e01, e11, e21, e31]) * sp.Matrix(s_i_P)
@@ -228,6 +229,10 @@ register("14-4/try-1", "my_Phi_s", check_phi, _t14_4_1, _s14_4_1, data={"s_i_P":
 
 
 def _s14_4_2(*, vec_i, vec_j):
+    import sympy as sp
+
+    from kinbook.spatial import E, a_bar
+
     par_i, par_j = sp.Matrix(sp.symbols("e01 e11 e21 e31", real=True)), sp.Matrix(sp.symbols("e02 e12 e22 e32", real=True))
     loc_i, loc_j = sp.Matrix(vec_i), sp.Matrix(vec_j)
     dAa_i = 2 * (E(par_i) * a_bar(loc_i) + loc_i * par_i.T)            # ∂(A_i loc_i)/∂par_i
@@ -250,6 +255,10 @@ register("14-4/try-2", "my_Phi_q_n1", check_jacobian, _t14_4_2, _s14_4_2, data={
 
 
 def _s14_4_3(*, P_hinge):
+    import sympy as sp
+
+    from kinbook.spatial import skew
+
     sym_i, sym_j = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True), sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)
     rot_1, rot_2 = A_from_p(list(sym_i[3:])), A_from_p(list(sym_j[3:]))
     axis_i, axis_j = sp.Matrix([0, 0, sp.Rational(4, 5)]), sp.Matrix([0, 0, sp.Rational(1, 2)])
@@ -345,6 +354,10 @@ def _fourbar_with(sB_coupler=None, sB_rocker=None, cross_coupler=None, cross_roc
 
 
 def _s14_5_2(mech, *, sB_coupler, sB_rocker, cross_coupler, cross_rocker):
+    import sympy as sp
+
+    from kinbook.spatial import E, a_bar
+
     par_3, par_4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
     dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)      # ∂(A a)/∂p: B_k or C_k
     arm_3, arm_4 = A_from_p(par_3) * sp.Matrix(cross_coupler), A_from_p(par_4) * sp.Matrix(cross_rocker)  # global
@@ -365,6 +378,7 @@ def _w14_5_2(**data):
     right = _s14_5_2(_fourbar(), **data)
     mech = _fourbar()
     par_3, par_4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
+
     dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)  # noqa: E731
     arm_3 = A_from_p(par_3) * sp.Matrix(data["cross_coupler"])
     arm_4 = A_from_p(par_4) * sp.Matrix(data["cross_rocker"])
@@ -384,6 +398,10 @@ _A_RANGES = {"sA_crank": [[1, 0, 0], [0.8, 0.3, 0], [1, 0, 0.2], [0.6, -0.4, 0.3
 
 
 def _s14_5_3(mech, *, sA_crank, sA_coupler):
+    import sympy as sp
+
+    from kinbook.spatial import E, a_bar
+
     dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)
     k_2, k_3 = mech.index("e02"), mech.index("e03")
     pdot_2, pdot_3 = sp.Matrix(mech.qd[k_2:k_2 + 4, 0]), sp.Matrix(mech.qd[k_3:k_3 + 4, 0])
