@@ -21,28 +21,9 @@ import time
 
 import numpy as np
 
-from . import __version__, examples, exercises
-from .classroom import grade, release, write_variant
-from .classroom.export import FORMATS as EXPORTS
-from .classroom.export import export
-from .classroom.feedback import feedback
-from .classroom.gradebook import Gradebook
-from .classroom.ids import check_id
-from .classroom.naming import PATTERNS, compile_pattern
-from .classroom.override import due, extend, override
-from .classroom.release import write_variants
-from .classroom.report import FORMATS as REPORTS
-from .classroom.report import report
-from .classroom.results import UNGRADED
-from .classroom.roster import read_roster
-from .classroom.scores import parse_due
-from .classroom.validate import validate
-from .classroom.validate.mutations import mutation_tallies
-from .core.atomic import protect
-from .core.reader import ExpressionError, read_number
+from . import examples
 from .errors import KinbookError
 from .files import load
-from .grading.mutant_names import format_table
 
 __all__ = ["main", "build_parser", "student_id"]
 
@@ -66,6 +47,8 @@ class _Parser(argparse.ArgumentParser):
 # ----------------------------------------------------------------------------------------- argument types
 def _number(text, expected):
     """A number from the command line, read by the one reader of untrusted text (so ``-t pi/4`` works)."""
+    from .core.reader import ExpressionError, read_number  # import time: loaded when the command runs
+
     try:
         return read_number(text, where="the argument")
     except ExpressionError:
@@ -98,6 +81,8 @@ def count(text):
 
 def student_id(text):
     """A student id by the one rule (:func:`kinbook.classroom.ids.check_id`): Unicode letters and digits, NFC."""
+    from .classroom.ids import check_id  # import time: loaded when the command runs
+
     try:
         return check_id(text)
     except KinbookError as exc:
@@ -107,6 +92,8 @@ def student_id(text):
 def exercise_name(text):
     """An exercise's name: the source notebook's file name without ``.ipynb`` (the student-id rule: one safe file
     name)."""
+    from .classroom.ids import check_id  # import time: loaded when the command runs
+
     try:
         return check_id(text, what="exercise name")
     except KinbookError as exc:
@@ -124,6 +111,8 @@ def _checked(text, check):
 
 def id_pattern(text):
     """A ready pattern's name or a regular expression with a student or lms group (argparse type)."""
+    from .classroom.naming import compile_pattern  # import time: loaded when the command runs
+
     return _checked(text, compile_pattern)
 
 
@@ -198,14 +187,20 @@ def _default(fn, name):
 
 
 def _cmd_release(args):
+    from .classroom import release  # import time: loaded when the command runs
+
     for path in release(args.source, args.output):
         print(path)
 
 
 def _cmd_variant(args):
+    from .classroom import write_variant  # import time: loaded when the command runs
+
     if args.student:
         print(write_variant(args.source, args.student, args.output))
         return
+    from .classroom.release import write_variants  # import time: loaded when the command runs
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
 
     roster = read_roster(args.roster, args.roster_id)
     t0 = time.perf_counter()
@@ -215,6 +210,9 @@ def _cmd_variant(args):
 
 # ---------------------------------------------------------------------------------------------- the course
 def _cmd_validate(args):
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
+    from .classroom.validate import validate  # import time: loaded when the command runs
+
     if args.source is None and not args.try_its:
         raise SystemExit("kinbook validate: give a SOURCE notebook, or --mutations --try-its")
     students = [s.student for s in read_roster(args.roster, args.roster_id)] if args.roster and args.source else None
@@ -227,12 +225,16 @@ def _cmd_validate(args):
 
 def _mutations(args, students):
     """``kinbook validate --mutations``: the mutation tables, exit status 1 on a blind spot or a failed test."""
+    from .grading.mutant_names import format_table  # import time: loaded when the command runs
+
     tallies, failures = [], []
     if args.source is not None:
+        from .classroom.validate.mutations import mutation_tallies  # import time: loaded when the command runs
+
         found, failures = mutation_tallies(args.source, students=students, variants=args.variants, limit=args.limit)
         tallies += found
     if args.try_its:
-        # import time: book.tryits.mutations loads sympy
+        # import time: loaded when the command runs
         from .book.tryits.mutations import mutation_tallies as tryit_tallies
 
         tallies += tryit_tallies(None if args.try_its == ["all"] else args.try_its, variants=args.variants,
@@ -249,18 +251,27 @@ def _mutations(args, students):
 
 
 def _cmd_override(args):
+    from .classroom.override import override  # import time: loaded when the command runs
+
     print(override(args.gradebook, args.student, args.exercise, args.part, args.score, args.why, remove=args.remove))
 
 
 def _cmd_due(args):
+    from .classroom.override import due  # import time: loaded when the command runs
+
     print(due(args.gradebook, args.exercise, args.when, penalty=args.penalty, cap=args.cap, policy=args.policy))
 
 
 def _cmd_extend(args):
+    from .classroom.override import extend  # import time: loaded when the command runs
+
     print(extend(args.gradebook, args.student, args.exercise, args.when, args.why, remove=args.remove))
 
 
 def _cmd_export(args):
+    from .classroom.export import export  # import time: loaded when the command runs
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
+
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     headers = dict(h.split("=", 1) for h in args.header)
     path, left = export(args.gradebook, args.output, args.format, exercises=args.exercise or None,
@@ -273,12 +284,17 @@ def _cmd_export(args):
 
 
 def _cmd_report(args):
+    from .classroom.report import report  # import time: loaded when the command runs
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
+
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     written = report(args.gradebook, args.output, args.format, roster=roster)
     print(f"wrote {len(written)} file(s) into {os.path.dirname(str(written[-1])) if written else args.output}/")
 
 
 def _cmd_feedback(args):
+    from .classroom.feedback import feedback  # import time: loaded when the command runs
+
     if args.lms:
         written, left = feedback(args.gradebook, args.out, lms=args.lms)
         for path in written:
@@ -317,11 +333,17 @@ def percent(text):
 
 def when_arg(text):
     """A date and time with its zone (argparse type)."""
+    from .classroom.scores import parse_due  # import time: loaded when the command runs
+
     return _checked(text, parse_due)
 
 
 def _course_parsers(sub):
     """The course's commands: validate, override, due, extend, export, report, feedback."""
+    from .classroom.export import FORMATS as EXPORTS  # import time: loaded when the command runs
+    from .classroom.report import FORMATS as REPORTS  # import time: loaded when the command runs
+    from .classroom.validate import validate  # import time: loaded when the command runs
+
     def gradebook(p):
         p.add_argument("-g", "--gradebook", type=output_dir, default="graded",
                        help="the grading output directory, holding gradebook.sqlite (default: %(default)s)")
@@ -405,6 +427,9 @@ def _course_parsers(sub):
 
 
 def _cmd_grade(args):
+    from .classroom import grade  # import time: loaded when the command runs
+    from .classroom.results import UNGRADED  # import time: loaded when the command runs
+
     def progress(item):
         if isinstance(item, str):
             print(item)
@@ -420,6 +445,8 @@ def _cmd_grade(args):
     print(f"graded {len(results)} submission(s); gradebook {out}/gradebook.sqlite (grades.csv, totals.csv; every "
           f"file and what became of it in collection.csv), feedback in {out}/feedback/")
     if results:  # the scores above are the grader's: say which instructor's decisions still stand on them
+        from .classroom.gradebook import Gradebook  # import time: loaded when the command runs
+
         with Gradebook(args.output) as book:
             kept = book.overrides(results[0].exercise)
         kept = [f"{s} {p} = {score:g}" for r in results for (_, s), parts in kept.items() if s == r.student
@@ -431,12 +458,16 @@ def _cmd_grade(args):
 
 def _course_options(args):
     """grade's options for a course: the roster, how ids are read, the attempt policy, a changed source."""
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
+
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     return dict(regrade=args.regrade, policy=args.policy, id_pattern=args.id_pattern, roster=roster,
                 file_times=args.file_times, released_from=args.released_from)
 
 
 def _course_arguments(p):
+    from .classroom.naming import PATTERNS  # import time: loaded when the command runs
+
     p.add_argument("--roster", type=existing_file, help="the course's roster: kinbook's roster.csv, or a Canvas or "
                    "Moodle export as downloaded (stored in the gradebook; see docs/instructors.md)")
     p.add_argument("--roster-id", metavar="COLUMN", help="the roster's column holding the kinbook id")
@@ -458,6 +489,8 @@ def _course_arguments(p):
 
 # ------------------------------------------------------------------------------------- kinbook exercises
 def _cmd_exercises_list(args):
+    from . import exercises  # import time: loaded when the command runs
+
     for name in exercises.names():
         with exercises.path(name).open("rb") as f:
             title = next((c["source"] for c in json.load(f)["cells"] if c["cell_type"] == "markdown"), "")
@@ -466,6 +499,8 @@ def _cmd_exercises_list(args):
 
 
 def _cmd_exercises_copy(args):
+    from . import exercises  # import time: loaded when the command runs
+
     for name in args.names:  # every name and target checked before anything is copied
         target = os.path.join(args.directory, exercises.path(name).name)
         if os.path.lexists(target):
@@ -490,6 +525,8 @@ GRADING_EXTRA = {"nbformat", "nbclient", "jupyter_client", "ipykernel", "IPython
 
 
 def build_parser():
+    from . import __version__  # import time: loaded when the command runs
+
     parser = _Parser(prog="kinbook", description="Kinematics of mechanisms in body coordinates.")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
     parser.add_argument("--version", action="version", version=f"kinbook {__version__}")
@@ -503,6 +540,8 @@ def build_parser():
     p.add_argument("mechanism", type=mechanism_arg, help="a mechanism file or the name of a shipped example")
     p.add_argument("-t", type=finite, default=0.0, help="time, a number or an expression such as pi/4 (default 0)")
     p.set_defaults(func=_cmd_solve)
+
+    from .classroom import grade, release, write_variant  # import time: loaded when the command runs
 
     p = sub.add_parser("release", help="write the students' versions of exercise notebooks")
     p.add_argument("source", nargs="+", type=existing_file, help="instructor source notebooks")
@@ -553,6 +592,7 @@ def main(argv=None):
     argv = [a for a in argv if a != "--debug"]  # accepted anywhere on the line
     try:
         args = build_parser().parse_args(argv)
+        from .core.atomic import protect  # import time: loaded when the command runs
 
         with protect(*_inputs(args)):  # no file a command writes may be one it reads
             status = args.func(args)
