@@ -17,6 +17,10 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+TARGET_MODULES = 15
+"""The issue's target: the fresh wrong answer crosses at most this many kinbook modules."""
+TARGET_CALLS = 4674
+"""... and fewer kinbook calls than this (the count when the target was set)."""
 
 RUN = r"""
 import json, sys
@@ -65,6 +69,10 @@ def main():
     for key, what in (("fresh", "fresh mechanism"), ("cached", "target cached"), ("repr", "repr of the verdict")):
         f = m[key]
         print(f"  {what:22s} {f['modules']:3d} kinbook modules, {f['calls']:6,d} kinbook calls")
+    fresh = m["fresh"]
+    ok_m, ok_c = fresh["modules"] <= TARGET_MODULES, fresh["calls"] < TARGET_CALLS
+    print(f"  target: ≤ {TARGET_MODULES} modules ({'met' if ok_m else 'NOT met'}: {fresh['modules']}), "
+          f"< {TARGET_CALLS:,d} calls ({'met' if ok_c else 'NOT met'}: {fresh['calls']:,d})")
     print("  modules of the fresh check, first visits in order:")
     print("    " + " → ".join(name.removeprefix("kinbook.") for name in m["fresh"]["order"]))
 

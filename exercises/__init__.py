@@ -17,7 +17,8 @@ import os
 from importlib import resources
 
 # absolute imports: pytest's doctest collection imports this file as the top-level module ``exercises`` too
-from kinbook.errors import InputError
+from kinbook.core.atomic import atomic_write
+from kinbook.errors import InputError, WriteError
 
 __all__ = ["names", "path", "copy"]
 
@@ -55,9 +56,6 @@ def copy(name, directory):
     An existing file of that name is never overwritten (it may be the instructor's edited copy): it is an
     :class:`~kinbook.errors.InputError`.
     """
-    from kinbook.core.atomic import atomic_write
-    from kinbook.errors import WriteError
-
     source = path(name)
     directory = os.fspath(directory)
     if os.path.exists(directory) and not os.path.isdir(directory):

@@ -12,9 +12,12 @@ bug, exits with status 1 and says so).
 from __future__ import annotations
 
 import argparse
+import inspect
+import json
 import os
 import re
 import sys
+import time
 
 import numpy as np
 
@@ -44,7 +47,7 @@ class _Parser(argparse.ArgumentParser):
 # ----------------------------------------------------------------------------------------- argument types
 def _number(text, expected):
     """A number from the command line, read by the one reader of untrusted text (so ``-t pi/4`` works)."""
-    from .core.reader import ExpressionError, read_number
+    from .core.reader import ExpressionError, read_number  # import time: loaded when the command runs
 
     try:
         return read_number(text, where="the argument")
@@ -78,7 +81,7 @@ def count(text):
 
 def student_id(text):
     """A student id by the one rule (:func:`kinbook.classroom.ids.check_id`): Unicode letters and digits, NFC."""
-    from .classroom.ids import check_id
+    from .classroom.ids import check_id  # import time: loaded when the command runs
 
     try:
         return check_id(text)
@@ -89,7 +92,7 @@ def student_id(text):
 def exercise_name(text):
     """An exercise's name: the source notebook's file name without ``.ipynb`` (the student-id rule: one safe file
     name)."""
-    from .classroom.ids import check_id
+    from .classroom.ids import check_id  # import time: loaded when the command runs
 
     try:
         return check_id(text, what="exercise name")
@@ -108,7 +111,7 @@ def _checked(text, check):
 
 def id_pattern(text):
     """A ready pattern's name or a regular expression with a student or lms group (argparse type)."""
-    from .classroom.naming import compile_pattern
+    from .classroom.naming import compile_pattern  # import time: loaded when the command runs
 
     return _checked(text, compile_pattern)
 
@@ -180,28 +183,24 @@ def _cmd_examples(args):
 
 def _default(fn, name):
     """A library function's default for ``name``: the CLI defines no behaviour of its own."""
-    import inspect
-
     return inspect.signature(fn).parameters[name].default
 
 
 def _cmd_release(args):
-    from .classroom import release
+    from .classroom import release  # import time: loaded when the command runs
 
     for path in release(args.source, args.output):
         print(path)
 
 
 def _cmd_variant(args):
-    from .classroom import write_variant
+    from .classroom import write_variant  # import time: loaded when the command runs
 
     if args.student:
         print(write_variant(args.source, args.student, args.output))
         return
-    import time
-
-    from .classroom.release import write_variants
-    from .classroom.roster import read_roster
+    from .classroom.release import write_variants  # import time: loaded when the command runs
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
 
     roster = read_roster(args.roster, args.roster_id)
     t0 = time.perf_counter()
@@ -211,8 +210,8 @@ def _cmd_variant(args):
 
 # ---------------------------------------------------------------------------------------------- the course
 def _cmd_validate(args):
-    from .classroom.roster import read_roster
-    from .classroom.validate import validate
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
+    from .classroom.validate import validate  # import time: loaded when the command runs
 
     if args.source is None and not args.try_its:
         raise SystemExit("kinbook validate: give a SOURCE notebook, or --mutations --try-its")
@@ -226,15 +225,16 @@ def _cmd_validate(args):
 
 def _mutations(args, students):
     """``kinbook validate --mutations``: the mutation tables, exit status 1 on a blind spot or a failed test."""
-    from .grading.mutant_names import format_table
+    from .grading.mutant_names import format_table  # import time: loaded when the command runs
 
     tallies, failures = [], []
     if args.source is not None:
-        from .classroom.validate.mutations import mutation_tallies
+        from .classroom.validate.mutations import mutation_tallies  # import time: loaded when the command runs
 
         found, failures = mutation_tallies(args.source, students=students, variants=args.variants, limit=args.limit)
         tallies += found
     if args.try_its:
+        # import time: loaded when the command runs
         from .book.tryits.mutations import mutation_tallies as tryit_tallies
 
         tallies += tryit_tallies(None if args.try_its == ["all"] else args.try_its, variants=args.variants,
@@ -251,26 +251,26 @@ def _mutations(args, students):
 
 
 def _cmd_override(args):
-    from .classroom.override import override
+    from .classroom.override import override  # import time: loaded when the command runs
 
     print(override(args.gradebook, args.student, args.exercise, args.part, args.score, args.why, remove=args.remove))
 
 
 def _cmd_due(args):
-    from .classroom.override import due
+    from .classroom.override import due  # import time: loaded when the command runs
 
     print(due(args.gradebook, args.exercise, args.when, penalty=args.penalty, cap=args.cap, policy=args.policy))
 
 
 def _cmd_extend(args):
-    from .classroom.override import extend
+    from .classroom.override import extend  # import time: loaded when the command runs
 
     print(extend(args.gradebook, args.student, args.exercise, args.when, args.why, remove=args.remove))
 
 
 def _cmd_export(args):
-    from .classroom.export import export
-    from .classroom.roster import read_roster
+    from .classroom.export import export  # import time: loaded when the command runs
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
 
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     headers = dict(h.split("=", 1) for h in args.header)
@@ -284,8 +284,8 @@ def _cmd_export(args):
 
 
 def _cmd_report(args):
-    from .classroom.report import report
-    from .classroom.roster import read_roster
+    from .classroom.report import report  # import time: loaded when the command runs
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
 
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     written = report(args.gradebook, args.output, args.format, roster=roster)
@@ -293,7 +293,7 @@ def _cmd_report(args):
 
 
 def _cmd_feedback(args):
-    from .classroom.feedback import feedback
+    from .classroom.feedback import feedback  # import time: loaded when the command runs
 
     if args.lms:
         written, left = feedback(args.gradebook, args.out, lms=args.lms)
@@ -333,16 +333,16 @@ def percent(text):
 
 def when_arg(text):
     """A date and time with its zone (argparse type)."""
-    from .classroom.scores import parse_due
+    from .classroom.scores import parse_due  # import time: loaded when the command runs
 
     return _checked(text, parse_due)
 
 
 def _course_parsers(sub):
     """The course's commands: validate, override, due, extend, export, report, feedback."""
-    from .classroom.export import FORMATS as EXPORTS
-    from .classroom.report import FORMATS as REPORTS
-    from .classroom.validate import validate
+    from .classroom.export import FORMATS as EXPORTS  # import time: loaded when the command runs
+    from .classroom.report import FORMATS as REPORTS  # import time: loaded when the command runs
+    from .classroom.validate import validate  # import time: loaded when the command runs
 
     def gradebook(p):
         p.add_argument("-g", "--gradebook", type=output_dir, default="graded",
@@ -427,8 +427,8 @@ def _course_parsers(sub):
 
 
 def _cmd_grade(args):
-    from .classroom import grade
-    from .classroom.results import UNGRADED
+    from .classroom import grade  # import time: loaded when the command runs
+    from .classroom.results import UNGRADED  # import time: loaded when the command runs
 
     def progress(item):
         if isinstance(item, str):
@@ -445,7 +445,7 @@ def _cmd_grade(args):
     print(f"graded {len(results)} submission(s); gradebook {out}/gradebook.sqlite (grades.csv, totals.csv; every "
           f"file and what became of it in collection.csv), feedback in {out}/feedback/")
     if results:  # the scores above are the grader's: say which instructor's decisions still stand on them
-        from .classroom.gradebook import Gradebook
+        from .classroom.gradebook import Gradebook  # import time: loaded when the command runs
 
         with Gradebook(args.output) as book:
             kept = book.overrides(results[0].exercise)
@@ -458,7 +458,7 @@ def _cmd_grade(args):
 
 def _course_options(args):
     """grade's options for a course: the roster, how ids are read, the attempt policy, a changed source."""
-    from .classroom.roster import read_roster
+    from .classroom.roster import read_roster  # import time: loaded when the command runs
 
     roster = read_roster(args.roster, args.roster_id) if args.roster else None
     return dict(regrade=args.regrade, policy=args.policy, id_pattern=args.id_pattern, roster=roster,
@@ -466,7 +466,7 @@ def _course_options(args):
 
 
 def _course_arguments(p):
-    from .classroom.naming import PATTERNS
+    from .classroom.naming import PATTERNS  # import time: loaded when the command runs
 
     p.add_argument("--roster", type=existing_file, help="the course's roster: kinbook's roster.csv, or a Canvas or "
                    "Moodle export as downloaded (stored in the gradebook; see docs/instructors.md)")
@@ -489,9 +489,7 @@ def _course_arguments(p):
 
 # ------------------------------------------------------------------------------------- kinbook exercises
 def _cmd_exercises_list(args):
-    import json
-
-    from . import exercises
+    from . import exercises  # import time: loaded when the command runs
 
     for name in exercises.names():
         with exercises.path(name).open("rb") as f:
@@ -501,7 +499,7 @@ def _cmd_exercises_list(args):
 
 
 def _cmd_exercises_copy(args):
-    from . import exercises
+    from . import exercises  # import time: loaded when the command runs
 
     for name in args.names:  # every name and target checked before anything is copied
         target = os.path.join(args.directory, exercises.path(name).name)
@@ -527,7 +525,7 @@ GRADING_EXTRA = {"nbformat", "nbclient", "jupyter_client", "ipykernel", "IPython
 
 
 def build_parser():
-    from . import __version__
+    from . import __version__  # import time: loaded when the command runs
 
     parser = _Parser(prog="kinbook", description="Kinematics of mechanisms in body coordinates.")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
@@ -543,7 +541,7 @@ def build_parser():
     p.add_argument("-t", type=finite, default=0.0, help="time, a number or an expression such as pi/4 (default 0)")
     p.set_defaults(func=_cmd_solve)
 
-    from .classroom import grade, release, write_variant
+    from .classroom import grade, release, write_variant  # import time: loaded when the command runs
 
     p = sub.add_parser("release", help="write the students' versions of exercise notebooks")
     p.add_argument("source", nargs="+", type=existing_file, help="instructor source notebooks")
@@ -594,7 +592,7 @@ def main(argv=None):
     argv = [a for a in argv if a != "--debug"]  # accepted anywhere on the line
     try:
         args = build_parser().parse_args(argv)
-        from .core.atomic import protect
+        from .core.atomic import protect  # import time: loaded when the command runs
 
         with protect(*_inputs(args)):  # no file a command writes may be one it reads
             status = args.func(args)

@@ -28,6 +28,8 @@ from functools import lru_cache
 from pathlib import Path
 from typing import NamedTuple
 
+from .errors import InputError
+
 __all__ = ["N_", "Np_", "pN_", "Plural", "Contextual", "Message", "translate", "set_language", "get_language", "LANGUAGES",
            "DOMAIN", "LOCALE_DIR", "KEYWORDS"]
 
@@ -121,8 +123,6 @@ def set_language(lang):
     'es'
     >>> set_language("en")
     """
-    from .errors import InputError
-
     if lang not in LANGUAGES:
         raise InputError(f"`lang` must be one of {', '.join(LANGUAGES)}, got {lang!r}")
     translations(lang)  # a missing catalogue is an installation error: say so now, not when a message is shown

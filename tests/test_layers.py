@@ -9,6 +9,7 @@ Files are cut where a concept ends, never at a line count: sizes are a smell to 
 700 lines and functions over 80 are printed by ``python -m tests.test_layers`` (the smell report)."""
 
 import ast
+import re
 from pathlib import Path
 
 import kinbook
@@ -282,6 +283,122 @@ def test_the_private_finder_can_fail(tmp_path):
     name = "kinbook.grading.m"
     assert sorted(u for _, u in private_uses(name, f)) == ["kinbook.core.reader._m", "kinbook.grading.sample._spread",
                                                            "kinbook.grading.values._read"]
+
+
+def _private(attr):
+    return attr.startswith("_") and not attr.startswith("__")
+
+
+def own_private_attributes(tree):
+    """The private attribute names a module defines: set on self or cls (``self._x = …``,
+    ``object.__setattr__(self, "_x", …)``), or named in a class body (``_x: int``, ``_x = …``, ``def _x``)."""
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ClassDef):
+            for item in node.body:
+                if isinstance(item, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                    out.add(item.name)
+                elif isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name):
+                    out.add(item.target.id)
+                elif isinstance(item, ast.Assign):
+                    out |= {t.id for t in item.targets if isinstance(t, ast.Name)}
+        elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store) \
+                and isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"):
+            out.add(node.attr)
+        elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "__setattr__" \
+                and len(node.args) >= 2 and isinstance(node.args[1], ast.Constant) \
+                and isinstance(node.args[1].value, str):
+            out.add(node.args[1].value)
+    return {a for a in out if _private(a)}
+
+
+def private_attribute_uses(trees):
+    """{(module, "line: obj._x")} of every ``obj._x`` (obj not self or cls) in a module that does not define ``_x``
+    itself, where another kinbook module's class does: ``result._quantity`` in book/tryits reaches into
+    grading's CheckResult. Private attributes of other libraries (``sys._getframe``) are not kinbook's to judge."""
+    own = {m: own_private_attributes(t) for m, t in trees.items()}
+    anywhere = set().union(*own.values())
+    found = set()
+    for m, tree in trees.items():
+        for n in ast.walk(tree):
+            if isinstance(n, ast.Attribute) and _private(n.attr) and n.attr in anywhere and n.attr not in own[m] \
+                    and not (isinstance(n.value, ast.Name) and n.value.id in ("self", "cls")):
+                found.add((m, f"{n.lineno}: {ast.unparse(n)}"))
+    return found
+
+
+def test_no_module_reaches_into_another_modules_private_attributes():
+    trees = {m: ast.parse(p.read_text(encoding="utf-8")) for m, p in MODULES.items()}
+    assert sorted(private_attribute_uses(trees)) == []
+
+
+def test_the_private_attribute_finder_can_fail():
+    result = ast.parse("class CheckResult:\n    def __init__(self, q):\n        object.__setattr__(self, '_quantity', q)\n"
+                       "        self._echo = None\n    def echo(self, other):\n        return other._echo\n")
+    user = ast.parse("def f(result, sys):\n    self = result\n    return result._quantity, sys._getframe, self._echo\n")
+    found = private_attribute_uses({"kinbook.grading.report": result, "kinbook.book.tryits": user})
+    assert found == {("kinbook.book.tryits", "3: result._quantity")}
+
+
+# ------------------------------------------------------------------------------------------ imports at the top
+def in_function_imports(source):
+    """(line, statement, reason) of every import inside a function. The reason is the comment on the statement's
+    lines or the line above it, a bare ``noqa`` not counted: an import stays in a function only where it breaks a
+    real cost (import time of a heavy or optional dependency, a module preloaded on purpose) and says which."""
+    lines = source.splitlines()
+    found = {}
+    for f in ast.walk(ast.parse(source)):
+        if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            for n in ast.walk(f):
+                if isinstance(n, (ast.Import, ast.ImportFrom)) and n.lineno not in found:
+                    comments = [line.split("#", 1)[1] for line in lines[n.lineno - 1:n.end_lineno] if "#" in line]
+                    above = lines[n.lineno - 2].strip() if n.lineno > 1 else ""
+                    comments += [above[1:]] if above.startswith("#") else []
+                    reason = " ".join(re.sub(r"noqa(: [A-Z0-9, ]+)?", "", c).strip(" ()") for c in comments).strip()
+                    found[n.lineno] = (n.lineno, ast.unparse(n), reason)
+    return sorted(found.values())
+
+
+def worked_answers():
+    """{(file, first line, last line)} of the try-its' worked answers (``solution``): their body is the code
+    ``kb.reveal`` shows and a student pastes into the notebook, so their imports are the answer's own — absolute,
+    and without a comment that the student would read."""
+    import inspect
+
+    from kinbook.book import tryits
+
+    tryits._load()
+    out = set()
+    for item in tryits.TRY_ITS.values():
+        lines, first = inspect.getsourcelines(item.solution)
+        out.add((Path(inspect.getsourcefile(item.solution)).resolve(), first, first + len(lines) - 1))
+    return out
+
+
+def test_every_in_function_import_says_why():
+    shown = worked_answers()
+    missing = [f"{m}:{line}: {text}" for m, p in MODULES.items()
+               for line, text, reason in in_function_imports(p.read_text(encoding="utf-8")) if len(reason) < 8
+               and not any(p.resolve() == f and a <= line <= b for f, a, b in shown)]
+    assert missing == []
+
+
+def test_no_in_function_import_repeats_one_at_the_top():
+    shown = worked_answers()
+    repeated = []
+    for m, p in MODULES.items():
+        source = p.read_text(encoding="utf-8")
+        top = {ast.unparse(n) for n in ast.parse(source).body if isinstance(n, (ast.Import, ast.ImportFrom))}
+        repeated += [f"{m}:{line}: {text}" for line, text, _ in in_function_imports(source) if text in top
+                     and not any(p.resolve() == f and a <= line <= b for f, a, b in shown)]
+    assert repeated == []
+
+
+def test_the_import_reason_finder_can_fail():
+    source = ("import os\n\ndef f():\n    import os\n    import sympy  # import time: sympy only when needed\n"
+              "    import numpy  # noqa: F401\n    # optional dependency: IPython\n    import IPython\n")
+    assert [(line, bool(reason)) for line, _, reason in in_function_imports(source)] == [
+        (4, False), (5, True), (6, False), (8, True)]
 
 
 def smell_report():

@@ -30,6 +30,10 @@ import numbers
 
 import numpy as np
 
+from ..core.sweep import SimulationResult
+from ..errors import InputError
+from ..grading import set_language
+
 __all__ = ["TOL", "setup", "clean", "show", "agrees", "small", "fmt", "tolerance_text", "sweep_both_ways", "time_axes"]
 
 TOL = 1e-12
@@ -41,8 +45,6 @@ PRECISION = 4
 
 def _real(x, name, function):
     """``x`` as a float, or :class:`~kinbook.errors.InputError` naming the helper and the argument."""
-    from ..errors import InputError
-
     if not isinstance(x, (bool, str, bytes)):
         try:
             return float(x)
@@ -54,16 +56,12 @@ def _real(x, name, function):
 def _tolerance(tol, function):
     value = _real(tol, "tol", function)
     if not (math.isfinite(value) and value > 0):
-        from ..errors import InputError
-
         raise InputError(f"{function}: `tol` must be a positive finite number, got {tol!r}")
     return value
 
 
 def _digits(digits, function, low=0, high=17):
     if isinstance(digits, bool) or not isinstance(digits, numbers.Integral) or not low <= digits <= high:
-        from ..errors import InputError
-
         raise InputError(f"{function}: `digits` must be a whole number from {low} to {high}, got {digits!r}")
     return int(digits)
 
@@ -208,13 +206,11 @@ def setup(language=None, *, precision=PRECISION):
         Default: leave the current language as it is (English unless changed).
     precision : int
     """
-    from ..grading import set_language
-
     np.set_printoptions(precision=precision, suppress=True)
     if language is not None:
         set_language(language)
     try:
-        from IPython import get_ipython
+        from IPython import get_ipython  # optional dependency
     except ImportError:  # pragma: no cover - outside Jupyter
         return
     ip = get_ipython()
@@ -243,8 +239,6 @@ def sweep_both_ways(mech, backward, forward):
     SimulationResult
         The solved instants in increasing time; ``failure`` is the forward sweep's.
     """
-    from ..core.sweep import SimulationResult
-
     back = mech.simulate(backward, on_failure="truncate")
     fwd = mech.simulate(forward, on_failure="truncate")
     join = [np.r_[getattr(back, a)[:0:-1], getattr(fwd, a)] for a in ("t", "q", "qd", "qdd")]

@@ -29,10 +29,27 @@ it on the notebook's data), each as values at the page's points with the code Py
 from __future__ import annotations
 
 import inspect
+import json
+from pathlib import Path
 
 import numpy as np
+import sympy as sp
 
+from ..core.bounds import DEFAULT_LIMITS
+from ..core.reader import ALIASES, CONSTANTS, FUNCTIONS
+from ..errors import KinbookError
+from ..grading import CHECKERS, explain, rounding, sample, witness
+from ..grading import mutants as MU
+from ..grading.equivalence import RTOL, scale_match, zero_tol
+from ..grading.expected import Expected
+from ..grading.misprints import book_A_of_p
+from ..grading.newton import check_iterates
+from ..grading.read import read
+from ..grading.target import target_for
 from ..i18n import LANGUAGES, N_, Message, translate
+from ..spatial.rotations import p_from_A
+from .tryits import TRY_ITS, get
+from .tryits import mutations as MT
 
 __all__ = ["grammar", "spec", "tryit_spec", "page", "write", "ui_texts", "tryit_mutants", "UI"]
 
@@ -94,9 +111,6 @@ def _both(message):
 def grammar():
     """What a student may type, from kinbook's one reader: the functions (with their numbers of arguments), the
     other spellings, the constants and the bounds."""
-    from ..core.bounds import DEFAULT_LIMITS
-    from ..core.reader import ALIASES, CONSTANTS, FUNCTIONS
-
     limits = DEFAULT_LIMITS
     return {"functions": {name: list(counts) for name, (_, counts) in FUNCTIONS.items()},
             "aliases": dict(ALIASES),
@@ -107,8 +121,6 @@ def grammar():
 
 def _checker_name(checker):
     """The name of a try-it's checker (a :class:`kinbook.grading.item.Checker` of the one table, or its function)."""
-    from ..grading import CHECKERS
-
     name = getattr(checker, "name", None)
     if name in CHECKERS:
         return name
@@ -121,8 +133,6 @@ def _checker_name(checker):
 def _mistake(code, values, detail=None, context=(), erratum=None):
     """A catalogued mistake as the page shows it: its code, title and hint in every language, the detail of
     this occurrence, and its values at the spec's points."""
-    from ..grading import explain
-
     entry = {"code": code, "values": values, "detail": _both(detail), "erratum": erratum}
     entry["title"] = {lang: explain(code, lang, tuple(context))[0] for lang in LANGUAGES}
     entry["hint"] = {lang: explain(code, lang, tuple(context))[1] for lang in LANGUAGES}
@@ -137,9 +147,6 @@ def _arr(a):
 def _value_spec(name, expected, options, lookalikes=()):
     """check_value, check_rotation, check_euler_parameters: the expected value, the tolerance rule (the
     checker's own defaults, read from its signature), the other right answers, the named wrong ones."""
-    from ..grading import CHECKERS
-    from ..grading.expected import Expected
-
     defaults = {k: p.default for k, p in inspect.signature(CHECKERS[name].function).parameters.items()
                 if p.default is not inspect.Parameter.empty}
     exp = expected if isinstance(expected, Expected) else Expected(np.asarray(expected, float))
@@ -162,10 +169,6 @@ def _value_spec(name, expected, options, lookalikes=()):
 
 
 def _rotation_mistakes(e, context):
-    from ..errors import KinbookError
-    from ..grading.misprints import book_A_of_p
-    from ..spatial.rotations import p_from_A
-
     try:
         p = np.asarray(p_from_A(e), float)
     except (KinbookError, ValueError, np.linalg.LinAlgError):
@@ -177,8 +180,6 @@ def _rotation_mistakes(e, context):
 # ------------------------------------------------------------------------------------------------- rows
 def _quantity(name):
     """The quantity a checker grades (:mod:`kinbook.grading.quantities`), or None for a numeric checker."""
-    from ..grading import CHECKERS
-
     return CHECKERS[name].quantity if name in CHECKERS else None
 
 
@@ -205,9 +206,6 @@ def _witness_points(t, which):
     """A few points of the page's own (seeded apart from the checker's): generic configurations for Φ — and the
     checker's few over the whole domain (angles beyond ±π, t up to 30: where ``atan2(sin φ, cos φ)`` is not φ) —,
     assembled ones (consistent velocities) for Φ_q, ν, γ — where a row accepted at the samples must agree as well."""
-    from ..grading import sample, witness
-    from ..grading.read import read
-
     if which == "generic":
         rng = np.random.default_rng(WITNESS_SEED)
         n = t.n
@@ -226,9 +224,6 @@ def _witness_points(t, which):
 
 def _rows_spec(name, target, options, lookalikes=(), wrong_forms=()):
     """check_phi / check_jacobian / check_nu / check_gamma: the points, the reference there, the rule."""
-    from ..grading.compare import RTOL, zero_tol
-    from ..grading.target import target_for
-
     t = target_for(target)
     q = _quantity(name)
     quantity = q.name
@@ -283,9 +278,7 @@ into fewer, a constant rounded wrong): their texts, without values."""
 def _rounding(t, quantity):
     """The rounding rule's numbers (:mod:`kinbook.grading.rounding`): the exercise's exact constants (value, as a
     student types it), the integers among them, and the numbers written in the rows themselves (data, exactly)."""
-    import sympy as sp
 
-    from ..grading import rounding
 
     constants, integers = [], []
     for value, c in rounding.exact_constants(t, quantity).items():
@@ -330,9 +323,6 @@ def _ref(values, quantity):
 def _iterates_spec(problem, options):
     """check_iterates: the mechanism's Φ and Φ_q as text (the page evaluates them with the reader's grammar at the
     student's own iterates, as the checker does), the time, the guess, the solution it leads to, the tolerances."""
-    from ..grading.newton import check_iterates
-    from ..grading.target import target_for
-
     defaults = {k: p.default for k, p in inspect.signature(check_iterates).parameters.items()
                 if p.default is not inspect.Parameter.empty}
     mech = problem.mechanism
@@ -392,9 +382,6 @@ def tryit_mutants(item):
     the mutant, the answer a student making its mistake hands in, and the try-it's own check of it. Cached."""
     if item.id in _MUTATION_RUNS:
         return _MUTATION_RUNS[item.id]
-    from ..grading import mutants as MU
-    from ..grading.expected import Expected
-    from .tryits import mutations as MT
 
     data = dict(item.data)
     quantity = item.checker.quantity
@@ -446,7 +433,6 @@ matches a mutant."""
 
 
 def _prefix(V, spec):
-    from ..grading.compare import scale_match
 
     V = np.asarray(V, float)
     K = MUTANT_POINTS
@@ -471,9 +457,7 @@ def _mutant_values(item, spec, m, answer):
         return v if v.size == np.size(spec["value"]) else None
     if spec["kind"] != "rows":
         return None
-    import sympy as sp
 
-    from ..grading.target import target_for
 
     t = target_for(item.target(**dict(item.data)))
     M = sp.Matrix(m.value)
@@ -500,8 +484,6 @@ def tryit_spec(item):
 
 def page(notebook):
     """The JSON of one book page: the grammar, the page's texts and the spec of each of its try-its."""
-    from .tryits import TRY_ITS, get
-
     get(f"{notebook}/try-1")  # registers the try-its
     items = [item for key, item in TRY_ITS.items() if key.split("/")[0] == notebook]
     return {"version": 1, "languages": list(LANGUAGES), "grammar": grammar(), "ui": ui_texts(),
@@ -511,11 +493,6 @@ def page(notebook):
 def write(folder):
     """Write ``<notebook>.json`` (:func:`page`) for every notebook with try-its into ``folder``; returns the
     notebooks."""
-    import json
-    from pathlib import Path
-
-    from .tryits import TRY_ITS, get
-
     get("13-1/try-1")
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)

@@ -28,6 +28,11 @@ import numpy as np
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
+from ..errors import InputError
+from ..grading.read import tex_name
+from ..planar import Mechanism, Revolute, RevoluteRevolute, RevoluteTranslational, Translational
+from .display import fmt
+
 __all__ = ["S", "pair", "PAIR_KINDS", "to_book", "from_book", "latex", "html_math", "html_text", "equations", "matrix", "names",
            "book_form", "factored", "lines", "Math", "local_points", "table", "tidy", "spatial_form",
            "SPATIAL_DEFINITIONS"]
@@ -41,7 +46,6 @@ def as_sympy(expr):
     (untrusted text goes through :mod:`kinbook.core.reader`)."""
     if isinstance(expr, (sp.Basic, sp.MatrixBase)):
         return expr
-    from ..errors import InputError
 
     if isinstance(expr, bool) or isinstance(expr, str):
         raise InputError(f"expected a sympy expression, got {type(expr).__name__} {str(expr)[:60]!r} (text is never "
@@ -113,16 +117,12 @@ def pair(kind):
         Cached: do not add to it.
     """
     if not isinstance(kind, str) or kind not in PAIR_KINDS:
-        from ..errors import InputError
-
         raise InputError(f"`kind` must be one of {', '.join(PAIR_KINDS)}, got {str(kind)[:40]!r}")
     return _pair(kind)
 
 
 @lru_cache(maxsize=None)
 def _pair(kind):
-    from ..planar import Mechanism, Revolute, RevoluteRevolute, RevoluteTranslational, Translational
-
     points = {"i": "PQ" if kind == "t" else "P", "j": "PQ" if kind == "rt" else "P"}
     m = Mechanism(f"{PAIR_KINDS[kind][1]} pair")
     for b in "ij":
@@ -137,8 +137,6 @@ def _pair(kind):
 def _maps(mech):
     """(read, back): kinbook symbols → book notation at φ = 0, and book notation → kinbook symbols."""
     if not all(hasattr(mech, a) for a in ("q", "qd", "bodies", "body_symbols")):
-        from ..errors import InputError
-
         raise InputError(f"expected a mechanism (or one of its constraints' two bodies), got {type(mech).__name__}")
     trig, read = {}, dict(zip(mech.q, S.q)) | dict(zip(mech.qd, S.qd))
     back = dict(zip(S.q, mech.q)) | dict(zip(S.qd, mech.qd))
@@ -308,32 +306,17 @@ def book_form(expr, mech=None, kind=None):
 
 
 # ----------------------------------------------------------------------------------------- the printer
-_COORD = re.compile(r"^(d?)(x|y|z|phi|e0|e1|e2|e3)(\d+)$")
-_TEX = {"x": "x", "y": "y", "z": "z", "phi": r"\varphi"}
-
-
 def names(expr, mech=None):
     """``symbol_names`` for :func:`sympy.latex`: kinbook's coordinate symbols in the book's notation.
 
     ``x1 → x_1``, ``phi2 → \\varphi_2``, ``dx1 → \\dot{x}_1``, ``e02 → e_{0,2}``; with a mechanism whose
-    bodies are named by one letter (``i``, ``j``), that letter is the subscript (``x1 → x_i``).
+    bodies are named by one letter (``i``, ``j``), that letter is the subscript (``x1 → x_i``). The rule is the
+    checkers' (:func:`kinbook.grading.read.tex_name`): the answer as read and the book's pages write alike.
     """
     letters = {}
     if mech is not None:
         letters = {str(b.number): b.name for b in mech.bodies if len(b.name) == 1 and b.name.isalpha()}
-    out = {}
-    for s in as_sympy(expr).free_symbols:
-        m = _COORD.match(s.name)
-        if not m:
-            continue
-        dot, base, number = m.groups()
-        sub = letters.get(number, number)
-        if base.startswith("e"):  # Euler parameters e_{0i}: the book's index first, then the body
-            head, sub = "e", base[1] + ("," if len(sub) > 1 or sub.isdigit() else "") + sub
-        else:
-            head = _TEX[base]
-        out[s] = (rf"\dot{{{head}}}" if dot else head) + f"_{{{sub}}}"
-    return out
+    return {s: tex for s in as_sympy(expr).free_symbols if (tex := tex_name(s.name, letters)) is not None}
 
 
 def tidy(expr, digits=10):
@@ -469,8 +452,6 @@ def html_text(text):
     """
     parts = str(text).split("$")
     if len(parts) % 2 == 0:
-        from ..errors import InputError
-
         raise InputError(f"html_text: an unpaired $ in {str(text)[:80]!r}")
     return "".join(html_math(p) if k % 2 else html.escape(p) for k, p in enumerate(parts))
 
@@ -478,8 +459,6 @@ def html_text(text):
 def equations(rows, mech=None, first=1, label=r"\Phi"):
     """``rows`` (a sympy column) as the book writes a system: Φ_1 ≡ … = 0, one line each (a LaTeX string)."""
     if not isinstance(rows, (list, tuple, sp.MatrixBase)):
-        from ..errors import InputError
-
         raise InputError(f"equations: `rows` must be a sympy column or a list of expressions, got {type(rows).__name__}")
     lines = [rf"{label}_{{{k}}} &\equiv {latex(e, mech)} = 0" for k, e in enumerate(list(rows), start=first)]
     return r"\begin{aligned}" + r"\\ ".join(lines) + r"\end{aligned}"
@@ -488,15 +467,11 @@ def equations(rows, mech=None, first=1, label=r"\Phi"):
 def matrix(values, digits=4, row_labels=None, column_labels=None):
     """A numeric matrix or vector as a LaTeX array, rounded to ``digits`` decimals without round-off
     (exact zeros as 0, no −0)."""
-    from .display import fmt
-
     try:
         a = np.atleast_2d(np.asarray(values, dtype=float))
     except (TypeError, ValueError):
         a = None
     if a is None or a.ndim != 2:
-        from ..errors import InputError
-
         raise InputError(f"matrix: `values` must be a vector or a matrix of real numbers, got {str(values)[:60]!r}")
 
     def cell(v):
@@ -516,10 +491,8 @@ def matrix(values, digits=4, row_labels=None, column_labels=None):
 def Math(tex):
     """IPython's ``Math`` display object (imported lazily so the library does not need IPython)."""
     if not isinstance(tex, str):
-        from ..errors import InputError
-
         raise InputError(f"Math: expected LaTeX text, got {type(tex).__name__}")
-    from IPython.display import Math as _Math
+    from IPython.display import Math as _Math  # optional dependency: IPython (the grading extra)
 
     return _Math(tex)
 
@@ -528,8 +501,6 @@ def local_points(mech):
     """Every point of every body with its local coordinates (ξ, η) — the book lists them for each joint of
     its examples — as a LaTeX array (body number, body, point, ξ_i^P, η_i^P)."""
     if not hasattr(mech, "bodies"):
-        from ..errors import InputError
-
         raise InputError(f"local_points: expected a mechanism, got {type(mech).__name__}")
     rows = []
     for b in mech.bodies:

@@ -27,6 +27,21 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..spatial import (
+    Cylindrical,
+    Ground,
+    Mechanism,
+    Normal1,
+    Normal2,
+    Parallel1,
+    Parallel2,
+    Revolute,
+    Spherical,
+    SphericalSpherical,
+    Translational,
+    Universal,
+    random_p,
+)
 from ..spatial import constraints as sc
 from ..spatial.rotations import A_from_p, E, dAa_dp
 
@@ -201,21 +216,6 @@ def bench():
     It does not assemble (the constraints contradict each other); it is a place to evaluate every type's
     rows at the same configurations.
     """
-    from ..spatial import (
-        Cylindrical,
-        Ground,
-        Mechanism,
-        Normal1,
-        Normal2,
-        Parallel1,
-        Parallel2,
-        Revolute,
-        Spherical,
-        SphericalSpherical,
-        Translational,
-        Universal,
-    )
-
     m = Mechanism("test bench: one constraint of each type")
     m.add_body("i", points={"P": (0, 0, 1), "B": (1, 0, 0)}, vectors={"s": (0, 0, 1), "h": (1, 0, 0)},
                q0=(0.5, -0.2, 1.0, 0.9, 0.1, -0.3, 0.2))  # q0: the ground constraint's r⁰, p⁰
@@ -239,8 +239,6 @@ def bench_states(mech, seed=145, scales=((1.0, 1.0), (1.25, 0.8))):
     """Seeded random states (q, q̇, q̈) of a two-body mechanism, one per entry of ``scales``: random positions,
     random unit Euler parameters times the scales (so p off the unit sphere too: the formulas hold for any p),
     random velocities and accelerations."""
-    from ..spatial import random_p
-
     rng = np.random.default_rng(seed)
     out = []
     for scale in scales:

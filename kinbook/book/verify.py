@@ -18,10 +18,11 @@ import numpy as np
 import sympy as sp
 
 from ..core.assembly import stack_params
+from ..errors import InputError
 from ..spatial import Mechanism as Spatial
 from . import table14
 from .display import TOL, agrees, clean, fmt, small, tolerance_text
-from .notation import S, as_sympy, from_book, html_math, latex
+from .notation import S, as_sympy, from_book, html_math, latex, spatial_form
 
 __all__ = ["Comparison", "compare", "random_states", "jacobian_fd", "gamma_path", "Check", "checks", "solution_table",
            "zero_on_sphere", "rate", "relative_dof", "motion_table", "columns", "Table", "jacobian_table",
@@ -367,8 +368,6 @@ class JointSummary:
     (:func:`joint_summary`). The polynomial in the Euler parameters is ``mech.derivation(name).Phi``."""
 
     def __init__(self, mech, q, constraint):
-        from .notation import latex, spatial_form
-
         c = mech.constraint(constraint) if isinstance(constraint, str) else constraint
         self.constraint, self.q = c, np.asarray(q, dtype=float)
         self.value = mech.Phi(self.q)[c.rows]
@@ -617,8 +616,6 @@ def newton_table(history, tol=TOL):
     Table
     """
     if not all(hasattr(history, a) for a in ("residual", "step", "cond", "t")):
-        from ..errors import InputError
-
         raise InputError(f"newton_table: expected the history of solve_position(..., history=True), got "
                          f"{type(history).__name__}")
     rows = [[str(k), small(r, tol), small(s, tol), f"{c:.3g}"]

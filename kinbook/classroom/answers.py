@@ -10,6 +10,8 @@ from __future__ import annotations
 import ast
 import re
 
+import numpy as np
+
 __all__ = ["shown_answer", "answer_cell", "mistake_rows", "describe", "MAX_ANSWER_CHARS", "MAX_CELL_CHARS"]
 
 MAX_ANSWER_CHARS = 2000
@@ -25,8 +27,6 @@ def shown_answer(value):
     """A decoded answer as bounded text: a sympy matrix or a nested list row by row, an array with 6 significant
     digits."""
     try:
-        import numpy as np
-
         if isinstance(value, np.ndarray):
             if value.dtype == object:
                 return _clip("\n".join(str(list(r)) if getattr(r, "shape", ()) else str(r) for r in value),

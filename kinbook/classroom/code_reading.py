@@ -8,6 +8,7 @@ from __future__ import annotations
 import ast
 import re
 import sys
+from importlib.machinery import PathFinder
 
 __all__ = ["call_name", "dotted", "target_names", "literal_code", "parsed", "installed", "unfollowable",
            "constant_str", "literal_getattr", "value_path", "parse_cell", "Unread", "CODE_MAGICS", "INERT_MAGICS",
@@ -107,7 +108,6 @@ def installed(module):
     a module the notebook wrote to its own directory is not."""
     if module in sys.builtin_module_names or module in sys.modules:
         return True
-    from importlib.machinery import PathFinder
 
     try:
         return PathFinder.find_spec(module, [p for p in sys.path if p not in ("", ".")]) is not None
@@ -197,6 +197,7 @@ def parse_cell(code, budget):
         raise Unread()
     budget[0] -= len(code)
     try:  # magics, shell escapes and `?` help become Python as the kernel makes them before compiling
+        # optional dependency: IPython (the grading extra)
         from IPython.core.inputtransformer2 import TransformerManager
 
         code = TransformerManager().transform_cell(code)

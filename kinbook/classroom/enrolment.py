@@ -15,6 +15,7 @@ feedback know one student. A "released for another student" signal naming the st
 
 from __future__ import annotations
 
+from ..errors import GradingError
 from .files import id_key, student_id
 from .notebook import parse_submission
 from .results import Refused
@@ -42,7 +43,7 @@ def adopt(entry, roster, data):
     sid, problem = student_id(named)
     if problem or sid != named:
         return None
-    old, entry.student, entry._raw = entry.student, sid, sid
+    old, entry.student = entry.student, sid
     return old
 
 
@@ -50,8 +51,6 @@ def check_matches(entries, roster):
     """Stop (:class:`~kinbook.errors.GradingError`) when a roster knows none of the students the files name (at least
     two): the wrong roster, or the wrong ``--roster-id`` column — grading on would make everyone "not on the roster"
     and, for variants, every notebook "released for another student"."""
-    from ..errors import GradingError
-
     named = sorted({e.student for e in entries if e.student and e.status in (None, "superseded")})
     if len(named) < 2 or any(e.on_roster for e in entries):
         return

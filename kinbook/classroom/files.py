@@ -26,8 +26,10 @@ import unicodedata
 from dataclasses import dataclass, field
 
 from ..core.atomic import atomic_write  # the one writer (re-exported: the classroom's callers import it from here)
+from .choice import choose, kind_of_file
 from .ids import MAX_ID_CHARS, id_key
 from .ids import id_from_path as student_id  # the one id rule (kinbook.classroom.ids); this name kept for callers
+from .naming import compile_pattern, read_name
 from .results import Refused
 
 __all__ = ["atomic_write", "PUBLIC_FILE", "PUBLIC_DIR", "Entry", "collect", "read_entry", "shown", "student_id",
@@ -129,7 +131,6 @@ class Entry:
     base: str = ""
     signals: list = field(default_factory=list)
     order: tuple = ()
-    _raw: str = ""
     _named: bool | None = None
 
 
@@ -166,8 +167,6 @@ def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="la
     list of Entry
         In a stable order (by path).
     """
-    from .naming import compile_pattern
-
     if policy not in POLICIES:
         raise ValueError(f"policy must be one of {', '.join(POLICIES)}, got {policy!r}")
     rx = compile_pattern(pattern)
@@ -198,8 +197,6 @@ def collect(paths, exercise, *, max_bytes, pattern=None, roster=None, policy="la
 
 def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times):
     """The :class:`Entry` of one listed path: its student, attempt and time read from the path, or why not."""
-    from .naming import read_name
-
     readable = st is not None and problem is None
     e = Entry(shown(os.path.join(root, *parts)), root, parts, (st.st_dev, st.st_ino, st.st_size) if readable else None,
               "")
@@ -230,10 +227,9 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
     if known is not None and _look_alike(name.raw, known.student):
         known = None  # 'ａｌｉｃｅ' is not alice: only the same letters, in any case or Unicode form, are
     if known is not None:
-        e.student, e._raw, e.on_roster = known.student, known.student, True
+        e.student, e.on_roster = known.student, True
     else:
         e.student, bad = student_id(name.raw)
-        e._raw = name.raw
         e.on_roster = False if roster is not None else None
         if bad and problem is None:
             problem = ("bad-id", bad)
@@ -247,9 +243,6 @@ def _entry(parts, root, st, problem, exercise, rx, roster, max_bytes, file_times
 def _owner(e, parts, root, exercise, rx, roster):
     """Tie a file that is not a notebook to its student, when its path names one surely (an ``--id-pattern``, a
     student's folder, or an id on the roster); its status stays ``ignored``."""
-    from .choice import kind_of_file
-    from .naming import read_name
-
     name = read_name(parts, exercise, os.path.basename(os.path.realpath(root)), rx,
                      roster.knows if roster is not None else None)
     if name.raw is None:
@@ -276,8 +269,6 @@ def _attempts(entries, policy, exercise, max_bytes):
     — never a clash that zeroes the real one. Only where no spelling can be told real (``Ana`` and ``ana``, no
     roster) are all of them ``duplicate-id``. Several notebooks of one id are one submission's files or attempts
     (:func:`kinbook.classroom.choice.choose`)."""
-    from .choice import choose
-
     by_key = {}
     for e in entries:
         if e.student and e.status not in ("ignored",):

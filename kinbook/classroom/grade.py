@@ -25,12 +25,17 @@ import hashlib
 import os
 import signal
 import sys
+import threading
 import time
 import warnings
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from multiprocessing.util import Finalize
 
 import numpy as np
 
 from ..errors import GradingError, KinbookError
+from ..grading.catalogue import MISTAKES, explain
 from ..grading.item import seed_from
 from .answers import describe, mistake_rows
 from .editions import carry_over, class_would_be_tampered, earlier_sources, edition_of, editions
@@ -50,6 +55,10 @@ from .notebook import (
 from .reference_use import as_run, exercise_calls, reference_use
 from .release_kind import check_release_kinds, release_kinds, released_for
 from .results import STATUSES, PartGrade, Refused, SubmissionResult, stopped_notice, ungraded_notice, worst
+from .sandbox import Sandbox
+from .sandbox.bwrap import check
+from .sandbox.cgroup import machine_memory_mb
+from .sandbox.protocol import die_with_parent
 from .sanitize import clean, clean_result
 from .serialize import decode_answers
 from .variant import references, student_parameters
@@ -81,7 +90,7 @@ def _too_large(p, decoded):
     each reference row and its catalogued variants: 100 rows against a four-bar's Φ took 46 s of the grader's
     time, 2,000 rows some 15 minutes), and an answer with more than twice the reference's entries is wrong
     whatever they are."""
-    from ..grading.target import NotATarget, target_for
+    from ..grading.target import NotATarget, target_for  # import time: grading.target loads sympy
 
     try:
         if p.checker.against == "target":
@@ -105,8 +114,6 @@ def _too_large(p, decoded):
 
 def check_memory(memory):
     """Refuse a memory budget (MB) that is not positive or more than this machine has (before anything runs)."""
-    from .sandbox.cgroup import machine_memory_mb
-
     have = machine_memory_mb()
     if not memory > 0:
         raise GradingError(f"--memory must be a positive number of megabytes, got {memory!r}")
@@ -209,8 +216,6 @@ def grade_submission(source, submission, *, student=None, timeout=60.0, memory=1
     except Refused as exc:
         return _refused(source, entry, exc.status, exc.message)
     if sandbox is None:
-        from .sandbox import Sandbox
-
         with Sandbox(isolation) as sb:
             return clean_result(_grade_bytes(source, entry, data, timeout=timeout, memory=memory, generic=generic,
                                              reveal_hidden=reveal_hidden, sandbox=sb))
@@ -381,8 +386,6 @@ def _raised(cells, errors, only=None):
 def _hidden_verdict(result):
     """A hidden check's feedback: the verdict and, for each mistake found, its name and hint from the
     catalogue — never the checker's messages, which may quote the expected value."""
-    from ..grading.catalogue import MISTAKES, explain
-
     if result.passed:
         return "hidden check: correct"
     out = "hidden check: not correct"
@@ -402,11 +405,6 @@ _state = {}
 
 def _pool_init(source, isolation):
     """In each grading process of the pool: die with the batch's process, keep one sandbox for the run."""
-    from multiprocessing.util import Finalize
-
-    from .sandbox import Sandbox
-    from .sandbox.protocol import die_with_parent
-
     die_with_parent(os.getppid())
     # a pool that breaks terminates its processes (SIGTERM): exit through the `finally` clauses, which stop
     # the sandbox (everything in it is killed)
@@ -487,8 +485,6 @@ def grade(source, submissions, outdir="graded", *, timeout=60.0, memory=1000, jo
     src = load_source(source)
     references(src)  # an exercise that cannot be graded stops here, before any submission is run
     if isolation:
-        from .sandbox.bwrap import check
-
         check()
     else:
         warnings.warn(NO_ISOLATION_WARNING, RuntimeWarning, stacklevel=2)
@@ -567,8 +563,6 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
         previous_handler = signal.signal(signal.SIGTERM, _on_sigterm)
     try:
         if jobs <= 1 or len(todo) <= 1:
-            from .sandbox import Sandbox
-
             with Sandbox(isolation) as sb:
                 for entry in todo:
                     record(_one(src, entry, options, sb))
@@ -596,8 +590,6 @@ def _grade_run(src, book, run, plan, options, *, jobs, isolation, generic, progr
 
 
 def _main_thread():
-    import threading
-
     return threading.current_thread() is threading.main_thread()
 
 
@@ -631,9 +623,6 @@ def _run_pool(src, todo, options, jobs, isolation, record):
     """Grade ``todo`` in a process pool, at most ``2 * jobs`` submissions read ahead; a grading process that dies
     takes its submissions with it: those are graded again, each in a pool of its own, so that only the culprit
     is lost (and recorded as an error)."""
-    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-    from concurrent.futures.process import BrokenProcessPool
-
     def one_pool(batch, workers):
         lost = []
         pool = ProcessPoolExecutor(max_workers=workers, initializer=_pool_init, initargs=(src, isolation))

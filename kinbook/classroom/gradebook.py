@@ -55,10 +55,14 @@ import sqlite3
 import time
 from pathlib import Path
 
+from .. import __version__
 from ..errors import NewerGradebookError, NotAGradebookError
+from .enrolment import reattach
 from .files import atomic_write
 from .gradebook_failures import gradebook_error, must_exist, wait_for_lock
+from .notebook import source_from_bytes
 from .results import UNGRADED, PartGrade, SubmissionResult
+from .roster import FIELDS, Roster, Student
 from .sanitize import csv_field
 from .scores import Final, Rule, final
 
@@ -295,8 +299,6 @@ class Gradebook:
     # ----------------------------------------------------------------------------------------- recording
     def begin_run(self, source, isolation):
         """Record the start of a run; returns its id."""
-        from .. import __version__
-
         cur = self.db.execute("INSERT INTO runs (started, source, source_sha256, exercise, isolation, kinbook) "
                               "VALUES (?, ?, ?, ?, ?, ?)", (_now(), str(source.path), source.sha256, source.exercise,
                                                             isolation, __version__))
@@ -443,8 +445,6 @@ class Gradebook:
 
     def sources(self, exercise):
         """Every source of ``exercise`` kept (:meth:`keep_source`), most recent first: [Source]."""
-        from .notebook import source_from_bytes
-
         rows = self.db.execute("SELECT path, data FROM source_texts WHERE exercise = ? ORDER BY rowid DESC",
                                (exercise,)).fetchall()
         return [source_from_bytes(bytes(data), path) for path, data in rows]
@@ -462,8 +462,6 @@ class Gradebook:
         """Replace the stored roster (:class:`kinbook.classroom.roster.Roster`); results graded under an id it maps to
         one of its students move to that student (:func:`kinbook.classroom.enrolment.reattach`): returns [(old id,
         student)]."""
-        from .roster import FIELDS
-
         with self.db:
             self.db.execute("BEGIN IMMEDIATE")
             self.db.execute("DELETE FROM roster")
@@ -474,8 +472,6 @@ class Gradebook:
             self.db.executemany("INSERT INTO lms_points (header, points) VALUES (?, ?)",
                                 [(_utf8(c), float(p)) for c, p in getattr(roster, "points", {}).items()])
 
-        from .enrolment import reattach
-
         return reattach(self, roster)
 
     def reattached(self):
@@ -484,8 +480,6 @@ class Gradebook:
 
     def roster(self):
         """The stored roster, or None."""
-        from .roster import FIELDS, Roster, Student
-
         rows = self.db.execute(f"SELECT {', '.join(FIELDS)} FROM roster ORDER BY position").fetchall()
         points = dict(self.db.execute("SELECT header, points FROM lms_points"))
         return Roster([Student(*r) for r in rows], points=points) if rows else None

@@ -10,8 +10,10 @@ opens through these).
 
 from __future__ import annotations
 
+import errno
 import os
 import sqlite3
+import sys
 import time
 
 from ..errors import (
@@ -78,8 +80,6 @@ def _holder(book):
 
 
 def _stderr(line):
-    import sys
-
     print(line, file=sys.stderr, flush=True)
 
 
@@ -87,8 +87,6 @@ def gradebook_error(exc, path):
     """The :class:`~kinbook.errors.GradebookError` for an ``sqlite3.Error`` or ``OSError`` met on the gradebook
     ``path``: in the instructor's words, naming the file and what to do. Nothing recorded before is lost (every
     result is its own transaction)."""
-    import errno
-
     if isinstance(exc, GradebookError):
         return exc
     path = str(path)

@@ -28,6 +28,7 @@ import copy
 import hashlib
 import json
 import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -110,7 +111,7 @@ def load_source(path):
 
 def source_from_bytes(data, path):
     """:func:`load_source` of bytes read already (an earlier source the gradebook kept); ``path`` names it."""
-    import nbformat
+    import nbformat  # optional dependency: nbformat (the grading extra)
 
     path = Path(path)
     try:
@@ -365,9 +366,8 @@ def readable(data):
     if nb.get("nbformat") == 3:
         if len(cells or ()) > MAX_CELLS:
             raise Refused("too-large", f"the notebook has more than {MAX_CELLS:,} cells; not read")
-        import warnings
 
-        import nbformat
+        import nbformat  # optional dependency: nbformat (the grading extra)
 
         try:
             with warnings.catch_warnings():

@@ -35,6 +35,7 @@ import sys
 from dataclasses import dataclass, field
 
 from ..errors import GradingError
+from ..grading import MISTAKES
 from ..grading.item import CHECKERS, Item
 
 __all__ = ["Part", "part", "parameters", "reference_calls", "check_parameters", "recording", "MAX_POINTS"]
@@ -133,8 +134,6 @@ def _validate(name, points, answer, check, target, expected):
 
 def _tests(name, tests):
     """The question tests of part ``name`` as a list of (answer, code or None), each code a catalogued one."""
-    from ..grading import MISTAKES
-
     if tests is None:
         return []
     if not isinstance(tests, (list, tuple)) or len(tests) > 100:
@@ -180,7 +179,7 @@ def part(name, points, *, answer, check, target=None, expected=None, tests=None,
     shell = _shell()
     if shell is None:
         return result
-    from IPython.display import display
+    from IPython.display import display  # optional dependency: IPython (the grading extra)
 
     display(result)
     return None

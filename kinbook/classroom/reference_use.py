@@ -55,6 +55,9 @@ import builtins
 import functools
 import re
 from dataclasses import dataclass
+from pathlib import Path
+
+import kinbook
 
 from .code_reading import (
     IPYTHON_NOTEBOOK_CHARS,
@@ -586,10 +589,6 @@ def exercise_calls(segments):
 
 @functools.lru_cache(maxsize=1)
 def _kinbook_text():
-    from pathlib import Path
-
-    import kinbook
-
     return "\n".join(p.read_text(encoding="utf-8", errors="replace") for p in Path(kinbook.__file__).parent.rglob("*.py")
                      if "sandbox" not in p.parts)
 

@@ -29,6 +29,8 @@ import re
 
 import numpy as np
 
+from ..errors import KinbookError
+
 __all__ = ["encode", "dumps", "decode", "decode_answers", "DecodeError", "FUNCTIONS", "MAX_NODES", "MAX_DEPTH", "MAX_TEXT"]
 
 FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "exp", "log", "sqrt", "Abs", "sign")
@@ -104,7 +106,7 @@ def _rows(value, sp):
 
 def encode(value):
     """JSON-able data for one answer (see the module docstring). Runs inside the student's kernel."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     if isinstance(value, (bool, np.bool_)):
         return {"kind": "unsupported", "type": type(value).__name__}
@@ -179,7 +181,7 @@ def decode(record, name="answer"):
         a = np.array(vals, dtype=float).reshape(shape)
         return float(a) if not shape else a
     if kind == "sympy":
-        import sympy as sp
+        import sympy as sp  # import time: sympy only when needed
 
         if len(shape) != 2:
             raise DecodeError("a sympy answer must have a 2-d shape")
@@ -216,14 +218,13 @@ def _entry(t, budget, where):
     names = set()
     pieces = []
     _text(t, 0, budget, names, pieces)
-    from ..core import bounds, reader
-    from ..errors import KinbookError
+    from ..core import bounds, reader  # import time: core loads sympy
 
     reserved = set(reader.FUNCTIONS) | set(reader.ALIASES) | set(reader.CONSTANTS)
     clash = sorted(names & reserved)
     if clash:
         raise DecodeError(f"{where}: a symbol is named like a function or constant ({clash[0]!r})")
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     limits = dataclasses.replace(bounds.DEFAULT_LIMITS, length=40 * MAX_NODES, nodes=MAX_NODES, digits=MAX_DIGITS + 1,
                                  depth=2 * MAX_DEPTH + 10)

@@ -19,6 +19,8 @@ from io import BytesIO
 
 import numpy as np
 
+from .atomic import atomic_write
+
 __all__ = ["Animation", "render_frames", "apng", "degrees_as_read", "swings_about_zero"]
 
 
@@ -70,7 +72,7 @@ def _degrees(radians):
 
 
 def _agg_canvas(fig):
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # import time: matplotlib only when needed
 
     if not isinstance(fig.canvas, FigureCanvasAgg):  # a closed pyplot figure: savefig would do the same
         FigureCanvasAgg(fig)
@@ -123,7 +125,7 @@ def apng(frames, interval, colors=None):
         Reduce every frame to one shared palette of this many colours (at most 256; no dithering): smaller for
         shaded 3D views. The palette is taken from the first, middle and last frames side by side.
     """
-    from PIL import Image
+    from PIL import Image  # import time: PIL only when needed
 
     images = [Image.fromarray(np.ascontiguousarray(f), "RGB") for f in frames]
     if colors:
@@ -173,8 +175,6 @@ class Animation:
 
     def save(self, path):
         """Write the animated PNG to ``path`` (a ``.png`` file any browser plays), whole or not at all."""
-        from .atomic import atomic_write
-
         atomic_write(path, self.to_png())
 
     def _repr_png_(self):

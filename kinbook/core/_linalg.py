@@ -52,7 +52,7 @@ def scalar_time(t):
 def solve_linear(J, b):
     """Solve J x = b for one square system, dense or sparse. Returns None when J is singular."""
     import scipy.linalg as sla  # imported when first needed: scipy adds about half a second to `import kinbook`
-    import scipy.sparse.linalg as spla
+    import scipy.sparse.linalg as spla  # import time: scipy only when needed
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", sla.LinAlgWarning)
@@ -104,7 +104,7 @@ def column_scale(mech):
 def scaled(J, cols):
     """D_r J D_c: columns times ``cols``, then each row divided by its norm (a zero row stays zero)."""
     if hasattr(J, "tocsc"):
-        import scipy.sparse as sps
+        import scipy.sparse as sps  # import time: scipy only when needed
 
         Jc = J @ sps.diags(cols)
         rn = np.sqrt(np.asarray(Jc.multiply(Jc).sum(axis=1)).ravel())
@@ -124,7 +124,7 @@ def scaled_rcond(mech, J, cols=None):
             return 0.0
         s = np.linalg.svd(Js, compute_uv=False)
         return float(s[-1] / s[0]) if s.size and s[0] > 0 else 0.0
-    import scipy.sparse.linalg as spla
+    import scipy.sparse.linalg as spla  # import time: scipy only when needed
 
     try:
         with warnings.catch_warnings():

@@ -87,7 +87,7 @@ def symbolic_leaves(*values):
     the caller then takes its symbolic path — after checking that no entry is text: sympy's Matrix, cos …
     would evaluate text as Python (``sp.Matrix([x, "__import__('os')…"])`` runs it). Sympy entries get the
     bounds of :func:`kinbook.core.bounds.check_expression`."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     leaves, stack = [], list(values)
     while stack:
@@ -102,7 +102,7 @@ def symbolic_leaves(*values):
             leaves.append(v)
     if not any(isinstance(v, sp.Basic) for v in leaves):
         return False
-    from .bounds import check_expression
+    from .bounds import check_expression  # import time: core.bounds loads sympy
 
     for v in leaves:
         if isinstance(v, (str, bytes)):

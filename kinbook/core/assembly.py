@@ -112,7 +112,7 @@ def evaluate(mech, q, t=0.0, qd=None, *, jacobian=True, sparse=False, reduced=Fa
         if qdb.shape[0] != Bn:
             raise InputError(f"`qd` has {qdb.shape[0]} rows but `q` has {Bn}")
     m = mech.m
-    groups, drivers, wrap = mech._compiled
+    groups, drivers, wrap = mech.compiled
     Phi = np.zeros((Bn, m))
     gamma = np.zeros((Bn, m)) if qdb is not None else None
     nu = np.zeros((Bn, m))
@@ -156,8 +156,8 @@ def _jacobian(mech, groups, values, Bn, sparse, reduced):
         cols = np.concatenate([g.jac_cols for g in groups])
         data = np.concatenate([v[0] for v in values])
         return sps.csr_matrix((data, (rows, cols)), shape=(m, n))
-    if reduced and mech._reduction is not None:
-        rows, cols = mech._reduction
+    if reduced and mech.reduction is not None:
+        rows, cols = mech.reduction
         J = np.zeros((Bn, len(rows) * len(cols)))
         for g, v in zip(groups, values):
             keep, flat = g.reduced_index(rows, cols, m, n)

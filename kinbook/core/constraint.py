@@ -338,16 +338,16 @@ class ConstraintBase(abc.ABC):
 
     def point(self, Q, key):
         """Symbolic global position of the declared point ``key`` (r + A s')."""
-        return self._global_point(Q[self.roles.index(self.points[key])], getattr(self, key))
+        return self.global_point(Q[self.roles.index(self.points[key])], getattr(self, key))
 
     def vector(self, Q, key):
         """Symbolic global components of the declared body-fixed vector ``key`` (A s')."""
-        return self._global_vector(Q[self.roles.index(self.vectors[key])], getattr(self, key))
+        return self.global_vector(Q[self.roles.index(self.vectors[key])], getattr(self, key))
 
-    def _global_point(self, Qb, s):
+    def global_point(self, Qb, s):
         raise NotImplementedError
 
-    def _global_vector(self, Qb, s):
+    def global_vector(self, Qb, s):
         raise NotImplementedError
 
     def _f_expr(self, t):
@@ -397,10 +397,10 @@ class ConstraintBase(abc.ABC):
         measures = [v.measures for v in views]
         self.measures = None if any(m is None for m in measures) else tuple(x for m in measures for x in m)
 
-    def _composite_phi(self, Q, t=t_symbol):
+    def composite_phi(self, Q, t=t_symbol):
         return [e for v in self.part_views() for e in v.phi(Q, t)]
 
-    def _composite_params(self):
+    def composite_params(self):
         return {k: v for view in self.part_views() for k, v in view.params().items()}
 
 

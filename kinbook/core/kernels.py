@@ -28,6 +28,7 @@ import copy
 
 import numpy as np
 import sympy as sp
+from sympy.printing.numpy import NumPyPrinter
 
 from ..errors import ModelError
 from .symbolic import t as t_symbol
@@ -175,8 +176,6 @@ def _chain(exprs, q, qd, jacobian=True, gamma=True):
 def _printer():
     """lambdify's numpy printer, writing the terms of a sum in the order sympy stores them — a fixed order;
     sorting them for display, the default, took half the time of printing a kernel."""
-    from sympy.printing.numpy import NumPyPrinter
-
     return NumPyPrinter({"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True,
                          "user_functions": {}, "order": "none"})
 

@@ -312,7 +312,9 @@ class MechanismBase:
 
     # ------------------------------------------------------------------------------------------- numerics
     @property
-    def _compiled(self):
+    def compiled(self):
+        """The numeric model, compiled once (:func:`kinbook.core.assembly.compile`): (constraint groups by kernel,
+        drivers, wrapped rows)."""
         found = self._cache.get("compiled")
         return found if found is not None else self.cached("compiled", self._compile)
 
@@ -335,7 +337,7 @@ class MechanismBase:
         return [(b, own[b.name]) for b in self.bodies if sum(c.n_eq for c in own.get(b.name, [])) == ncoord]
 
     @property
-    def _reduction(self):
+    def reduction(self):
         """(free rows, free columns) of Φ_q once the *fixed* bodies are set aside, or None if there are none.
 
         A body is fixed when time-independent constraints acting on it alone have as many equations as it has
@@ -407,7 +409,7 @@ class MechanismBase:
         -------
         dict with 'Phi' (…, m), 'Phi_q' (…, m, n) — a scipy CSR matrix when ``sparse`` (one instant) —
         'nu' (…, m) and 'gamma' (…, m) (None without ``qd``). With ``reduced``, 'Phi_q' leaves out the rows
-        and columns of the fixed bodies (``_reduction``), the system the solvers factor.
+        and columns of the fixed bodies (``reduction``), the system the solvers factor.
         """
         for name, flag in (("jacobian", jacobian), ("sparse", sparse), ("reduced", reduced)):
             if not isinstance(flag, (bool, np.bool_)):  # a truthy text such as "no" would switch it on

@@ -29,10 +29,12 @@ from __future__ import annotations
 
 import ast
 import math
+import numbers
 import operator
 import re
 from collections.abc import Mapping
 
+import mpmath
 import sympy as sp
 
 from ..errors import ExpressionError
@@ -434,8 +436,6 @@ class _Reader:
 
     def float_value(self, node):
         """A numeric call as a sympy Float of 20 digits, computed by mpmath on the tree at fixed precision."""
-        import mpmath
-
         with mpmath.workdps(30):
             try:
                 z = mpmath.mpc(self.mp(node, mpmath))
@@ -556,8 +556,6 @@ def read_constant(value, *, where, symbolic=False, limits=None):
         check_expression(value, where=where, limits=limits)
         expr = value
     else:
-        import numbers
-
         if isinstance(value, numbers.Real) and not isinstance(value, numbers.Integral):  # numpy floats …
             return read_constant(float(value), where=where, limits=limits)
         if isinstance(value, numbers.Integral):
@@ -581,8 +579,6 @@ def _real_value(expr, value, where):
     """The value of a numeric sympy expression as a float, computed by mpmath at a fixed 30 digits (sympy's
     adaptive ``evalf`` can take minutes on nested logarithms of negative numbers); refuses complex and
     non-finite values."""
-    import mpmath
-
     with mpmath.workdps(30):
         try:
             z = mp_value(expr, mpmath)

@@ -196,9 +196,9 @@ def declare_composite(cls, base):
         ms = [p.measures for p, _ in parts]
         cls.measures = None if any(m is None for m in ms) else tuple(x for m in ms for x in m)
     if "phi" not in cls.__dict__:
-        cls.phi = base._composite_phi
+        cls.phi = base.composite_phi
     if "params" not in cls.__dict__:
-        cls.params = base._composite_params
+        cls.params = base.composite_params
 
 
 def register(cls):

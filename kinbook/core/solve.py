@@ -266,7 +266,7 @@ def _assembly_gap(mech, q0, t, tol):
     vague = "The mechanism may not assemble there, or q0 is too far from a solution."
     if mech.n > 500 or not np.all(np.isfinite(q0)):
         return vague
-    from scipy.optimize import least_squares
+    from scipy.optimize import least_squares  # import time: scipy only when needed
 
     def phi(x):
         return mech.evaluate(x, t, jacobian=False)["Phi"]

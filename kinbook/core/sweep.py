@@ -98,12 +98,12 @@ def _batch_solve(mech, guess, T, tol, max_iter=8):
     converged and solves the stacked linear systems (numpy's batched LU: one solve costs a third of an
     inverse). Φ_q and ν at the converged configuration then give q̇, and γ there gives q̈. With Taylor guesses
     from a nearby solved instant one step usually suffices. Fixed bodies are set aside
-    (:attr:`MechanismBase._reduction`): only the other rows and columns of Φ_q enter the solves.
+    (:attr:`MechanismBase.reduction`): only the other rows and columns of Φ_q enter the solves.
 
     Returns (q, qd, qdd, converged); rows that did not converge hold garbage.
     """
     q = guess.copy()
-    red = mech._reduction
+    red = mech.reduction
     rows, cols = red if red is not None else (np.arange(mech.m), np.arange(q.shape[1]))  # ``reduced=True`` Φ_q's
     with np.errstate(all="ignore"):
         J, nu, P, conv = _batch_newton(mech, q, T, tol, max_iter, rows, cols)

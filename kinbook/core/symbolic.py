@@ -18,6 +18,12 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
+from ..errors import DriverValueError
+from ..i18n import N_, Message
+from .arrays import symbolic_leaves
+from .bounds import check_expression, refuse
+from .reader import read_constant, read_expression
+
 __all__ = ["Derivation", "derive", "time_function", "time_derivatives", "real_or_nan", "derivative_sizes", "DERIVATIVE_PARTS",
            "lambdify_vector"]
 
@@ -85,8 +91,6 @@ def derive(Phi, q, qd, time=t):
     >>> d.Phi_q, d.nu, d.gamma
     (Matrix([[2*x]]), Matrix([[cos(t)]]), Matrix([[-2*dx**2 - sin(t)]]))
     """
-    from .arrays import symbolic_leaves
-
     symbolic_leaves(Phi, q, qd)  # refuses text, which sympy's Matrix would evaluate as Python
     Phi = sp.Matrix(Phi)
     q = sp.Matrix(q)
@@ -135,10 +139,6 @@ def time_function(f, where, time=t):
         two continuous derivatives for ν and γ). ``Abs`` is accepted: its kink is reported, as a
         :class:`~kinbook.errors.DriverValueError`, only at an instant an analysis asks f'' there.
     """
-    from ..i18n import N_, Message
-    from .bounds import check_expression, refuse
-    from .reader import read_constant, read_expression
-
     key = (f if isinstance(f, (str, sp.Basic)) else None, time)
     if key[0] is not None and key in _VALID:  # a mechanism of many bodies repeats the same few functions
         return _VALID[key]
@@ -190,9 +190,6 @@ _VALID = {}  # (text or expression, time symbol) -> the validated expression
 def _check_numpy(expr, time, where, text):
     """Refuse a function that numpy cannot evaluate with its derivatives: they are compiled here (cached) and
     evaluated once, so that a printer gap shows when the driver is built."""
-    from ..i18n import N_, Message
-    from .bounds import refuse
-
     error = None
     try:
         with np.errstate(all="ignore"):
@@ -209,9 +206,6 @@ def _check_numpy(expr, time, where, text):
 def _check_derivative_size(expr, time, where, text):
     """Refuse, before sympy differentiates, a function whose second derivative would exceed
     :data:`DERIVATIVE_PARTS` (a few hundred bytes of text can take sympy minutes)."""
-    from ..i18n import N_, Message
-    from .bounds import refuse
-
     size = derivative_sizes(expr, time)[2]
     if size > DERIVATIVE_PARTS:
         refuse(where, Message(N_("the function of time {text} is too involved to differentiate: its second derivative "
@@ -320,8 +314,6 @@ def _checked(f, k, expr, where):
         with np.errstate(all="ignore"):
             v = f(tt)
         if not np.all(np.isfinite(v)):
-            from ..errors import DriverValueError
-
             v = np.asarray(v, dtype=float)
             first = int(np.flatnonzero(~np.isfinite(v))[0])
             t_bad = float(np.broadcast_to(np.asarray(tt, dtype=float), v.shape).flat[first])

@@ -33,7 +33,7 @@ def path(name):
 
 def load(name):
     """Load a shipped example mechanism by name, e.g. ``"ch13_example1"``."""
-    from ..files import loads
+    from ..files import loads  # import time: files loads numpy and sympy
 
     p = path(name)
     return loads(p.read_text(encoding="utf-8"), source=f"{name}.toml")

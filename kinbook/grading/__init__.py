@@ -19,23 +19,22 @@ A check runs one way through small stages, each one concept in one module. The m
 * the face — ``checks`` (check_phi, check_jacobian, check_nu, check_gamma: the pipeline of Φ, Φ_q, ν, γ),
   ``item`` (one graded item and the table of checkers), ``quantities`` (Φ, Φ_q, ν, γ declared once);
 * target — ``target`` (what is graded against: a mechanism or one constraint, its cached reference);
-* read — ``read`` (the safe reader of answers: text, sympy, a function, numbers), ``rounding`` (decimals that
-  are the exercise's constants rounded);
+* read — ``read`` (the safe reader of answers: text, sympy, a function, numbers; and the answer as it was read,
+  shown before the verdict), ``rounding`` (decimals that are the exercise's constants rounded);
 * sample — ``sample`` (seeded configurations on the manifold);
 * evaluate — ``evaluate`` (answer and reference at the samples), ``jets`` (values and derivatives of an
   expression without deriving it);
-* match — ``match`` (the one equivalence rule), ``compare`` (the tolerances and the constant-multiple rule),
-  ``equivalence`` (equivalent formulations and vanishing factors), ``factors`` (the real zeros of a row's
-  factors over the whole domain, solved or searched);
+* match — ``match`` (the one equivalence rule), ``equivalence`` (when an answer row is a reference row: the
+  tolerances and the constant-multiple rule, equivalent formulations and vanishing factors), ``factors`` (the
+  real zeros of a row's factors over the whole domain, solved or searched);
 * after-match — ``aftermatch`` (the steps a quantity declares);
 * diagnose — ``diagnose`` (naming the mistake), ``mistakes`` (wrong answers generated from the reference),
   ``slips`` (more of them), ``misprints`` (the book's misprinted formulas), ``turns`` (a row that measures no
   angle turned by whole turns);
 * witness — ``witness`` (rows checked again where no one could have looked);
 * diagnose, continued — ``mutant_names`` (names for the slips the mutants stand for);
-* report — ``echo`` (the answer as it was read, shown before the verdict), ``report`` (the verdict written),
-  ``result`` (CheckResult, RowResult), ``catalogue`` (every mistake's code, title and hint), ``_i18n`` (sentences
-  written when shown);
+* report — ``report`` (the verdict: CheckResult, RowResult, and how they are written), ``catalogue`` (every
+  mistake's code, title and hint), ``_i18n`` (sentences written when shown);
 * numbers — ``numbers`` (read, tolerances, compare entry by entry, name the slip), under ``values``
   (check_value), ``rotation_values`` (check_rotation, check_euler_parameters), ``newton`` (check_iterates) and
   ``expected`` (expected numbers that know their mistakes);
@@ -54,14 +53,14 @@ from .item import CHECKERS
 _FROM = {
     "check_phi": "checks", "check_jacobian": "checks", "check_nu": "checks", "check_gamma": "checks",
     "check_value": "values", "check_rotation": "rotation_values", "check_euler_parameters": "rotation_values",
-    "nbgrader_score": "lms", "assert_passed": "lms", "CheckResult": "result", "RowResult": "result",
+    "nbgrader_score": "lms", "assert_passed": "lms", "CheckResult": "report", "RowResult": "report",
     "MISTAKES": "catalogue", "explain": "catalogue", "set_language": "_i18n", "get_language": "_i18n",
 }
 
 
 _CHECKS = {"check_phi": "phi", "check_jacobian": "jacobian", "check_nu": "nu", "check_gamma": "gamma",
            "check_value": "value", "check_rotation": "rotation", "check_euler_parameters": "euler_parameters"}
-"""The package's checkers are the table's: their results show the answer as it was read (:mod:`.echo`)."""
+"""The package's checkers are the table's: their results show the answer as it was read (:func:`.read.echoed`)."""
 
 
 def __getattr__(name):

@@ -12,6 +12,8 @@ A module adds its own templates with :func:`add_texts` (``{"key": N_("…")}``).
 
 from __future__ import annotations
 
+import importlib
+
 from ..i18n import LANGUAGES, N_, Contextual, Message, Np_, Plural, get_language, pN_, set_language, translate
 
 __all__ = ["set_language", "get_language", "tr", "Msg", "render", "both", "constraint_label", "row_name",
@@ -286,8 +288,6 @@ _OWNERS = ("catalogue", "expected", "numbers", "newton")
 def _register_all():
     """Load every module that registers templates: ``kinbook.grading`` loads its modules when first used, and a
     sentence of one module may be made in another (the catalogue's ``d.…`` details in the mistakes)."""
-    import importlib  # here: those modules import this one
-
     for name in _OWNERS:
         importlib.import_module(f"{__package__}.{name}")
 

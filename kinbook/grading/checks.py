@@ -22,11 +22,13 @@ from __future__ import annotations
 import numbers
 
 import numpy as np
+import sympy as sp
 
 from . import aftermatch, diagnose, evaluate, match, report, rounding, sample, turns, witness
 from ._i18n import Msg
 from .quantities import quantity_of
 from .read import Refused, as_numbers, read
+from .report import CheckResult
 from .target import NotATarget, target_for
 
 __all__ = ["check_phi", "check_jacobian", "check_nu", "check_gamma"]
@@ -347,10 +349,6 @@ _CONFIRM_OPS = 200
 def _confirm(result, target, A, m, quantity="Phi"):
     """Confirm matched rows symbolically where they are small (a size budget: larger ones are only compared
     numerically, which decides the verdict anyway)."""
-    import sympy as sp
-
-    from .result import CheckResult
-
     Q = quantity_of(quantity)
     pairs, skipped = [], 0
     for r in m.rows:
@@ -381,4 +379,4 @@ def _confirm(result, target, A, m, quantity="Phi"):
     note = Msg("symbolic_confirmed") if ok and not unconfirmed else \
         Msg("symbolic_unconfirmed", n=unconfirmed, N=target.samples("assembled").N)
     return CheckResult(result.passed, result.score, list(result.notes) + [note], result.mistakes, result.rows,
-                       result._quantity, result.columns)
+                       result.quantity_msg, result.columns)

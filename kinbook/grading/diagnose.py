@@ -9,14 +9,15 @@ spoils both rows of a revolute joint is one "sign error", not a "sign error" and
 from __future__ import annotations
 
 import itertools
+import re
 
 import numpy as np
+import sympy as sp
 
 from . import mistakes as M
 from . import mutant_names, slips
 from ._i18n import Msg
-from .compare import same, scale_match, scale_of
-from .equivalence import in_span
+from .equivalence import in_span, same, scale_match, scale_of
 from .quantities import applies, quantity_of
 from .rounding import distinct_leaves
 
@@ -103,8 +104,6 @@ def where(target, Q, names):
 def _vanishing_detail(target, answer, r):
     """What vanishes where (a row accepted only up to a factor f(q) that is zero somewhere): the factor of a
     symbolic row that is zero there, the coordinates it depends on, and the reference row that is not zero."""
-    import sympy as sp
-
     Q, T, refs = r.where
     j, value = next(((j, v) for j, v in refs.items() if abs(v) > 0), next(iter(refs.items())))
     factor = None
@@ -201,8 +200,6 @@ def _structural_phi(target, data, wrong, free, rtol):
 def _also_a_sign(target, data, r, j, rtol):
     """Aᵀ for A that changes one row only can be the same expression as one term's sign slipped (a translational
     joint's cross product written with + for −): both readings are given, not only Aᵀ."""
-    import sympy as sp
-
     G = target.samples("generic")
     row = target.symbolic_phi()[j]
     terms = sp.Add.make_args(row)  # the row as written (a cross product's two products), then expanded
@@ -253,8 +250,6 @@ def _alternative_phi(target, data, wrong, free, rtol):
 def term_variants(expr):
     """Single and double sign flips ("sign_flip") and single dropped terms ("missing_term") of one expression,
     each with the term concerned; none for rows of more than :data:`MAX_TERMS` terms."""
-    import sympy as sp
-
     if sp.count_ops(expr) > _MAX_OPS:
         return []
     terms = sp.Add.make_args(sp.expand(expr))
@@ -277,10 +272,9 @@ def _term_detail(code, term):
     that instead: the term written out is the answer's last step)."""
     if term is None:
         return None
-    import sympy as sp
 
     text = sp.sstr(term).replace("phi", "φ").replace("**", "^")
-    return Msg("d.sign_of_term" if code == "sign_flip" else "d.missing_term", term=text, kind=slips.term_kind(term))
+    return Msg("d.sign_of_term" if code == "sign_flip" else "d.missing_term", term=text, kind=term_kind(term))
 
 
 def _terms_phi(target, data, wrong, free, rtol):
@@ -647,7 +641,6 @@ def _terms_derived(target, ex, r, own, S, expected, rtol):
     Jacobian of — derived with sympy only for small rows."""
     if r.ref is None or own is not None:
         return None
-    import sympy as sp
 
     Phi = target.symbolic_row(r.ref)
     if sp.count_ops(Phi) > 60:
@@ -701,3 +694,29 @@ def entries(S, E, rtol, row_code, cands):
     relevant = [i for i in range(w) if scale_of(E[:, i]) > 1e-12 or scale_of(S[:, i]) > 1e-12]
     good = sum(1 for i in relevant if out[i] == "ok")
     return tuple(out), (good / len(relevant) if relevant else 0.0)
+
+
+def term_kind(term):
+    """What sort of term a sympy term of a row is, as a Msg that does not write it: a constant, a term of time
+    alone (a driver's function), quadratic or linear in the velocities, of a body's rotation or of its origin —
+    with the bodies it involves ("a term quadratic in the velocities, of body 2")."""
+    names = {s.name for s in term.free_symbols}
+    velocities = [n for n in names if n.startswith("d") and n != "t"]
+    coordinates = [n[1:] if n in velocities else n for n in names if n != "t"]
+    bodies = sorted({int(m.group(2)) for n in coordinates if (m := re.fullmatch(r"(e[0-3]|[a-z]+)(\d+)", n))})
+    if not names:
+        kind = "k.constant"
+    elif names == {"t"}:
+        kind = "k.time"
+    elif velocities:
+        vel = [v for v in term.free_symbols if v.name in velocities]
+        deg = max(sp.Poly(a, *vel).total_degree() for a in sp.Add.make_args(sp.expand(term)))
+        kind = "k.velocity_squared" if deg >= 2 else "k.velocity"
+    elif any(n.startswith(("phi", "e0", "e1", "e2", "e3", "psi", "theta")) for n in names):
+        kind = "k.rotation"
+    else:
+        kind = "k.origin"
+    what = Msg(kind)
+    if bodies:
+        return Msg("k.of_bodies", what=what, bodies=", ".join(str(b) for b in bodies), n=len(bodies))
+    return what

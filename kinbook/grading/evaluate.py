@@ -13,6 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._i18n import Msg
+from .factors import starts
 from .quantities import quantity_of
 from .read import Refused
 
@@ -90,8 +92,6 @@ def _finite(S, target, what):
 
 
 def _row_where(target, k, ms):
-    from ._i18n import Msg
-
     return Msg("your_row", k=k + 1)
 
 
@@ -137,7 +137,7 @@ def phi_data(target, answer):
             mask[ncoord * (b.number - 1): ncoord * b.number] = True
         cols.append(mask)
     def together(indices):
-        from .target import group_target
+        from .target import group_target  # import time: grading.target loads sympy
 
         g = group_target(target.mech, [target.constraints[i] for i in indices])
         s = g.samples("assembled")
@@ -148,8 +148,7 @@ def phi_data(target, answer):
         :func:`~kinbook.grading.sample.zeros`, or (``k`` given) from the zeros of row k's factors over the whole
         domain (:mod:`~kinbook.grading.factors`) — with the reference rows of constraint i there, at the
         placement (a turn of 2π, −p) where they are least."""
-        from .factors import starts
-        from .sample import Samples, placements, zeros
+        from .sample import Samples, placements, zeros  # import time: grading.sample loads sympy
 
         own = target.own_target(target.constraints[i])
 
@@ -177,7 +176,7 @@ def phi_data(target, answer):
         return PQ[best], PT[best], wrapped[best]
 
     def book(i):
-        from .mistakes import book_form
+        from .mistakes import book_form  # import time: grading.mistakes loads sympy
 
         return book_form(target, target.constraints[i])
 

@@ -18,13 +18,20 @@ few cells above, the other assembly mode), :func:`stack` joins several into one 
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import InputError
 from ..i18n import N_
+from ..planar import transforms as T
+from ..spatial import rotations as R
+from . import mistakes as M
 from ._i18n import Msg, add_texts
 from .misprints import book_A_of_p
+from .quantities import QUANTITIES
+from .target import target_for
 
 __all__ = ["Expected", "stack", "A", "point_position", "point_velocity", "point_acceleration", "A_from_axes",
            "local_components", "global_components", "spatial_point_position", "A_from_euler", "euler_from_A",
@@ -137,8 +144,6 @@ def _term_flips(r, M, s, factor, terms, rows=("x^P", "y^P")):
 
 # ============================================================================================ planar (13.5)
 def _planar():
-    from ..planar import transforms as T
-
     return T
 
 
@@ -304,8 +309,6 @@ def rr_gamma(d, d_dot, c):
 
 # ============================================================================================ spatial (14.1-14.3)
 def _rot():
-    from ..spatial import rotations as R
-
     return R
 
 
@@ -360,8 +363,6 @@ def A_from_euler(psi, theta, phi):
 def euler_from_A(A_):
     """(ψ, θ, φ) of a rotation matrix (§14.2): the other triple (ψ ± π, −θ, φ ± π) is right too; wrong forms
     in degrees, ψ and φ exchanged (the extrinsic reading), the angles of Aᵀ."""
-    import warnings
-
     R = _rot()
     A_ = _v(A_)
     with warnings.catch_warnings():  # at sin θ = 0 only ψ ± φ is defined: the comparison is by A below
@@ -483,11 +484,6 @@ def constraint_values(constraint, quantity, q, qd=None, t=0.0, rows=None):
     Expected
         ``value``: the mechanism's own numbers (Φ_q with all n columns); variants as above.
     """
-    from ..errors import InputError
-    from . import mistakes as M
-    from .quantities import QUANTITIES
-    from .target import target_for
-
     if not isinstance(quantity, str) or quantity not in QUANTITIES:
         raise InputError(f"`quantity` must be 'Phi', 'Phi_q', 'nu' or 'gamma', got {quantity!r}")
     target = target_for(constraint)

@@ -55,7 +55,7 @@ def _factors(target, answer, k):
     expr = answer.entry(target, k)
     if expr is None:
         return None
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     if sp.count_ops(expr) > FACTOR_WORK:
         return None
@@ -172,7 +172,7 @@ def _roots_on_lines(F, lines):
 def _polynomial_roots(f, symbol):
     """Real roots of f as a polynomial in ``symbol`` alone, or None when it is not one (or its degree is
     above :data:`MAX_DEGREE`)."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     try:
         p = sp.Poly(f, symbol)
@@ -210,7 +210,7 @@ def starts(target, answer, k, cols=None, bases=BASES):
         variables = list(range(target.n) if cols is None else cols) + ([-1] if target.time_dependent else [])
         _search(target, F, s, B, variables, out_Q, out_T)
         return _stack(target, out_Q, out_T)
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     mech = target.mech
     for f in parts:

@@ -27,8 +27,8 @@ from typing import Any, Callable
 import numpy as np
 
 from ..errors import GradingError
-from .echo import echoed
 from .quantities import GAMMA, NU, PHI, PHI_Q, Quantity
+from .read import echoed
 
 __all__ = ["Checker", "CHECKERS", "checker_for", "Item", "seed_from", "draw", "draw_with"]
 
@@ -56,7 +56,7 @@ class Checker:
     implementation : callable or None
         The function itself (a checker declared outside kinbook.grading, docs/extending.md).
     echo : bool
-        Its results carry the answer as it was read (:func:`kinbook.grading.echo.echoed`), shown before the verdict.
+        Its results carry the answer as it was read (:func:`kinbook.grading.read.echoed`), shown before the verdict.
     """
 
     name: str

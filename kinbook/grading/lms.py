@@ -32,7 +32,7 @@ from __future__ import annotations
 import math
 import numbers
 
-from .result import CheckResult
+from .report import CheckResult
 
 __all__ = ["nbgrader_score", "assert_passed", "nbgrader_credit"]
 
@@ -153,7 +153,7 @@ def nbgrader_score(result, points):
             "so give each graded check its own autograder-test cell"
         )
     _published.add(cell)
-    from IPython.display import display
+    from IPython.display import display  # optional dependency: IPython (the grading extra)
 
     display(result)
     hook(_Credit(credit))

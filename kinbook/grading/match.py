@@ -31,8 +31,21 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .compare import RTOL, RTOL_NUMBERS, atol_of, nice, same, scale_match, scale_matrix, scale_of, zero_tol
-from .equivalence import equivalents, jacobian_equivalents, still_missing, vanishing
+from .equivalence import (
+    RTOL,
+    RTOL_NUMBERS,
+    atol_of,
+    equivalents,
+    jacobian_equivalents,
+    nice,
+    same,
+    scale_match,
+    scale_matrix,
+    scale_of,
+    still_missing,
+    vanishing,
+    zero_tol,
+)
 
 __all__ = ["RTOL", "RTOL_NUMBERS", "Row", "Matching", "scale_of", "scale_matrix", "match_phi", "match_rows",
            "nice", "same", "scale_match", "atol_of", "zero_tol", "vanishing", "jacobian_equivalents"]
@@ -102,7 +115,7 @@ def match_phi(data, rtol, order="any", wrap=None, turns=None):
         {reference row: period} of wrapped angle rows.
     turns : dict
         {reference row: 2π} of the other rows that measure an angle: ±1 times the row up to whole turns is
-        right too (:func:`~kinbook.grading.compare.scale_matrix`).
+        right too (:func:`~kinbook.grading.equivalence.scale_matrix`).
 
     Returns
     -------

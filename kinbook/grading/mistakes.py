@@ -27,7 +27,10 @@ import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
+import sympy as sp
 
+from .. import planar as P
+from .. import spatial as S
 from . import slips
 from ._i18n import Msg
 from .misprints import EX4_PHI8, book_n1_acceleration
@@ -310,8 +313,6 @@ def _frames(target, c, spec, Q, names):
 def _signs(target, c, spec, Q, names):
     """The sign of one local coordinate, of a whole A s', of a coordinate term, of a radius; a length for its
     square."""
-    import sympy as sp
-
     mech, add, safe, roles = target.mech, _add, _safe, "ijk"
     # the sign of one local coordinate, of a whole A s', of a coordinate term
     for attr, role in spec.points + spec.vectors:
@@ -353,8 +354,6 @@ def _signs(target, c, spec, Q, names):
 def _degrees_and_forms(target, c, spec, Q):
     """Degrees for radians (a constant angle, a driver's function), a driver's sign, the book's printed forms
     and the type's own extra variants."""
-    import sympy as sp
-
     mech, add, safe = target.mech, _add, _safe
     # degrees
     for attr in spec.angles:
@@ -391,8 +390,6 @@ def _frame_variant(rows, Q, roles, code, frame):
     """Rows with A(φ) / A(p) of the bodies ``roles`` transposed ("A_transposed": sin φ → −sin φ; e → −e) or
     left out ("local_vector": φ → 0 in A; p → [1, 0, 0, 0]); a planar row that reads an angle directly (a
     translational joint's φ_i − φ_j) keeps it — only A holds trigonometric functions of φ."""
-    import sympy as sp
-
     if frame == "planar":
         out = []
         for r in rows:
@@ -449,9 +446,6 @@ def length_factors(c, limit=12):
 
 # ============================================================================================ the registry
 def _defaults():
-    from .. import planar as P
-    from .. import spatial as S
-
     register(P.Revolute, Spec(swap_points=(("s_i", "s_j"),)))
     register(P.Translational, Spec(swap_bodies=True, book=(_book_translational_origin,),
                                    extra=(_book_translational_dot,), derived_book=(_book_table_13_2, _book_gamma_t)))
@@ -487,8 +481,8 @@ def _book_translational_origin(c):
 
 def _book_translational_dot(target, c, Q):
     """§13.5 before eq. 24: "multiplicando escalarmente" read literally, s_i · d instead of s_i × d."""
-    s = c._global_point(Q[0], c.s_Pi) - c._global_point(Q[0], c.s_Qi)
-    d = c._global_point(Q[1], c.s_Pj) - c._global_point(Q[0], c.s_Pi)
+    s = c.global_point(Q[0], c.s_Pi) - c.global_point(Q[0], c.s_Qi)
+    d = c.global_point(Q[1], c.s_Pj) - c.global_point(Q[0], c.s_Pi)
     rows = list(c.phi(Q, target.mech.t))
     yield ("book_misprint", [s[0] * d[0] + s[1] * d[1], rows[1]], None, "13.5-eq24")
 
@@ -514,8 +508,6 @@ def _gear_carrier_start(c):
 
 def _gear_fixed_carrier(target, c, Q):
     """Eq. 36 (a fixed carrier) used with a moving one: the carrier's turn missing."""
-    import sympy as sp
-
     Qs = [sp.Matrix(x) for x in Q]
     Qs[2][2] = c.phi0[2]
     yield ("missing_term", list(c.phi(Qs, target.mech.t)), None, None)
@@ -617,13 +609,13 @@ def _book_gamma_n1(target, c, s, ref, quantity):
 # ============================================================================================ the book's formulation
 def _cross_p1(c, Q):
     """The book's Φ^(p1,2) = s̃_i s_j (all three rows)."""
-    return list(c._global_vector(Q[0], c.a_i).cross(c._global_vector(Q[1], c.a_j)))
+    return list(c.global_vector(Q[0], c.a_i).cross(c.global_vector(Q[1], c.a_j)))
 
 
 def _cross_p2(c, Q):
     """The book's Φ^(p2,2) = s̃_i d (all three rows)."""
-    d = c._global_point(Q[1], c.P_j) - c._global_point(Q[0], c.P_i)
-    return list(c._global_vector(Q[0], c.a_i).cross(d))
+    d = c.global_point(Q[1], c.P_j) - c.global_point(Q[0], c.P_i)
+    return list(c.global_vector(Q[0], c.a_i).cross(d))
 
 
 def book_rows(c, Q, t):
@@ -665,8 +657,6 @@ def alternative_variants(target, c):
         return target.store[key]
     out = []
     if _has_alternative(c):
-        import sympy as sp
-
         mech = target.mech
         t = mech.t
         Q = [mech.body_symbols(b.name) for b in c.bodies]

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .compare import same, scale_match, scale_of
+from .equivalence import same, scale_match, scale_of
 from .mutants import expression_mutants, row_mutants
 from .quantities import quantity_of
 
@@ -155,7 +155,7 @@ def name_derived_row(target, ex, r, own, S, expected, rtol):
     the derivation, and of the expected ν or γ row itself: (code, None, None) of the one the row equals."""
     if r.ref is None or own is not None or isinstance(r.ref, tuple):
         return None
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     Phi = target.symbolic_row(r.ref)
     if sp.count_ops(Phi) > 200:
@@ -192,7 +192,7 @@ def name_entries(target, ex, r, S, entries, rtol):
     (a term's sign or a term dropped, sin ↔ cos, the other body's angle …: :func:`expression_mutants`)."""
     if r.ref is None or isinstance(r.ref, tuple):
         return entries
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     Phi = target.symbolic_row(r.ref)
     if sp.count_ops(Phi) > 200:

@@ -65,7 +65,7 @@ def mutants(reference, **options):
     """The mutants of a reference: :func:`expression_mutants` for sympy rows or a Matrix, :func:`value_mutants` for
     numbers. ``options`` go to the one called. (A worked answer's code is mutated by
     :mod:`kinbook.book.tryits.code_mutants`: the grading package runs no code.)"""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     if isinstance(reference, sp.MatrixBase) or (isinstance(reference, (list, tuple)) and reference
                                                and all(isinstance(x, sp.Basic) for x in reference)):
@@ -82,7 +82,7 @@ def reference_rows(target, quantity):
     lists, per constraint, its rows and its bodies' coordinate symbols (with their velocities) — the ``blocks`` of
     :func:`expression_mutants`; ``drivers`` the rows of Φ that drivers write.
     """
-    from .target import target_for
+    from .target import target_for  # import time: grading.target loads sympy
 
     t = target_for(target)
     mech = t.mech
@@ -110,7 +110,7 @@ def reference_rows(target, quantity):
 def samples_for(target, quantity):
     """(Q, QD, T): the configurations a checker compares ``quantity`` at — generic ones for Φ, assembled ones (with
     velocities that satisfy the velocity equations) for Φ_q, ν and γ (:meth:`kinbook.grading.target.Target.samples`)."""
-    from .target import target_for
+    from .target import target_for  # import time: grading.target loads sympy
 
     s = target_for(target).samples("assembled" if quantity_of(quantity).derived else "generic")
     return s.Q, s.QD, s.T
@@ -144,7 +144,7 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
         Also the slips made in A(φ) itself — Aᵀ for A, an angle in degrees, the other body's angle —, which in Φ_q,
         ν and γ are made in Φ and carried through the derivation instead (:func:`reference_mutants`).
     """
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     M = sp.Matrix(rows) if not isinstance(rows, sp.MatrixBase) else rows
     matrix = isinstance(rows, sp.MatrixBase) and M.shape[1] > 1
@@ -179,7 +179,7 @@ def expression_mutants(rows, *, quantity="Phi", groups=(), blocks=None, drivers=
 def _term_slips(M, matrix, add, quantity, qd, t, terms):
     """Each term's sign, each term dropped (``terms``), a factor 2 lost or (γ's squared rates) doubled — entry by
     entry."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     for (i, j) in itertools.product(range(M.shape[0]), range(M.shape[1])):
         e = M[i, j]
@@ -213,7 +213,7 @@ def _term_slips(M, matrix, add, quantity, qd, t, terms):
 
 def _angle_slips(M, add, entry_map, t, in_A):
     """sin ↔ cos of one angle; with ``in_A`` also Aᵀ for A, the angle in degrees, in radians of radians."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     angles = sorted({a.args[0] for a in M.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
     for a in angles:
@@ -272,11 +272,11 @@ def reference_mutants(target, quantity, limit=None):
     (:func:`kinbook.grading.mistakes.structural`) made in Φ — and, for Φ_q, ν and γ, carried through the
     derivation as a student carries them. ``limit``: at most 3 × ``limit`` are compared (:func:`sample`, every
     code kept), for a caller that grades ``limit`` of them."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
-    from ..core.symbolic import derive
-    from .mistakes import structural
-    from .target import target_for
+    from ..core.symbolic import derive  # import time: core.symbolic loads sympy
+    from .mistakes import structural  # import time: grading.mistakes loads sympy
+    from .target import target_for  # import time: grading.target loads sympy
 
     rows, q, qd, t, blocks, drivers = reference_rows(target, quantity)
     T = target_for(target)
@@ -331,7 +331,7 @@ def _dropped_code(term, quantity, qd, t):
 def _velocity_degree(term, qd):
     if not qd:
         return 0
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     try:
         return sp.Poly(term, *[v for v in qd if term.has(v)]).total_degree() if any(term.has(v) for v in qd) else 0
@@ -344,9 +344,9 @@ def distinct(found, reference, q=None, qd=None, t=None, *, rng=0, points=6, samp
     QD, T), the configurations the checker compares at (Φ_q, ν and γ on the assembled ones: a mutant equal there
     is right wherever the mechanism can be) — and with each repeated value counted once: a later mutant equal to
     an earlier one adds its code to the earlier one's :attr:`Mutant.also` (one wrong answer, two readings)."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
-    from .jets import Tape
+    from .jets import Tape  # import time: grading.jets loads sympy
 
     ref = sp.Matrix(reference)
     syms = sorted(ref.free_symbols | set().union(*[sp.Matrix(m.value).free_symbols for m in found] or [set()]),

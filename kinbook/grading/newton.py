@@ -17,8 +17,7 @@ from ..errors import InputError, KinbookError
 from ..i18n import N_, Np_
 from ._i18n import Msg, add_texts
 from .numbers import failed, read_numbers, real_option
-from .report import fmt, hints
-from .result import CheckResult, RowResult
+from .report import CheckResult, RowResult, fmt, hints
 
 __all__ = ["Problem", "check_iterates"]
 

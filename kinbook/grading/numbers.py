@@ -21,13 +21,13 @@ import numbers
 
 import numpy as np
 
-from ..errors import InputError
+from ..core.reader import read_number
+from ..errors import ExpressionError, InputError
 from ..i18n import N_, Message, Np_
 from ._i18n import Msg, add_texts
 from .expected import DEG, Expected
 from .read import Refused, numbers_of
-from .report import fmt, hints
-from .result import CheckResult, RowResult
+from .report import PRINTED, CheckResult, RowResult, fmt, hints
 
 __all__ = ["PLAUSIBLE_FACTORS", "real_option", "tolerances", "periodic_mask", "name_option", "angles_option", "reveal_option",
            "read_numbers", "expected_of", "close", "compare", "failed"]
@@ -168,8 +168,6 @@ def close(a, b, rtol, atol, periodic=None):
 def _texts(answer):
     """A text or a (nested) list of texts read as numbers through kinbook's reader ("pi/4", "-0.5"); None
     when the answer holds no text."""
-    from ..core.reader import read_number
-
     def walk(x, where):
         if isinstance(x, str):
             return read_number(x, where=Msg("answer_at", index=where))
@@ -190,8 +188,6 @@ def _texts(answer):
 def read_numbers(answer, name):
     """The answer as a float array of its own shape (refuses bools, complex values, objects; texts of numbers
     are read by kinbook's reader)."""
-    from ..errors import ExpressionError
-
     try:
         parsed = _texts(answer)
     except ExpressionError as exc:
@@ -295,8 +291,6 @@ def compare(answer, exp, rtol, atol, name, degrees=True, per=None, extra=None, r
     if note is not None:
         notes.append(note)
     if erratum:
-        from .report import PRINTED
-
         notes.append(Msg("book_misprint", id=erratum) if code in PRINTED else Msg("d.book_row", id=erratum))
     if detail is not None:
         notes.append(detail)

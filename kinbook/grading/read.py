@@ -20,19 +20,31 @@ code and a message saying what was expected — which the checker turns into a f
 Symbolic answers are evaluated by a :class:`~kinbook.grading.jets.Tape` (no code generation); the same tape
 gives, for a student's Φ, its Φ_q, ν and γ exactly. A function's are taken by finite differences with
 Richardson extrapolation (relative error ~1e-10).
+
+**The answer as read** (STACK's "your last answer was interpreted as"; at the bottom of this file): every check
+result carries the student's answer as kinbook read it — typeset in a notebook, plain text in a terminal and in
+the feedback pages — shown before the verdict, so that ``sin(phi2)*x1 - …`` typed with a slip is seen as what was
+parsed. :func:`echoed` wraps a checker: after it has run, the answer is read again by the checkers' own reader
+(:func:`read` for Φ, Φ_q, ν, γ; numbers as an array for the value checkers) and attached to the result
+(:attr:`kinbook.grading.report.CheckResult.read`) — lazily: the answer is read again and typeset only when the
+result is shown. An answer the reader refuses is not echoed: the result's message says what could not be read.
+:func:`tex_name` is the book's notation of a coordinate, the one rule :mod:`kinbook.book.notation` typesets with.
 """
 
 from __future__ import annotations
 
+import functools
 import inspect
 import numbers
+import re
+import sys
 
 import numpy as np
 
 from ._i18n import Msg
 from .quantities import quantity_of
 
-__all__ = ["Answer", "Refused", "read", "as_numbers", "numbers_of"]
+__all__ = ["Answer", "Refused", "read", "as_numbers", "numbers_of", "echoed", "read_as", "tex_name", "MAX_CHARS"]
 
 MAX_OUTPUT = 100_000
 """The most numbers a student's function may return per call (a guard, not a time limit)."""
@@ -118,7 +130,7 @@ class Answer:
     def tape(self, target):
         key = id(target)
         if key not in self._tapes:
-            from .jets import UnknownSymbol, UnsupportedExpression
+            from .jets import UnknownSymbol, UnsupportedExpression  # import time: grading.jets loads sympy
 
             try:
                 self._tapes[key] = target.tape(list(self.matrix), aliases=True)
@@ -142,7 +154,7 @@ class Answer:
         not per instant): :meth:`values` then returns each set's part."""
         if self.kind != "symbolic" or len(sets) < 2:
             return
-        from .sample import Samples
+        from .sample import Samples  # import time: grading.sample loads sympy
 
         joined = Samples(np.concatenate([s.Q for s in sets]), np.concatenate([s.QD for s in sets]),
                          np.concatenate([s.T for s in sets]))
@@ -178,7 +190,7 @@ class Answer:
 
     def jet(self, target, Q, T):
         """This answer read as rows Φ(q, t) at the instants (Q, T): values (B, k), Φ_q (B, k, n) and Φ_t (B, k)."""
-        from .sample import Samples
+        from .sample import Samples  # import time: grading.sample loads sympy
 
         s = Samples(Q, np.zeros_like(Q), T)
         if self.kind == "symbolic":
@@ -277,8 +289,6 @@ def _nargs(f, quantity):
 
 
 def _is_sympy(x):
-    import sys
-
     sp = sys.modules.get("sympy")
     return sp is not None and isinstance(x, (sp.Basic, sp.MatrixBase))
 
@@ -316,7 +326,7 @@ def numbers_of(value, what, **fields):
     """Real finite-or-not numbers as a 2-D float array; refuses bools, complex values, ragged or huge data."""
     where = what if isinstance(what, Msg) else Msg(what)
     if _is_sympy(value):
-        import sympy as sp
+        import sympy as sp  # import time: sympy only when needed
 
         if isinstance(value, sp.MatrixBase):
             value = [[_sympy_number(e, where) for e in value.row(k)] for k in range(value.rows)]
@@ -401,7 +411,7 @@ def _sympy_number(e, where):
 
 def _matrix(answer, symbols, quantity):
     """A sympy Matrix from text, sympy objects or (nested) lists of those and numbers."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     if isinstance(answer, sp.MatrixBase):
         M = _sympy_matrix(answer)
@@ -427,7 +437,7 @@ def _matrix(answer, symbols, quantity):
 
 def _sympy_matrix(M):
     """A student's sympy Matrix: one walk of the reader's bounds over all its entries (bounded in total)."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     ex = _reader()
     entries = M.tolist()
@@ -482,7 +492,7 @@ def _flat_row(r):
 
 
 def _entry(e, symbols, where):
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     ex = _reader()
     if isinstance(e, str):
@@ -544,3 +554,89 @@ def _finite_differences(F, s, h=1e-3):
     phi_t = rich1(np.zeros((N, n)), np.ones(N))
     gamma = -(4 * d2(h / 2) - d2(h)) / 3
     return {"Phi": phi, "Phi_q": jac, "nu": -phi_t, "gamma": gamma}
+
+
+# ================================================================================================ the answer as read
+MAX_CHARS = 2000
+"""An echo longer than this is cut (with "…")."""
+
+_COORD = re.compile(r"^(d?)(x|y|z|phi|e0|e1|e2|e3)(\d+)$")
+_TEX = {"x": "x", "y": "y", "z": "z", "phi": r"\varphi"}
+
+
+def tex_name(name, letters=None):
+    """The book's LaTeX for one of kinbook's coordinate names, or None for any other name: x1 → x_{1},
+    phi2 → \\varphi_{2}, dphi2 → \\dot{\\varphi}_{2}, e02 → e_{0,2}. ``letters`` (body number → one-letter
+    name) writes a body's letter as the subscript: x1 → x_{i}, e01 → e_{0i}. The one rule of the notation, for the
+    answer as read here and for the book's pages (:func:`kinbook.book.notation.names`)."""
+    m = _COORD.match(name)
+    if not m:
+        return None
+    dot, base, number = m.groups()
+    sub = (letters or {}).get(number, number)
+    if base.startswith("e"):  # Euler parameters e_{0i}: the book's index first, then the body
+        head, sub = "e", base[1] + ("," if len(sub) > 1 or sub.isdigit() else "") + sub
+    else:
+        head = _TEX[base]
+    return (rf"\dot{{{head}}}" if dot else head) + f"_{{{sub}}}"
+
+
+def _names(M):
+    """sympy.latex ``symbol_names`` in the book's notation (:func:`tex_name`)."""
+    return {s: tex for s in M.free_symbols if (tex := tex_name(s.name)) is not None}
+
+
+def _cut(text):
+    return text if len(text) <= MAX_CHARS else text[:MAX_CHARS - 1] + "…"
+
+
+def read_as(value):
+    """``(text, latex)`` of an answer as read: a sympy Matrix (rows of expressions) or numbers; None otherwise."""
+    import sympy as sp  # import time: sympy only when needed
+
+    if isinstance(value, sp.MatrixBase):
+        M = value.applyfunc(lambda e: e.xreplace({f: (sp.Integer(0) if abs(f) < 1e-12 else sp.Float(f, 6))
+                                                  for f in e.atoms(sp.Float)}))
+        rows = [[sp.sstr(M[i, j]) for j in range(M.shape[1])] for i in range(M.shape[0])]
+        text = "[" + ", ".join(r[0] if len(r) == 1 else "[" + ", ".join(r) + "]" for r in rows) + "]"
+        if sum(sp.count_ops(e) for e in M) > 600:
+            return _cut(text), None
+        return _cut(text), sp.latex(M, symbol_names=_names(M), mat_delim="[")
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return None
+    if a.ndim > 2 or a.size > 400 or not np.all(np.isfinite(a)):
+        return None
+    # round-off is zero (4e-17 beside 0.33 reads 0): an echo is identical on every machine
+    a = np.where(np.abs(a) <= 1e-12 * max(1.0, float(np.abs(a).max(initial=0.0))), 0.0, a)
+    fmt = lambda x: f"{x:.6g}"  # noqa: E731
+    text = np.array2string(a, formatter={"float_kind": fmt}, separator=", ", max_line_width=10**6).replace("\n", "")
+    if a.ndim == 0:
+        return text, fmt(float(a))
+    rows = a.reshape(-1, 1) if a.ndim == 1 else a
+    body = r" \\ ".join(" & ".join(fmt(x) for x in r) for r in rows)
+    return _cut(text), r"\begin{bmatrix} " + body + r" \end{bmatrix}"
+
+
+def echoed(checker, quantity=None):
+    """``checker`` with the answer as read attached to its result (``quantity``: "Phi", "Phi_q", "nu", "gamma" for
+    the symbolic checkers, None for the value checkers)."""
+    @functools.wraps(checker)
+    def check(answer, reference, *args, **kwargs):
+        result = checker(answer, reference, *args, **kwargs)
+        if getattr(result, "_echo", None) is None and "malformed" not in (result.mistakes or ()):
+            kept = answer.copy() if isinstance(answer, np.ndarray) else answer  # as it was when checked
+            result.echo(lambda: read_as(_read(kept, reference, quantity)))  # read again only when shown
+        return result
+
+    return check
+
+
+def _read(answer, reference, quantity):
+    if quantity is None:
+        return answer
+    from .target import target_for  # import time: the target loads sympy and the chapters; item.py imports echoed
+
+    A = read(answer, target_for(reference), quantity)
+    return A.matrix if A.kind == "symbolic" else getattr(A, "array", None)

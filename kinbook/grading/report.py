@@ -1,22 +1,29 @@
-"""The verdict, written (last stage of a check): a :class:`~kinbook.grading.result.CheckResult` from the
-matching and the diagnosis.
+"""The verdict (last stage of a check): what a check returns — :class:`CheckResult` and the per-row
+:class:`RowResult` it is made of — and how it is written from the matching and the diagnosis.
+
+The results are modelled on otter-grader's test results: small frozen dataclasses that render themselves in a
+notebook (``_repr_html_``: a table with one coloured line per row of Φ, Φ_q, ν or γ) and print plainly in a
+terminal. Their texts are kept as :class:`~kinbook.grading._i18n.Msg` objects and written in the current language
+when shown (``messages``, ``repr``, HTML), so switching the language re-renders an existing result.
 
 Counts and scores come from the same rows: the headline's "k of n rows" counts the rows of the table, and
 the score is the mean credit of those rows (half for a right row out of the book's order; for Φ_q the
-fraction of a row's nonzero entries that are right). Positions are 1-based everywhere. Texts stay
-:class:`~kinbook.grading._i18n.Msg` objects until shown, so they are written in the language of the moment.
+fraction of a row's nonzero entries that are right). Positions are 1-based everywhere.
 """
 
 from __future__ import annotations
 
+import html
+from dataclasses import dataclass
+
 import numpy as np
 
-from ._i18n import Msg, both, constraint_label
+from ._i18n import Msg, both, constraint_label, render
+from ._i18n import constraint_label as cl
 from .catalogue import explain
 from .quantities import label_of, quantity_of
-from .result import CheckResult, RowResult
 
-__all__ = ["phi_result", "derived_result", "failed", "hints", "fmt"]
+__all__ = ["CheckResult", "RowResult", "phi_result", "derived_result", "failed", "hints", "fmt"]
 
 PRINTED = {"book_misprint", "gamma_sign", "factor_2_missing"}
 """Codes whose erratum means: the answer is the book's printed (wrong) formula."""
@@ -49,8 +56,6 @@ def hints(codes, contexts):
 
 
 def _hint_line(code, lang, ctx):
-    from ._i18n import render
-
     title, hint = explain(code, lang, ctx)
     return render(Msg("hint", title=title, hint=hint), lang)
 
@@ -95,8 +100,6 @@ def _join(a, b):
 
 
 def _render(x, lang):
-    from ._i18n import render
-
     return render(x, lang)
 
 
@@ -171,8 +174,6 @@ def phi_result(target, matching, order):
 
 def _constraints_text(target, blocks):
     """The constraints of ``blocks`` (indices into target.constraints; None: the others), named when shown."""
-    from ._i18n import render
-
     cs = target.constraints
 
     def text(lang):
@@ -199,8 +200,6 @@ def _dependence(target, r):
 
 
 def _free_what(target, lang):
-    from ._i18n import constraint_label as cl
-
     mech = target.mech
     names = [cl(c, lang) for c in mech.constraints if c.kind == "normalization"
              and set(range(c.rows.start, c.rows.stop)) & set(target.free_rows)]
@@ -332,3 +331,200 @@ def _relevant(s, e):
 def _book(name):
     """Coordinate names in the book's notation: phi2 → φ2."""
     return name.replace("phi", "φ")
+
+
+# ================================================================================================ the results
+_COLOURS = {"ok": "#d4edda", "wrong": "#f8d7da", "missing": "#fff3cd", "extra": "#fff3cd", "info": "#e2e3e5"}
+_SYMBOL = {"ok": "✓", "wrong": "✗", "missing": "∅", "extra": "+", "info": "·"}
+
+
+@dataclass(frozen=True, init=False)
+class RowResult:
+    """Verdict on one row of the answer (one equation of Φ, one row of Φ_q, one entry of ν or γ).
+
+    Attributes
+    ----------
+    label : str
+        The book's name of the row the answer row stands for ("Φ_4"), or the answer's own row.
+    status : {"ok", "wrong", "missing", "extra"}
+    message : str
+        In the current language.
+    mistake : str or None
+        Catalogue code of the mistake found in this row.
+    entries : tuple of str
+        For Φ_q: one status per column ("ok" or a mistake code).
+    score : float
+        Credit for this row, in [0, 1].
+    """
+
+    _label: object
+    status: str
+    _message: object
+    mistake: str | None
+    entries: tuple
+    score: float
+
+    def __init__(self, label, status, message="", mistake=None, entries=(), score=0.0):
+        object.__setattr__(self, "_label", label)
+        object.__setattr__(self, "status", status)
+        object.__setattr__(self, "_message", message)
+        object.__setattr__(self, "mistake", mistake)
+        object.__setattr__(self, "entries", tuple(entries))
+        object.__setattr__(self, "score", float(score))
+
+    @property
+    def label(self):
+        return render(self._label)
+
+    @property
+    def message(self):
+        return render(self._message) if self._message else ""
+
+    @property
+    def label_msg(self):
+        """The label as kept: a :class:`~kinbook.grading._i18n.Msg` (or str), written when shown — for a new
+        RowResult that says the same of the same row."""
+        return self._label
+
+    @property
+    def message_msg(self):
+        """The message as kept (a Msg, a str, or a list of them), written when shown."""
+        return self._message
+
+
+@dataclass(frozen=True, init=False)
+class CheckResult:
+    """The verdict of a checker.
+
+    Attributes
+    ----------
+    passed : bool
+        True when the answer is fully correct (score 1).
+    score : float
+        Partial credit in [0, 1].
+    messages : list of str
+        What is right and wrong, in the current language (:func:`kinbook.set_language`).
+    mistakes : list of str
+        Catalogue codes of the mistakes found, without repetitions, in order of appearance
+        (see :mod:`kinbook.grading.catalogue` and docs/mistakes.md).
+    rows : tuple of RowResult
+        Per-row (and, for Φ_q, per-entry) detail.
+    quantity : str
+        "Φ", "Φ_q", "ν", "γ" or the name of a value (in the current language).
+    columns : tuple of str
+        Names of the columns of Φ_q (coordinates), when ``rows`` carry entries.
+    read : (str, str or None) or None
+        The answer as the checker read it, as plain text and as LaTeX (:func:`kinbook.grading.read.echoed`), shown before
+        the verdict; None when it was not read (a refused answer says why instead).
+    """
+
+    passed: bool
+    score: float
+    notes: tuple
+    mistakes: list
+    rows: tuple
+    _quantity: object
+    columns: tuple
+    _echo = None
+
+    def __init__(self, passed, score, messages=(), mistakes=(), rows=(), quantity="", columns=()):
+        object.__setattr__(self, "passed", bool(passed))
+        object.__setattr__(self, "score", float(score))
+        object.__setattr__(self, "notes", tuple(messages))
+        object.__setattr__(self, "mistakes", list(mistakes))
+        object.__setattr__(self, "rows", tuple(rows))
+        object.__setattr__(self, "_quantity", quantity)
+        object.__setattr__(self, "columns", tuple(columns))
+
+    @property
+    def quantity(self):
+        return render(self._quantity)
+
+    @property
+    def quantity_msg(self):
+        """The quantity's name as kept (a Msg or str), written when shown — for a new CheckResult of the same
+        quantity."""
+        return self._quantity
+
+    @property
+    def messages(self):
+        return [render(m) for m in self.notes]
+
+    def __bool__(self):
+        return bool(self.passed)
+
+    @property
+    def read(self):
+        """The answer as read, ``(text, latex)``, or None (made when first asked for: a result never shown costs
+        nothing)."""
+        echo = self._echo
+        if callable(echo):
+            try:
+                echo = echo()
+            except Exception:  # noqa: BLE001 — an answer that cannot be shown as read is not echoed
+                echo = None
+            object.__setattr__(self, "_echo", echo)
+        return echo
+
+    def echo(self, found):
+        """Attach the answer as read: ``(text, latex)``, or a function returning it (or None) when first shown, or
+        another CheckResult whose echo this one shares; returns self."""
+        if isinstance(found, CheckResult):
+            found = found._echo
+        object.__setattr__(self, "_echo", found)
+        return self
+
+    def __repr__(self):
+        word = render(Msg("h.passed" if self.passed else "h.failed"))
+        head = f"CheckResult({self.quantity}: {word}, {render(Msg('h.score'))}={self.score:.2f}"
+        if self.mistakes:
+            head += f", {render(Msg('h.mistakes'))}={self.mistakes}"
+        lines = [head + ")"]
+        if self.read is not None:
+            lines.append(f"  {render(Msg('h.read_as'))}: {self.read[0]}")
+        lines += [f"  {m}" for m in self.messages]
+        return "\n".join(lines)
+
+    def _repr_html_(self):
+        return self.html(math=True)
+
+    def html(self, math=True):
+        """The result as HTML: the answer as read first (typeset as LaTeX for MathJax with ``math``, as plain text
+        otherwise — a feedback page has no MathJax), then the verdict, the messages and the rows."""
+        colour = "#155724" if self.passed else "#721c24"
+        verdict = "✓" if self.passed else "✗"
+        esc = html.escape
+        out = ["<div>"]
+        if self.read is not None:
+            text, latex = self.read
+            shown = f"\\[{esc(latex)}\\]" if math and latex else f"<code>{esc(text)}</code>"
+            out.append(f'<p class="kb-read">{esc(render(Msg("h.read_as")))}: {shown}</p>')
+        out += [
+            f'<p style="color:{colour};font-weight:bold">{verdict} {esc(self.quantity)} — '
+            f"{esc(render(Msg('h.score')))} {self.score:.2f}</p>"
+        ]
+        if self.notes:
+            out.append("<ul>" + "".join(f"<li>{esc(m)}</li>" for m in self.messages) + "</ul>")
+        if self.rows:
+            with_entries = any(r.entries for r in self.rows) and self.columns
+            head = f"<th>{esc(render(Msg('h.row')))}</th>"
+            if with_entries:
+                head += "".join(f"<th>{esc(c)}</th>" for c in self.columns)
+            head += f"<th>{esc(render(Msg('h.verdict')))}</th>"
+            body = []
+            for r in self.rows:
+                bg = _COLOURS.get(r.status, "#ffffff")
+                cells = f"<td>{esc(r.label)}</td>"
+                if with_entries:
+                    for e in (r.entries or ("",) * len(self.columns)):
+                        c = _COLOURS["ok"] if e == "ok" else (_COLOURS["wrong"] if e else "#ffffff")
+                        mark = "✓" if e == "ok" else ("✗" if e else "")
+                        cells += f'<td style="background:{c};text-align:center" title="{esc(e)}">{mark}</td>'
+                cells += f"<td>{_SYMBOL.get(r.status, '')} {esc(r.message)}</td>"
+                body.append(f'<tr style="background:{bg}">{cells}</tr>')
+            out.append(f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>")
+        if self.mistakes:
+            out.append(f"<p>{esc(render(Msg('h.mistakes')))}: "
+                       + ", ".join(f"<code>{esc(m)}</code>" for m in self.mistakes) + "</p>")
+        out.append("</div>")
+        return "".join(out)

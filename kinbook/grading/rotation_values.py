@@ -6,9 +6,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, KinbookError
+from ..spatial.rotations import p_from_A
 from ._i18n import Msg
-from .expected import Expected
+from .expected import A_from_euler, Expected, p_from_axis_angle
 from .misprints import book_A_of_p
 from .numbers import (
     close,
@@ -64,8 +65,6 @@ def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name=
     InputError
         A bad option or expected value; the message names the argument.
     """
-    from .expected import A_from_euler
-
     name = name_option(name, "A")
     reveal = reveal_option(reveal)
     base = expected_of(expected)
@@ -106,11 +105,7 @@ def check_rotation(answer, expected, *, rtol=1e-4, atol=1e-6, angles=None, name=
 
 def _from_matrix(A_):
     """Variants of any rotation matrix: the book's A(p) misprint and ½A, at the p of A."""
-    from ..errors import KinbookError
-
     try:
-        from ..spatial.rotations import p_from_A
-
         p = np.asarray(p_from_A(np.asarray(A_, float)), float)
     except (KinbookError, ValueError, np.linalg.LinAlgError):  # not a rotation matrix: no p
         return []
@@ -147,8 +142,6 @@ def check_euler_parameters(answer, expected, *, rtol=1e-4, atol=1e-6, axis=None,
     InputError
         A bad option or expected value; the message names the argument.
     """
-    from .expected import p_from_axis_angle
-
     name = name_option(name, "p")
     reveal = reveal_option(reveal)
     base = expected_of(expected)

@@ -23,6 +23,7 @@ import re
 from ._i18n import Msg
 from .quantities import quantity_of
 from .read import Answer
+from .report import CheckResult, hints
 
 __all__ = ["distinct_leaves", "MIN_DIGITS", "NEAR", "exact_constants", "significant_digits", "typed_digits", "is_rounding", "exact",
            "graded", "named", "in_degrees"]
@@ -56,7 +57,7 @@ def exact_constants(target, quantity="Phi"):
     key = ("exact_constants", quantity_of(quantity).right_hand_side)
     if key in target.store:
         return target.store[key]
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     t = target.mech.t
     symbols = set(target.mech.q) | set(target.mech.qd) | {t}
@@ -94,7 +95,7 @@ def exact_constants(target, quantity="Phi"):
 def _turned_constants(target, rows, symbols, found):
     """The constant of a row that measures an angle turned by whole turns (−3π/4 + 2π = 5π/4 for φ2 − 3π/4 − 100t,
     2π for φ3 − φ4): the row turned is the same placement (``Target.turns``), so its constant is the exercise's too."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     for k in getattr(target, "turns", {}):
         c0 = rows[k].subs({s: 0 for s in symbols})
@@ -157,7 +158,7 @@ def distinct_leaves(exprs, keep):
 def _data_numbers(target):
     """The numbers written in the graded rows themselves (their decimals and integers), built once per target."""
     if "data_numbers" not in target.store:
-        import sympy as sp
+        import sympy as sp  # import time: sympy only when needed
 
         target.store["data_numbers"] = set().union(*(row.atoms(sp.Number) for row in target.symbolic_phi()))
     return target.store["data_numbers"]
@@ -170,7 +171,7 @@ def exact(answer, target, quantity="Phi", raw=None):
     shortest form. Other answers are returned as they are."""
     if answer.kind != "symbolic":
         return answer, []
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     typed = typed_digits(raw) if raw is not None else {}
     numbers = [x for x in distinct_leaves(answer.matrix, lambda e: e.is_Number) if x.is_Float or (x.is_Integer and abs(x) >= 100)]
@@ -237,9 +238,9 @@ def in_degrees(result, answer, target, quantity, raw, recheck):
     :data:`NEAR` of them: 28.65 for 0.5 rad, 5730 (or 5731) for a rate of 100 rad/s, 30.00 for π/6. The answer is checked again with each such decimal replaced
     by the exact value in degrees (c·180/π); the name is the one the catalogue then gives (a constant, a rate, the
     whole function in degrees), with the decimals named beside it. Otherwise ``result`` as it is."""
+    import sympy as sp  # import time: sympy only when needed
     if result.passed or answer.kind != "symbolic":
         return result
-    import sympy as sp
 
     typed = typed_digits(raw) if raw is not None else {}
     numbers = [x for x in distinct_leaves(answer.matrix, lambda e: e.is_Number) if x.is_Float or (x.is_Integer and abs(x) >= 100)]
@@ -267,17 +268,15 @@ def in_degrees(result, answer, target, quantity, raw, recheck):
         return result
     if again.passed or "degrees" not in again.mistakes:
         return result
-    from .result import CheckResult
-
     shown = list(again.notes)
-    return CheckResult(False, again.score, shown[:1] + notes + shown[1:], again.mistakes, again.rows, again._quantity,
+    return CheckResult(False, again.score, shown[:1] + notes + shown[1:], again.mistakes, again.rows, again.quantity_msg,
                        again.columns)
 
 
 def _angles_and_rates(target, quantity):
     """The exercise's constants a student may convert to degrees: its exact constants and integers, positive and
     negative (3π/4, 0.5, 100)."""
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     out = []
     for value, c in exact_constants(target, quantity).items():
@@ -294,8 +293,6 @@ def named(result, near, recheck):
     constants they are close to (``recheck(swap)`` runs the check again); else ``result`` as it is."""
     if result.passed or not near:
         return result
-    from .report import hints
-    from .result import CheckResult
 
     swap = dict(near)
     try:
@@ -307,7 +304,7 @@ def named(result, near, recheck):
     notes = [Msg("d.not_rounded", value=repr(abs(float(f))), exact=_text(c if float(c) > 0 else -c),
                  digits=significant_digits(f)) for f, c in near]
     return CheckResult(False, result.score, notes + hints(["not_rounded"], {}), ["not_rounded"], result.rows,
-                       result._quantity, result.columns)
+                       result.quantity_msg, result.columns)
 
 
 def _text(c):

@@ -21,6 +21,8 @@ manifold (equivalent formulations, simplifications by the constraints) is then n
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 
 from ..spatial.random import random_p
@@ -195,8 +197,6 @@ def placements(target, Q, T, cols=None):
     -------
     Q (K·P, n), T (K·P,) : for each configuration its P placements, the configuration itself first.
     """
-    import itertools
-
     Q = np.atleast_2d(np.asarray(Q, float))
     T = np.asarray(T, float).reshape(-1)
     cols = range(target.n) if cols is None else cols

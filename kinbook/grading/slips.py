@@ -6,8 +6,7 @@ constraint — its rows, or its reference values at the samples — the way a st
   velocities, 2ṡ_iᵀṡ_j …) changed;
 * :func:`n2_without_dC` — the Jacobian of Φ^(n2,1) = s_iᵀd without dᵀC_i, the derivative of s_i (s_i treated as
   constant, only d differentiated);
-* :func:`length_factors` — the lengths of a constraint's own geometry a row may be multiplied by;
-* :func:`term_kind` — what sort of term a dropped or sign-slipped term is, said without writing it.
+* :func:`length_factors` — the lengths of a constraint's own geometry a row may be multiplied by.
 """
 
 from __future__ import annotations
@@ -16,11 +15,12 @@ import copy
 
 import numpy as np
 
+from ..spatial.rotations import dAa_dp
 from ._i18n import Msg
 from .misprints import book_A_of_p
 from .quantities import for_quantities
 
-__all__ = ["book_A_rows", "cross_term_flipped", "n2_without_dC", "length_factors", "term_kind"]
+__all__ = ["book_A_rows", "cross_term_flipped", "n2_without_dC", "length_factors"]
 
 
 def book_A_rows(c, Q, t):
@@ -53,8 +53,6 @@ def cross_term_flipped(tape, row, s, expected, factor=1.0, bodies=()):
 def n2_without_dC(target, c, s, ref, quantity):
     """Φ_q of Φ^(n2,1) = s_iᵀd with the derivative of s_i = A_i a'_i left out of its p_i columns: the row minus
     dᵀ ∂(A_i a'_i)/∂p_i (Table 14.1's dᵀC_i)."""
-    from ..spatial.rotations import dAa_dp
-
     mech = target.mech
     ci, cj = ([7 * (b.number - 1) + k for k in range(7)] for b in c.bodies)
     pi = s.Q[:, ci[3:]]
@@ -113,33 +111,3 @@ def length_factors(c, spec, limit=12):
                 add(np.linalg.norm(pa - pb), Msg("d.factor_local_pair", a=a, b=b, body=names[role]))
         add(np.linalg.norm(pa), Msg("d.factor_local", a=a, body=names[role]))
     return out[:limit]
-
-
-def term_kind(term):
-    """What sort of term a sympy term of a row is, as a Msg that does not write it: a constant, a term of time
-    alone (a driver's function), quadratic or linear in the velocities, of a body's rotation or of its origin —
-    with the bodies it involves ("a term quadratic in the velocities, of body 2")."""
-    import re
-
-    import sympy as sp
-
-    names = {s.name for s in term.free_symbols}
-    velocities = [n for n in names if n.startswith("d") and n != "t"]
-    coordinates = [n[1:] if n in velocities else n for n in names if n != "t"]
-    bodies = sorted({int(m.group(2)) for n in coordinates if (m := re.fullmatch(r"(e[0-3]|[a-z]+)(\d+)", n))})
-    if not names:
-        kind = "k.constant"
-    elif names == {"t"}:
-        kind = "k.time"
-    elif velocities:
-        vel = [v for v in term.free_symbols if v.name in velocities]
-        deg = max(sp.Poly(a, *vel).total_degree() for a in sp.Add.make_args(sp.expand(term)))
-        kind = "k.velocity_squared" if deg >= 2 else "k.velocity"
-    elif any(n.startswith(("phi", "e0", "e1", "e2", "e3", "psi", "theta")) for n in names):
-        kind = "k.rotation"
-    else:
-        kind = "k.origin"
-    what = Msg(kind)
-    if bodies:
-        return Msg("k.of_bodies", what=what, bodies=", ".join(str(b) for b in bodies), n=len(bodies))
-    return what

@@ -18,9 +18,11 @@ import unicodedata
 import weakref
 
 import numpy as np
+import sympy as sp
 
 from . import sample
 from ._i18n import row_name
+from .jets import Tape
 
 __all__ = ["Target", "target_for", "group_target", "NotATarget"]
 
@@ -115,7 +117,7 @@ class Target:
         self.turns = _angle_rows(self)
         """{position among the graded rows: 2π} for the other rows that measure an angle (a driver's φ_i − f(t), a
         slot's φ_i − φ_j − φ⁰, a fixed body's φ_i − c): the same placement up to whole turns, so such a row may
-        differ from the reference by 2πk (:func:`~kinbook.grading.compare.scale_matrix`)."""
+        differ from the reference by 2πk (:func:`~kinbook.grading.equivalence.scale_matrix`)."""
         self.time_dependent = any(c.f is not None for c in mech.constraints
                                   if set(range(c.rows.start, c.rows.stop)) & set(self.manifold_rows))
         self._samples = {}
@@ -219,8 +221,6 @@ class Target:
     def symbolic_phi(self):
         """The symbolic Φ of the graded rows (a sympy Matrix), built once; for the mistake catalogue."""
         if "phi" not in self.store:
-            import sympy as sp
-
             mech = self.mech
             self.store["phi"] = sp.Matrix.vstack(*[mech.constraint_phi(c) for c in self.constraints])
         return self.store["phi"]
@@ -228,8 +228,6 @@ class Target:
     def tape(self, exprs, key=None, aliases=False):
         """A :class:`~kinbook.grading.jets.Tape` of ``exprs`` over this target's q, q̇ and t (cached by key);
         with ``aliases``, symbols are also matched by name (a student's own symbols)."""
-        from .jets import Tape
-
         if key is not None and ("tape", key) in self.store:
             return self.store[("tape", key)]
         mech = self.mech

@@ -1,7 +1,7 @@
 """Whole turns (part of the diagnosis of Φ): a row that measures a length, written with 2πk added.
 
 A row that measures an angle may differ from the reference by whole turns (the match accepts it:
-:func:`~kinbook.grading.compare.turned_multiple` with ``Target.turns``); a length may not. An answer row that
+:func:`~kinbook.grading.equivalence.turned_multiple` with ``Target.turns``); a length may not. An answer row that
 is a multiple of a length row plus 2πk — the turn of an angle row put on the wrong row, or a wrap of an
 angle applied where there is none — is named ``whole_turn`` with the number of turns.
 """
@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._i18n import Msg
-from .compare import nice, turned_multiple
+from .equivalence import nice, turned_multiple
 
 __all__ = ["TURN", "name_whole_turns"]
 

@@ -19,15 +19,17 @@ domain (angles beyond ±π, t from 1 to 30): a driver padded with 10⁻⁴·∏(
 from __future__ import annotations
 
 import hashlib
+import types
 
 import numpy as np
 
-from . import compare, sample
 from . import mistakes as M
+from . import sample
 from ._i18n import Msg
-from .compare import scale_match, turned_multiple, zero_tol
 from .diagnose import where
+from .equivalence import scale_match, turned_multiple, wrapped, zero_tol
 from .quantities import quantity_of
+from .read import Refused
 
 __all__ = ["phi", "derived", "samples", "code_text", "N_WITNESS"]
 
@@ -71,8 +73,6 @@ def code_text(f, depth=0):
 
 
 def _code_part(code, depth):
-    import types
-
     consts = tuple(_code_part(c, depth + 1) if isinstance(c, types.CodeType) and depth < 8 else _plain(c)
                    for c in code.co_consts)
     return repr((code.co_code.hex(), code.co_names, code.co_varnames, consts))
@@ -187,7 +187,7 @@ def _same_placement(target, answer, s, r, a, b, rtol):
     if turned_multiple(a, b, rtol, period, free=False)[1][0]:
         return True
     scale = max(float(np.abs(a).max()), float(np.abs(b).max()), 1.0)
-    if not np.all(np.abs(compare.wrapped(a - b, period)) <= rtol * scale):
+    if not np.all(np.abs(wrapped(a - b, period)) <= rtol * scale):
         return False
     ref = target.evaluate(s)
     J = ref["Phi_q"][:, r.ref, :]
@@ -223,8 +223,6 @@ def _wide_only(target, matching, rtol):
 def _values(answer, target, s):
     """The answer at the witness's configurations, or None where it cannot be read there (a function that raises
     or changes its shape at an angle beyond ±π): its match stands, as a row not defined there."""
-    from .read import Refused
-
     try:
         return answer.values(target, s)
     except Refused:

@@ -121,10 +121,10 @@ class Constraint(ConstraintBase):
             raise ModelError(f"{self.describe()}: `{key}` on body '{self.bodies[role_index].name}' is zero ({spec!r})")
         return v
 
-    def _global_point(self, Qb, s):
+    def global_point(self, Qb, s):
         return self._r(Qb, s)
 
-    def _global_vector(self, Qb, s):
+    def global_vector(self, Qb, s):
         return A_matrix(Qb[2]) * sp.Matrix(s)
 
     # helpers for the symbolic hooks

@@ -147,15 +147,15 @@ class Constraint(ConstraintBase):
         the mistake catalogue, on a copy) may build Φ with another matrix without re-typing it."""
         return _A_sym(list(Qb[3:7]))
 
-    def _global_point(self, Qb, s):
+    def global_point(self, Qb, s):
         return _sym_r(Qb) + self.rotation(Qb) * sp.Matrix(_sym3(s))
 
-    def _global_vector(self, Qb, s):
+    def global_vector(self, Qb, s):
         return self.rotation(Qb) * sp.Matrix(_sym3(s))
 
     def _distance(self, Q, Pi, Pj):
         """d = r_j^P − r_i^P (global), between local points P_i of the first body and P_j of the second."""
-        return self._global_point(Q[1], Pj) - self._global_point(Q[0], Pi)
+        return self.global_point(Q[1], Pj) - self.global_point(Q[0], Pi)
 
     def _point(self, role, spec, what="point"):
         """Local coordinates (floats, shape (3,)) of a point: a point name or a triple (ξ, η, ζ)."""
@@ -326,7 +326,7 @@ class Normal1(Constraint):
     kernel = staticmethod(K.kernel(K.rows_n1))
 
     def phi(self, Q, t=t_symbol):
-        return [_sym_dot(self._global_vector(Q[0], self.a_i), self._global_vector(Q[1], self.a_j))]
+        return [_sym_dot(self.global_vector(Q[0], self.a_i), self.global_vector(Q[1], self.a_j))]
 
     def params(self):
         return {"ai": self.a_i, "aj": self.a_j}
@@ -355,7 +355,7 @@ class Normal2(Constraint):
 
     def phi(self, Q, t=t_symbol):
         d = self._distance(Q, self.P_i, self.P_j)
-        return [_sym_dot(self._global_vector(Q[0], self.a_i), d)]
+        return [_sym_dot(self.global_vector(Q[0], self.a_i), d)]
 
     def params(self):
         return {"ai": self.a_i, "Pi": self.P_i, "Pj": self.P_j}
@@ -391,8 +391,8 @@ class Parallel1(_ParallelMixin, Constraint):
     kernel = staticmethod(K.kernel(K.rows_p1))
 
     def phi(self, Q, t=t_symbol):
-        sj = self._global_vector(Q[1], self.a_j)
-        return [_sym_dot(self._global_vector(Q[0], h), sj) for h in (self.h1, self.h2)]
+        sj = self.global_vector(Q[1], self.a_j)
+        return [_sym_dot(self.global_vector(Q[0], h), sj) for h in (self.h1, self.h2)]
 
     def params(self):
         return {"h1": self.h1, "h2": self.h2, "sj": self.a_j}
@@ -416,7 +416,7 @@ class Parallel2(_ParallelMixin, Constraint):
 
     def phi(self, Q, t=t_symbol):
         d = self._distance(Q, self.P_i, self.P_j)
-        return [_sym_dot(self._global_vector(Q[0], h), d) for h in (self.h1, self.h2)]
+        return [_sym_dot(self.global_vector(Q[0], h), d) for h in (self.h1, self.h2)]
 
     def params(self):
         return {"h1": self.h1, "h2": self.h2, "Pi": self.P_i, "Pj": self.P_j}
@@ -445,7 +445,7 @@ class Spherical(Constraint):
     kernel = staticmethod(K.kernel(K.rows_s))
 
     def phi(self, Q, t=t_symbol):
-        return list(self._global_point(Q[0], self.P_i) - self._global_point(Q[1], self.P_j))
+        return list(self.global_point(Q[0], self.P_i) - self.global_point(Q[1], self.P_j))
 
     def params(self):
         return {"Pi": self.P_i, "Pj": self.P_j}
@@ -616,9 +616,9 @@ class RevoluteDriver(Constraint):
             self.f_j = self.ref_j
 
     def phi(self, Q, t=t_symbol):
-        fj = self._global_vector(Q[1], self.f_j)
-        c = _sym_dot(self._global_vector(Q[0], self.f_i), fj)
-        s = _sym_dot(self._global_vector(Q[0], self.g_i), fj)
+        fj = self.global_vector(Q[1], self.f_j)
+        c = _sym_dot(self.global_vector(Q[0], self.f_i), fj)
+        s = _sym_dot(self.global_vector(Q[0], self.g_i), fj)
         return [sp.atan2(s, c) - self._f_expr(t)]
 
     def params(self):
@@ -648,7 +648,7 @@ class DistanceDriver(Constraint):
 
     def phi(self, Q, t=t_symbol):
         d = self._distance(Q, self.P_i, self.P_j)
-        return [_sym_dot(self._global_vector(Q[0], self.u), d) - self._f_expr(t)]
+        return [_sym_dot(self.global_vector(Q[0], self.u), d) - self._f_expr(t)]
 
     def params(self):
         return {"u": self.u, "Pi": self.P_i, "Pj": self.P_j}

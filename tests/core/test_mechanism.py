@@ -64,7 +64,7 @@ def test_a_new_type_is_evaluated_through_its_compiled_kernel():
     m = _pendulum()
     m.add(Slot("bar", "ground", pin="P", centre="C", radius=1))
     m.add(Slot("bar", "ground", pin="O", centre="C", radius=0.5, name="second"))  # same kernel, other numbers
-    groups = m._compiled[0]
+    groups = m.compiled[0]
     slot_groups = [g for g in groups if type(g.constraints[0]) is Slot]
     assert len(slot_groups) == 1 and len(slot_groups[0].constraints) == 2
     rng = np.random.default_rng(0)

@@ -1,4 +1,4 @@
-"""Whole turns (kinbook.grading.compare.turned_multiple, kinbook.grading.turns): every row that measures an angle
+"""Whole turns (kinbook.grading.equivalence.turned_multiple, kinbook.grading.turns): every row that measures an angle
 in the shipped mechanisms and exercises — a fixed body's φ1, each driver's φ_i − f(t), each slot's φ_i − φ_j — and
 a length row beside it, written turned by whole turns, by half turns, and through atan2.
 

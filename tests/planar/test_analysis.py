@@ -145,7 +145,7 @@ def test_fixed_bodies_are_set_aside_without_changing_the_system(name):
     full matrix with those rows and columns deleted, and the ground's deleted rows must involve its columns
     only (otherwise the reduced system would not be equivalent)."""
     m = examples.load(name)
-    rows, cols = m._reduction
+    rows, cols = m.reduction
     fixed_rows = np.setdiff1d(np.arange(m.m), rows)
     fixed_cols = np.setdiff1d(np.arange(m.n), cols)
     ground = m.bodies[0].name
@@ -170,7 +170,7 @@ def test_no_reduction_without_a_fully_fixed_body():
     m = examples.load("ch13_example2")
     m.remove(m.constraints[0].name)  # the ground constraint
     m.add(Simple(m.bodies[0].name, "x"))
-    assert m._reduction is None
+    assert m.reduction is None
 
 
 def test_hermite_guess_is_exact_for_quintics():

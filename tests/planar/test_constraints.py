@@ -47,7 +47,7 @@ def test_compiled_path_equals_hand_kernels(mech):
     """Every type's hand-written kernel is an optimization of the kernel compiled from its Φ: both agree."""
     compiled = zoo(int(mech.name[3:]))
     compiled.kernels = "compiled"
-    assert all(k.kernel.__class__.__name__ in ("CompiledKernel", "StackedKernel") for k in compiled._compiled[0])
+    assert all(k.kernel.__class__.__name__ in ("CompiledKernel", "StackedKernel") for k in compiled.compiled[0])
     for q, qd, t in states(mech):
         hand, comp = mech.evaluate(q, t, qd), compiled.evaluate(q, t, qd)
         for name in ("Phi", "Phi_q", "nu", "gamma"):

@@ -212,8 +212,6 @@ a TeX command counts as one)."""
 
 def _visible(tex):
     """About how many characters ``tex`` sets: a command counts as one, braces and scripts' marks as none."""
-    import re
-
     tex = re.sub(r"\\(sin|cos|tan|sen|operatorname\{\w+\})(?![A-Za-z])", "xxx", tex)   # set as three letters
     return len(re.sub(r"[{}^_]", "", re.sub(r"\\[A-Za-z]+|\\[,;:! ]", "x", tex)))
 

@@ -18,10 +18,16 @@ from __future__ import annotations
 
 import html
 import inspect
+import linecache
+import sys
 
 import numpy as np
 
-from ...i18n import translate
+from ...errors import InputError
+from ...grading import get_language
+from ...grading.report import CheckResult
+from ...i18n import N_, Message, translate
+from .mutations import draw_variant
 from .registry import TRY_ITS, TryIt, register, same_data, table_text, text_message
 
 __all__ = ["TryIt", "NotAnswered", "Variant", "TRY_ITS", "get", "try_it", "reveal", "another", "register",
@@ -30,9 +36,6 @@ __all__ = ["TryIt", "NotAnswered", "Variant", "TRY_ITS", "get", "try_it", "revea
 
 def get(id):
     """The :class:`TryIt` with this id; the error lists the ids of the same notebook."""
-    from ...errors import InputError
-    from ...i18n import N_, Message
-
     _load()
     try:
         return TRY_ITS[id]
@@ -44,7 +47,7 @@ def get(id):
 
 
 def _load():
-    from . import ch13, ch14  # noqa: F401  (registering)
+    from . import ch13, ch14  # noqa: F401  (registering on first use: the chapters' try-its take ~0.2 s to import)
 
 
 def is_blank(answer):
@@ -57,8 +60,6 @@ def is_blank(answer):
 
 
 def _tr(key, **fields):
-    from ...grading import get_language
-
     return table_text(key, get_language(), **fields)
 
 
@@ -165,19 +166,14 @@ def try_it(id, answer):
 
 def _caller_source():
     """The source of the cell (or file) that called :func:`try_it`: IPython keeps each cell's code in linecache."""
-    import linecache
-    import sys
-
     frame = sys._getframe(2)
     return "".join(linecache.getlines(frame.f_code.co_filename, frame.f_globals))
 
 
 def _library_answer(result, name):
     """A right answer computed by kinbook itself: said so, not a plain "correct" (the exercise is to build it)."""
-    from ...grading.result import CheckResult
-
     note = text_message("library", name=name)
-    return CheckResult(True, result.score, [note], [], result.rows, result._quantity, result.columns)
+    return CheckResult(True, result.score, [note], [], result.rows, result.quantity_msg, result.columns)
 
 
 def reveal(id):
@@ -231,9 +227,6 @@ def another(id, k=None):
     Variant
         Shows the data (and the seed it was drawn with).
     """
-    from ...errors import InputError
-    from ...i18n import N_, Message
-
     item = get(id)
     if k is None:
         k = _CURRENT.get(id, (0, None))[0] + 1
@@ -244,7 +237,6 @@ def another(id, k=None):
     if k == 0 or not item.ranges:
         _CURRENT.pop(id, None)
         return Variant(item, 0, item.data, None)
-    from .mutations import draw_variant
 
     data, seed, last = draw_variant(item, k)
     if data is not None:

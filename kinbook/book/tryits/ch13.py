@@ -24,6 +24,7 @@ from ... import examples
 from ...files import build
 from ...grading import check_gamma, check_jacobian, check_nu, check_phi, check_value
 from ...grading import expected as X
+from ...grading._i18n import Msg
 from ...grading.newton import Problem, check_iterates
 from ...i18n import N_, Message
 from ...planar import (
@@ -44,8 +45,6 @@ DEGREES = list(range(15, 346, 15))
 
 def _printed(what, **fields):
     """A lookalike's detail: what it is the answer to (the notebook prints it above), a marked message."""
-    from ...grading._i18n import Msg
-
     return Msg("x.other_data", what=Message(what, **fields))
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import sympy as sp
 
 try:
     import tomllib
@@ -10,11 +11,12 @@ except ModuleNotFoundError:  # Python 3.10: the same parser as tomli
     import tomli as tomllib
 
 from ... import examples
+from ...files import build
 from ...grading import check_euler_parameters, check_gamma, check_jacobian, check_phi, check_rotation, check_value
 from ...grading import expected as X
-from ...grading._i18n import add_texts
+from ...grading._i18n import Msg, add_texts
 from ...i18n import N_, Message
-from ...spatial import A_from_p
+from ...spatial import A_from_p, E, Mechanism, Normal1, Revolute, Spherical, a_bar, skew
 from ...spatial import rotations as R
 from .registry import register, same_data
 
@@ -199,8 +201,6 @@ register("14-3/try-3", "my_omega", check_value, lambda p_dot: X.omega_from_p_dot
 
 # ------------------------------------------------------------------------------------------------- 14-4
 def _two_spatial_bodies(points_i, points_j, constraint):
-    from ...spatial import Mechanism
-
     m = Mechanism("two bodies")
     m.add_body("i", points=points_i)
     m.add_body("j", points=points_j)
@@ -219,8 +219,6 @@ def _s14_4_1(*, s_i_P, s_j_P):
 
 
 def _t14_4_1(s_i_P, s_j_P):
-    from ...spatial import Spherical
-
     return _two_spatial_bodies({"P": tuple(s_i_P)}, {"P": tuple(s_j_P)}, Spherical("i", "j", point="P", name="ball"))
 
 
@@ -245,8 +243,6 @@ def _s14_4_2(*, vec_i, vec_j):
 
 
 def _t14_4_2(vec_i, vec_j):
-    from ...spatial import Normal1
-
     C_i, C_j = np.array([1.2, 0, 0]), np.array([0.5, 0, 0])
     return _two_spatial_bodies({"O": (0, 0, 0), "C": tuple(C_i), "B": tuple(C_i + vec_i)},
                                {"O": (0, 0, 0), "C": tuple(C_j), "B": tuple(C_j + vec_j)},
@@ -273,8 +269,6 @@ def _s14_4_3(*, P_hinge):
 
 
 def _t14_4_3(P_hinge):
-    from ...spatial import Revolute
-
     P = np.array(P_hinge, float)
     return _two_spatial_bodies({"O": (0, 0, 0), "P": tuple(P), "Q": tuple(P + [0, 0, 0.8])},
                                {"P": (0, 0, 0), "T": (1.4, 0, 0), "U": (1.4, 0, 0.5)},
@@ -283,10 +277,6 @@ def _t14_4_3(P_hinge):
 
 def _w14_4_3(P_hinge):
     """The book's way (§14.4, erratum 14.4-p1-two-rows): rows 1-2 of s̃_i s_j in global components."""
-    import sympy as sp
-
-    from ...spatial import skew
-
     sym_i, sym_j = sp.symbols("x1 y1 z1 e01 e11 e21 e31", real=True), sp.symbols("x2 y2 z2 e02 e12 e22 e32", real=True)
     rot_1, rot_2 = A_from_p(list(sym_i[3:])), A_from_p(list(sym_j[3:]))
     s_i, s_j = rot_1 * sp.Matrix([0, 0, sp.Rational(4, 5)]), rot_2 * sp.Matrix([0, 0, sp.Rational(1, 2)])
@@ -308,8 +298,6 @@ register("14-4/try-3", "my_Phi_r", check_phi, _t14_4_3, _s14_4_3, wrong_forms=_w
 
 # ------------------------------------------------------------------------------------------------- 14-5
 def _fourbar():
-    from ... import examples
-
     return examples.load("spatial_fourbar")
 
 
@@ -337,8 +325,6 @@ def _t14_5_1(t_n):
 
 
 def _msg(key, **fields):
-    from ...grading._i18n import Msg
-
     return Msg(key, **fields)
 
 
@@ -357,8 +343,6 @@ _B_RANGES = {"sB_coupler": [[3.2, 0, 0], [3, 0.2, 0], [2.8, 0, -0.3], [3.1, -0.2
 def _fourbar_with(sB_coupler=None, sB_rocker=None, cross_coupler=None, cross_rocker=None, sA_crank=None,
                   sA_coupler=None):
     """The spatial four-bar with other points and cross arms at its joints A and B (a try-it's variant)."""
-    from ...files import build
-
     data = tomllib.loads(examples.path("spatial_fourbar").read_text(encoding="utf-8"))
     body = {b["name"]: b for b in data["bodies"]}
     for name, point, vector, value in (("coupler", "B", None, sB_coupler), ("rocker", "B", None, sB_rocker),
@@ -391,12 +375,9 @@ def _t14_5_2(**data):
 
 def _w14_5_2(**data):
     """The n1 row with each body's own arm (s_iᵀC_i, s_jᵀC_j): named, not "missing chain-rule term"."""
-    import sympy as sp
-
     right = _s14_5_2(_fourbar(), **data)
     mech = _fourbar()
     par_3, par_4 = sp.Matrix(mech.body_symbols("coupler")[3:]), sp.Matrix(mech.body_symbols("rocker")[3:])
-    from ...spatial import E, a_bar
 
     dAa = lambda p, a: 2 * (E(p) * a_bar(sp.Matrix(a)) + sp.Matrix(a) * p.T)  # noqa: E731
     arm_3 = A_from_p(par_3) * sp.Matrix(data["cross_coupler"])
@@ -434,10 +415,6 @@ def _t14_5_3(**data):
 
 def _w14_5_3(sA_crank, sA_coupler):
     """The book's 2ĖĠᵀa for both bodies' b (the 2a ṗᵀṗ of B(ṗ)ṗ dropped)."""
-    import sympy as sp
-
-    from ...spatial import E, a_bar
-
     mech = _fourbar()
     k_2, k_3 = mech.index("e02"), mech.index("e03")
     pdot_2, pdot_3 = sp.Matrix(mech.qd[k_2:k_2 + 4, 0]), sp.Matrix(mech.qd[k_3:k_3 + 4, 0])

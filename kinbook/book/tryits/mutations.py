@@ -10,13 +10,18 @@ the answer), of the **checker** otherwise.
 
 from __future__ import annotations
 
+import dataclasses
 import inspect
 from functools import lru_cache
 
 import numpy as np
+import sympy as sp
 
+from ...errors import KinbookError
 from ...grading import mutant_names as MN
 from ...grading import mutants as MU
+from ...grading.expected import Expected
+from ...grading.item import draw, seed_from
 from .code_mutants import code_mutants
 from .registry import TRY_ITS, same_data
 
@@ -32,9 +37,6 @@ def draw_variant(item, k):
     :data:`MAX_DRAWS` seeded draws that is not the notebook's data, with which the mechanism assembles, and under
     which no slip of the worked answer passes (:func:`blind_spots`: no 45° for a
     sin/cos question, no zero rate under a rate term); ``(None, None, last error)`` when none does."""
-    from ...errors import KinbookError
-    from ...grading.item import seed_from
-
     last = None
     for attempt in range(MAX_DRAWS):
         seed = seed_from(f"try-it:{item.id}:{k}:{attempt}")
@@ -80,7 +82,6 @@ def answer_of(item, mutant, data):
         return v
     if callable(v):
         return _run(item, data)(v)
-    import sympy as sp
 
     M = sp.Matrix(v)
     if M.shape[1] > 1:
@@ -106,8 +107,6 @@ REFERENCE_DRAWS = 6
 def function_mutants(id):
     """The code mutants of a numeric try-it that differ from its worked answer as functions — on the notebook's data
     or on one of :data:`REFERENCE_DRAWS` raw draws (a symbolic try-it's mutants are made per data: none here)."""
-    from ...grading.item import draw, seed_from
-
     item = TRY_ITS[id]
     if item.checker.quantity is not None:
         return ()
@@ -155,8 +154,6 @@ def _angles(item):
 def _expected(item, data):
     """The try-it's expected value with its other right answers and catalogued wrong ones (an Expected), or its
     worked answer's value."""
-    from ...grading.expected import Expected
-
     found = item.target(**data)
     return found if isinstance(found, Expected) else _value_of(item, data)
 
@@ -204,10 +201,6 @@ def mutation_tally(item, variants=2, limit=None):
 def _readings(item, data, m, answer):
     """``m`` with the codes of the try-it's catalogued wrong answers its value equals (one wrong number, two readings:
     −e0 at χ = 120° is also χ for χ/2)."""
-    import dataclasses
-
-    from ...grading.expected import Expected
-
     X = item.target(**data)
     if not isinstance(X, Expected):
         return m
@@ -222,7 +215,7 @@ def _readings(item, data, m, answer):
 
 def mutation_tallies(ids=None, variants=2, limit=None, progress=None):
     """Tallies of the try-its ``ids`` (default: all of them, in notebook order)."""
-    from . import ch13, ch14  # noqa: F401  (registering the try-its)
+    from . import ch13, ch14  # noqa: F401  (registering the try-its on first use: ~0.2 s to import)
 
     out = []
     for id in ids or list(TRY_ITS):

@@ -4,16 +4,26 @@ their ranges) and :data:`TRY_ITS`, filled by the chapter modules through :func:`
 
 from __future__ import annotations
 
+import ast
 import inspect
 import textwrap
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
 import numpy as np
+import sympy as sp
 
-from ...grading._i18n import add_texts
+from ...grading._i18n import Msg, add_texts, render
+from ...grading.catalogue import explain
+from ...grading.expected import Expected
 from ...grading.item import Item, checker_for
+from ...grading.match import scale_match
+from ...grading.quantities import PHI, quantity_of
+from ...grading.read import Refused, read
+from ...grading.report import CheckResult, RowResult, hints
+from ...grading.target import target_for
 from ...i18n import N_, Message, translate
+from .code_mutants import slips
 
 __all__ = ["TryIt", "TRY_ITS", "register", "same_data", "table_text", "text_message"]
 
@@ -105,14 +115,12 @@ class TryIt(Item):
         if result.passed:
             return result
         if self.numbers_at is not None and result.mistakes == ["malformed"] and _numbers(answer):
-            return described(self._numbers(answer, target, options, result._quantity))
-        copied = self._copied(answer, data, options, result._quantity)
+            return described(self._numbers(answer, target, options, result.quantity_msg))
+        copied = self._copied(answer, data, options, result.quantity_msg)
         return described(result if copied is None else copied.echo(result))
 
     def _numbers(self, answer, target, options, quantity):
         """Numbers typed for a formula of t: compared with the reference at ``numbers_at``."""
-        from ...grading.result import CheckResult
-
         t = float(self.numbers_at)
         q = target.solve_position(t)
         at = {"q": q, "qd": target.solve_velocity(q, t), "t": t}
@@ -125,8 +133,6 @@ class TryIt(Item):
 
     def library_answer(self, source):
         """The ``library`` name a cell's source calls (``mech.gamma(...)``), or None."""
-        import ast
-
         if not self.library or not source:
             return None
         try:
@@ -145,13 +151,7 @@ class TryIt(Item):
         """The answer's rows are one of ``wrong_forms`` (up to their order and a factor each): a failed result
         naming it, or None — a result that failed keeps its rows and score (which rows are wrong is the lesson),
         its generic name replaced. The answer is read by the checkers' own reader, evaluated on their samples."""
-        quantity = result._quantity
-        from ...grading.match import scale_match
-        from ...grading.quantities import PHI, quantity_of
-        from ...grading.read import Refused, read
-        from ...grading.report import hints
-        from ...grading.result import CheckResult
-        from ...grading.target import target_for
+        quantity = result.quantity_msg
 
         t = target_for(target)
         qty = quantity_of(quantity, PHI)
@@ -165,7 +165,6 @@ class TryIt(Item):
         s = t.samples("generic")
 
         def by_row(matrix, aliases):  # (samples × columns, one per row): a row of Φ_q is compared whole
-            import sympy as sp
 
             M = sp.Matrix(matrix)
             if M.shape[1] != 1 and not qty.per_coordinate:
@@ -192,13 +191,10 @@ class TryIt(Item):
                     return CheckResult(False, 0.0, notes + hints([code], {}), [code], (), quantity)
                 # the failed result keeps its rows and score; its notes and rows lose the name it gave them
                 # (the last note is its hint), but keep which entries are wrong where that name was "wrong value"
-                from ...grading._i18n import render
-                from ...grading.catalogue import explain
-                from ...grading.result import RowResult
 
                 other = [explain(m, "en")[0] for m in result.mistakes if m not in (code, "wrong_value")]
                 kept = [n for n in result.notes[:-1] if not any(o in render(n, "en") for o in other)]
-                rows = tuple(RowResult(r._label, r.status, detail, code, r.entries, r.score)
+                rows = tuple(RowResult(r.label_msg, r.status, detail, code, r.entries, r.score)
                              if r.mistake not in (None, "wrong_value", code) else r for r in result.rows)
                 return CheckResult(False, result.score, kept[:1] + notes + kept[1:] + hints([code], {}), [code],
                                    rows, quantity, result.columns)
@@ -207,9 +203,6 @@ class TryIt(Item):
     def _copied(self, answer, data, options, quantity):
         """A symbolic answer that is right for other data — the joint printed above, the notebook's data when a
         variant is asked: named ``wrong_data`` (None otherwise)."""
-        from ...grading.report import hints
-        from ...grading.result import CheckResult
-
         others = list(self.lookalikes(**data)) if self.lookalikes is not None else []
         if not same_data(data, self.data):
             others.append((self.target(**self.data), _msg("x.other_data", what=text_message("notebook_data"))))
@@ -223,8 +216,6 @@ class TryIt(Item):
         return None
 
     def _with_lookalikes(self, target, data):
-        from ...grading.expected import Expected
-
         if not isinstance(target, Expected):
             try:
                 target = Expected(np.asarray(target, float))
@@ -246,8 +237,6 @@ class TryIt(Item):
     def slips(self, data=None):
         """(code, operator, value) of the worked answer's slips at ``data`` (:func:`kinbook.grading.mutants.slips`):
         the wrong answers a numeric try-it names after the catalogue's own (issue 29)."""
-        from .code_mutants import slips
-
         data = self.data_for(data)
         names, context = self._data_names(), self.context()
         key = repr([(k, np.asarray(data[k], dtype=object).tolist()) for k in sorted(data)])
@@ -310,9 +299,6 @@ _DESCRIBED = {"d.missing_term": "d.missing_kind", "d.sign_of_term": "d.sign_of_k
 def described(result):
     """``result`` with every term that a detail writes out described instead ("a term is missing: a term of t alone
     …" for "the term 500.0*t is missing"): a try-it's hint points at a step, never at a term to copy."""
-    from ...grading._i18n import Msg
-    from ...grading.result import CheckResult, RowResult
-
     def swap(x):
         if isinstance(x, Msg):
             if x.key in _DESCRIBED and "kind" in x.fields:
@@ -328,8 +314,8 @@ def described(result):
         return x
 
     notes = [swap(m) for m in result.notes]
-    rows = [RowResult(r._label, r.status, swap(r._message), r.mistake, r.entries, r.score) for r in result.rows]
-    return CheckResult(result.passed, result.score, notes, result.mistakes, rows, result._quantity,
+    rows = [RowResult(r.label_msg, r.status, swap(r.message_msg), r.mistake, r.entries, r.score) for r in result.rows]
+    return CheckResult(result.passed, result.score, notes, result.mistakes, rows, result.quantity_msg,
                        result.columns).echo(result)
 
 
@@ -352,8 +338,6 @@ def _literal(v):
 
 
 def _msg(key, **fields):
-    from ...grading._i18n import Msg
-
     return Msg(key, **fields)
 
 

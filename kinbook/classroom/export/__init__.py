@@ -33,6 +33,7 @@ from ...core.atomic import protect, refuse_overwrite
 from ...errors import GradingError
 from ..gradebook import Gradebook, write_csv
 from ..results import UNGRADED
+from ..roster import Student
 
 __all__ = ["export", "FORMATS", "CANVAS_IDS", "MOODLE_IDS"]
 
@@ -109,8 +110,6 @@ def _write(out, fmt, exercises, finals, roster, headers, decimals, missing, scal
     on_roster = {s.student for s in students}
     graded = sorted({s for e in exercises for s in finals[e]} - on_roster)
     if fmt == "csv":
-        from ..roster import Student
-
         rows = students + [Student(s) for s in graded]
         return _kinbook_csv(out, exercises, finals, rows, decimals, missing), []
     if roster is None:

@@ -13,12 +13,16 @@ Copying signals and the other students are never on a student's page.
 from __future__ import annotations
 
 import html
+import os
 from pathlib import Path
 
 from ...core.atomic import protect, refuse_overwrite, write_all
+from ...errors import GradingError
+from ..choice import kind_of_file
 from ..files import PUBLIC_DIR, PUBLIC_FILE
 from ..gradebook import Gradebook
 from ..results import UNGRADED
+from .upload import LAYOUTS, upload_zip
 
 __all__ = ["write_pages", "feedback", "page", "STATUS_WORDS", "part_words"]
 
@@ -81,10 +85,6 @@ def _e(text):
 def _handed_in(final, files):
     """What the page says of the student's files beyond the one graded: a PDF instead of a notebook, a scratch
     notebook or a blank download beside it — never "nothing was handed in" when something was."""
-    import os
-
-    from ..choice import kind_of_file
-
     out = []
     others = [(os.path.basename(p), reason) for p, outcome, reason, _ in files if outcome == "ignored"]
     if final.status == "missing" and others:
@@ -223,11 +223,8 @@ def feedback(gradebook, out, lms=None):
     with Gradebook(gradebook, create=False) as book:
         if lms is None:
             return write_pages(book, out)
-        from .upload import LAYOUTS, upload_zip
 
         if lms not in LAYOUTS:
-            from ...errors import GradingError
-
             raise GradingError(f"feedback for an LMS: one of {', '.join(LAYOUTS)}, got {lms!r}")
         with protect(*book.inputs()):
             return upload_zip(book, out, lms, {(f.exercise, student): text for student, f, text in _pages(book)})

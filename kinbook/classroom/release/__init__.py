@@ -17,7 +17,7 @@ __all__ = ["release", "write_variant", "write_variants", "write_notebook"]
 
 
 def _text(nb):
-    import nbformat
+    import nbformat  # optional dependency: nbformat (the grading extra)
 
     return nbformat.writes(nb) + "\n"
 

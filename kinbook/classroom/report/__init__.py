@@ -24,7 +24,10 @@ import html
 import io
 from pathlib import Path
 
+import numpy as np
+
 from ...core.atomic import protect, refuse_overwrite, write_all
+from ...errors import GradingError
 from ..gradebook import Gradebook, csv_text
 from . import tables
 
@@ -91,11 +94,10 @@ def _table(rows, columns, numeric=(), flag=None, nowrap=()):
 
 def _histogram(values, top, title, xlabel):
     """A histogram of ``values`` on [0, top], as an embedded PNG (<img> with a data: URI)."""
-    import matplotlib
+    import matplotlib  # import time: matplotlib only when needed
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
+    import matplotlib.pyplot as plt  # import time: matplotlib only when needed
 
     fig, ax = plt.subplots(figsize=(8, 3.2), dpi=100)
     try:
@@ -203,8 +205,6 @@ def report(gradebook, out=None, fmt="html", *, exercises=None, roster=None):
         The files written.
     """
     if fmt not in FORMATS:
-        from ...errors import GradingError
-
         raise GradingError(f"report format must be one of {', '.join(FORMATS)}, got {fmt!r}")
     out = Path(out) if out is not None else Path(gradebook) / "report"
     files = []

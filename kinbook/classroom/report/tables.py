@@ -7,7 +7,11 @@ code, row): :func:`mistakes` counts, per part, the students whose counting attem
 from __future__ import annotations
 
 import math
+import os
 import statistics
+
+from ...grading.catalogue import MISTAKES, explain
+from ..choice import kind_of_file
 
 __all__ = ["scores", "parts", "mistakes", "reference", "copying", "summary", "missing", "not_notebooks", "several",
            "off_roster", "RARE"]
@@ -41,8 +45,6 @@ def parts(book, exercise):
 def mistakes(book, exercise, top=5):
     """Per part, the most common catalogue mistakes of the counting attempts: code, title, students, share of the
     part's graded submissions, and an example (a student, the row, their answer)."""
-    from ...grading.catalogue import MISTAKES, explain
-
     graded = dict(book.db.execute("SELECT part, COUNT(*) FROM parts WHERE exercise = ? GROUP BY part", (exercise,)))
     position = dict(book.db.execute("SELECT part, MIN(position) FROM parts WHERE exercise = ? GROUP BY part",
                                     (exercise,)))
@@ -135,10 +137,6 @@ def missing(book, exercise, roster):
 
 def not_notebooks(book, exercise, roster):
     """Students with no notebook graded who handed in something else: the files and what they are."""
-    import os
-
-    from ..choice import kind_of_file
-
     files = book.files_of(exercise)
     out = []
     for f in book.finals(exercise, roster):
@@ -151,8 +149,6 @@ def not_notebooks(book, exercise, roster):
 
 def several(book, exercise):
     """Students whose submission held several notebooks: each file, what became of it, and the one that counts."""
-    import os
-
     counting = dict(book.db.execute("SELECT student, submission FROM submissions WHERE exercise = ?", (exercise,)))
     out = []
     for student, files in book.files_of(exercise).items():

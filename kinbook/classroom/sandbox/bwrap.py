@@ -40,8 +40,11 @@ import stat
 import subprocess
 import sys
 
+import kinbook
+
 from ...errors import GradingError
 from .protocol import ISOLATED, THREAD_ENV
+from .seccomp import sandbox_program
 
 __all__ = ["IsolationUnavailable", "check", "command", "readonly_dirs", "seccomp_program", "PACKAGE", "SANDBOX_UID",
            "ENV", "DENIED_SYSCALLS"]
@@ -82,8 +85,6 @@ DENIED_SYSCALLS = (
 def seccomp_program():
     """The seccomp filter of the sandbox, as BPF bytes for ``bwrap --seccomp``: every call of
     :data:`DENIED_SYSCALLS` fails with ``EPERM``, the rest is allowed. None without libseccomp."""
-    from .seccomp import sandbox_program
-
     return sandbox_program(DENIED_SYSCALLS)
 
 
@@ -105,8 +106,6 @@ class IsolationUnavailable(GradingError):
 def readonly_dirs():
     """The host directories the sandbox sees read-only: the Python installation, the environment's
     site-packages and the kinbook package (never the rest of a checkout it was installed from)."""
-    import kinbook
-
     found = {sys.prefix, sys.base_prefix, sys.exec_prefix, sys.base_exec_prefix,
              os.path.dirname(os.path.realpath(sys.executable)),
              os.path.dirname(os.path.abspath(kinbook.__file__))}

@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import json
 import os
+import select
 import shutil
 import signal
 import subprocess
@@ -48,6 +49,7 @@ import weakref
 from dataclasses import dataclass, field
 
 from ...errors import GradingError
+from ..sanitize import clean
 from . import bwrap
 from . import cgroup as cgroups
 from .protocol import (
@@ -406,8 +408,6 @@ class Sandbox:
     # -------------------------------------------------------------------------------------------- events
     def _event(self, deadline):
         """The zygote's next event line, or "" when none came by ``deadline`` (or it is gone)."""
-        import select
-
         fd = self.evt_r
         while b"\n" not in self.events:
             left = deadline - time.monotonic()
@@ -544,8 +544,6 @@ class Sandbox:
     def _wait(self, reading, timeout, memory):
         """Read the worker's frames until its result, its end, or the backstop: ``(ended, early)`` — the worker's
         end event (or None), and an Execution when the run is decided without a result."""
-        import select
-
         wall = wall_seconds(timeout)
         deadline = time.monotonic() + wall + STARTUP_SECONDS + 15.0
         ended = None
@@ -633,8 +631,6 @@ def _grader(*args):
 
 def bwrap_text(data):
     """Bytes the sandbox wrote, as printable text (control characters escaped)."""
-    from ..sanitize import clean
-
     return clean(data.decode("utf-8", "replace")).strip()
 
 

@@ -27,12 +27,16 @@ hook is installed come from the grading process, never from the environment.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import resource
 import socket
 import stat
 import sys
 import sysconfig
+import warnings
+
+import kinbook
 
 __all__ = ["install_audit_hook", "main", "preload"]
 
@@ -87,7 +91,6 @@ def _read_roots():
         except KeyError:
             pass
     roots.update(p for p in sys.path if p and os.path.isdir(p) and "site-packages" in p)
-    import kinbook
 
     roots.add(os.path.dirname(os.path.abspath(kinbook.__file__)))  # an editable install: the package only
     roots = {os.path.realpath(r) for r in roots} | {os.path.abspath(r) for r in roots}
@@ -215,32 +218,29 @@ def preload():
     """Import what nearly every exercise uses, before the limits and the hook (in the zygote, once: the kernels
     forked from it share these pages). matplotlib's font list is built here too, so that a plotting cell does
     not rebuild it in every kernel."""
-    import warnings
-
     warnings.filterwarnings("ignore")
     os.environ.setdefault("MPLBACKEND", "Agg")
     import IPython.core.logger  # noqa: F401  (imported lazily by IPython at the first cell)
-    import numpy  # noqa: F401
+    import numpy  # noqa: F401  (preloaded in the zygote, as sympy)
     import stack_data  # noqa: F401  (tracebacks)
-    import sympy
+    import sympy  # preloaded in the zygote (this function's purpose), not when the module is imported
 
-    import kinbook  # noqa: F401
-    import kinbook.classroom.parts  # noqa: F401
-    import kinbook.classroom.sandbox.trace
-    import kinbook.classroom.serialize  # noqa: F401
+    import kinbook.classroom.parts  # noqa: F401  (preloaded in the zygote, as sympy)
+    import kinbook.classroom.sandbox.trace  # preloaded in the zygote, as sympy
+    import kinbook.classroom.serialize  # noqa: F401  (preloaded in the zygote, as sympy)
 
     kinbook.classroom.sandbox.trace.load_reference_modules()  # (for the reference's calls to be observed)
 
     sympy.lambdify([sympy.Symbol("x")], sympy.sin(sympy.Symbol("x")) ** 2, "numpy")(0.5)
-    import matplotlib
+    import matplotlib  # preloaded in the zygote, as sympy
 
     matplotlib.use("Agg")
     import ipykernel.debugger  # noqa: F401  (what IPKernelApp.initialize imports)
-    import ipykernel.ipkernel  # noqa: F401
-    import ipykernel.kernelapp  # noqa: F401
-    import ipykernel.zmqshell  # noqa: F401
+    import ipykernel.ipkernel  # noqa: F401  (preloaded in the zygote, as sympy)
+    import ipykernel.kernelapp  # noqa: F401  (preloaded in the zygote, as sympy)
+    import ipykernel.zmqshell  # noqa: F401  (preloaded in the zygote, as sympy)
     import matplotlib.font_manager  # noqa: F401  (builds the font list once)
-    import matplotlib.pyplot  # noqa: F401
+    import matplotlib.pyplot  # noqa: F401  (preloaded in the zygote, as sympy)
 
     warnings.resetwarnings()
 
@@ -292,7 +292,7 @@ def main(argv, layout, memory_mb, audit=True):
     # ipykernel read JPY_PARENT_PID when the zygote imported it: say which parent to watch (the zygote)
     options = ["--HistoryManager.enabled=False", "--IPKernelApp.quiet=False",
                f"--IPKernelApp.parent_handle={os.getppid()}"]
-    from ipykernel.kernelapp import IPKernelApp
+    from ipykernel.kernelapp import IPKernelApp  # optional dependency: ipykernel (the grading extra)
 
     app = IPKernelApp.instance()
     app.initialize(options + list(argv))
@@ -301,8 +301,6 @@ def main(argv, layout, memory_mb, audit=True):
     except Exception:
         pass
     try:  # IPython 9 copies every write to stdout/stderr into the history's memory ("tee"): not here
-        import contextlib
-
         app.shell._tee = lambda channel: contextlib.nullcontext()
     except Exception:
         pass

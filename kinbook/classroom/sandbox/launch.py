@@ -19,6 +19,7 @@ reports a kernel that did not start).
 """
 
 import os
+import resource
 import signal
 import socket
 import sys
@@ -37,7 +38,6 @@ def _end_like(status):
     code = returncode(status)
     if code < 0:
         number = -code
-        import resource
 
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))  # a mirrored SIGXCPU or SIGSEGV dumps no core
         try:

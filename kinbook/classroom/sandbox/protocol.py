@@ -27,9 +27,12 @@ sandbox writes is read by the grading process.
 
 from __future__ import annotations
 
+import ctypes
 import json
+import math
 import os
 import select
+import signal
 import time
 from dataclasses import asdict, dataclass
 
@@ -67,8 +70,6 @@ ANSWERS = "answers"
 def cpu_seconds(timeout):
     """The kernel's CPU-time limit (``RLIMIT_CPU``) for a run limited to ``timeout`` seconds: the limit that
     decides a verdict of ``timeout``, the same on a quiet machine and a loaded one."""
-    import math
-
     return max(1, math.ceil(float(timeout)))
 
 
@@ -279,8 +280,6 @@ _PR_SET_CHILD_SUBREAPER = 36
 
 def _prctl(option, value):
     try:
-        import ctypes
-
         libc = ctypes.CDLL(None, use_errno=True)
         return libc.prctl(option, value, 0, 0, 0) == 0
     except (OSError, AttributeError):  # not Linux
@@ -293,8 +292,6 @@ def die_with_parent(parent_pid=None):
     ``parent_pid`` is the parent expected; if it is already gone (it died before the call), this process
     exits at once. Returns whether the kernel took the request (Linux only).
     """
-    import signal
-
     ok = _prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL))
     if parent_pid is not None and os.getppid() != parent_pid:
         os._exit(1)

@@ -25,7 +25,10 @@ report a reference use of their own; the reading of the code (above) does not de
 from __future__ import annotations
 
 import collections
+import importlib
 import json
+import pkgutil
+import random
 import sys
 import types
 
@@ -45,9 +48,6 @@ REFERENCE_PACKAGES = ("kinbook.core", "kinbook.planar", "kinbook.spatial", "kinb
 
 def load_reference_modules():
     """Import every module of :data:`REFERENCE_PACKAGES` (and ``kinbook.files``)."""
-    import importlib
-    import pkgutil
-
     importlib.import_module("kinbook.files")
     for package in REFERENCE_PACKAGES:
         module = importlib.import_module(package)
@@ -58,8 +58,6 @@ def load_reference_modules():
 def setup(seed, functions=(), methods=()):
     """Seed the random generators and wrap the reference's ``functions`` (names of kinbook functions) and
     ``methods`` (names of methods of kinbook's classes) — before any cell of the notebook runs."""
-    import random
-
     random.seed(seed)
     for name in ("numpy.random", "sympy.core.random"):
         module = sys.modules.get(name)

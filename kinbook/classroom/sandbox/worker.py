@@ -29,6 +29,7 @@ from __future__ import annotations
 import ast
 import json
 import os
+import resource
 import signal
 import subprocess
 import sys
@@ -52,10 +53,10 @@ KERNEL_NAME = "kinbook-sandbox"
 
 def preload():
     """The worker's imports (done once, in the zygote)."""
-    import jupyter_client  # noqa: F401
-    import jupyter_client.kernelspec  # noqa: F401
-    import nbclient  # noqa: F401
-    import nbformat  # noqa: F401
+    import jupyter_client  # noqa: F401  (preloaded in the zygote: this function's purpose)
+    import jupyter_client.kernelspec  # noqa: F401  (preloaded in the zygote: this function's purpose)
+    import nbclient  # noqa: F401  (preloaded in the zygote: this function's purpose)
+    import nbformat  # noqa: F401  (preloaded in the zygote: this function's purpose)
 
 
 def _kernel_spec_dir(layout, channel_fd):
@@ -84,8 +85,6 @@ def _vm_bytes():
 
 def main(layout, job_fd, result_fd, channel_fd, limits):
     """The worker's whole life (see the module docstring)."""
-    import resource
-
     # a message the kernel builds within its budget, decoded here, must not take the worker down
     lim = _vm_bytes() + int((2 * limits["memory_mb"] + WORKER_EXTRA_MB) * 1024 * 1024)
     resource.setrlimit(resource.RLIMIT_AS, (lim, lim))
@@ -105,7 +104,7 @@ def main(layout, job_fd, result_fd, channel_fd, limits):
 
 
 def _client_class():
-    from nbclient import NotebookClient
+    from nbclient import NotebookClient  # optional dependency: nbclient (the grading extra)
 
     class Client(NotebookClient):
         """nbclient, keeping of a cell's outputs only its exception."""
@@ -123,10 +122,12 @@ def run(job, layout, channel_fd, started=None, answered=None):
     returns the result. ``started`` is called once the kernel is up, before the first cell is sent to it;
     ``answered(answers, cell)`` whenever the answers read after a cell changed, so that they reach the grading
     process before whatever may stop this worker (its memory, the sandbox's full directories, a kill)."""
-    import nbformat
-    from jupyter_client import AsyncKernelManager
-    from jupyter_client.kernelspec import KernelSpecManager
-    from jupyter_core.utils import run_sync
+    import nbformat  # optional dependency: nbformat (the grading extra)
+    from jupyter_client import AsyncKernelManager  # optional dependency: jupyter_client (the grading extra)
+    from jupyter_client.kernelspec import KernelSpecManager  # optional dependency: jupyter_client (the grading extra)
+    from jupyter_core.utils import run_sync  # optional dependency: jupyter_core (the grading extra)
+
+    # optional dependency: nbclient (the grading extra)
     from nbclient.exceptions import CellTimeoutError, DeadKernelError
 
     nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(c) for c in job["cells"]])

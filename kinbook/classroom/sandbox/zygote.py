@@ -42,16 +42,22 @@ context or event loop, so forking it is safe (:func:`serve` checks that its impo
 
 from __future__ import annotations
 
+import gc
 import json
 import os
+import resource
 import select
 import signal
 import socket
 import sys
+import tempfile
+import threading
 import time
 import traceback
 
+from . import kernel, worker
 from .protocol import THREAD_ENV, Layout, die_with_parent, set_child_subreaper, set_dumpable
+from .seccomp import NoFork
 
 __all__ = ["serve", "kernel_environment", "MAX_ENTRIES", "NPROC", "NOFILE"]
 
@@ -100,8 +106,6 @@ def _limits(text):
 def _set_limits(limits, isolated):
     """The kernel's resource limits, set by the zygote in the forked kernel before anything else runs (the
     address-space cap follows once the kernel has started: :func:`kinbook.classroom.sandbox.kernel.main`)."""
-    import resource
-
     cpu = limits["cpu_s"]
     resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 5))
     resource.setrlimit(resource.RLIMIT_FSIZE, (FILE_SIZE_LIMIT, FILE_SIZE_LIMIT))
@@ -224,8 +228,6 @@ class _Server:
                         pass
             _oom_score(role)
             if role == "worker":
-                from . import worker
-
                 worker.main(self.layout, self.job_fd, self.result_fd, channel.detach(), self.limits)
                 code = 0
             else:
@@ -237,10 +239,8 @@ class _Server:
                 _set_limits(limits, self.layout.isolated)
                 if not limits["fork"] and self.no_fork.available:  # no control group: per-process limits
                     self.no_fork.load()                                # must not be multiplied by forking
-                import tempfile
 
                 tempfile.tempdir = None
-                from . import kernel
 
                 argv = ["-f", self.layout.connection_file]
                 sys.argv = [kernel.__file__] + argv
@@ -423,8 +423,6 @@ def _open_fds():
     try:
         return sorted(int(fd) for fd in os.listdir("/proc/self/fd"))
     except OSError:
-        import resource
-
         return range(3, min(resource.getrlimit(resource.RLIMIT_NOFILE)[0], 4096))
 
 
@@ -475,8 +473,6 @@ def _single_threaded(settle=2.0):
     """True when this process has one thread. A joined thread can stay listed in /proc/self/task for a moment
     after ``join`` returns (its OS thread is still exiting), so a count above one is looked at again for up to
     ``settle`` seconds before it is believed."""
-    import threading
-
     if threading.active_count() != 1:
         return False
     deadline = time.monotonic() + settle
@@ -493,17 +489,12 @@ def _single_threaded(settle=2.0):
 
 def _preload():
     """Import what the kernels and the workers use, once."""
-    from . import kernel, worker
-
     kernel.preload()
     worker.preload()
 
 
 def serve(layout, job_fd, result_fd):
     """Import the kernels' and workers' libraries, listen, say ``ready`` and serve until stdin closes."""
-    import gc
-    import resource
-
     set_dumpable(False)
     set_child_subreaper()
     # pid 1 of the sandbox receives from inside only the signals it handles: none but SIGCHLD (Python's own SIGINT
@@ -515,7 +506,6 @@ def serve(layout, job_fd, result_fd):
         resource.setrlimit(resource.RLIMIT_FSIZE, (FILE_SIZE_LIMIT, FILE_SIZE_LIMIT))
     for d in (layout.home, layout.tmp, layout.work):
         os.makedirs(d, mode=0o700, exist_ok=True)
-    from .seccomp import NoFork
 
     no_fork = NoFork()  # built before any kernel is forked (libseccomp is not loaded into kernels otherwise)
     _preload()
@@ -544,8 +534,6 @@ class _Lifeline:
     """
 
     def __init__(self):
-        import threading
-
         self.stop = threading.Event()
         self.thread = threading.Thread(target=self._watch, daemon=True)
         self.thread.start()

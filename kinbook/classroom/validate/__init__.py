@@ -20,6 +20,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...errors import GradingError
+from ..grade import grade_submission
+from ..notebook import find_parameters, load_source, student_notebook
+from ..release import write_notebook
+from ..sandbox import Sandbox
+from ..variant import references, student_parameters
 
 __all__ = ["validate", "Check", "SAMPLE_STUDENTS", "question_tests"]
 
@@ -76,8 +81,6 @@ def question_tests(p, where="the source's data"):
 
 def _question_tests(src):
     """A Check of the parts' own question tests on the source's data (None when no part declares any)."""
-    from ..variant import references
-
     parts = [p for p in references(src) if p.tests]
     if not parts:
         return None
@@ -111,12 +114,6 @@ def validate(source, *, students=None, timeout=60.0, memory=1000, isolation=True
     GradingError
         When any check fails (after all were run), listing them.
     """
-    from ..grade import grade_submission
-    from ..notebook import find_parameters, load_source, student_notebook
-    from ..release import write_notebook
-    from ..sandbox import Sandbox
-    from ..variant import references, student_parameters
-
     src = load_source(source)
     references(src)  # an exercise whose own code fails stops here, with the cell named
     has_params = find_parameters(src.nb) is not None

@@ -11,9 +11,14 @@ right answer in another form must pass.
 
 from __future__ import annotations
 
+import numpy as np
+
 from ...grading import mutant_names as MN
 from ...grading import mutants as MU
 from ...grading.item import CHECKERS
+from ..notebook import find_parameters, load_source
+from ..variant import references, student_parameters
+from . import SAMPLE_STUDENTS, question_tests
 
 __all__ = ["mutation_tallies", "part_mutants"]
 
@@ -33,8 +38,7 @@ def part_mutants(p, limit=None):
 
 
 def _answer(mutant):
-    import numpy as np
-    import sympy as sp
+    import sympy as sp  # import time: sympy only when needed
 
     v = mutant.value
     if isinstance(v, (np.ndarray, np.generic, float, int)):
@@ -54,10 +58,6 @@ def mutation_tallies(source, *, students=None, variants=2, limit=None, progress=
     -------
     (list of Tally, list of str)
     """
-    from ..notebook import find_parameters, load_source
-    from ..variant import references, student_parameters
-    from . import SAMPLE_STUDENTS, question_tests
-
     src = load_source(source)
     datas = [("the source's data", None)]
     if find_parameters(src.nb) is not None:

@@ -17,6 +17,7 @@ student, :func:`variant`).
 from __future__ import annotations
 
 import contextlib
+import dis
 import io
 import warnings
 
@@ -75,8 +76,6 @@ def _exit(code=None):
 def declared_parts(code):
     """The names of the parts a compiled cell declares, ``part("name", …)`` with the name written out (read from
     the code object's constants: the calls are there whether or not they ran)."""
-    import dis
-
     names, last = [], None
     for ins in dis.get_instructions(code):
         if ins.opname in ("LOAD_NAME", "LOAD_GLOBAL", "LOAD_ATTR", "LOAD_METHOD") and ins.argval == "part":
@@ -111,10 +110,10 @@ def references(source, values=None):
     key = (source.sha256, repr(sorted((values or {}).items())))
     if key in _cache:
         return _cache[key]
-    import matplotlib
+    import matplotlib  # import time: matplotlib only when needed
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # import time: matplotlib only when needed
 
     ns = {"__name__": "__kinbook_reference__", "part": part, "parameters": parameters,
           "display": lambda *a, **k: None, "exit": _exit, "quit": _exit}

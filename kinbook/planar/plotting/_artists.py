@@ -28,7 +28,7 @@ class FrameGlyph(Glyph):
     """A reference frame: two arrows along the rotated axes, axis names at their tips, an origin label."""
 
     def __init__(self, ax, length, label=None, axes=("ξ", "η"), color="k", lw=1.3, zorder=6, fontsize=10):
-        from matplotlib.patches import FancyArrowPatch
+        from matplotlib.patches import FancyArrowPatch  # import time: matplotlib only when needed
 
         self.length = float(length)
         style = dict(arrowstyle="-|>", mutation_scale=12, color=color, lw=lw, zorder=zorder, shrinkA=0, shrinkB=0)
@@ -76,7 +76,7 @@ class BodyGlyph(Glyph):
     """A moving body: a line (two points), a convex polygon (three or more), a dot (one) and its number."""
 
     def __init__(self, ax, mech, body, colour, L, labels):
-        from matplotlib.patches import Polygon
+        from matplotlib.patches import Polygon  # import time: matplotlib only when needed
 
         self.mech, self.body, self.L = mech, body, L
         local = []
@@ -146,7 +146,7 @@ class GroundGlyph(Glyph):
     """The fixed body: a support (triangle on a hatched base) at each joint point, its number by the first."""
 
     def __init__(self, ax, mech, body, L, labels, support_points, other_points):
-        from matplotlib.patches import Polygon
+        from matplotlib.patches import Polygon  # import time: matplotlib only when needed
 
         self.mech, self.body = mech, body
         rho = RHO * L
@@ -210,7 +210,7 @@ class PinGlyph(Glyph):
     """A small white circle at a body point (revolute joints, pins of composite joints)."""
 
     def __init__(self, ax, mech, body, s, rho, zorder=5):
-        from matplotlib.patches import Circle
+        from matplotlib.patches import Circle  # import time: matplotlib only when needed
 
         self.mech, self.body, self.s = mech, body, np.array([float(v) for v in s])
         self.circle = Circle((0, 0), rho, fc="white", ec="black", lw=1.5, zorder=zorder)
@@ -286,7 +286,7 @@ class VectorGlyph(Glyph):
     """r_i, s_i^P and r_i^P of one body point (Fig. 13.18), optionally with the projections of Fig. 13.20."""
 
     def __init__(self, ax, mech, body, point, L, origin=(0.0, 0.0), projections=False):
-        from matplotlib.patches import FancyArrowPatch
+        from matplotlib.patches import FancyArrowPatch  # import time: matplotlib only when needed
 
         self.mech, self.body = mech, mech.body(body)
         self.s = mech.point_local(body, point)

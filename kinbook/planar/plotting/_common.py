@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import re
+import textwrap
 
 import numpy as np
 
@@ -21,7 +22,7 @@ _GREEK = {"ξ": r"\xi", "η": r"\eta", "φ": r"\varphi", "Φ": r"\Phi"}
 SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 def pyplot():
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # import time: matplotlib only when needed
 
     return plt
 
@@ -163,6 +164,4 @@ def style_axes(ax, title=None):
     ax.set_ylabel("y")
     ax.grid(True, lw=0.4, alpha=0.4)
     if title:
-        import textwrap
-
         ax.set_title("\n".join(textwrap.wrap(str(title), 58)), fontsize=10)

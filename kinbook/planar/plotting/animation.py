@@ -54,7 +54,7 @@ def animate(result, *, every=1, interval=40, frames=False, trace=None, max_frame
     full turn reads 45° again, not 405° — or signed when it swings about zero
     (:func:`kinbook.core._animation.degrees_as_read`).
     """
-    from matplotlib.animation import FuncAnimation
+    from matplotlib.animation import FuncAnimation  # import time: matplotlib only when needed
 
     mech = result.mechanism
     N = len(result.t)

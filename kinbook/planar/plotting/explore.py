@@ -9,9 +9,11 @@ degrees.
 
 from __future__ import annotations
 
+import io
 import math
 
 import numpy as np
+import sympy as sp
 
 from ...core._animation import degrees_as_read, swings_about_zero
 from ...core.sweep import follow, follow_times
@@ -28,8 +30,6 @@ class _DriverAxis:
     angles in degrees."""
 
     def __init__(self, mech, driver):
-        import sympy as sp
-
         drivers = mech.drivers
         if not drivers:
             raise InputError(f"mechanism '{mech.name}' has no driver to explore")
@@ -104,7 +104,7 @@ def _verdict(d, reached):
 
 def _live_kernel():
     try:
-        from IPython import get_ipython
+        from IPython import get_ipython  # optional dependency
     except ImportError:
         return False
     ip = get_ipython()
@@ -162,7 +162,7 @@ def explorer(mech, driver=None, values=None, *, degrees=False, static=None, fram
         static = not _live_kernel()
         if not static:
             try:
-                import ipywidgets  # noqa: F401
+                import ipywidgets  # noqa: F401  (optional dependency: the lab extra)
             except ImportError:
                 static = True
     if static:
@@ -222,11 +222,9 @@ def _explorer_static(mech, axis, values, frames, ncols):
 
 
 def _explorer_widget(mech, axis, values, frames):
-    import io
-
-    import ipywidgets as widgets
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
+    import ipywidgets as widgets  # optional dependency: ipywidgets (the lab extra)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # import time: matplotlib only when needed
+    from matplotlib.figure import Figure  # import time: matplotlib only when needed
 
     lo, hi = float(np.min(values)), float(np.max(values))
     if hi <= lo:

@@ -141,7 +141,7 @@ class TranslationalDrawing(JointDrawing):
         return [(c.bodies[0], c.s_Pi), (c.bodies[0], c.s_Qi), (c.bodies[1], c.s_Pj)]
 
     def __init__(self, ax, c, scene):
-        from matplotlib.patches import Polygon
+        from matplotlib.patches import Polygon  # import time: matplotlib only when needed
 
         mech, L, colours, fixed = scene.mech, scene.L, scene.colours, scene.fixed
         self.mech, self.c = mech, c
@@ -189,7 +189,7 @@ class RevoluteTranslationalDrawing(JointDrawing):
         return [(c.bodies[0], c.s_Pi), (c.bodies[1], c.s_Pj), (c.bodies[1], c.s_Qj)]
 
     def __init__(self, ax, c, scene):
-        from matplotlib.patches import Polygon
+        from matplotlib.patches import Polygon  # import time: matplotlib only when needed
 
         mech, L, colours, fixed = scene.mech, scene.L, scene.colours, scene.fixed
         self.mech, self.c = mech, c
@@ -255,7 +255,7 @@ class _WheelGlyph(Glyph):
     """A dashed pitch circle of radius |ρ| about a body's reference point, with a spoke along its ξ axis."""
 
     def __init__(self, ax, mech, body, radius, colour):
-        from matplotlib.patches import Circle
+        from matplotlib.patches import Circle  # import time: matplotlib only when needed
 
         self.mech, self.body, self.r = mech, body, abs(float(radius))
         self.circle = Circle((0, 0), self.r, fill=False, ec=colour, lw=1.5, ls="--", zorder=2)

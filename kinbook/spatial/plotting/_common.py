@@ -59,7 +59,7 @@ def set_limits(ax, points, margin=0.1):
     ax.set_ylim(centre[1] - half[1], centre[1] + half[1])
     ax.set_zlim(centre[2] - half[2], centre[2] + half[2])
     equal_scales(ax)
-    from matplotlib.ticker import MaxNLocator
+    from matplotlib.ticker import MaxNLocator  # import time: matplotlib only when needed
 
     for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
         axis.set_major_locator(MaxNLocator(4))
@@ -94,8 +94,8 @@ def arrow_class():
     """
     if _ARROW_CLASS:
         return _ARROW_CLASS[0]
-    from matplotlib.patches import FancyArrowPatch
-    from mpl_toolkits.mplot3d import proj3d
+    from matplotlib.patches import FancyArrowPatch  # import time: matplotlib only when needed
+    from mpl_toolkits.mplot3d import proj3d  # import time: matplotlib only when plotting
 
     class Arrow3D(FancyArrowPatch):
         def __init__(self, start, end, **kwargs):

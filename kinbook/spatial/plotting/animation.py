@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...core._animation import Animation
 from ...errors import InputError
 from .scene import draw
 
@@ -39,7 +40,7 @@ def animate(result, ax=None, *, frames=False, every=1, interval=40, max_frames=N
         Show it in a notebook with :func:`animation_png`. Its ``drawing`` attribute is
         the :class:`Drawing` it updates.
     """
-    from matplotlib.animation import FuncAnimation
+    from matplotlib.animation import FuncAnimation  # import time: matplotlib only when needed
 
     mech = result.mechanism
     if len(result) == 0:
@@ -85,9 +86,7 @@ def animation_png(result, colors=256, **kwargs):
     kinbook.core._animation.Animation
         ``_repr_png_()`` is the animated PNG; ``.anim`` is the FuncAnimation; ``.save(path)`` writes the file.
     """
-    import matplotlib.pyplot as plt
-
-    from ...core._animation import Animation
+    import matplotlib.pyplot as plt  # import time: matplotlib only when needed
 
     if kwargs.get("ax") is None:
         kwargs.setdefault("figsize", (5.6, 4.6))

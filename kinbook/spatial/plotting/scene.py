@@ -92,7 +92,7 @@ def draw(mech, q, ax=None, *, frames=False, frame_size=None, labels=False, limit
     -------
     Drawing
     """
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # import time: matplotlib only when needed
 
     q = check_single(mech, q)
     if ax is None:
@@ -353,7 +353,7 @@ def make_3d_axes(ax=None, *, figsize=(7.0, 5.6), view=(24, -60), title=None, glo
     Axes3D
     """
     if ax is None:
-        import matplotlib.pyplot as plt
+        import matplotlib.pyplot as plt  # import time: matplotlib only when needed
 
         fig = fig if fig is not None else plt.figure(figsize=figsize)
         ax = fig.add_subplot(*(subplot if isinstance(subplot, tuple) else (subplot,)), projection="3d")
