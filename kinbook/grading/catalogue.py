@@ -418,6 +418,11 @@ add_texts({
     "d.not_rounded": N_("a constant differs from the exercise's: {value} is not {exact} rounded ({digits} significant "
                         "digits); round it correctly to at least 3 digits, or write {exact}"),
     "d.on_body": N_("{what} on body {body} only"),
+    "d.other_angle": N_("A of body {body} built with the orientation of body {other}"),
+    "d.length_dropped": N_("the length term −l² is missing"),
+    "d.rotation_columns": N_("the derivative of A s' written in the other body's rotation columns: each body's "
+                             "B s' (∂/∂φ, ∂/∂p) goes under its own coordinates"),
+    "d.angles_exchanged": N_("the two bodies' orientations exchanged: each A built with the other body's angle"),
     "d.motion_degrees": N_("the motion f(t) − f(0) (its amplitude or its rate) in degrees"),
     "d.cross_terms": N_("the cross terms (products of one body's velocities with the other's)"),
     "d.dC_missing": N_("dᵀC_i, the derivative of s_i, is missing: s_i = A_i s'_i depends on p_i too"),

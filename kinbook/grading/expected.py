@@ -41,6 +41,7 @@ add_texts({
     "x.rates": N_("φ̈ and φ̇² exchanged (the slip of the book's example 6)"),
     "x.relative": N_("this is the speed relative to the carrier, φ̇_j − φ̇_k; the question asks for the absolute one"),
     "x.mesh_sign": N_("the sign of the mesh: two external gears turn in opposite senses relative to the carrier"),
+    "x.radii_ratio": N_("the ratio of the radii upside down: ρ_j/ρ_i for ρ_i/ρ_j"),
     "x.diameter": N_("the diameter 2ρ used for the radius ρ"),
     "x.factor_2": N_("the 2 of ∂(dᵀd)/∂q = 2dᵀ ∂d/∂q"),
     "x.term": N_("the term {term}"),
@@ -255,6 +256,7 @@ def planet_speed(w_planet, w_carrier, w_sun, rho_sun, rho_planet):
         ("relative_speed", _v(-rel), Msg("x.relative"), None),
         ("sign_flip", _v(w_carrier - rel), Msg("x.mesh_sign"), None),
         ("missing_term", _v(-k * w_sun), Msg("d.missing_term", term="φ̇_k"), None),
+        ("swapped_bodies", _v(w_carrier + rel / k**2), Msg("x.radii_ratio"), None),
         ("degrees", _v(w_planet * DEG), None, None),
     ], kind="value", context=("gear", "value"))
 
