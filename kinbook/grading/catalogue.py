@@ -134,6 +134,8 @@ _ENTRIES = [
                   "+ A_j s'_j − r_i − A_i s'_i and their derivatives B_k = 2(E_k s̄'_k + s'_k p_kᵀ)"),
        speed=N_("a velocity term has the opposite sign: ṙ^P = ṙ + B s' φ̇ (eq. 10), B = dA/dφ"),
        accel=N_("an acceleration term has the opposite sign: r̈^P = r̈ + B s' φ̈ − A s' φ̇² (eq. 13)"),
+       rotation=N_("an entry of the matrix has the opposite sign: rebuild it from the formula the question names "
+                   "and check the sign of each product; each column of A is a body axis in global components"),
        parameters=N_("p and −p describe the same orientation, but the question asks for e0 ≥ 0: when e0 comes out "
                      "negative, take −p")),
     _m("missing_term",
@@ -180,6 +182,10 @@ _ENTRIES = [
     _m("A_for_B",
        N_("A used where B belongs"),
        N_("the derivative of A(φ) is B(φ) = [[−sin φ, −cos φ], [cos φ, −sin φ]], not A itself")),
+    _m("B_for_A",
+       N_("B used where A belongs"),
+       N_("A(φ) = [[cos φ, −sin φ], [sin φ, cos φ]] itself turns local components into global ones (r^P = r + A s', "
+          "eq. 5); B(φ) = dA/dφ appears only where A is differentiated (velocities, eq. 10)")),
     _m("eg_jacobian",
        N_("2Eā without 2apᵀ"),
        N_("∂(A a)/∂p = 2(E ā + a pᵀ) for kinbook's (and Table 14.1's) A = 2[(e0² − ½)I + eeᵀ + e0ẽ]; 2Eā alone is "
@@ -375,7 +381,7 @@ _hints_for(
     angles=N_("give the angles in radians (np.radians converts; atan2 and arccos already return radians)"))
 _hints_for(
     "missing_term",
-    position=N_("r^P = r + A s' (eq. 5): the body's origin plus the turned local vector"))
+    position=N_("r^P = r + A s' (eq. 5 in the plane, §14.1 in space): the body's origin plus the turned local vector"))
 
 
 def codes():

@@ -149,7 +149,7 @@ def A(phi):
     return Expected(_v(T.A(phi)), variants=[
         ("transposed", _v(T.A(phi)).T, None, None),
         ("degrees", _v(T.A(phi * DEG)), None, None),
-        ("A_for_B", _v(T.B(phi)), None, None),
+        ("B_for_A", _v(T.B(phi)), None, None),
     ], kind="rotation")
 
 
@@ -166,7 +166,7 @@ def point_position(r, phi, s_local):
         ("sign_flip", r - A_ @ s, Msg("d.sign_of", what="A s'"), None),
         ("degrees", _v(T.point_position(r, phi * DEG, s)), None, None),
         ("missing_term", A_ @ s, Msg("d.missing_term", term="r"), None),
-        ("A_for_B", r + B_ @ s, None, None),
+        ("B_for_A", r + B_ @ s, None, None),
     ]
     variants += _term_flips(r, A_, s, 1.0, {(0, 0): "ξ cos φ", (0, 1): "−η sin φ", (1, 0): "ξ sin φ",
                                            (1, 1): "η cos φ"})
@@ -322,13 +322,14 @@ def local_components(A_, s):
     """s' = Aᵀ s, the body components of a global vector (§14.1): wrong forms A s, s itself (not turned)."""
     A_, s = _v(A_), _v(s)
     return Expected(A_.T @ s, variants=[("A_for_AT", A_ @ s, None, None), ("wrong_frame", s, None, None)],
-                    kind="vector")
+                    kind="vector", context=("vector", "spatial"))
 
 
 def global_components(A_, s_local):
     """s = A s', the global components of a body vector: wrong form Aᵀ s'."""
     A_, s = _v(A_), _v(s_local)
-    return Expected(A_ @ s, variants=[("A_transposed", A_.T @ s, None, None)], kind="vector")
+    return Expected(A_ @ s, variants=[("A_transposed", A_.T @ s, None, None)], kind="vector",
+                    context=("vector", "spatial"))
 
 
 def spatial_point_position(r, p, s_local):
@@ -344,7 +345,7 @@ def spatial_point_position(r, p, s_local):
         ("book_misprint", r + book_A_of_p(p) @ s, None, "14.3-A-of-p"),
         ("factor_2_missing", r + 0.5 * A_ @ s, None, None),
         ("sign_flip", r - A_ @ s, Msg("d.sign_of", what="A s'"), None),
-    ], kind="vector", context=("position",))
+    ], kind="vector", context=("spatial", "position"))
 
 
 def A_from_euler(psi, theta, phi):

@@ -130,7 +130,7 @@ def ch13():
     T.append(Case("13-1/try-1", R, [
         Answer(R.T, "transposed", rel(lambda r: r.T)),
         Answer(np.array([[np.cos(120), -np.sin(120)], [np.sin(120), np.cos(120)]]), "degrees", same(A(120.0))),
-        Answer(B(f), "A_for_B", rel(lambda r: r @ np.array([[0, -1], [1, 0]]))),
+        Answer(B(f), "B_for_A", rel(lambda r: r @ np.array([[0, -1], [1, 0]]))),
         Answer(np.array([[np.sin(f), -np.cos(f)], [np.cos(f), np.sin(f)]]), "sin_cos",
                same([[np.sqrt(3) / 2, 0.5], [-0.5, np.sqrt(3) / 2]])),
         Answer(A(np.radians(np.radians(120))), "radians_twice", same(A(120 * np.pi**2 / 180**2))),

@@ -72,3 +72,27 @@ def test_realistic_wrong_answers_are_named_never_passed_never_misnamed():
     assert total["false_pass"] == 0, text
     assert total["misleading"] == 0, text
     assert total["generic"] <= 0.10 * n, text
+
+
+PLANAR_NOTATION = ("A(φ)", "B(φ)", "(ξ, η)", "(eq. 5)", "(ec. 5)", "eq. 10", "ec. 10", "eq. 13", "ec. 13")
+
+
+@pytest.mark.parametrize("lang", ["en", "es"])
+def test_a_3d_try_it_never_shows_the_planar_notation(lang):
+    """The feedback to every wrong answer of chapter 14 speaks of A(p), Euler parameters and angles — never the
+    plane's A(φ), (ξ, η) or chapter 13's equations (the review saw A(φ) hints in 14-1)."""
+    from kinbook.grading import set_language
+
+    set_language(lang)
+    try:
+        seen = []
+        for case in CASES:
+            if not case.id.startswith("14-"):
+                continue
+            for answer in case.wrong:
+                lines = repr(get(case.id).check(answer.answer)).splitlines()
+                text = "\n".join(line for line in lines if "as read" not in line and "tal como" not in line)
+                seen += [(case.id, answer.code, p) for p in PLANAR_NOTATION if p in text]
+    finally:
+        set_language("en")
+    assert seen == []

@@ -53,7 +53,7 @@ def _sites(tree):
             out.append(_Site("sign_flip", "abs(…) left out (a length's sign)", k, lambda n: n.args[0]))
         if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in ("A", "B"):
             other = "B" if n.func.id == "A" else "A"
-            out.append(_Site("A_for_B" if other == "A" else "A_for_B", f"{n.func.id}(…) → {other}(…)", k,
+            out.append(_Site("A_for_B" if other == "A" else "B_for_A", f"{n.func.id}(…) → {other}(…)", k,
                              lambda n, o=other: ast.Call(ast.Name(o, ast.Load()), n.args, n.keywords)))
         if isinstance(n, ast.BinOp) and isinstance(n.op, (ast.Add, ast.Sub)):
             flip = ast.Sub() if isinstance(n.op, ast.Add) else ast.Add()
@@ -135,7 +135,7 @@ def _radians(x):
     return ast.Call(ast.Attribute(ast.Name("np", ast.Load()), "radians", ast.Load()), [x], [])
 
 
-EVERYWHERE = ("sin_cos", "arctan_quadrant", "degrees", "radians_twice", "A_for_B")
+EVERYWHERE = ("sin_cos", "arctan_quadrant", "degrees", "radians_twice", "A_for_B", "B_for_A")
 """Code slips that are also made at every place they apply at once (a method, not a typo)."""
 
 

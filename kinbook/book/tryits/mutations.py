@@ -197,7 +197,10 @@ def mutation_tally(item, variants=2, limit=None):
                             why = "the data cannot tell it apart (the same value)"
                     except (TypeError, ValueError):
                         pass
-            tally.add(m, outcome, given, where, why)
+            strict = MN.strictly_named(result, m)
+            # a numeric try-it names its worked answer's code slips — the very mutants counted here: counted apart
+            alone = MN.strictly_named(item.check(answer, data, slips=False), m) if quantity is None and strict else strict
+            tally.add(m, outcome, given, where, why, strict=strict, catalogue=alone)
     return tally
 
 

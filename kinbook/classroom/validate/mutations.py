@@ -73,7 +73,8 @@ def mutation_tallies(source, *, students=None, variants=2, limit=None, progress=
             for m in found:
                 result = p.run(_answer(m))
                 outcome, given = MN.classify(result, m)
-                tally.add(m, outcome, given, where, "the checker lets it through")
+                strict = MN.strictly_named(result, m)
+                tally.add(m, outcome, given, where, "the checker lets it through", strict=strict, catalogue=strict)
             failures += [text for ok, text in question_tests(p, where) if not ok]
     out = list(tallies.values())
     if progress:
