@@ -15,7 +15,7 @@ from .compare import same, scale_match, scale_of
 from .mutants import expression_mutants, row_mutants
 from .quantities import quantity_of
 
-__all__ = ["SYNONYMS", "EQUIVALENT", "classify", "strictly_named", "Tally", "format_table", "name_phi_rows",
+__all__ = ["SYNONYMS", "EQUIVALENT", "classify", "strictly_named", "passing_mutants", "Tally", "format_table", "name_phi_rows",
            "name_derived_row", "name_entries", "phi_equal"]
 
 SYNONYMS = {
@@ -120,6 +120,42 @@ def strictly_named(result, mutant):
         return False
     given = {c for c in (result.mistakes or ()) if c}
     return mutant.code in given or any((mutant.code, c) in EQUIVALENT for c in given)
+
+
+def passing_mutants(mutants, answer_of, check, reference=None):
+    """The mutants whose answer ``check`` passes (``check(answer).passed``): the blind spots of one item at one set
+    of data — the one rule by which the try-its' draws (``kb.another``) and the exercises' variant draws refuse data.
+    ``answer_of(mutant)`` makes the answer; with the numeric ``reference``, an answer farther from it than any
+    checker's tolerance (a fifth of its largest entry; angles modulo 2π; −x too, p's other sign) is not graded, a
+    shortcut that skips no mutant a check could pass. A mutant that fails to make an answer is no answer here."""
+    ref = None if reference is None else np.asarray(reference, float)
+    out = []
+    for m in mutants:
+        try:
+            with np.errstate(all="ignore"):
+                answer = answer_of(m)
+                if ref is not None and not _may_pass(answer, ref):
+                    continue
+                if check(answer).passed:
+                    out.append(m)
+        except Exception:  # noqa: BLE001 — a mutant these data cannot evaluate (or the check refuses as unreadable)
+            continue
+    return out
+
+
+def _may_pass(answer, ref):
+    try:
+        v = np.asarray(answer, float)
+    except (TypeError, ValueError):
+        return True  # not numbers: the check decides
+    if v.size != ref.size:
+        return True
+    v = v.reshape(ref.shape)
+    if not np.all(np.isfinite(v)):
+        return False
+    tol = 0.2 * max(1.0, float(np.max(np.abs(ref), initial=0.0)))
+    near = (np.abs(v - ref) <= tol) | (np.abs(np.mod(v - ref + np.pi, 2 * np.pi) - np.pi) <= tol)
+    return bool(np.all(near) or np.all(np.abs(v + ref) <= tol))
 
 
 @dataclass
