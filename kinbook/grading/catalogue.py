@@ -139,6 +139,8 @@ _ENTRIES = [
                   "+ A_j s'_j − r_i − A_i s'_i and their derivatives B_k = 2(E_k s̄'_k + s'_k p_kᵀ)"),
        speed=N_("a velocity term has the opposite sign: ṙ^P = ṙ + B s' φ̇ (eq. 10), B = dA/dφ"),
        accel=N_("an acceleration term has the opposite sign: r̈^P = r̈ + B s' φ̈ − A s' φ̇² (eq. 13)"),
+       rotation=N_("an entry of the matrix has the opposite sign: rebuild it from the formula the question names "
+                   "and check the sign of each product; each column of A is a body axis in global components"),
        parameters=N_("p and −p describe the same orientation, but the question asks for e0 ≥ 0: when e0 comes out "
                      "negative, take −p")),
     _m("missing_term",
@@ -185,6 +187,10 @@ _ENTRIES = [
     _m("A_for_B",
        N_("A used where B belongs"),
        N_("the derivative of A(φ) is B(φ) = [[−sin φ, −cos φ], [cos φ, −sin φ]], not A itself")),
+    _m("B_for_A",
+       N_("B used where A belongs"),
+       N_("A(φ) = [[cos φ, −sin φ], [sin φ, cos φ]] itself turns local components into global ones (r^P = r + A s', "
+          "eq. 5); B(φ) = dA/dφ appears only where A is differentiated (velocities, eq. 10)")),
     _m("eg_jacobian",
        N_("2Eā without 2apᵀ"),
        N_("∂(A a)/∂p = 2(E ā + a pᵀ) for kinbook's (and Table 14.1's) A = 2[(e0² − ½)I + eeᵀ + e0ẽ]; 2Eā alone is "
@@ -380,7 +386,7 @@ _hints_for(
     angles=N_("give the angles in radians (np.radians converts; atan2 and arccos already return radians)"))
 _hints_for(
     "missing_term",
-    position=N_("r^P = r + A s' (eq. 5): the body's origin plus the turned local vector"))
+    position=N_("r^P = r + A s' (eq. 5 in the plane, §14.1 in space): the body's origin plus the turned local vector"))
 
 
 def codes():
@@ -423,6 +429,11 @@ add_texts({
     "d.not_rounded": N_("a constant differs from the exercise's: {value} is not {exact} rounded ({digits} significant "
                         "digits); round it correctly to at least 3 digits, or write {exact}"),
     "d.on_body": N_("{what} on body {body} only"),
+    "d.other_angle": N_("A of body {body} built with the orientation of body {other}"),
+    "d.length_dropped": N_("the length term −l² is missing"),
+    "d.rotation_columns": N_("the derivative of A s' written in the other body's rotation columns: each body's "
+                             "B s' (∂/∂φ, ∂/∂p) goes under its own coordinates"),
+    "d.angles_exchanged": N_("the two bodies' orientations exchanged: each A built with the other body's angle"),
     "d.motion_degrees": N_("the motion f(t) − f(0) (its amplitude or its rate) in degrees"),
     "d.cross_terms": N_("the cross terms (products of one body's velocities with the other's)"),
     "d.dC_missing": N_("dᵀC_i, the derivative of s_i, is missing: s_i = A_i s'_i depends on p_i too"),

@@ -514,6 +514,8 @@ def _candidates(target, ex, r, own, expected):
                     V = values[:, ex.data.cols] if Q.per_coordinate else values[:, None]
                     out.append((code, f * V, Msg("d.dC_missing") if detail == "dC" else None, None))
     owner = target.owner(r.ref) if r.ref is not None and not isinstance(r.ref, tuple) else None
+    if owner is not None and Q.per_coordinate:
+        out += _rotation_columns_exchanged(target, ex, owner, expected)
     if owner is not None and owner.kind == "normalization" and Q.right_hand_side:
         # pᵀp − 1: γ = −2ṗᵀṗ, nothing of A in it — its zero γ is the term forgotten, not a chain rule
         out.append(("missing_term", np.zeros_like(expected), Msg("d.missing_term", term="−2ṗᵀṗ"), None))
@@ -546,6 +548,23 @@ def _candidates(target, ex, r, own, expected):
             unsq = factor * (np.einsum("bkn,bn->bk", H, QD**2) - np.einsum("bkn,bn->bk", H, QD))[:, row][:, None]
             out.append(("missing_square", expected + unsq, None, None))
     return late + out
+
+
+def _rotation_columns_exchanged(target, ex, c, expected):
+    """A Φ_q row whose two bodies' rotation columns (φ_i ↔ φ_j; p_i ↔ p_j) hold each other's entries: B s'
+    differentiated right but written under the other body's angle — the right numbers in the wrong places."""
+    bodies = getattr(c, "bodies", ())
+    if len(bodies) != 2:
+        return []
+    ncoord = len(target.mech.COORDS)
+    rot = range(2, 3) if ncoord == 3 else range(3, 7)
+    cols = list(ex.data.cols)
+    at = [[cols.index(ncoord * (b.number - 1) + k) for k in rot if ncoord * (b.number - 1) + k in cols] for b in bodies]
+    if len(at[0]) != len(rot) or len(at[1]) != len(rot):
+        return []
+    V = expected.copy()
+    V[:, at[0] + at[1]] = expected[:, at[1] + at[0]]
+    return [("swapped_entries", V, Msg("d.rotation_columns"), None)]
 
 
 def fmt_factor(c):

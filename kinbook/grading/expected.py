@@ -48,6 +48,7 @@ add_texts({
     "x.rates": N_("φ̈ and φ̇² exchanged (the slip of the book's example 6)"),
     "x.relative": N_("this is the speed relative to the carrier, φ̇_j − φ̇_k; the question asks for the absolute one"),
     "x.mesh_sign": N_("the sign of the mesh: two external gears turn in opposite senses relative to the carrier"),
+    "x.radii_ratio": N_("the ratio of the radii upside down: ρ_j/ρ_i for ρ_i/ρ_j"),
     "x.diameter": N_("the diameter 2ρ used for the radius ρ"),
     "x.factor_2": N_("the 2 of ∂(dᵀd)/∂q = 2dᵀ ∂d/∂q"),
     "x.term": N_("the term {term}"),
@@ -153,7 +154,7 @@ def A(phi):
     return Expected(_v(T.A(phi)), variants=[
         ("transposed", _v(T.A(phi)).T, None, None),
         ("degrees", _v(T.A(phi * DEG)), None, None),
-        ("A_for_B", _v(T.B(phi)), None, None),
+        ("B_for_A", _v(T.B(phi)), None, None),
     ], kind="rotation")
 
 
@@ -170,7 +171,7 @@ def point_position(r, phi, s_local):
         ("sign_flip", r - A_ @ s, Msg("d.sign_of", what="A s'"), None),
         ("degrees", _v(T.point_position(r, phi * DEG, s)), None, None),
         ("missing_term", A_ @ s, Msg("d.missing_term", term="r"), None),
-        ("A_for_B", r + B_ @ s, None, None),
+        ("B_for_A", r + B_ @ s, None, None),
     ]
     variants += _term_flips(r, A_, s, 1.0, {(0, 0): "ξ cos φ", (0, 1): "−η sin φ", (1, 0): "ξ sin φ",
                                            (1, 1): "η cos φ"})
@@ -260,6 +261,7 @@ def planet_speed(w_planet, w_carrier, w_sun, rho_sun, rho_planet):
         ("relative_speed", _v(-rel), Msg("x.relative"), None),
         ("sign_flip", _v(w_carrier - rel), Msg("x.mesh_sign"), None),
         ("missing_term", _v(-k * w_sun), Msg("d.missing_term", term="φ̇_k"), None),
+        ("swapped_bodies", _v(w_carrier + rel / k**2), Msg("x.radii_ratio"), None),
         ("degrees", _v(w_planet * DEG), None, None),
     ], kind="value", context=("gear", "value"))
 
@@ -323,13 +325,14 @@ def local_components(A_, s):
     """s' = Aᵀ s, the body components of a global vector (§14.1): wrong forms A s, s itself (not turned)."""
     A_, s = _v(A_), _v(s)
     return Expected(A_.T @ s, variants=[("A_for_AT", A_ @ s, None, None), ("wrong_frame", s, None, None)],
-                    kind="vector")
+                    kind="vector", context=("vector", "spatial"))
 
 
 def global_components(A_, s_local):
     """s = A s', the global components of a body vector: wrong form Aᵀ s'."""
     A_, s = _v(A_), _v(s_local)
-    return Expected(A_ @ s, variants=[("A_transposed", A_.T @ s, None, None)], kind="vector")
+    return Expected(A_ @ s, variants=[("A_transposed", A_.T @ s, None, None)], kind="vector",
+                    context=("vector", "spatial"))
 
 
 def spatial_point_position(r, p, s_local):
@@ -345,7 +348,7 @@ def spatial_point_position(r, p, s_local):
         ("book_misprint", r + book_A_of_p(p) @ s, None, "14.3-A-of-p"),
         ("factor_2_missing", r + 0.5 * A_ @ s, None, None),
         ("sign_flip", r - A_ @ s, Msg("d.sign_of", what="A s'"), None),
-    ], kind="vector", context=("position",))
+    ], kind="vector", context=("spatial", "position"))
 
 
 def A_from_euler(psi, theta, phi):

@@ -35,7 +35,7 @@ from . import slips
 from ._i18n import Msg
 from .misprints import EX4_PHI8, book_n1_acceleration
 from .quantities import for_quantities, quantity_of
-from .slips import book_A_rows, n2_without_dC
+from .slips import book_A_rows, n1_own_arm, n2_without_dC
 
 __all__ = ["Variant", "Spec", "SPECS", "spec_of", "structural", "alternative_variants", "contexts_of", "register",
            "length_factors", "book_form", "book_rows"]
@@ -304,6 +304,19 @@ def _frames(target, c, spec, Q, names):
                         if e is not None:
                             yield Variant(code, e, Msg("d.on_body", what=what, body=names[role]),
                                           derived=code == "A_transposed")
+            if spec.frame == "planar":  # sin φ and cos φ exchanged in every A(φ) (eq. 5 misremembered)
+                e = safe(lambda: _frame_variant(base, Q, everyone, "sin_cos", spec.frame))
+                if e is not None:
+                    yield from add("sin_cos", e)
+            if len(Q) == 2 and (spec.frame == "planar" or _both_arms(c, spec)):
+                # one body's A read with the other body's angle (φ_j for φ_i; p_j for p_i), or both; in space
+                # only where both bodies carry an arm (a point at a body's origin leaves its A out of the rows)
+                for roles in ([0], [1], [0, 1]):
+                    e = safe(lambda roles=roles: _other_angle(base, Q, roles, spec.frame))
+                    if e is not None:
+                        detail = (Msg("d.angles_exchanged") if len(roles) == 2 else
+                                  Msg("d.other_angle", body=names[roles[0]], other=names[1 - roles[0]]))
+                        yield Variant("other_body", e, detail)
         if spec.frame == "spatial":  # the matrix §14.3 prints for A(p), copied into the joint
             e = safe(lambda: book_A_rows(c, Q, mech.t))
             if e is not None:
@@ -349,6 +362,9 @@ def _signs(target, c, spec, Q, names):
         e = safe(lambda attr=attr: _phi(target, c, **{attr: sp.sqrt(getattr(c, attr))}))
         if e is not None:
             yield from add("missing_square", e, Msg("d.length_not_squared"))
+        e = safe(lambda attr=attr: _phi(target, c, **{attr: 0}))
+        if e is not None:
+            yield from add("missing_term", e, Msg("d.length_dropped"))
 
 
 def _degrees_and_forms(target, c, spec, Q):
@@ -392,10 +408,14 @@ def _frame_variant(rows, Q, roles, code, frame):
     translational joint's φ_i − φ_j) keeps it — only A holds trigonometric functions of φ."""
     if frame == "planar":
         out = []
+        swap = {sp.sin: sp.cos, sp.cos: sp.sin}
         for r in rows:
             for role in roles:
                 phi = Q[role][2]
-                if code == "A_transposed":
+                if code == "sin_cos":
+                    r = r.replace(lambda e, phi=phi: isinstance(e, (sp.sin, sp.cos)) and e.has(phi),
+                                  lambda e: swap[e.func](e.args[0]))
+                elif code == "A_transposed":
                     r = r.replace(lambda e, phi=phi: isinstance(e, sp.sin) and e.has(phi),
                                   lambda e, phi=phi: sp.sin(e.args[0].xreplace({phi: -phi})))
                 else:
@@ -408,6 +428,29 @@ def _frame_variant(rows, Q, roles, code, frame):
         e0, e1, e2, e3 = Q[role][3:7]
         sub.update({e1: -e1, e2: -e2, e3: -e3} if code == "A_transposed" else {e0: 1, e1: 0, e2: 0, e3: 0})
     return [r.xreplace(sub) for r in rows]
+
+
+def _both_arms(c, spec):
+    """Every local point or vector of the constraint is nonzero (each body's A enters its rows)."""
+    arms = [getattr(c, attr, None) for attr, _ in spec.points + spec.vectors]
+    return bool(arms) and all(v is not None and not all(_is_zero(x) for x in v) for v in arms)
+
+
+def _other_angle(rows, Q, roles, frame):
+    """Rows with the A of the bodies ``roles`` built from the other body's orientation (planar: φ_j for φ_i
+    inside the trigonometric functions; spatial: p_j for p_i; both roles: the two exchanged). None when the rows
+    do not change (no A on those bodies)."""
+
+    sub = {}
+    for role in roles:
+        mine, other = (Q[role][2:3], Q[1 - role][2:3]) if frame == "planar" else (Q[role][3:7], Q[1 - role][3:7])
+        sub.update(zip(mine, other))
+    if frame == "planar":
+        out = [r.replace(lambda e: isinstance(e, (sp.sin, sp.cos)) and e.has(*sub),
+                         lambda e: e.func(e.args[0].xreplace(sub))) for r in rows]
+    else:
+        out = [r.xreplace(sub) for r in rows]
+    return None if all(a == b for a, b in zip(out, rows)) else out
 
 
 def _angle_name(attr):
@@ -462,7 +505,7 @@ def _defaults():
     register(S.SphericalSpherical, Spec(swap_points=(("P_i", "P_j"),)))
     register(S.Universal, Spec(swap_points=(("P_i", "P_j"),), derived_book=(_book_gamma_n1,)))
     register(S.Revolute, Spec(swap_points=(("P_i", "P_j"),)))
-    register(S.Normal1, Spec(derived_book=(_book_gamma_n1,)))
+    register(S.Normal1, Spec(derived_book=(_book_gamma_n1,), derived_slips=(n1_own_arm,)))
     register(S.Normal2, Spec(swap_bodies=True, derived_slips=(n2_without_dC,)))
     register(S.Parallel1, Spec(alternative=_cross_p1))
     register(S.Parallel2, Spec(swap_bodies=True, alternative=_cross_p2))

@@ -15,8 +15,8 @@ from .equivalence import same, scale_match, scale_of
 from .mutants import expression_mutants, row_mutants
 from .quantities import quantity_of
 
-__all__ = ["SYNONYMS", "classify", "Tally", "format_table", "name_phi_rows", "name_derived_row", "name_entries",
-           "phi_equal"]
+__all__ = ["SYNONYMS", "EQUIVALENT", "classify", "strictly_named", "passing_mutants", "Tally", "format_table", "name_phi_rows",
+           "name_derived_row", "name_entries", "phi_equal"]
 
 SYNONYMS = {
     "sign_flip": {"sign_flip", "nu_sign", "gamma_sign", "A_transposed", "A_for_AT", "swapped_entries", "transposed",
@@ -33,6 +33,7 @@ SYNONYMS = {
     "A_transposed": {"A_transposed", "A_for_AT", "transposed"},
     "A_for_AT": {"A_for_AT", "A_transposed", "transposed"},
     "A_for_B": {"A_for_B"},
+    "B_for_A": {"B_for_A"},
     "factor_2_missing": {"factor_2_missing", "full_angle", "scaled", "not_orthogonal", "not_normalized"},
     "factor_2_extra": {"factor_2_extra", "scaled", "not_orthogonal", "not_normalized"},
     "missing_square": {"missing_square", "missing_term", "not_orthogonal"},
@@ -48,7 +49,55 @@ SYNONYMS = {
 """Mutant code → the catalogue codes that name the wrong answer it makes: the same slip seen in the quantity asked (a
 dropped ∂/∂t term of γ is "missing_tt_term", A omitted on one body in γ a missing centripetal term), or by the
 property it breaks (one entry's sign in a rotation matrix: "not an orthogonal matrix"; −A: "det A = −1"; a sign in a
-Newton update: "not a Newton–Raphson step"). Codes not listed here are named by themselves only."""
+Newton update: "not a Newton–Raphson step"). Codes not listed here are named by themselves only.
+
+This is the lenient reading (any code that names the same wrong answer); the strict count of the mutation table is
+:data:`EQUIVALENT`'s."""
+
+EQUIVALENT = {
+    ("sign_flip", "nu_sign"): "a sign of the whole ν is ν's own sign code",
+    ("sign_flip", "gamma_sign"): "a sign of the whole γ is γ's own sign code",
+    ("nu_sign", "sign_flip"): "ν's sign is a sign slip",
+    ("gamma_sign", "sign_flip"): "γ's sign is a sign slip",
+    ("sign_flip", "left_handed"): "−A (every entry's sign) is the left-handed matrix, det = −1",
+    ("sign_flip", "not_orthogonal"): "one entry's sign in a rotation matrix breaks AᵀA = I: the property named",
+    ("sign_flip", "newton_step"): "a sign in the update Δq = −Φ_q⁻¹Φ is a wrong Newton–Raphson step",
+    ("missing_term", "nu_missing"): "ν's only term (−Φ_t) dropped is ν = 0",
+    ("missing_term", "missing_qt_term"): "γ's −2Φ_qt q̇ is a term; γ names which one",
+    ("missing_term", "missing_tt_term"): "γ's −Φ_tt is a term; γ names which one",
+    ("missing_term", "missing_chain_rule"): "the term ∂(A s')/∂φ dropped from a Jacobian entry is the chain rule lost",
+    ("missing_term", "relative_speed"): "the carrier's φ̇_k dropped from φ̇_j leaves the speed relative to it",
+    ("missing_term", "not_orthogonal"): "a term dropped from a rotation matrix's entry breaks AᵀA = I",
+    ("missing_term", "newton_step"): "a term dropped from the update Δq is a wrong Newton–Raphson step",
+    ("other_body", "swapped_bodies"): "body i's names for body j's throughout is i and j swapped",
+    ("other_body", "swapped_points"): "the bodies' names exchanged moves each point to the other body",
+    ("other_body", "wrong_data"): "the notebook prints the other body's value above; its detail names that body",
+    ("swapped_bodies", "other_body"): "i and j swapped reads each body's coordinates as the other's",
+    ("swapped_bodies", "swapped_points"): "i and j swapped moves each point to the other body",
+    ("local_vector", "missing_chain_rule"): "s' for A s' (A left out) differentiates to no ∂A/∂φ term",
+    ("local_vector", "wrong_frame"): "s' for A s' is a vector left in the body frame",
+    ("local_vector", "missing_term"): "A left out of A s' φ̇² leaves no centripetal term in γ",
+    ("A_transposed", "A_for_AT"): "one slip, a transpose: Aᵀ for A named from the other side",
+    ("A_transposed", "transposed"): "one slip, a transpose: Aᵀ for A in a matrix answer",
+    ("A_for_AT", "A_transposed"): "one slip, a transpose: A for Aᵀ named from the other side",
+    ("A_for_AT", "transposed"): "one slip, a transpose: A for Aᵀ in a matrix answer",
+    ("transposed", "A_transposed"): "a transposed rotation matrix is Aᵀ for A",
+    ("transposed", "A_for_AT"): "a transposed rotation matrix is A for Aᵀ",
+    ("factor_2_missing", "scaled"): "a factor 2 lost is the answer off by ½",
+    ("factor_2_missing", "full_angle"): "χ/2 computed as χ is the / 2 lost",
+    ("factor_2_missing", "not_orthogonal"): "½A is not a rotation matrix",
+    ("factor_2_missing", "not_normalized"): "½p is not a unit vector",
+    ("factor_2_extra", "scaled"): "a factor 2 too many is the answer off by 2",
+    ("factor_2_extra", "not_orthogonal"): "2A is not a rotation matrix",
+    ("factor_2_extra", "not_normalized"): "2p is not a unit vector",
+    ("missing_square", "not_orthogonal"): "a square lost inside a rotation matrix's entry breaks AᵀA = I",
+    ("swapped_entries", "extrinsic_order"): "ψ and φ exchanged are the angles read in the extrinsic order",
+    ("swapped_entries", "not_orthogonal"): "two entries of a rotation matrix exchanged break AᵀA = I",
+    ("extra_row", "dependent_row"): "the extra row is a combination of the others",
+}
+"""(the mutant's code, a code the verdict may give instead) → why that code names the same mistake. A mutant counts
+as *named strictly* when the verdict names its own code or one of these; a name reached only because the wrong
+answer happens to equal another catalogued mistake's value (:func:`classify`'s lenient reading) does not."""
 
 
 
@@ -64,6 +113,51 @@ def classify(result, mutant):
     return "unnamed", given
 
 
+def strictly_named(result, mutant):
+    """True when ``result`` refuses ``mutant`` with the code it stands for, or a code :data:`EQUIVALENT` declares
+    equivalent to it (never through another mutant's or another reading's code)."""
+    if result.passed:
+        return False
+    given = {c for c in (result.mistakes or ()) if c}
+    return mutant.code in given or any((mutant.code, c) in EQUIVALENT for c in given)
+
+
+def passing_mutants(mutants, answer_of, check, reference=None):
+    """The mutants whose answer ``check`` passes (``check(answer).passed``): the blind spots of one item at one set
+    of data — the one rule by which the try-its' draws (``kb.another``) and the exercises' variant draws refuse data.
+    ``answer_of(mutant)`` makes the answer; with the numeric ``reference``, an answer farther from it than any
+    checker's tolerance (a fifth of its largest entry; angles modulo 2π; −x too, p's other sign) is not graded, a
+    shortcut that skips no mutant a check could pass. A mutant that fails to make an answer is no answer here."""
+    ref = None if reference is None else np.asarray(reference, float)
+    out = []
+    for m in mutants:
+        try:
+            with np.errstate(all="ignore"):
+                answer = answer_of(m)
+                if ref is not None and not _may_pass(answer, ref):
+                    continue
+                if check(answer).passed:
+                    out.append(m)
+        except Exception:  # noqa: BLE001 — a mutant these data cannot evaluate (or the check refuses as unreadable)
+            continue
+    return out
+
+
+def _may_pass(answer, ref):
+    try:
+        v = np.asarray(answer, float)
+    except (TypeError, ValueError):
+        return True  # not numbers: the check decides
+    if v.size != ref.size:
+        return True
+    v = v.reshape(ref.shape)
+    if not np.all(np.isfinite(v)):
+        return False
+    tol = 0.2 * max(1.0, float(np.max(np.abs(ref), initial=0.0)))
+    near = (np.abs(v - ref) <= tol) | (np.abs(np.mod(v - ref + np.pi, 2 * np.pi) - np.pi) <= tol)
+    return bool(np.all(near) or np.all(np.abs(v + ref) <= tol))
+
+
 @dataclass
 class Tally:
     """The outcomes of one item's mutants (a try-it, an exercise part): counts and the cases worth reading."""
@@ -71,13 +165,19 @@ class Tally:
     item: str
     mutants: int = 0
     named: int = 0
+    strict: int = 0
+    catalogue: int = 0
     unnamed: int = 0
     blind: int = 0
     blind_cases: list = field(default_factory=list)
     unnamed_cases: list = field(default_factory=list)
 
-    def add(self, mutant, outcome, given=(), where="", why=""):
+    def add(self, mutant, outcome, given=(), where="", why="", strict=False, catalogue=None):
+        """Count one mutant; ``strict``: :func:`strictly_named` of its result; ``catalogue``: the same without the
+        names a numeric try-it takes from its worked answer's own code slips (default: ``strict``)."""
         self.mutants += 1
+        self.strict += bool(strict)
+        self.catalogue += bool(strict if catalogue is None else catalogue)
         if outcome == "named":
             self.named += 1
         elif outcome == "blind":
@@ -93,16 +193,19 @@ def format_table(tallies, detail=True):
     """The mutation table: one line per item (mutants, named, unnamed, blind spots), the totals, and — with
     ``detail`` — each blind spot and unnamed mutant under its item."""
     w = max([len(t.item) for t in tallies] + [5]) + 2
-    lines = [f"{'item':<{w}} {'mutants':>7} {'named':>6} {'unnamed':>7} {'blind':>5}"]
+    lines = [f"{'item':<{w}} {'mutants':>7} {'named':>6} {'strict':>6} {'catal.':>6} {'unnamed':>7} {'blind':>5}"]
     for t in tallies:
-        lines.append(f"{t.item:<{w}} {t.mutants:>7} {t.named:>6} {t.unnamed:>7} {t.blind:>5}")
+        lines.append(f"{t.item:<{w}} {t.mutants:>7} {t.named:>6} {t.strict:>6} {t.catalogue:>6} {t.unnamed:>7} "
+                     f"{t.blind:>5}")
         if detail:
             lines += [f"    BLIND   {c}" for c in t.blind_cases]
             lines += [f"    unnamed {c}" for c in t.unnamed_cases]
     n = sum(t.mutants for t in tallies)
     named = sum(t.named for t in tallies)
-    lines.append(f"{'total':<{w}} {n:>7} {named:>6} {sum(t.unnamed for t in tallies):>7} "
-                 f"{sum(t.blind for t in tallies):>5}   named {100.0 * named / max(n, 1):.1f} %")
+    strict, cat = sum(t.strict for t in tallies), sum(t.catalogue for t in tallies)
+    lines.append(f"{'total':<{w}} {n:>7} {named:>6} {strict:>6} {cat:>6} {sum(t.unnamed for t in tallies):>7} "
+                 f"{sum(t.blind for t in tallies):>5}   named {100.0 * named / max(n, 1):.1f} %, strictly "
+                 f"{100.0 * strict / max(n, 1):.1f} %, by the catalogue alone {100.0 * cat / max(n, 1):.1f} %")
     return "\n".join(lines)
 
 

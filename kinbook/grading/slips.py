@@ -6,6 +6,7 @@ constraint — its rows, or its reference values at the samples — the way a st
   velocities, 2ṡ_iᵀṡ_j …) changed;
 * :func:`n2_without_dC` — the Jacobian of Φ^(n2,1) = s_iᵀd without dᵀC_i, the derivative of s_i (s_i treated as
   constant, only d differentiated);
+* :func:`n1_own_arm` — the Jacobian of Φ^(n1,1) = s_iᵀs_j with each body's own arm in its p columns;
 * :func:`length_factors` — the lengths of a constraint's own geometry a row may be multiplied by.
 """
 
@@ -20,7 +21,7 @@ from ._i18n import Msg
 from .misprints import book_A_of_p
 from .quantities import for_quantities
 
-__all__ = ["book_A_rows", "cross_term_flipped", "n2_without_dC", "length_factors"]
+__all__ = ["book_A_rows", "cross_term_flipped", "n2_without_dC", "n1_own_arm", "length_factors"]
 
 
 def book_A_rows(c, Q, t):
@@ -62,6 +63,21 @@ def n2_without_dC(target, c, s, ref, quantity):
     row = ref["Phi_q"][:, target.block(c)[0]].copy()
     row[:, ci[3:]] -= dC
     return [(0, row, "missing_chain_rule", "dC")]
+
+
+@for_quantities("Phi_q")
+def n1_own_arm(target, c, s, ref, quantity):
+    """Φ_q of Φ^(n1,1) = s_iᵀs_j with each body's own arm in its p columns: s_iᵀC_i for s_jᵀC_i, s_jᵀC_j for
+    s_iᵀC_j (C_k = ∂(A_k a'_k)/∂p_k, Table 14.1) — the product rule applied with the wrong factor kept."""
+
+    ci, cj = ([7 * (b.number - 1) + k for k in range(7)] for b in c.bodies)
+    out = ref["Phi_q"][:, target.block(c)[0]].copy()
+    for cols, a in ((ci, c.a_i), (cj, c.a_j)):
+        p = s.Q[:, cols[3:]]
+        C = dAa_dp(p, np.asarray(a, float))
+        own = 0.5 * np.einsum("nij,nj->ni", C, p)  # A a = ½ C p: A(p) a is quadratic in p
+        out[:, cols[3:]] = np.einsum("ni,nij->nj", own, C)
+    return [(0, out, "own_arm", None)]
 
 
 def length_factors(c, spec, limit=12):

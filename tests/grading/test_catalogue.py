@@ -33,7 +33,7 @@ def test_corpus_codes_are_catalogued_and_cover_the_planar_catalogue():
                  "swapped_entries",
                  # numeric try-its (tests/grading/test_tryits.py)
                  "wrong_data", "relative_speed", "rate_exchanged", "angle_rates", "assembly_mode", "not_converged",
-                 "newton_step", "lever_arm",
+                 "newton_step", "lever_arm", "B_for_A",
                  # a try-it's declared wrong form (tests/book/test_tryits.py)
                  "own_arm",
                  # what the mutants found (tests/grading/test_mutants.py)

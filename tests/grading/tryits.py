@@ -90,7 +90,7 @@ def _ch13():
     T = []
     phi = np.radians(120)
     T.append(Notebook("13-1/try-1", [[-0.5, -np.sqrt(3) / 2], [np.sqrt(3) / 2, -0.5]], [
-        (_A(phi).T, "transposed"), ([[_c(120), -_s(120)], [_s(120), _c(120)]], "degrees"), (_B(phi), "A_for_B")]))
+        (_A(phi).T, "transposed"), ([[_c(120), -_s(120)], [_s(120), _c(120)]], "degrees"), (_B(phi), "B_for_A")]))
     r, f, s = np.array([1.5, -0.5]), np.radians(30), np.array([0.8, 0.3])
     T.append(Notebook("13-1/try-2", [1.5 + 0.8 * 0.8660254 - 0.3 * 0.5, -0.5 + 0.8 * 0.5 + 0.3 * 0.8660254], [
         (r + _A(f).T @ s, "A_transposed"), (r + s, "local_vector"), (r + _A(30) @ s, "degrees"),

@@ -139,6 +139,8 @@ def test_a_student_runs_the_live_notebook(profile, site, offline, screenshots):
     feedback = last.locator(".jp-OutputArea")
     assert feedback.locator("table").count() >= 1, "no feedback table"
     assert MISTAKE in feedback.inner_text()
+    echo = feedback.locator(".kb-read")  # the answer as read, before the verdict (issue 29), typeset by the page
+    assert echo.count() == 1 and "your answer, as read" in echo.inner_text(), feedback.inner_text()
     feedback.scroll_into_view_if_needed()
     page.screenshot(path=str(screenshots / "live-checker.png"))
 
@@ -146,6 +148,7 @@ def test_a_student_runs_the_live_notebook(profile, site, offline, screenshots):
     feedback = last.locator(".jp-OutputArea")
     text = feedback.inner_text()
     assert TRY_IT_MISTAKE in text and "wrong" in text, text
+    assert "your answer, as read" in feedback.locator(".kb-read").inner_text(), text
     assert not [x for x in TRY_IT_REFERENCE if x in text], text
     feedback.scroll_into_view_if_needed()
     page.screenshot(path=str(screenshots / "live-try-it.png"))

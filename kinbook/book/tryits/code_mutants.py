@@ -53,7 +53,7 @@ def _sites(tree):
             out.append(_Site("sign_flip", "abs(…) left out (a length's sign)", k, lambda n: n.args[0]))
         if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in ("A", "B"):
             other = "B" if n.func.id == "A" else "A"
-            out.append(_Site("A_for_B" if other == "A" else "A_for_B", f"{n.func.id}(…) → {other}(…)", k,
+            out.append(_Site("A_for_B" if other == "A" else "B_for_A", f"{n.func.id}(…) → {other}(…)", k,
                              lambda n, o=other: ast.Call(ast.Name(o, ast.Load()), n.args, n.keywords)))
         if isinstance(n, ast.BinOp) and isinstance(n.op, (ast.Add, ast.Sub)):
             flip = ast.Sub() if isinstance(n.op, ast.Add) else ast.Add()
@@ -81,10 +81,61 @@ def _sites(tree):
                                  lambda n: ast.BinOp(ast.Attribute(n.left, "T", ast.Load()), ast.MatMult(), n.right)))
     for a, b in _body_pairs(names):
         out.append(_Site("other_body", f"{a} ↔ {b}", None, lambda tree, a=a, b=b: _rename(tree, {a: b, b: a})))
+    out += _other_body_entries(nodes)
+    if not any(s.code == "radians_twice" for s in out):  # the angles are radians already: np.radians wrongly added
+        for k, n in enumerate(nodes):
+            if _angle_call(n):
+                out.append(_Site("radians_twice", "np.radians applied to an angle in radians", k,
+                                 lambda n: ast.Call(n.func, [_radians(n.args[0])] + n.args[1:], n.keywords)))
+            if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute) and n.func.attr in _ARC:
+                out.append(_Site("radians_twice", f"np.radians of np.{n.func.attr}(…), already in radians", k,
+                                 _radians))
     return out
 
 
-EVERYWHERE = ("sin_cos", "arctan_quadrant", "degrees", "radians_twice", "A_for_B")
+PLANAR_BODY = 3
+"""Coordinates of a planar body in q (x, y, φ): q[k ± 3] is the same coordinate of the neighbouring body."""
+
+
+def _other_body_entries(nodes):
+    """A planar q's entry (q0[8], q1[6:8]) read one body off (q0[5], q1[3:5]): the wrong body's angle, rate or
+    origin, as a student reads it from the notebook's q. Only names that begin with q; a shift out of range
+    fails to run and is dropped."""
+    out = []
+    for k, n in enumerate(nodes):
+        if not (isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and n.value.id.startswith("q")):
+            continue
+        for step in (-PLANAR_BODY, PLANAR_BODY):
+            if _const(n.slice) is not None and _const(n.slice) + step >= 0:
+                out.append(_Site("other_body", f"{n.value.id}[{_const(n.slice)}] → [{_const(n.slice) + step}]", k,
+                                 lambda n, s=step: ast.Subscript(n.value, ast.Constant(_const(n.slice) + s), n.ctx)))
+            elif (isinstance(n.slice, ast.Slice) and _const(n.slice.lower) is not None
+                  and _const(n.slice.upper) is not None and _const(n.slice.lower) + step >= 0):
+                out.append(_Site("other_body", f"{n.value.id}[a:b] one body off", k,
+                                 lambda n, s=step: ast.Subscript(n.value, ast.Slice(
+                                     ast.Constant(_const(n.slice.lower) + s), ast.Constant(_const(n.slice.upper) + s)),
+                                     n.ctx)))
+    return out
+
+
+def _angle_call(n):
+    """np.sin(x), np.cos(x), A(φ), B(φ): a call whose first argument is an angle in radians."""
+    if not isinstance(n, ast.Call) or not n.args:
+        return False
+    f = n.func
+    return ((isinstance(f, ast.Attribute) and f.attr in ("sin", "cos"))
+            or (isinstance(f, ast.Name) and f.id in ("A", "B")))
+
+
+_ARC = ("arctan2", "arctan", "arccos", "arcsin")
+"""numpy's inverse trigonometric functions: their results are radians."""
+
+
+def _radians(x):
+    return ast.Call(ast.Attribute(ast.Name("np", ast.Load()), "radians", ast.Load()), [x], [])
+
+
+EVERYWHERE = ("sin_cos", "arctan_quadrant", "degrees", "radians_twice", "A_for_B", "B_for_A")
 """Code slips that are also made at every place they apply at once (a method, not a typo)."""
 
 
@@ -149,10 +200,17 @@ def compiled_mutants(fn):
     tree = _function_tree(fn)
     out = []
     sites = [[site] for site in _sites(tree)]
+    nodes = list(ast.walk(tree))
     for code in EVERYWHERE:  # a method's slip made at every place it applies (arctan for both arctan2 …)
         group = [site for site in _sites(tree) if site.code == code and site.index is not None]
         if len(group) > 1:
             sites.append(group)
+        by_angle = {}  # … and at every place one angle is used (sin θ and cos θ exchanged in R_x(θ) only)
+        for site in group:
+            n = nodes[site.index]
+            if isinstance(n, ast.Call) and n.args:
+                by_angle.setdefault(ast.dump(n.args[0]), []).append(site)
+        sites += [g for g in by_angle.values() if 1 < len(g) < len(group)]
     for group in sites:
         fresh = _function_tree(fn)
         if group[0].index is None:

@@ -130,21 +130,8 @@ def blind_spots(item, data):
         usable = False
     if not usable:
         return [MU.Mutant("wrong_value", "the worked answer itself is not accepted at these data", None)]
-    out = []
-    for m in function_mutants(item.id):
-        try:
-            with np.errstate(all="ignore"):
-                v = np.asarray(answer_of(item, m, data), float)
-        except Exception:  # noqa: BLE001 — a slip that fails on these data is no answer here
-            continue
-        if v.shape != ref.shape or not np.all(np.isfinite(v)):
-            continue
-        near = np.abs(v - ref) <= 1e-2 * (1.0 + np.abs(ref))
-        near |= np.abs(np.mod(v - ref + np.pi, 2 * np.pi) - np.pi) <= 1e-2  # angles compared modulo 2π
-        other = np.abs(v + ref) <= 1e-2 * (1.0 + np.abs(ref))  # −p, the other right answer of p
-        if (np.all(near) or np.all(other)) and item.check(v, data).passed:
-            out.append(m)
-    return out
+    return MN.passing_mutants(function_mutants(item.id), lambda m: answer_of(item, m, data),
+                              lambda answer: item.check(answer, data), reference=ref)
 
 
 def _angles(item):
@@ -194,7 +181,10 @@ def mutation_tally(item, variants=2, limit=None):
                             why = "the data cannot tell it apart (the same value)"
                     except (TypeError, ValueError):
                         pass
-            tally.add(m, outcome, given, where, why)
+            strict = MN.strictly_named(result, m)
+            # a numeric try-it names its worked answer's code slips — the very mutants counted here: counted apart
+            alone = MN.strictly_named(item.check(answer, data, slips=False), m) if quantity is None and strict else strict
+            tally.add(m, outcome, given, where, why, strict=strict, catalogue=alone)
     return tally
 
 

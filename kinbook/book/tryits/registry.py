@@ -97,15 +97,16 @@ class TryIt(Item):
     numbers_at: Any = None
     library: tuple = ()
 
-    def check(self, answer, data=None):
+    def check(self, answer, data=None, slips=True):
         """Run the checker on ``answer`` (a :class:`kinbook.grading.CheckResult`) for ``data`` (default: the
-        notebook's)."""
+        notebook's). ``slips=False``: a numeric try-it without its worked answer's code slips (:meth:`slips`), the
+        catalogue's names only — how the mutation table counts them apart from the mutants they are."""
         data = self.data_for(data)
         target = self.reference(data)
         options = dict(self.options)
         if self.checker.numeric:
             options.setdefault("reveal", False)
-            target = self._with_lookalikes(target, data)
+            target = self._with_lookalikes(target, data, slips)
             return self.checker(answer, target, **options)
         result = self.checker(answer, target, **options)
         if self.wrong_forms is not None:
@@ -215,7 +216,7 @@ class TryIt(Item):
                 continue
         return None
 
-    def _with_lookalikes(self, target, data):
+    def _with_lookalikes(self, target, data, slips=True):
         if not isinstance(target, Expected):
             try:
                 target = Expected(np.asarray(target, float))
@@ -231,7 +232,8 @@ class TryIt(Item):
                                                                                 what=text_message("notebook_data"))))
         for value, detail in seen:
             target.variants.insert(0, ("wrong_data", np.asarray(value, float), detail, None))
-        target.variants += [(code, value, None, None) for code, _, value in self.slips(data)]
+        if slips:
+            target.variants += [(code, value, None, None) for code, _, value in self.slips(data)]
         return target
 
     def slips(self, data=None):

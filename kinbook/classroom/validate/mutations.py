@@ -11,42 +11,14 @@ right answer in another form must pass.
 
 from __future__ import annotations
 
-import numpy as np
-
 from ...grading import mutant_names as MN
 from ...grading import mutants as MU
-from ...grading.item import CHECKERS
+from ..mutants import mutant_answer, part_mutants
 from ..notebook import find_parameters, load_source
 from ..variant import references, student_parameters
 from . import SAMPLE_STUDENTS, question_tests
 
 __all__ = ["mutation_tallies", "part_mutants"]
-
-ANGLES = ("rotation", "euler_parameters")
-
-
-def part_mutants(p, limit=None):
-    """The mutants of one part's reference (its target's symbolic quantity, or its expected value)."""
-    quantity = CHECKERS[p.check].quantity  # Φ, Φ_q, ν or γ for a symbolic check (kinbook.grading.quantities)
-    if quantity is None:
-        angles = bool(p.options.get("angles")) or getattr(p.expected, "kind", "") == "angles"
-        found = MU.value_mutants(p.expected, angles=angles)
-        if p.check == "euler_parameters":  # −p is p's other right answer (the same rotation)
-            found = [m for m in found if m.operator != "sign of the whole answer"]
-        return found
-    return MU.reference_mutants(p.target, quantity, limit)
-
-
-def _answer(mutant):
-    import sympy as sp  # import time: sympy only when needed
-
-    v = mutant.value
-    if isinstance(v, (np.ndarray, np.generic, float, int)):
-        return v
-    M = sp.Matrix(v)
-    if M.shape[1] > 1:
-        return [[str(M[i, j]) for j in range(M.shape[1])] for i in range(M.shape[0])]
-    return [str(M[i, 0]) for i in range(M.shape[0])]
 
 
 def mutation_tallies(source, *, students=None, variants=2, limit=None, progress=None):
@@ -71,9 +43,10 @@ def mutation_tallies(source, *, students=None, variants=2, limit=None, progress=
             if limit is not None:
                 found = MU.sample(found, limit)
             for m in found:
-                result = p.run(_answer(m))
+                result = p.run(mutant_answer(m))
                 outcome, given = MN.classify(result, m)
-                tally.add(m, outcome, given, where, "the checker lets it through")
+                strict = MN.strictly_named(result, m)
+                tally.add(m, outcome, given, where, "the checker lets it through", strict=strict, catalogue=strict)
             failures += [text for ok, text in question_tests(p, where) if not ok]
     out = list(tallies.values())
     if progress:

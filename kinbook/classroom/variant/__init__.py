@@ -3,7 +3,10 @@
 :func:`student_parameters` draws a student's values from the ranges of the source's ``parameters(...)``
 cell (:func:`kinbook.grading.item.draw`) with a seed derived from (exercise, student), so that the same student always gets the same values;
 a draw is kept only when the instructor's own code runs with it (the mechanism assembles, the analysis
-converges); otherwise the next draw is tried.
+converges) and no catalogued mutant of any part passes its check there (:func:`kinbook.classroom.mutants.blind_parts`,
+the try-its' rule: no 45° for a sin/cos question, no zero rate under a rate term); otherwise the next draw is tried.
+A student whose first draw was fine keeps it: the seeds are the same, only a draw that would let a slip pass is
+skipped.
 
 :func:`references` is the grader's reading of a source notebook: it runs the source's code — without the
 solutions, with the hidden checks — in the grader's process, from the copy read once by
@@ -24,6 +27,7 @@ import warnings
 from ...errors import GradingError, KinbookError
 from ...grading.item import draw, seed_from
 from ..ids import check_id
+from ..mutants import blind_parts
 from ..notebook import find_parameters, grader_code, load_source, student_notebook
 from ..parts import parameters, part, recording
 
@@ -52,10 +56,13 @@ def student_parameters(source, student):
     for attempt in range(MAX_DRAWS):
         values = draw(ranges, defaults, _seed(source.exercise, student, attempt))
         try:
-            references(source, values)
-            return values
+            blind = blind_parts(references(source, values))
         except _VariantFails as exc:
             last = exc
+            continue
+        if not blind:
+            return values
+        last = "a slip would pass: " + ", ".join(f"{name}: {m.code} ({m.operator})" for name, m in blind[:3])
     raise GradingError(f"{source.exercise}: no parameters for student {student!r} in {MAX_DRAWS} draws make "
                        f"the exercise work (last failure: {last})")
 
