@@ -13,7 +13,8 @@ Each name of :mod:`kinbook.grading` used here is called in one place below (the 
 quantities, the targets' samples and references, the witness draw, the tolerances, the catalogue's texts), so a
 change of grading is met at once. The page's script mirrors these rules of the Python checker, which
 tests/web/test_instant.py holds together over the checker corpora (the page never passes what Python refuses):
-the constant-multiple match of Φ rows (``compare.scale_match``), Φ_q rows up to ±1 and ν, γ rows with factor 1 in
+the constant-multiple match of Φ rows (``equivalence.scale_match``), an angle row turned by whole turns
+(``equivalence.turned_multiple``, the spec's ``turns``), Φ_q rows up to ±1 and ν, γ rows with factor 1 in
 the book's order, the transposed Φ_q, the witness tolerances, the numeric checkers' tolerance and named variants,
 and the Newton iteration; the rounding rule of constants (:mod:`kinbook.grading.rounding`: the spec's
 ``rounding``), the book's 2ĖĠᵀa Φ_q rows, and the equivalent Φ rows it can reduce to a reference row (√E − c, a
