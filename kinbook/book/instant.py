@@ -40,7 +40,6 @@ from ..core.bounds import DEFAULT_LIMITS
 from ..core.reader import ALIASES, CONSTANTS, FUNCTIONS
 from ..errors import KinbookError
 from ..grading import CHECKERS, explain, rounding, sample, witness
-from ..grading import mutants as MU
 from ..grading.equivalence import RTOL, scale_match, zero_tol
 from ..grading.expected import Expected
 from ..grading.misprints import book_A_of_p
@@ -388,10 +387,7 @@ def tryit_mutants(item):
     quantity = item.checker.quantity
     found = list(MT.item_mutants(item, data))
     if quantity is None and len(found) < 3:  # a worked answer with few operators: its value's slips as well
-        X = item.target(**data)
-        X = X if isinstance(X, Expected) else np.asarray(item.reference_answer(data), float)
-        found += [v for v in MU.value_mutants(X, angles=bool(item.options.get("angles")))
-                  if not (item.checker.name == "euler_parameters" and v.operator == "sign of the whole answer")]
+        found += MT.value_slips(item, data)
     out = []
     for m in found:
         try:

@@ -26,7 +26,7 @@ from .code_mutants import code_mutants
 from .registry import TRY_ITS, same_data
 
 __all__ = ["MAX_DRAWS", "draw_variant", "variant_data", "function_mutants", "blind_spots", "REFERENCE_DRAWS",
-           "item_mutants", "mutation_tally", "mutation_tallies", "answer_of"]
+           "item_mutants", "value_slips", "mutation_tally", "mutation_tallies", "answer_of"]
 
 MAX_DRAWS = 25
 """Seeded draws tried for one variant of a try-it before it says none works."""
@@ -145,6 +145,14 @@ def _expected(item, data):
     return found if isinstance(found, Expected) else _value_of(item, data)
 
 
+def value_slips(item, data):
+    """The slips of a numeric try-it's value on ``data`` (for a worked answer with few code operators, a
+    column_stack): the value mutants of its expected value, without −p for Euler parameters (p's other right
+    answer)."""
+    return [v for v in MU.value_mutants(_expected(item, data), angles=_angles(item))
+            if not (item.checker.name == "euler_parameters" and v.operator == "sign of the whole answer")]
+
+
 def _value_of(item, data):
     return np.asarray(item.reference_answer(data), float)
 
@@ -159,10 +167,8 @@ def mutation_tally(item, variants=2, limit=None):
     for k, data in enumerate(datas):
         where = "the notebook's data" if k == 0 else f"variant {k} ({item.stated(data)})"
         found = list(shared) if shared is not None else item_mutants(item, data, limit=limit)
-        if shared is not None and len(shared) < 3:  # a worked answer with few operators (a column_stack): the
-            found += [v for v in MU.value_mutants(_expected(item, data), angles=_angles(item))  # its value's slips
-                      if not (item.checker.name == "euler_parameters"  # −p: p's other right answer
-                              and v.operator == "sign of the whole answer")]
+        if shared is not None and len(shared) < 3:  # a worked answer with few operators: its value's slips too
+            found += value_slips(item, data)
         if limit is not None:
             found = MU.sample(found, limit)
         for m in found:
