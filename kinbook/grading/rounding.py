@@ -102,7 +102,7 @@ def _turned_constants(target, rows, symbols, found):
         if not c0.is_number:
             continue
         for n in (1, -1, 2, -2):
-            c = sp.nsimplify(c0 + 2 * n * sp.pi) if c0 == 0 else c0 + 2 * n * sp.pi
+            c = c0 + 2 * n * sp.pi  # exact: c0 is the row's exact constant (0 + 2nπ is 2nπ already)
             value = float(c)
             found.setdefault(value, c)
             found.setdefault(-value, -c)

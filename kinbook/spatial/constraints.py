@@ -43,6 +43,8 @@ mechanism. A :class:`DistanceDriver` prescribes the distance along a translation
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import sympy as sp
 
@@ -83,6 +85,14 @@ _COORDS = ("x", "y", "z", "e0", "e1", "e2", "e3")
 # ======================================================================================= symbolic building blocks
 def _sym_r(Qb):
     return sp.Matrix(Qb[0:3])
+
+
+@functools.lru_cache(maxsize=1024)
+def _times(A, s):
+    """The entries of A s' for the nine entries of A (row by row) and the three of s': a product every spatial Φ
+    makes once per point and vector, kept because the checkers' mistake catalogue rebuilds each joint's Φ a dozen
+    times with the same A and s' (sympy expressions are immutable)."""
+    return tuple(sp.Matrix(3, 3, A) * sp.Matrix(s))
 
 
 def _sym_dot(u, v):
@@ -148,10 +158,10 @@ class Constraint(ConstraintBase):
         return _A_sym(list(Qb[3:7]))
 
     def global_point(self, Qb, s):
-        return _sym_r(Qb) + self.rotation(Qb) * sp.Matrix(_sym3(s))
+        return _sym_r(Qb) + self.global_vector(Qb, s)
 
     def global_vector(self, Qb, s):
-        return self.rotation(Qb) * sp.Matrix(_sym3(s))
+        return sp.Matrix(_times(tuple(self.rotation(Qb)), tuple(_sym3(s))))
 
     def _distance(self, Q, Pi, Pj):
         """d = r_j^P − r_i^P (global), between local points P_i of the first body and P_j of the second."""

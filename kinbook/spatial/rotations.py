@@ -20,6 +20,7 @@ identities that hold for any p (Ep = 0, ∂(Aa)/∂p …) are available off the 
 
 from __future__ import annotations
 
+import functools
 import warnings
 
 import numpy as np
@@ -496,15 +497,23 @@ def A_from_p(p, check=True):
     array([0., 1., 0.])
     """
     if symbolic(p):
-        e0, e1, e2, e3 = p
-        e = sp.Matrix([e1, e2, e3])
-        return 2 * ((e0**2 - sp.Rational(1, 2)) * sp.eye(3) + e * e.T + e0 * skew(e))
+        return sp.Matrix(3, 3, _A_entries(tuple(sp.sympify(e) for e in p)))
     e0, e1, e2, e3 = parts(unit_p(p, check=check))
     return 2 * stack_rows([
         [e0 * e0 + e1 * e1 - 0.5, e1 * e2 - e0 * e3, e1 * e3 + e0 * e2],
         [e1 * e2 + e0 * e3, e0 * e0 + e2 * e2 - 0.5, e2 * e3 - e0 * e1],
         [e1 * e3 - e0 * e2, e2 * e3 + e0 * e1, e0 * e0 + e3 * e3 - 0.5],
     ])
+
+
+@functools.lru_cache(maxsize=256)
+def _A_entries(p):
+    """The nine entries of the symbolic A(p), row by row, for a tuple of sympy expressions ``p`` (sympy expressions
+    are immutable, so one build serves every constraint that reads the same body: a spatial Φ reads A(p) once per
+    point and vector, and the checkers' mistake catalogue rebuilds each joint's Φ a dozen times)."""
+    e0, e1, e2, e3 = p
+    e = sp.Matrix([e1, e2, e3])
+    return tuple(2 * ((e0**2 - sp.Rational(1, 2)) * sp.eye(3) + e * e.T + e0 * skew(e)))
 
 
 def p_from_A(A):

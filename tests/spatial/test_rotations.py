@@ -1,11 +1,14 @@
 """Direction cosines, z-x-z Euler angles and Euler parameters (§14.1–14.3), against scipy's Rotation and
 against sympy differentiation — never against the book's printed formulas."""
 
+import copy
+
 import numpy as np
 import pytest
 import sympy as sp
 from scipy.spatial.transform import Rotation
 
+import kinbook
 from kinbook.errors import InputError, SingularityWarning
 from kinbook.spatial import (
     A_ddot,
@@ -308,3 +311,32 @@ def test_incompatible_shapes_raise_input_error():
         omega_from_euler_rates(np.zeros((2, 3)), np.zeros((3, 3)))
     with pytest.raises(InputError, match="dAa_dp: arguments of incompatible shapes"):
         dAa_dp(np.ones((2, 4)), np.ones((3, 3)))
+
+
+def test_symbolic_A_is_built_once_and_each_caller_gets_its_own_matrix():
+    """A(p) of the same symbols is built once (the checkers' mistake catalogue asks for it dozens of times): each
+    call still returns a new matrix, so a caller that writes into it cannot change the next caller's A."""
+    first = A_from_p(list(e))
+    first[0, 0] = sp.Symbol("scribble")
+    again = A_from_p(list(e))
+    assert again == A_SYM and again is not first
+    e0, e1, e2, e3 = e  # the matrix of §14.3 (with the factor 2 and the signs the book drops), typed out
+    typed = 2 * sp.Matrix([[e0**2 + e1**2 - sp.S.Half, e1 * e2 - e0 * e3, e1 * e3 + e0 * e2],
+                           [e1 * e2 + e0 * e3, e0**2 + e2**2 - sp.S.Half, e2 * e3 - e0 * e1],
+                           [e1 * e3 - e0 * e2, e2 * e3 + e0 * e1, e0**2 + e3**2 - sp.S.Half]])
+    assert sp.expand(again - typed) == sp.zeros(3, 3)
+
+
+def test_a_constraints_global_vector_is_A_times_s_whatever_its_rotation_hook():
+    """global_vector(Q, s') = A s' through the constraint's rotation hook, also when a copy overrides the hook (the
+    mistake catalogue's Aᵀ): the product kept for reuse is keyed by A's entries, not by the body."""
+    mech = kinbook.examples.load("spatial_fourbar")
+    c = mech.constraint("B")
+    Qb = mech.body_symbols(c.bodies[0].name)
+    s = (0.1, -0.2, 0.3)
+    A = c.rotation(Qb)
+    assert sp.expand(c.global_vector(Qb, s) - A * sp.Matrix(s)) == sp.zeros(3, 1)
+    flipped = copy.copy(c)
+    flipped.rotation = lambda Q: A.T
+    assert sp.expand(flipped.global_vector(Qb, s) - A.T * sp.Matrix(s)) == sp.zeros(3, 1)
+    assert sp.expand(flipped.global_point(Qb, s) - sp.Matrix(Qb[0:3]) - A.T * sp.Matrix(s)) == sp.zeros(3, 1)
