@@ -314,8 +314,12 @@ def _numbers(quantity, A, target, at, rtol, order):
     else:
         S = evaluate.column(V, target, quantity)
         data = evaluate.DerivedData(S[:, :, None], ref[quantity][:, :, None], [])
-    m = match.match_rows(data.S, data.R, rtol, order, False)
+    Q = quantity_of(quantity)
+    angles = {"wrap": target.wrap, "turns": target.turns} if Q.turns else {}  # a turn of a body: the same placement
+    m = match.match_rows(data.S, data.R, rtol, order, False, **angles)
     _numbers_diagnosis(quantity, data, m, rtol)
+    if Q.turns:
+        turns.name_turned_rows(target, data.S[:, :, 0], data.R[:, :, 0], m.rows, rtol, free=False)
     return report.derived_result(target, quantity, m, data, rtol, transposed=data.transposed and all(
         r.status == "ok" for r in m.rows))
 

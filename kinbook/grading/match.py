@@ -282,7 +282,7 @@ def _mark_moved(rows, m):
             top = key
 
 
-def match_rows(S, R, rtol, order="book", free=False, factors=None, own=None, atol=None):
+def match_rows(S, R, rtol, order="book", free=False, factors=None, own=None, atol=None, wrap=None, turns=None):
     """Match the rows of a derived quantity (Φ_q, ν or γ) to the reference.
 
     Parameters
@@ -299,6 +299,9 @@ def match_rows(S, R, rtol, order="book", free=False, factors=None, own=None, ato
         reference row (or follow from the student's Φ: ``own``).
     own : ndarray (N, ms', w), optional
         The student's own derivation: the rows of Φ_q / ν / γ that follow from their Φ.
+    wrap, turns : dict, optional
+        {reference row: period} of rows that measure an angle (numbers of Φ at a configuration): a value off by
+        whole periods is the same placement (:func:`~kinbook.grading.equivalence.scale_matrix`).
 
     Returns
     -------
@@ -310,7 +313,7 @@ def match_rows(S, R, rtol, order="book", free=False, factors=None, own=None, ato
     atol = atol_of(R, rtol) if atol is None else atol
     if factors is not None or own is not None:
         return _rows_of_own(S, R, rtol, free, factors, own, atol)
-    C = scale_matrix(S, R, rtol, free, atol=atol, zeros=True)
+    C = scale_matrix(S, R, rtol, free, wrap=wrap, atol=atol, zeros=True, turns=turns)
     if order == "any":
         return _rows_by_value(C, ms, m)
     return _rows_in_book_order(C, ms, m)

@@ -56,6 +56,9 @@ class Quantity:
         The catalogue's code for a row of zeros (ν of a driver forgotten).
     degrees : bool
         Numbers given in degrees are a slip to name (ν of an angle driver).
+    turns : bool
+        Its rows measure the placement itself (Φ): a row that measures an angle (``Target.turns``) is right turned
+        by whole turns, in every form of answer — expressions, and numbers given at a configuration.
     hint_context : str or None
         The hint context of its mistakes (``"speed"``, ``"accel"``).
     value : callable
@@ -79,6 +82,7 @@ class Quantity:
     sign_code: str = "sign_flip"
     zero_code: str | None = None
     degrees: bool = False
+    turns: bool = False
     hint_context: str | None = None
     value: Callable = field(default=None, repr=False)
     expression: Callable | None = field(default=None, repr=False)
@@ -89,7 +93,7 @@ class Quantity:
         return self.name
 
 
-PHI = Quantity("Phi", "Φ", derived=False, value=lambda mech, q, qd, t: mech.Phi(q, t))
+PHI = Quantity("Phi", "Φ", derived=False, turns=True, value=lambda mech, q, qd, t: mech.Phi(q, t))
 PHI_Q = Quantity("Phi_q", "Φ_q", per_coordinate=True, q_derivative=True,
                  value=lambda mech, q, qd, t: mech.Phi_q(q, t),
                  after_match=("eg_rows", "jacobian_equivalents"), without_own=("factored_rows",))

@@ -164,3 +164,55 @@ def cases():
 def target(case):
     m = mechanism(case.mech)
     return m if case.constraint is None else m.constraint(case.constraint)
+
+
+# ------------------------------------------------------------------------------------------ numbers at a configuration
+NUMBER_FORMS = {"angle": ("plus-2pi", "minus-2pi", "plus-4pi", "half-turn", "plus-1"),
+                "length": ("plus-2pi", "plus-pi")}
+"""The forms a number can take (no factor: a number of Φ at a configuration is the row's own value)."""
+
+
+@dataclass
+class NumberCase:
+    id: str
+    mech: str
+    constraint: str
+    values: list
+    at: dict
+    passed: bool
+    names: list
+
+
+@lru_cache(maxsize=None)
+def number_cases():
+    """Each distinct angle row (and a length row beside it) given as numbers at a configuration drawn over the whole
+    domain (angles in ±20 rad; t under 0.5, so that a value stays small enough for 1 and π to be more than the
+    numbers' tolerance, 2·10⁻³ of it) — its value turned by whole turns, by half a turn, by 1 — with the expectation of :func:`verdict` (the
+    same second computation as the expressions'); the values computed with sympy from kinbook's symbolic rows."""
+    out, seen = [], set()
+    rng = np.random.default_rng(29)
+    for name, m in _mechanisms():
+        for c in m.constraints:
+            measures = c.measures or ()
+            if "angle" not in measures or c.wrap:
+                continue
+            rows = list(m.constraint_phi(c))
+            for k, measure in enumerate(measures):
+                kind = "angle" if measure == "angle" else "length" if measure.startswith("length") else None
+                key = (type(c).__name__, str(rows[k]))
+                if kind is None or key in seen:
+                    continue
+                seen.add(key)
+                q = [rng.uniform(-20, 20) if str(s).startswith("phi") else rng.uniform(-5, 5) for s in m.q]
+                t = float(rng.uniform(0, 0.5))  # a driver's 100t stays under 50: 1 and π off stay beyond 2·10⁻³ of it
+                point = dict(zip(m.q, q)) | {m.t: t}
+                values = [float(row.subs(point)) for row in rows]
+                for form in NUMBER_FORMS[kind]:
+                    text = (ANGLE_FORMS if kind == "angle" else LENGTH_FORMS)[form].format(r=str(rows[k]))
+                    right, turns, _ = verdict(text, str(rows[k]))
+                    answer = list(values)
+                    answer[k] = float(sp.sympify(text).subs({str(s): v for s, v in point.items()}))
+                    names = [[]] if right else [["whole_turn"]] if kind == "length" and turns else [["wrong_value"]]
+                    out.append(NumberCase(f"{name}-{c.name}-{k + 1}-{measure}-{form}", name, c.name, answer,
+                                          {"q": q, "t": t}, right, names))
+    return out

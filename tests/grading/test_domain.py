@@ -10,6 +10,7 @@ from kinbook.grading.read import read
 from kinbook.grading.target import target_for
 
 from . import corpus_domain as C
+from . import corpus_turns as T
 
 CHECKS = {"phi": grading.check_phi, "gamma": grading.check_gamma}
 CASES = C.cases()
@@ -64,6 +65,13 @@ def _whole(k, row):
     return grading.check_phi(C._with(k, row), C.mechanism("ch13_example1"))
 
 
+def _numbers():
+    """Numbers at a configuration: an angle row turned by a whole turn, by half a turn; a length row turned."""
+    cases = T.number_cases()
+    return [next(c for c in cases if c.id.endswith(end)) for end in ("angle-plus-2pi", "angle-half-turn",
+                                                                      "length-plus-2pi")]
+
+
 # each sentence of docs/mistakes.md that states a rule of this module, and an example the rule decides
 RULES = [
     ("every factor of the row is solved or searched over the whole domain",
@@ -86,6 +94,9 @@ RULES = [
                           "atan2(sin(phi3 - phi4), cos(phi3 - phi4)) + 2*pi")], [True, True, True, False]),
     ("a row that measures no angle turned by 2πk is `whole_turn`",
      lambda: _whole(3, f"{C.BASE[3]} + 2*pi").mistakes, ["whole_turn"]),
+    ("Numbers given at a configuration (`at=`) follow the same rule",
+     lambda: [(r.passed, r.mistakes) for r in (grading.check_phi(c.values, T.target(c), at=c.at) for c in _numbers())],
+     [(True, []), (False, ["wrong_value"]), (False, ["whole_turn"])]),
     ("a decimal that is c·180/π correctly rounded to 3 or more significant digits, or within 0.5 % of it",
      lambda: [grading.check_phi([row], C.mechanism("steering").constraint("driver 1")).mistakes
               for row in ("phi2 - 28.65*sin(2*t)", "phi2 - 28.7*sin(2*t)", "phi2 - 29.5*sin(2*t)")],

@@ -36,3 +36,23 @@ def test_the_issue_examples():
         assert grading.check_phi([first, row], slot).passed, row
     r = grading.check_phi([f"{first} + 2*pi", "phi3 - phi4"], slot)
     assert r.mistakes == ["whole_turn"] and "Φ_10 + 2π" in " ".join(r.messages), r
+
+
+NUMBERS = C.number_cases()
+
+
+@pytest.mark.parametrize("case", NUMBERS, ids=[c.id for c in NUMBERS])
+def test_numbers_at_a_configuration_follow_the_same_rule(case):
+    """Φ given as numbers at a configuration (``at=``): an angle row's value turned by whole turns is right, as the
+    expression turned is; a length row's is ``whole_turn``; half a turn is wrong."""
+    r = grading.check_phi(case.values, C.target(case), at=case.at)
+    assert r.passed is case.passed, r
+    assert r.mistakes in case.names, r
+
+
+def test_the_numbers_cover_both_verdicts_of_every_kind_of_row():
+    assert len(NUMBERS) >= 30
+    for kind in ("ground", "driver", "-2-angle-"):
+        mine = [c for c in NUMBERS if kind in c.id]
+        assert any(c.passed for c in mine) and any(not c.passed for c in mine), kind
+    assert any(c.names == [["whole_turn"]] for c in NUMBERS)
