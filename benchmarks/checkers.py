@@ -3,6 +3,7 @@ process, and the median of later checks.
 
 Run:  .venv/bin/python benchmarks/checkers.py            # every target, then later checks
       .venv/bin/python benchmarks/checkers.py --pairs 5  # planar and spatial first checks, pair by pair, side by side
+      .venv/bin/python benchmarks/checkers.py --pairs 5 --load 4  # the same under load: 4 processes spinning
       add --source to compile kinbook from source in each process (what PYTHONDONTWRITEBYTECODE=1 costs)
 
 Each figure of the first part is measured in a new Python process (so nothing is cached or imported yet):
@@ -226,10 +227,23 @@ def side_by_side(rounds=5, source=False):
     return list(out.items())
 
 
-def print_side_by_side(rounds, source=False):
-    rows = side_by_side(rounds, source)
-    print(f"side by side, fresh processes{' (compiling from source)' if source else ''}: the planar first check, "
-          "then the spatial one (ms, ratio spatial / planar; target ≤ 3×)")
+def busy(count):
+    """``count`` processes that spin on a core each (``--load N``): the machine made busy on purpose, so that the
+    ratios are measured under load as well as quiet, in one run. Returns them, to be killed."""
+    return [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(count)]
+
+
+def print_side_by_side(rounds, source=False, load=0):
+    spinners = busy(load)
+    try:
+        rows = side_by_side(rounds, source)
+    finally:
+        for p in spinners:
+            p.kill()
+            p.wait()
+    print(f"side by side, fresh processes{' (compiling from source)' if source else ''}"
+          f"{f', with {load} spinning processes' if load else ''}: the planar first check, then the spatial one "
+          "(ms, ratio spatial / planar; target ≤ 3×)")
     for key, what in (("first", "wall clock"), ("cpu", "CPU time of the process (other processes' turns left out)")):
         print(f" {what}:")
         for label, pairs in rows:
@@ -265,7 +279,8 @@ def later_checks(repeat=20):
 def main():
     source = "--source" in sys.argv
     if "--pairs" in sys.argv:
-        print_side_by_side(int(sys.argv[sys.argv.index("--pairs") + 1]), source)
+        load = int(sys.argv[sys.argv.index("--load") + 1]) if "--load" in sys.argv else 0
+        print_side_by_side(int(sys.argv[sys.argv.index("--pairs") + 1]), source, load)
         return
     print("first check on a target, fresh process each (ms)        import   first   (targets 400 / 300)"
           + ("   [compiling from source]" if source else ""))
