@@ -31,9 +31,12 @@ __all__ = ["distinct_leaves", "MIN_DIGITS", "NEAR", "exact_constants", "signific
 MIN_DIGITS = 3
 """The fewest significant digits a rounded constant may have."""
 
-NEAR = 5e-3
+NEAR = 2e-2
 """A decimal within this relative distance of a constant that is not a rounding of it is offered as a
-``not_rounded`` slip (the answer is checked again with the constant in its place)."""
+``not_rounded`` slip (the answer is checked again with the constant in its place, so the name is given only when
+the answer is right with it): 2 % reaches a slip in the third significant digit of any constant (2.37 or 2.35 for
+3π/4, 1.49 for a length 1.5), a misrounding or a miscopied digit; the degrees and the integers of the exercise
+use the same distance."""
 
 
 def significant_digits(x):

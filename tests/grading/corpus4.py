@@ -78,7 +78,7 @@ def cases():
 
     # ------------------------------------------------------------------ a wrong row hidden among right ones
     add("hostile-hidden-length-1.49", "phi", ex1, None, _with(E, 5, "x1 + 3*cos(phi1) - x4 - 1.49*cos(phi4)"),
-        False, 11 / 12, ["wrong_value"])
+        False, 11 / 12, ["not_rounded"])  # 0.7 % off the length 1.5: right with 1.5 in its place
     add("hostile-hidden-length-1.4999", "phi", ex1, None,
         _with(E, 9, "x3 + 3*cos(phi3) - x4 + 1.4999*cos(phi4)"), False, 11 / 12, ["not_rounded"])
     add("hostile-hidden-one-term-sign", "phi", ex1, None, _with(E, 10, "-y3 + 3*sin(phi3) - y4 + 1.5*sin(phi4)"),

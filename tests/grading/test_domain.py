@@ -97,7 +97,7 @@ RULES = [
     ("Numbers given at a configuration (`at=`) follow the same rule",
      lambda: [(r.passed, r.mistakes) for r in (grading.check_phi(c.values, T.target(c), at=c.at) for c in _numbers())],
      [(True, []), (False, ["wrong_value"]), (False, ["whole_turn"])]),
-    ("a decimal that is c·180/π correctly rounded to 3 or more significant digits, or within 0.5 % of it",
+    ("a decimal that is c·180/π correctly rounded to 3 or more significant digits, or within 2 % of it",
      lambda: [grading.check_phi([row], C.mechanism("steering").constraint("driver 1")).mistakes
               for row in ("phi2 - 28.65*sin(2*t)", "phi2 - 28.7*sin(2*t)", "phi2 - 29.5*sin(2*t)")],
      [["degrees"], ["degrees"], ["wrong_value"]]),
@@ -107,7 +107,7 @@ RULES = [
                                 C.mechanism("quick_return").constraint("4")).passed), (True, True)),
     ("a row that is 0 everywhere",
      lambda: grading.check_phi(["0", C.BASE[4]], C.mechanism("ch13_example1").constraint("1")).mistakes, ["zero_row"]),
-    ("A decimal near an integer of the exercise (within 0.5 %) is this mistake too",
+    ("A decimal near an integer of the exercise (within 2 %) is this mistake too",
      lambda: grading.check_phi([C.BASE[3], "y1 - y2 + 1.0005*sin(phi2)"],
                                C.mechanism("ch13_example1").constraint("1")).mistakes, ["not_rounded"]),
     ("a function f(q, t) is compared again too, at configurations drawn from a digest of its own code",
