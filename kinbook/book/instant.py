@@ -287,7 +287,8 @@ def _rounding(t, quantity):
         elif value > 0:
             constants.append([float(value), repr(float(c)) if c.is_Float else str(c)])
     data = sorted({abs(float(x)) for row in t.symbolic_phi() for x in row.atoms(sp.Number)})
-    return {"constants": constants, "integers": sorted(set(integers)), "data": data,
+    # sorted: exact_constants comes from a set of sympy nodes, whose order changes with PYTHONHASHSEED
+    return {"constants": sorted(constants), "integers": sorted(set(integers)), "data": data,
             "min_digits": rounding.MIN_DIGITS, "near": rounding.NEAR}
 
 
@@ -456,7 +457,8 @@ def _mutant_values(item, spec, m, answer):
         return None
 
 
-    t = target_for(item.target(**dict(item.data)))
+    target = item.target(**dict(item.data))  # held: a target keeps only a weak reference to its mechanism
+    t = target_for(target)
     M = sp.Matrix(m.value)
     P = spec["points"]["samples"]
     V = np.asarray(t.tape(list(M))(np.asarray(P["q"]), np.asarray(P["qd"]), np.asarray(P["t"]))["value"], float)
