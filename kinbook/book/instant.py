@@ -33,10 +33,12 @@ import hashlib
 import inspect
 import json
 import os
+import platform
 import shutil
 import sys
 from pathlib import Path
 
+import mpmath
 import numpy as np
 import sympy as sp
 
@@ -496,10 +498,6 @@ def page(notebook):
 def cache_key(package=None):
     """What a page's JSON is a function of, hashed: every file of the kinbook package (its code, the try-its' data,
     the shipped examples, the translations) and the versions of Python, numpy, sympy and mpmath, and the machine."""
-    import platform
-
-    import mpmath
-
     package = Path(package) if package is not None else Path(__file__).resolve().parents[1]
     h = hashlib.sha256()
     for path in sorted(p for p in package.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
