@@ -495,15 +495,20 @@ def page(notebook):
             "tryits": {item.id: tryit_spec(item) for item in items}}
 
 
+CPU_SETTINGS = ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES", "NPY_ENABLE_CPU_FEATURES")
+"""Environment variables that choose numpy's and OpenBLAS's kernels (make test-cpu sets two): part of the cache key."""
+
+
 def cache_key(package=None):
     """What a page's JSON is a function of, hashed: every file of the kinbook package (its code, the try-its' data,
-    the shipped examples, the translations) and the versions of Python, numpy, sympy and mpmath, and the machine."""
+    the shipped examples, the translations), the versions of Python, numpy, sympy and mpmath, the machine and the
+    CPU kernels chosen (:data:`CPU_SETTINGS`)."""
     package = Path(package) if package is not None else Path(__file__).resolve().parents[1]
     h = hashlib.sha256()
     for path in sorted(p for p in package.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
         h.update(path.relative_to(package).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")
-    h.update(json.dumps([sys.version, platform.machine(), np.__version__, sp.__version__,
-                         mpmath.__version__]).encode())
+    h.update(json.dumps([sys.version, platform.machine(), np.__version__, sp.__version__, mpmath.__version__]
+                        + [os.environ.get(name) for name in CPU_SETTINGS]).encode())
     return h.hexdigest()[:32]
 
 

@@ -43,8 +43,8 @@ def test_the_pages_cache_is_read_under_its_key_only(tmp_path, monkeypatch):
 
 
 def test_the_cache_key_changes_with_every_file_of_the_package_and_the_versions(tmp_path, monkeypatch):
-    """The key covers the code, the try-its' data, the shipped examples, the translations, a new file, and the
-    versions of numpy and sympy; a copy of the package has the package's key."""
+    """The key covers the code, the try-its' data, the shipped examples, the translations, a new file, the versions
+    of numpy and sympy and the CPU kernels chosen; a copy of the package has the package's key."""
     import sympy
 
     import kinbook
@@ -68,6 +68,9 @@ def test_the_cache_key_changes_with_every_file_of_the_package_and_the_versions(t
         with monkeypatch.context() as m:
             m.setattr(module, "__version__", module.__version__ + ".post1")
             assert instant.cache_key(copy) != key, module.__name__
+    with monkeypatch.context() as m:  # make test-cpu's BLAS kernels
+        m.setenv("OPENBLAS_CORETYPE", "Prescott")
+        assert instant.cache_key(copy) != key
     assert instant.cache_key(copy) == key
 
 
