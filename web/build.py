@@ -267,7 +267,8 @@ def build_instant(dst):
     shutil.copy2(bundle.with_name("math.js.LICENSE.txt"), dst / "math.js.LICENSE.txt")
     for script in INSTANT_SCRIPTS[1:]:
         shutil.copy2(WEB / "instant" / script, dst / script)
-    _run([LAB_PYTHON, "-m", "kinbook.book.instant", dst], cwd=ROOT)
+    # the pages' mutation runs, shared with `make test` (tests/book/test_instant.py) through the checkout's cache
+    _run([LAB_PYTHON, "-m", "kinbook.book.instant", dst, ROOT / "build" / "cache" / "instant"], cwd=ROOT)
 
 
 def kinbook_wheel(dst):

@@ -29,10 +29,16 @@ it on the notebook's data), each as values at the page's points with the code Py
 
 from __future__ import annotations
 
+import hashlib
 import inspect
 import json
+import os
+import platform
+import shutil
+import sys
 from pathlib import Path
 
+import mpmath
 import numpy as np
 import sympy as sp
 
@@ -51,7 +57,7 @@ from ..spatial.rotations import p_from_A
 from .tryits import TRY_ITS, get
 from .tryits import mutations as MT
 
-__all__ = ["grammar", "spec", "tryit_spec", "page", "write", "ui_texts", "tryit_mutants", "UI"]
+__all__ = ["grammar", "spec", "tryit_spec", "page", "page_text", "cache_key", "write", "ui_texts", "tryit_mutants", "UI"]
 
 N_WITNESS = 4
 WITNESS_SEED = 35_2026
@@ -287,7 +293,8 @@ def _rounding(t, quantity):
         elif value > 0:
             constants.append([float(value), repr(float(c)) if c.is_Float else str(c)])
     data = sorted({abs(float(x)) for row in t.symbolic_phi() for x in row.atoms(sp.Number)})
-    return {"constants": constants, "integers": sorted(set(integers)), "data": data,
+    # sorted: exact_constants comes from a set of sympy nodes, whose order changes with PYTHONHASHSEED
+    return {"constants": sorted(constants), "integers": sorted(set(integers)), "data": data,
             "min_digits": rounding.MIN_DIGITS, "near": rounding.NEAR}
 
 
@@ -456,7 +463,8 @@ def _mutant_values(item, spec, m, answer):
         return None
 
 
-    t = target_for(item.target(**dict(item.data)))
+    target = item.target(**dict(item.data))  # held: a target keeps only a weak reference to its mechanism
+    t = target_for(target)
     M = sp.Matrix(m.value)
     P = spec["points"]["samples"]
     V = np.asarray(t.tape(list(M))(np.asarray(P["q"]), np.asarray(P["qd"]), np.asarray(P["t"]))["value"], float)
@@ -487,20 +495,57 @@ def page(notebook):
             "tryits": {item.id: tryit_spec(item) for item in items}}
 
 
-def write(folder):
-    """Write ``<notebook>.json`` (:func:`page`) for every notebook with try-its into ``folder``; returns the
-    notebooks."""
+CPU_SETTINGS = ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES", "NPY_ENABLE_CPU_FEATURES")
+"""Environment variables that choose numpy's and OpenBLAS's kernels (make test-cpu sets two): part of the cache key."""
+
+
+def cache_key(package=None):
+    """What a page's JSON is a function of, hashed: every file of the kinbook package (its code, the try-its' data,
+    the shipped examples, the translations), the versions of Python, numpy, sympy and mpmath, the machine and the
+    CPU kernels chosen (:data:`CPU_SETTINGS`)."""
+    package = Path(package) if package is not None else Path(__file__).resolve().parents[1]
+    h = hashlib.sha256()
+    for path in sorted(p for p in package.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
+        h.update(path.relative_to(package).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")
+    h.update(json.dumps([sys.version, platform.machine(), np.__version__, sp.__version__, mpmath.__version__]
+                        + [os.environ.get(name) for name in CPU_SETTINGS]).encode())
+    return h.hexdigest()[:32]
+
+
+def page_text(notebook, cache=None):
+    """The JSON text of one book page (:func:`page`). With ``cache`` (a folder: the checkout's build/cache/instant),
+    it is read from ``cache/<key>/<notebook>.json`` when there (:func:`cache_key`), else computed and stored there
+    and every other key's folder removed — so that the test run and the book build of one checkout make the pages'
+    mutation runs once; a changed source or version is a new key, never a stale page."""
+    if cache is None:
+        return json.dumps(page(notebook), ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+    cache = Path(cache)
+    key = cache_key()
+    here = cache / key / f"{notebook}.json"
+    if here.is_file():
+        return here.read_text(encoding="utf-8")
+    text = page_text(notebook)
+    here.parent.mkdir(parents=True, exist_ok=True)
+    for other in cache.iterdir():
+        if other.is_dir() and other.name != key:
+            shutil.rmtree(other, ignore_errors=True)
+    partial = here.with_name(f".{notebook}.{os.getpid()}.json")  # another process may read it meanwhile: whole
+    partial.write_text(text, encoding="utf-8")
+    os.replace(partial, here)
+    return text
+
+
+def write(folder, cache=None):
+    """Write ``<notebook>.json`` (:func:`page_text`, with its ``cache``) for every notebook with try-its into
+    ``folder``; returns the notebooks."""
     get("13-1/try-1")
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     notebooks = sorted({key.split("/")[0] for key in TRY_ITS})
     for notebook in notebooks:
-        text = json.dumps(page(notebook), ensure_ascii=False, separators=(",", ":"), allow_nan=False)
-        (folder / f"{notebook}.json").write_text(text, encoding="utf-8")
+        (folder / f"{notebook}.json").write_text(page_text(notebook, cache), encoding="utf-8")
     return notebooks
 
 
-if __name__ == "__main__":  # python -m kinbook.book.instant FOLDER (web/build.py book)
-    import sys
-
-    print("instant checks:", ", ".join(write(sys.argv[1])))
+if __name__ == "__main__":  # python -m kinbook.book.instant FOLDER [CACHE] (web/build.py book)
+    print("instant checks:", ", ".join(write(*sys.argv[1:3])))

@@ -2,6 +2,8 @@
 against Python's verdicts by tests/web/test_instant.py (make test-web: Node and chromium)."""
 
 import json
+import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,11 +15,63 @@ from kinbook.core import reader
 get("13-1/try-1")
 IDS = list(TRY_ITS)
 NOTEBOOKS = sorted({i.split("/")[0] for i in IDS})
+CACHE = Path(__file__).resolve().parents[2] / "build" / "cache" / "instant"
+"""The checkout's cache of the pages' JSON (git-ignored, removed by make clean): what this run computes, the book build
+(web/build.py, after make test in CI) reads instead of making the try-its' mutation runs again."""
 
 
 @pytest.fixture(scope="module")
 def pages():
-    return {nb: json.loads(json.dumps(instant.page(nb), allow_nan=False)) for nb in NOTEBOOKS}
+    return {nb: json.loads(instant.page_text(nb, CACHE)) for nb in NOTEBOOKS}
+
+
+def test_the_pages_cache_is_read_under_its_key_only(tmp_path, monkeypatch):
+    """A page's text with a cache: computed and stored under the key of what makes it; read back under that key (a
+    planted text comes back as it is: the cache is used); under another key — a source or a version changed —
+    computed again, never the stale text, whose folder is removed."""
+    nb = "13-1"
+    fresh = json.dumps(instant.page(nb), ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+    assert instant.page_text(nb, tmp_path) == fresh
+    stored = tmp_path / instant.cache_key() / f"{nb}.json"
+    assert stored.read_text(encoding="utf-8") == fresh
+    stored.write_text('{"planted": true}', encoding="utf-8")
+    assert instant.page_text(nb, tmp_path) == '{"planted": true}'
+    monkeypatch.setattr(instant, "cache_key", lambda: "another-key")
+    assert instant.page_text(nb, tmp_path) == fresh
+    assert [p.name for p in tmp_path.iterdir()] == ["another-key"]
+    assert (tmp_path / "another-key" / f"{nb}.json").read_text(encoding="utf-8") == fresh
+
+
+def test_the_cache_key_changes_with_every_file_of_the_package_and_the_versions(tmp_path, monkeypatch):
+    """The key covers the code, the try-its' data, the shipped examples, the translations, a new file, the versions
+    of numpy and sympy and the CPU kernels chosen; a copy of the package has the package's key."""
+    import sympy
+
+    import kinbook
+
+    package = Path(kinbook.__file__).parent
+    copy = tmp_path / "kinbook"
+    shutil.copytree(package, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    key = instant.cache_key(copy)
+    assert key == instant.cache_key(package)
+    for name in ("book/tryits/ch14.py", "grading/checks.py", "examples/spatial_fourbar.toml",
+                 "locale/es/LC_MESSAGES/kinbook.mo"):
+        original = (copy / name).read_bytes()
+        (copy / name).write_bytes(original + b"\n")
+        assert instant.cache_key(copy) != key, name
+        (copy / name).write_bytes(original)
+    assert instant.cache_key(copy) == key
+    (copy / "book" / "extra.py").write_text("")
+    assert instant.cache_key(copy) != key
+    (copy / "book" / "extra.py").unlink()
+    for module in (np, sympy):
+        with monkeypatch.context() as m:
+            m.setattr(module, "__version__", module.__version__ + ".post1")
+            assert instant.cache_key(copy) != key, module.__name__
+    with monkeypatch.context() as m:  # make test-cpu's BLAS kernels
+        m.setenv("OPENBLAS_CORETYPE", "Prescott")
+        assert instant.cache_key(copy) != key
+    assert instant.cache_key(copy) == key
 
 
 def test_the_grammar_is_the_readers():

@@ -5,6 +5,7 @@ their ranges) and :data:`TRY_ITS`, filled by the chapter modules through :func:`
 from __future__ import annotations
 
 import ast
+import functools
 import inspect
 import textwrap
 from dataclasses import dataclass, field
@@ -358,12 +359,43 @@ def register(id, answer, checker, target, solution, options=None, context=None, 
     """Add a :class:`TryIt` to :data:`TRY_ITS` (used by the chapter modules); returns it."""
     if id in TRY_ITS:
         raise ValueError(f"try-it {id!r} is registered twice")
-    item = TryIt(answer=answer, checker=checker_for(checker), target=target, options=dict(options or {}),
+    checker = checker_for(checker)
+    if checker.quantity is not None:  # a mechanism or a constraint: what is derived from it is cached on it
+        target = ByData(target)
+    if wrong_forms is not None:
+        wrong_forms = ByData(wrong_forms)
+    item = TryIt(answer=answer, checker=checker, target=target, options=dict(options or {}),
                  data=dict(data or {}), ranges=dict(ranges or {}), id=id, solution=solution, context=context or dict,
                  statement=statement, explanation=explanation, lookalikes=lookalikes, wrong_forms=wrong_forms,
                  numbers_at=numbers_at, library=tuple(library))
     TRY_ITS[id] = item
     return item
+
+
+class ByData:
+    """A function of a try-it's data that keeps its last :data:`KEPT` results by the data's values: a symbolic
+    try-it's target (a mechanism or a constraint, which keeps its derivation, samples and catalogue variants —
+    :meth:`~kinbook.core.mechanism.MechanismBase.cached`) and its wrong forms are built once per data, not once per
+    answer checked (the mutation run checks hundreds of answers on the same data). Immutable results only: a
+    mechanism invalidates its own cache when it changes; wrong forms are returned as a tuple."""
+
+    KEPT = 8
+
+    def __init__(self, function):
+        self.function = function
+        self._kept = {}
+        functools.update_wrapper(self, function)
+
+    def __call__(self, **data):
+        key = repr([(k, np.asarray(data[k], dtype=object).tolist()) for k in sorted(data)])
+        if key in self._kept:
+            self._kept[key] = self._kept.pop(key)  # the most recent last
+        else:
+            if len(self._kept) >= self.KEPT:
+                self._kept.pop(next(iter(self._kept)))
+            found = self.function(**data)
+            self._kept[key] = tuple(found) if isinstance(found, list) else found
+        return self._kept[key]
 
 
 _TEXT = {
