@@ -71,6 +71,11 @@ def exact_constants(target, quantity="Phi"):
     nodes = set()
     for row in rows:
         nodes |= row.atoms(sp.Number, sp.Add, sp.Mul)  # each distinct sub-expression once
+
+    def offer(key, c):  # of two forms of one value, the same one in every process (a set's order follows the seed)
+        if key not in found or _form(c) < _form(found[key]):
+            found[key] = c
+
     for node in nodes:
         if node.is_Number:
             parts = [node]
@@ -79,7 +84,7 @@ def exact_constants(target, quantity="Phi"):
             parts = [node.func(*numeric)] if numeric else []
         for c in parts:
             if c.is_Integer:
-                found.setdefault(("integer", int(abs(c))), c)
+                offer(("integer", int(abs(c))), c)
             if not c.is_number or c.is_Integer or c == 0:
                 continue
             try:
@@ -87,12 +92,20 @@ def exact_constants(target, quantity="Phi"):
             except (TypeError, ValueError):
                 continue
             if math.isfinite(value):
-                found.setdefault(value, c)
-                found.setdefault(-value, -c)
+                offer(value, c)
+                offer(-value, -c)
+    found = dict(sorted(found.items(), key=lambda kv: (isinstance(kv[0], tuple), kv[0])))
     if not quantity_of(quantity).right_hand_side:
         _turned_constants(target, rows, symbols, found)
     target.store[key] = found
     return found
+
+
+def _form(c):
+    """Which of two forms of one value stands for it: the exercise's own decimal first (a datum as written), then
+    the shorter, then by text."""
+    text = str(c)
+    return not c.is_Float, len(text), text
 
 
 def _turned_constants(target, rows, symbols, found):
@@ -185,7 +198,7 @@ def exact(answer, target, quantity="Phi", raw=None):
         return answer, []
     constants = exact_constants(target, quantity)
     swap, near = {}, []
-    for f in sorted(numbers, key=lambda x: float(x)):
+    for f in sorted(numbers, key=_order):
         x = float(f)
         if x == 0 or (f.is_Integer and ("integer", int(abs(f))) in constants):
             continue  # an integer of the exercise's own
@@ -218,6 +231,12 @@ def exact(answer, target, quantity="Phi", raw=None):
     return answer, near
 
 
+def _order(x):
+    """The order numbers are judged in — by value, then by form (100 before 100.0) —, the same in every process (a
+    set's order follows the hash seed)."""
+    return float(x), not x.is_Integer, str(x)
+
+
 def graded(result, answer, target, quantity, raw, recheck):
     """The verdict under the rounding rule: a failed ``result`` of a symbolic answer with decimals is checked
     again (``recheck(matrix)``) with the exercise's constants in place of their correct roundings, and its near
@@ -246,7 +265,8 @@ def in_degrees(result, answer, target, quantity, raw, recheck):
         return result
 
     typed = typed_digits(raw) if raw is not None else {}
-    numbers = [x for x in distinct_leaves(answer.matrix, lambda e: e.is_Number) if x.is_Float or (x.is_Integer and abs(x) >= 100)]
+    numbers = sorted((x for x in distinct_leaves(answer.matrix, lambda e: e.is_Number)
+                      if x.is_Float or (x.is_Integer and abs(x) >= 100)), key=_order)
     if not numbers:
         return result
     constants = [(float(c), c) for c in _angles_and_rates(target, quantity)]

@@ -39,3 +39,29 @@ def test_the_issue_examples():
     assert r.mistakes == ["not_rounded"] and "2.357 is not 3*pi/4 rounded" in r.messages[0]
     assert (significant_digits(2.356), significant_digits(0.000123), significant_digits(1.05)) == (4, 3, 3)
     assert is_rounding(0.866, 3 ** 0.5 / 2) and not is_rounding(0.867, 3 ** 0.5 / 2)
+
+
+_SEEDED = r"""
+import kinbook
+from kinbook.grading import check_phi
+from kinbook.grading.rounding import exact_constants
+from kinbook.grading.target import target_for
+m = kinbook.examples.load("ch13_example1")
+print(list(exact_constants(target_for(m))))
+print(list(exact_constants(target_for(kinbook.examples.load("spatial_fourbar")), "gamma")))
+print(repr(check_phi(["phi2 - 135.1 - 5730*t"], m.constraint("driver 1"))))
+print(repr(check_phi(["phi2 - 2.37 - 100*t"], m.constraint("driver 1"))))
+"""
+
+
+def test_the_rounding_rule_does_not_depend_on_the_hash_seed():
+    """The exercise's constants, and the decimals of an answer, are judged in one fixed order: a set's order (which
+    follows PYTHONHASHSEED) would pick another of two constants a decimal rounds, and order the notes otherwise."""
+    import os
+    import subprocess
+    import sys
+
+    runs = {subprocess.run([sys.executable, "-c", _SEEDED], capture_output=True, text=True, check=True,
+                           env=dict(os.environ, PYTHONHASHSEED=seed)).stdout for seed in ("0", "1", "2", "3")}
+    assert len(runs) == 1, runs
+    assert "not_rounded" in next(iter(runs)) and "degrees" in next(iter(runs))
