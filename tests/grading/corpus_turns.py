@@ -134,30 +134,39 @@ def _case(name, c, rows, k, form, text, measure):
     return Case(f"{name}-{c.name}-{k + 1}-{measure}-{form}", name, c.name, answer, right, names)
 
 
-@lru_cache(maxsize=None)
-def cases():
-    """Each form of each angle row (and of a length row of the same constraint) graded with its constraint alone —
-    once per distinct row — and, per mechanism, the whole Φ with one of its rows turned."""
-    out, seen = [], set()
+def _angle_rows():
+    """Each row of every constraint that has a row measuring an angle (not wrapped), in the mechanisms above:
+    ``(name, m, c, rows, k, measure, first)``, ``first`` when the row (its joint type and text) is met first."""
+    seen = set()
     for name, m in _mechanisms():
-        whole = [str(x) for x in m.symbolic().Phi]
         for c in m.constraints:
             measures = c.measures or ()
             if "angle" not in measures or c.wrap:
                 continue
             rows = list(m.constraint_phi(c))
             for k, measure in enumerate(measures):
-                forms = ANGLE_FORMS if measure == "angle" else LENGTH_FORMS if measure.startswith("length") else {}
                 key = (type(c).__name__, str(rows[k]))
-                if key not in seen:
-                    seen.add(key)
-                    out += [_case(name, c, rows, k, form, text, measure) for form, text in forms.items()]
-                form = "plus-2pi"
-                if form in forms:  # the same row turned in the whole Φ
-                    one = _case(name, c, rows, k, form, forms[form], measure)
-                    answer = list(whole)
-                    answer[c.rows.start + k] = one.answer[k]
-                    out.append(Case(f"whole-{one.id}", name, None, answer, one.passed, one.names))
+                yield name, m, c, rows, k, measure, key not in seen
+                seen.add(key)
+
+
+@lru_cache(maxsize=None)
+def cases():
+    """Each form of each angle row (and of a length row of the same constraint) graded with its constraint alone —
+    once per distinct row — and, per mechanism, the whole Φ with one of its rows turned."""
+    out, wholes = [], {}
+    for name, m, c, rows, k, measure, first in _angle_rows():
+        forms = ANGLE_FORMS if measure == "angle" else LENGTH_FORMS if measure.startswith("length") else {}
+        if first:
+            out += [_case(name, c, rows, k, form, text, measure) for form, text in forms.items()]
+        form = "plus-2pi"
+        if form in forms:  # the same row turned in the whole Φ
+            if name not in wholes:
+                wholes[name] = [str(x) for x in m.symbolic().Phi]
+            one = _case(name, c, rows, k, form, forms[form], measure)
+            answer = list(wholes[name])
+            answer[c.rows.start + k] = one.answer[k]
+            out.append(Case(f"whole-{one.id}", name, None, answer, one.passed, one.names))
     return out
 
 
@@ -187,32 +196,25 @@ class NumberCase:
 def number_cases():
     """Each distinct angle row (and a length row beside it) given as numbers at a configuration drawn over the whole
     domain (angles in ±20 rad; t under 0.5, so that a value stays small enough for 1 and π to be more than the
-    numbers' tolerance, 2·10⁻³ of it) — its value turned by whole turns, by half a turn, by 1 — with the expectation of :func:`verdict` (the
-    same second computation as the expressions'); the values computed with sympy from kinbook's symbolic rows."""
-    out, seen = [], set()
+    numbers' tolerance, 2·10⁻³ of it) — its value turned by whole turns, by half a turn, by 1 — with the
+    expectation of :func:`verdict` (the same second computation as the expressions'); the values computed with sympy
+    from kinbook's symbolic rows."""
+    out = []
     rng = np.random.default_rng(29)
-    for name, m in _mechanisms():
-        for c in m.constraints:
-            measures = c.measures or ()
-            if "angle" not in measures or c.wrap:
-                continue
-            rows = list(m.constraint_phi(c))
-            for k, measure in enumerate(measures):
-                kind = "angle" if measure == "angle" else "length" if measure.startswith("length") else None
-                key = (type(c).__name__, str(rows[k]))
-                if kind is None or key in seen:
-                    continue
-                seen.add(key)
-                q = [rng.uniform(-20, 20) if str(s).startswith("phi") else rng.uniform(-5, 5) for s in m.q]
-                t = float(rng.uniform(0, 0.5))  # a driver's 100t stays under 50: 1 and π off stay beyond 2·10⁻³ of it
-                point = dict(zip(m.q, q)) | {m.t: t}
-                values = [float(row.subs(point)) for row in rows]
-                for form in NUMBER_FORMS[kind]:
-                    text = (ANGLE_FORMS if kind == "angle" else LENGTH_FORMS)[form].format(r=str(rows[k]))
-                    right, turns, _ = verdict(text, str(rows[k]))
-                    answer = list(values)
-                    answer[k] = float(sp.sympify(text).subs({str(s): v for s, v in point.items()}))
-                    names = [[]] if right else [["whole_turn"]] if kind == "length" and turns else [["wrong_value"]]
-                    out.append(NumberCase(f"{name}-{c.name}-{k + 1}-{measure}-{form}", name, c.name, answer,
-                                          {"q": q, "t": t}, right, names))
+    for name, m, c, rows, k, measure, first in _angle_rows():
+        kind = "angle" if measure == "angle" else "length" if measure.startswith("length") else None
+        if kind is None or not first:
+            continue
+        q = [rng.uniform(-20, 20) if str(s).startswith("phi") else rng.uniform(-5, 5) for s in m.q]
+        t = float(rng.uniform(0, 0.5))  # a driver's 100t stays under 50: 1 and π off stay beyond 2·10⁻³ of it
+        point = dict(zip(m.q, q)) | {m.t: t}
+        values = [float(row.subs(point)) for row in rows]
+        for form in NUMBER_FORMS[kind]:
+            text = (ANGLE_FORMS if kind == "angle" else LENGTH_FORMS)[form].format(r=str(rows[k]))
+            right, turns, _ = verdict(text, str(rows[k]))
+            answer = list(values)
+            answer[k] = float(sp.sympify(text).subs({str(s): v for s, v in point.items()}))
+            names = [[]] if right else [["whole_turn"]] if kind == "length" and turns else [["wrong_value"]]
+            out.append(NumberCase(f"{name}-{c.name}-{k + 1}-{measure}-{form}", name, c.name, answer,
+                                  {"q": q, "t": t}, right, names))
     return out
