@@ -497,7 +497,7 @@ def A_from_p(p, check=True):
     array([0., 1., 0.])
     """
     if symbolic(p):
-        return sp.Matrix(3, 3, _A_entries(tuple(sp.sympify(e) for e in p)))
+        return sp.Matrix(3, 3, _A_entries(*p))
     e0, e1, e2, e3 = parts(unit_p(p, check=check))
     return 2 * stack_rows([
         [e0 * e0 + e1 * e1 - 0.5, e1 * e2 - e0 * e3, e1 * e3 + e0 * e2],
@@ -506,12 +506,12 @@ def A_from_p(p, check=True):
     ])
 
 
-@functools.lru_cache(maxsize=256)
-def _A_entries(p):
-    """The nine entries of the symbolic A(p), row by row, for a tuple of sympy expressions ``p`` (sympy expressions
-    are immutable, so one build serves every constraint that reads the same body: a spatial Φ reads A(p) once per
-    point and vector, and the checkers' mistake catalogue rebuilds each joint's Φ a dozen times)."""
-    e0, e1, e2, e3 = p
+@functools.lru_cache(maxsize=256, typed=True)
+def _A_entries(e0, e1, e2, e3):
+    """The nine entries of the symbolic A(p), row by row (sympy expressions are immutable, so one build serves every
+    constraint that reads the same body: a spatial Φ reads A(p) once per point and vector, and the checkers' mistake
+    catalogue rebuilds each joint's Φ a dozen times). ``typed``: 1 and 1.0 are two keys, as they are two
+    expressions."""
     e = sp.Matrix([e1, e2, e3])
     return tuple(2 * ((e0**2 - sp.Rational(1, 2)) * sp.eye(3) + e * e.T + e0 * skew(e)))
 
