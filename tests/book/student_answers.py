@@ -22,6 +22,8 @@ import sympy as sp
 
 from kinbook.book.tryits import get
 
+from ..grading.tryits import newton_iterates
+
 DEG = 180 / np.pi
 c, s = np.cos, np.sin
 
@@ -264,16 +266,7 @@ def ch13():
     t = 0.005
 
     def newton(step=1.0, n=8, time=t, degrees=False):
-        q = m3.q0.copy()
-        out = [q]
-        for _ in range(n):
-            q = q + step * np.linalg.solve(m3.Phi_q(q, time), -m3.Phi(q, time))
-            out.append(q)
-        if degrees:
-            out = [x.copy() for x in out]
-            for x in out[1:]:
-                x[2::3] *= DEG
-        return out
+        return newton_iterates(m3, time, step, n, degrees=degrees)
 
     ok = newton()
     T.append(Case("13-3/try-2", ok, [

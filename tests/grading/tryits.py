@@ -64,6 +64,24 @@ def example(name):
     return m, q, qd, qdd
 
 
+def newton_iterates(m, time, step=1.0, n=8, J_at_guess=False, degrees=False, start=None):
+    """A student's Newton loop on mechanism ``m`` at ``time``, as typed with numpy (13-3's try-it): ``n`` steps from
+    q0 (or ``start``), each ``step`` × the Newton step, the Jacobian kept at the guess when ``J_at_guess``, the
+    angles shown in degrees when ``degrees``; the list of iterates."""
+    q = (m.q0 if start is None else start).copy()
+    out = [q]
+    J0 = m.Phi_q(q, time)
+    for _ in range(n):
+        J = J0 if J_at_guess else m.Phi_q(q, time)
+        q = q + step * np.linalg.solve(J, -m.Phi(q, time))
+        out.append(q)
+    if degrees:
+        out = [x.copy() for x in out]
+        for x in out[1:]:
+            x[2::3] *= DEG
+    return out
+
+
 def _rev(s1, s2, **kw):
     (x1, y1), (x2, y2) = xy(1, s1, **kw), xy(2, s2, **kw)
     return [f"{x1} - {x2}", f"{y1} - {y2}"]
@@ -125,18 +143,7 @@ def _ch13():
     t = 0.005
 
     def loop(step=1.0, n=8, time=t, J_at_guess=False, degrees=False, start=None):
-        q = (m3.q0 if start is None else start).copy()
-        out = [q]
-        J0 = m3.Phi_q(q, time)
-        for _ in range(n):
-            J = J0 if J_at_guess else m3.Phi_q(q, time)
-            q = q + step * np.linalg.solve(J, -m3.Phi(q, time))
-            out.append(q)
-        if degrees:
-            out = [x.copy() for x in out]
-            for x in out[1:]:
-                x[2::3] *= DEG
-        return out
+        return newton_iterates(m3, time, step, n, J_at_guess, degrees, start)
 
     def until_converged():
         q, out = m3.q0.copy(), [m3.q0.copy()]
